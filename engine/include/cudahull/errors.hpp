@@ -1,0 +1,36 @@
+// Error types, and the exit codes the command line maps them to (documented in README, "Exit codes").
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace cudahull {
+
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitUsage = 2,       // bad command line
+  kExitBadInput = 3,    // unreadable or invalid input file
+  kExitDevice = 4,      // out of memory, no device, kernel fault
+  kExitOutput = 1,      // an output file could not be written
+  kExitVerifyFailed = 5 // --verify found the hull wrong
+};
+
+// Unreadable or malformed input.  The message names the file and the line or element index.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Out of memory or an accelerator failure.
+class DeviceError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// An output file could not be written.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace cudahull

@@ -1,0 +1,25 @@
+// A small, exact, sequential 3D convex hull: exact QuickHull with outside sets on exact predicates, followed
+// by merging coplanar facets so that only strictly extreme points remain as vertices.
+//
+// The engine uses it to finish (and, where the paper's local procedure could not, repair) the hull from its
+// candidate vertices; it also computes the lower-dimensional answer for degenerate inputs.
+#pragma once
+
+#include <vector>
+
+#include "cudahull/types.hpp"
+
+namespace cudahull {
+
+// Exact convex hull of points[ids[i]] (all of `points` when `ids` is empty).
+//  - Vertices are exactly the strictly extreme points; among points with identical coordinates the one with
+//    the lowest input index is the vertex.  vertex_ids are sorted ascending.
+//  - dimension 3: outward counter-clockwise triangles; coplanar facets are triangulated using corners only.
+//  - dimension 2: the polygon's strict corners in order, no triangles.  dimension 1: the two segment ends.
+//    dimension 0: a single point.  An empty input gives dimension -1 and no vertices.
+HullMesh exact_hull(const std::vector<Point3>& points, const std::vector<PointIndex>& ids = {});
+
+// The affine dimension (-1 for no points, 0..3) of the point set, exactly.
+int affine_dimension(const std::vector<Point3>& points);
+
+}  // namespace cudahull

@@ -1,0 +1,25 @@
+// Writing hulls and vertex lists.  Every writer writes to a temporary file beside the target and renames it
+// only when complete, so a failure or an interrupt never leaves a half-written file.
+#pragma once
+
+#include <functional>
+#include <ostream>
+#include <string>
+
+#include "cudahull/types.hpp"
+
+namespace cudahull {
+
+// Writes the hull as .obj, .off or .ply, chosen by the extension of `path` (OutputError otherwise).
+// Coordinates use round-trip precision (%.9g).  Faces are the outward, counter-clockwise triangles; a
+// planar hull (dimension 2) is written as one polygon face, a segment or a point as vertices only.
+void write_mesh(const std::string& path, const HullMesh& hull);
+
+// Writes one line per hull vertex, "index x y z", 0-based input indices sorted ascending.  "-" is stdout.
+void write_vertices(const std::string& path, const HullMesh& hull);
+
+// Writes `write_body` to `path` atomically: a temporary name in the same folder, then rename(2).  The
+// temporary file is removed on any failure and on SIGINT/SIGTERM.  "-" writes to stdout directly.
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write_body);
+
+}  // namespace cudahull

@@ -1,0 +1,33 @@
+// Basic value types shared by every part of cudahull.
+//
+// Points are stored as float32 (see README, "Precision"): the input is rounded to float once, on load, and
+// every exact decision afterwards is exact on those float32 values.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace cudahull {
+
+struct Point3 {
+  float x = 0, y = 0, z = 0;
+  friend bool operator==(const Point3&, const Point3&) = default;
+};
+
+using PointIndex = std::uint32_t;
+using Triangle = std::array<std::uint32_t, 3>;
+
+// A convex hull as it leaves the engine: vertices are input points (by input index), faces are outward,
+// counter-clockwise triangles seen from outside.  For a lower-dimensional input, `dimension` is 0, 1 or 2:
+// dimension 0 has one vertex, 1 has the two segment ends, 2 has the polygon's corners in counter-clockwise
+// order (seen from the side the polygon's normal points to) in `polygon` and no triangles.
+struct HullMesh {
+  int dimension = 3;
+  std::vector<PointIndex> vertex_ids;  // input indices, one per hull vertex
+  std::vector<Point3> vertices;        // coordinates of vertex_ids, same order
+  std::vector<Triangle> triangles;     // indices into `vertices`
+  std::vector<std::uint32_t> polygon;  // dimension 2 only: indices into `vertices`, in order
+};
+
+}  // namespace cudahull
