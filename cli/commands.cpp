@@ -1,0 +1,292 @@
+#include "commands.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cudahull/cpu_backend.hpp"
+#include "cudahull/engine.hpp"
+#include "cudahull/errors.hpp"
+#include "cudahull/exact_hull.hpp"
+#include "cudahull/generators.hpp"
+#include "cudahull/hull_checker.hpp"
+#include "cudahull/mesh_io.hpp"
+#include "cudahull/point_io.hpp"
+#include "cudahull/point_writer.hpp"
+#include "cudahull/trace.hpp"
+#include "device_info.hpp"
+#include "qhull_reference.hpp"
+
+namespace cudahull::cli {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// A progress line on stderr for long loads, only when stderr is a terminal.
+ProgressFn stderr_progress(const std::string& what, bool quiet) {
+  if (quiet || !isatty(STDERR_FILENO)) return {};
+  return [what, last = -1](double fraction) mutable {
+    const int percent = static_cast<int>(fraction * 100);
+    if (percent == last) return;
+    last = percent;
+    std::fprintf(stderr, "\r%s %3d%%%s", what.c_str(), percent, percent >= 100 ? "\n" : "");
+    std::fflush(stderr);
+  };
+}
+
+// --backend: picks the backend and says which, in one line.  The CUDA backend arrives with issue 4; until
+// then `auto` uses the CPU and says why, and `cuda` is a device failure (exit 4).
+std::unique_ptr<Backend> choose_backend(const std::string& requested, bool quiet, std::string* device) {
+  if (requested == "cpu") {
+    auto backend = make_cpu_backend();
+    if (!quiet) std::fprintf(stderr, "backend: %s (as requested)\n", backend->name().c_str());
+    *device = "cpu";
+    return backend;
+  }
+  const CudaDeviceInfo info = query_cuda_device();
+  const std::string why = info.usable ? "the CUDA backend is not built into this version; GPU " + info.name +
+                                            " left unused"
+                                      : "no usable CUDA device: " + info.reason;
+  if (requested == "cuda") throw DeviceError("--backend cuda: " + why);
+  auto backend = make_cpu_backend();
+  if (!quiet) std::fprintf(stderr, "backend: %s (auto: %s)\n", backend->name().c_str(), why.c_str());
+  *device = "cpu";
+  return backend;
+}
+
+std::vector<Point3> load_or_generate(const std::string& input, const std::string& dist, std::uint64_t n,
+                                     std::uint64_t seed, bool quiet) {
+  if (!input.empty()) return read_points(input, stderr_progress("reading " + input, quiet));
+  return generate_points(distribution_from_name(dist), n, seed);
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  write_file_atomically(path, [&](std::ostream& out) { out << text; });
+}
+
+const char* dimension_name(int d) {
+  switch (d) {
+    case -1: return "empty";
+    case 0: return "a single point";
+    case 1: return "a segment";
+    case 2: return "a convex polygon";
+    default: return "a polyhedron";
+  }
+}
+
+}  // namespace
+
+int run_info(const InfoOptions& o) {
+  const auto t0 = Clock::now();
+  const std::vector<Point3> points = read_points(o.input, stderr_progress("reading " + o.input, false));
+  const double read_ms = ms_since(t0);
+  nlohmann::json j;
+  j["file"] = o.input;
+  j["points"] = points.size();
+  if (!points.empty()) {
+    Point3 lo = points[0], hi = points[0];
+    for (const Point3& p : points) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    j["bbox"] = {{"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}};
+  } else {
+    j["bbox"] = nullptr;
+  }
+  j["dimension"] = affine_dimension(points);
+  j["read_ms"] = read_ms;
+  std::cout << j.dump() << "\n";
+  return kExitOk;
+}
+
+int run_gen(const GenOptions& o) {
+  const Distribution dist = distribution_from_name(o.distribution);
+  const std::vector<Point3> points = generate_points(dist, o.count, o.seed);
+  write_points(o.output, points);
+  std::fprintf(stderr, "gen: %zu %s points (seed %llu) -> %s\n", points.size(), o.distribution.c_str(),
+               static_cast<unsigned long long>(o.seed), o.output.c_str());
+  return kExitOk;
+}
+
+int run_hull(const HullOptions& o) {
+  const auto t_read = Clock::now();
+  std::vector<Point3> points = read_points(o.input, stderr_progress("reading " + o.input, o.quiet));
+  const double read_ms = ms_since(t_read);
+  std::string device;
+  auto backend = choose_backend(o.backend, o.quiet, &device);
+  const std::string backend_name = backend->name();
+  const std::size_t point_count = points.size();
+
+  Engine engine(std::move(points), std::move(backend));
+  std::ostringstream trace;
+  double host_ms = 0, backend_ms = 0;
+  std::size_t repairs = 0, swaps = 0, rejected = 0, removed = 0;
+  std::uint64_t bytes_to = 0, bytes_from = 0;
+  int iterations = 0;
+  if (o.table) {
+    std::printf("%4s %9s %9s %8s %7s %7s %7s %7s %11s %11s %9s %9s\n", "iter", "faces", "refined", "regular",
+                "compl", "reject", "removed", "entries", "ext before", "ext after", "host ms", "back ms");
+  }
+  const auto t_run = Clock::now();
+  engine.run([&](const IterationRecord& r) {
+    ++iterations;
+    host_ms += r.host_ms;
+    backend_ms += r.backend_ms;
+    repairs += r.repairs;
+    swaps += r.swaps_regular + r.swaps_complementary;
+    rejected += r.swaps_rejected;
+    removed += r.vertices_removed;
+    bytes_to += r.bytes_to_backend;
+    bytes_from += r.bytes_from_backend;
+    if (!o.trace.empty()) trace << iteration_to_json(r).dump() << "\n";
+    if (o.table) {
+      std::printf("%4d %9zu %9zu %8zu %7zu %7zu %7zu %7zu %11zu %11zu %9.3f %9.3f\n", r.iteration, r.faces_after,
+                  r.faces_refined, r.swaps_regular, r.swaps_complementary, r.swaps_rejected, r.vertices_removed,
+                  r.decision_entries, r.external_before, r.external_after, r.host_ms, r.backend_ms);
+    }
+    if (!o.quiet && !r.note.empty()) std::fprintf(stderr, "note: %s\n", r.note.c_str());
+  });
+  const double run_ms = ms_since(t_run);
+  const HullMesh& hull = engine.result();
+  if (!o.quiet && hull.dimension < 3) {
+    std::fprintf(stderr, "warning: the input is %d-dimensional; its hull is %s\n", hull.dimension,
+                 dimension_name(hull.dimension));
+  }
+
+  bool verified = false;
+  double verify_ms = 0;
+  if (o.verify) {
+    const auto t_verify = Clock::now();
+    const CheckResult check = check_hull(engine.points(), hull);
+    verify_ms = ms_since(t_verify);
+    if (!check.ok) {
+      for (const auto& line : check.failures) std::fprintf(stderr, "verify: %s\n", line.c_str());
+      std::fprintf(stderr, "cudahull: error: --verify failed: %zu problem(s), first: %s\n", check.failures.size(),
+                   check.failures.empty() ? "?" : check.failures.front().c_str());
+      return kExitVerifyFailed;
+    }
+    verified = true;
+  }
+
+  if (!o.output.empty()) write_mesh(o.output, hull);
+  if (!o.vertices_out.empty()) write_vertices(o.vertices_out, hull);
+  if (!o.trace.empty()) write_text(o.trace, trace.str());
+
+  if (!o.stats.empty()) {
+    nlohmann::json j{{"input", o.input},
+                     {"points", point_count},
+                     {"dimension", hull.dimension},
+                     {"hull_vertices", hull.vertex_ids.size()},
+                     {"hull_faces", hull.dimension == 3 ? hull.triangles.size() : (hull.dimension == 2 ? 1 : 0)},
+                     {"iterations", iterations},
+                     {"swaps", swaps},
+                     {"swaps_rejected", rejected},
+                     {"vertices_removed", removed},
+                     {"repairs", repairs},
+                     {"backend", backend_name},
+                     {"device", device},
+                     {"read_ms", read_ms},
+                     {"total_ms", run_ms},
+                     {"host_ms", host_ms},
+                     {"backend_ms", backend_ms},
+                     {"bytes_to_backend", bytes_to},
+                     {"bytes_from_backend", bytes_from},
+                     {"verified", verified}};
+    if (o.verify) j["verify_ms"] = verify_ms;
+    if (o.stats == "-") {
+      std::cout << j.dump(2) << "\n";
+    } else {
+      write_text(o.stats, j.dump(2) + "\n");
+    }
+  }
+  if (!o.quiet) {
+    std::fprintf(stderr, "hull: %zu points -> %zu vertices, %zu faces (%s) in %d iterations, %.1f ms%s\n",
+                 point_count, hull.vertex_ids.size(), hull.dimension == 3 ? hull.triangles.size() : 0,
+                 dimension_name(hull.dimension), iterations, run_ms, verified ? "; verified exact" : "");
+  }
+  return kExitOk;
+}
+
+int run_bench(const BenchOptions& o) {
+  const std::vector<Point3> points = load_or_generate(o.input, o.distribution, o.count, o.seed, o.json);
+  const std::string label = o.input.empty() ? o.distribution + " " + std::to_string(points.size()) : o.input;
+  std::string device;
+  std::string backend_name;
+  std::vector<double> total, host, dev, upload;
+  HullMesh hull;
+  for (int r = 0; r < o.repeat; ++r) {
+    auto backend = choose_backend(o.backend, o.json || r > 0, &device);
+    backend_name = backend->name();
+    Engine engine(points, std::move(backend), EngineOptions{false});
+    double h = 0, d = 0, u = 0;
+    const auto t0 = Clock::now();
+    engine.run([&](const IterationRecord& rec) {
+      h += rec.host_ms;
+      d += rec.backend_ms;
+      u += rec.upload_ms;
+    });
+    // The headline is device-resident: the upload is listed on its own and not counted.
+    total.push_back(ms_since(t0) - u);
+    host.push_back(h);
+    dev.push_back(d - u);
+    upload.push_back(u);
+    hull = engine.result();
+  }
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  nlohmann::json j{{"input", label},
+                   {"points", points.size()},
+                   {"hull_vertices", hull.vertex_ids.size()},
+                   {"backend", backend_name},
+                   {"device", device},
+                   {"repeat", o.repeat},
+                   {"total_ms", median(total)},
+                   {"host_ms", median(host)},
+                   {"device_ms", median(dev)},
+                   {"upload_ms", median(upload)}};
+  double qhull_ms = 0;
+  bool same = false;
+  if (o.versus == "qhull") {
+    std::vector<double> q;
+    QhullResult ref;
+    for (int r = 0; r < o.repeat; ++r) {
+      ref = run_qhull(points, "Qt");
+      q.push_back(ref.milliseconds);
+    }
+    qhull_ms = median(q);
+    same = ref.vertex_ids == hull.vertex_ids;
+    j["qhull_ms"] = qhull_ms;
+    j["qhull_vertices"] = ref.vertex_ids.size();
+    j["speedup"] = qhull_ms / median(total);
+    j["same_vertices"] = same;
+  }
+  if (o.json) {
+    std::cout << j.dump() << "\n";
+    return kExitOk;
+  }
+  const double t = median(total), h = median(host);
+  std::printf("%-28s %10s %10s %10s %10s %7s %9s %10s %s\n", "input", "qhull ms", "total ms", "host ms", "device ms",
+              "host %", "speedup", "upload ms", "vertices");
+  std::printf("%-28s %10s %10.2f %10.2f %10.2f %6.1f%% %9s %10.2f %zu%s\n", label.c_str(),
+              o.versus.empty() ? "-" : std::to_string(qhull_ms).substr(0, 9).c_str(), t, h, median(dev),
+              t > 0 ? 100.0 * h / t : 0.0,
+              o.versus.empty() ? "-" : (std::to_string(qhull_ms / t).substr(0, 6) + "x").c_str(), median(upload),
+              hull.vertex_ids.size(),
+              o.versus.empty() ? "" : (same ? " (same vertices as Qhull)" : " (DIFFERENT vertices from Qhull)"));
+  std::printf("backend: %s\n", backend_name.c_str());
+  return kExitOk;
+}
+
+}  // namespace cudahull::cli

@@ -1,0 +1,279 @@
+// The engine against independent oracles: Qhull (libqhull), the exact checker, a brute-force exact
+// extreme-point finder, and the extreme counts published with the shared models.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <random>
+
+#include "cudahull/cpu_backend.hpp"
+#include "cudahull/engine.hpp"
+#include "cudahull/generators.hpp"
+#include "cudahull/hull_checker.hpp"
+#include "cudahull/point_io.hpp"
+#include "qhull_reference.hpp"
+#include "support/oracles.hpp"
+
+namespace cudahull {
+namespace {
+
+struct RunResult {
+  HullMesh hull;
+  std::vector<IterationRecord> records;
+  std::size_t repairs = 0;
+};
+
+RunResult run_engine(const std::vector<Point3>& points, unsigned threads = 2) {
+  Engine engine(points, make_cpu_backend(threads));
+  RunResult out;
+  engine.run([&](const IterationRecord& r) {
+    out.repairs += r.repairs;
+    out.records.push_back(r);
+  });
+  out.hull = engine.result();
+  return out;
+}
+
+void expect_exact(const std::vector<Point3>& points, const HullMesh& hull) {
+  const CheckResult check = check_hull(points, hull);
+  EXPECT_TRUE(check.ok) << (check.failures.empty() ? "" : check.failures.front());
+}
+
+std::vector<Point3> scaled(std::vector<Point3> p, float s) {
+  for (auto& q : p) q = {q.x * s, q.y * s, q.z * s};
+  return p;
+}
+
+// --- General position: Qhull and the checker agree, the engine needs no repair -------------------------
+
+struct DistCase {
+  Distribution dist;
+  std::size_t n;
+};
+
+class GeneralPosition : public ::testing::TestWithParam<DistCase> {};
+
+TEST_P(GeneralPosition, MatchesQhullExactlyWithoutRepair) {
+  const auto [dist, n] = GetParam();
+  const auto points = generate_points(dist, n, 20261122 + n);
+  const RunResult r = run_engine(points);
+  ASSERT_EQ(r.hull.dimension, 3);
+  const QhullResult q = run_qhull(points, "Qt");
+  EXPECT_EQ(r.hull.vertex_ids, q.vertex_ids);
+  expect_exact(points, r.hull);
+  if (dist != Distribution::kSphere) EXPECT_EQ(r.repairs, 0u) << "general position needs no repair";
+  // The trace runs until no external point remains, never growing the external set.
+  ASSERT_FALSE(r.records.empty());
+  EXPECT_EQ(r.records.back().external_after, 0u);
+  for (std::size_t k = 0; k < r.records.size(); ++k) {
+    EXPECT_EQ(r.records[k].iteration, static_cast<int>(k));
+    EXPECT_LE(r.records[k].external_after, r.records[k].external_before);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Engine, GeneralPosition,
+                         ::testing::Values(DistCase{Distribution::kCube, 1000}, DistCase{Distribution::kCube, 100000},
+                                           DistCase{Distribution::kCube, 1000000}, DistCase{Distribution::kBall, 1000},
+                                           DistCase{Distribution::kBall, 100000}, DistCase{Distribution::kBall, 1000000},
+                                           DistCase{Distribution::kGauss, 1000}, DistCase{Distribution::kGauss, 200000},
+                                           DistCase{Distribution::kSphere, 1000},
+                                           DistCase{Distribution::kSphere, 100000}),
+                         [](const auto& info) {
+                           return distribution_name(info.param.dist) + "_" + std::to_string(info.param.n);
+                         });
+
+TEST(Engine, SmallRandomSetsMatchBruteForce) {
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> coord(-4, 4);
+  for (int trial = 0; trial < 60; ++trial) {
+    std::vector<Point3> points(8 + trial % 25);
+    // Small integers: lots of coplanar and collinear coincidences and duplicates.
+    for (auto& p : points) p = {float(coord(rng)), float(coord(rng)), float(coord(rng))};
+    const RunResult r = run_engine(points, 1);
+    if (r.hull.dimension != 3) continue;
+    EXPECT_EQ(r.hull.vertex_ids, testing::brute_force_extreme(points)) << "trial " << trial;
+    expect_exact(points, r.hull);
+  }
+}
+
+// --- Degenerate inputs (issue 3, item 8) ------------------------------------------------------------
+
+std::vector<Point3> grid(int side) {
+  std::vector<Point3> p;
+  for (int z = 0; z < side; ++z)
+    for (int y = 0; y < side; ++y)
+      for (int x = 0; x < side; ++x) p.push_back({float(x), float(y), float(z)});
+  return p;
+}
+
+TEST(EngineDegenerate, IntegerGridHasEightCorners) {
+  const auto points = grid(6);
+  const RunResult r = run_engine(points);
+  ASSERT_EQ(r.hull.dimension, 3);
+  EXPECT_EQ(r.hull.vertex_ids, (std::vector<PointIndex>{0, 5, 30, 35, 180, 185, 210, 215}));
+  expect_exact(points, r.hull);
+}
+
+TEST(EngineDegenerate, GridOnCubeSurfaceHasEightCorners) {
+  std::vector<Point3> points;
+  for (const Point3& p : grid(9)) {
+    const bool surface = p.x == 0 || p.y == 0 || p.z == 0 || p.x == 8 || p.y == 8 || p.z == 8;
+    if (surface) points.push_back({p.x / 8.0f, p.y / 8.0f, p.z / 8.0f});
+  }
+  const RunResult r = run_engine(points);
+  EXPECT_EQ(r.hull.vertex_ids.size(), 8u);
+  EXPECT_EQ(r.hull.triangles.size(), 12u);
+  expect_exact(points, r.hull);
+}
+
+TEST(EngineDegenerate, TripledPointsKeepTheLowestIndex) {
+  const auto base = generate_points(Distribution::kBall, 3000, 5);
+  std::vector<Point3> points;
+  for (int copy = 0; copy < 3; ++copy) points.insert(points.end(), base.begin(), base.end());
+  const RunResult single = run_engine(base), tripled = run_engine(points);
+  EXPECT_EQ(tripled.hull.vertex_ids, single.hull.vertex_ids);  // the first copy, indices < 3000
+  expect_exact(points, tripled.hull);
+}
+
+TEST(EngineDegenerate, CylinderRings) {
+  const auto points = generate_points(Distribution::kCylinder, 20000, 3);
+  const RunResult r = run_engine(points);
+  expect_exact(points, r.hull);
+  EXPECT_EQ(r.hull.vertex_ids, run_qhull(points, "Qt").vertex_ids);
+}
+
+TEST(EngineDegenerate, IntegerParaboloidIsAllExtreme) {
+  std::vector<Point3> points;
+  for (int x = -20; x <= 20; ++x)
+    for (int y = -20; y <= 20; ++y) points.push_back({float(x), float(y), float(x * x + y * y)});
+  const RunResult r = run_engine(points);
+  EXPECT_EQ(r.hull.vertex_ids.size(), points.size());  // every lifted lattice point is strictly extreme
+  expect_exact(points, r.hull);
+}
+
+TEST(EngineDegenerate, ThinSlab) {
+  auto points = generate_points(Distribution::kCube, 50000, 11);
+  for (auto& p : points) p.z = (p.z + 1.0f) * 0.5e-6f;
+  const RunResult r = run_engine(points);
+  ASSERT_EQ(r.hull.dimension, 3);
+  expect_exact(points, r.hull);
+}
+
+TEST(EngineDegenerate, HugeAndTinyCoordinatesGiveTheSameHull) {
+  // Scaling by a power of two is exact, so the combinatorics must not change.
+  const auto base = generate_points(Distribution::kBall, 20000, 13);
+  const RunResult r = run_engine(base);
+  for (float s : {0x1p100f, 0x1p-100f}) {
+    const auto points = scaled(base, s);
+    const RunResult rs = run_engine(points);
+    EXPECT_EQ(rs.hull.vertex_ids, r.hull.vertex_ids) << "scale " << s;
+    expect_exact(points, rs.hull);
+  }
+  // And scaling by 1e30 / 1e-30 (inexact) still gives an exact hull of the scaled points.
+  for (float s : {1e30f, 1e-30f}) {
+    const auto points = scaled(base, s);
+    const RunResult rs = run_engine(points);
+    expect_exact(points, rs.hull);
+  }
+}
+
+TEST(EngineDegenerate, LowerDimensionalInputs) {
+  std::vector<Point3> coplanar, collinear, single(10, Point3{1.5f, -2.0f, 3.0f});
+  for (int i = 0; i < 200; ++i) {
+    coplanar.push_back({float(i % 17), float((i * 7) % 13), 4.0f});
+    collinear.push_back({float(i), float(2 * i), float(-i)});
+  }
+  const RunResult plane = run_engine(coplanar), line = run_engine(collinear), point = run_engine(single);
+  EXPECT_EQ(plane.hull.dimension, 2);
+  expect_exact(coplanar, plane.hull);
+  EXPECT_EQ(line.hull.dimension, 1);
+  EXPECT_EQ(line.hull.vertex_ids, (std::vector<PointIndex>{0, 199}));
+  EXPECT_EQ(point.hull.dimension, 0);
+  EXPECT_EQ(point.hull.vertex_ids, (std::vector<PointIndex>{0}));
+  const RunResult three = run_engine({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+  EXPECT_EQ(three.hull.dimension, 2);
+  EXPECT_EQ(three.hull.vertex_ids.size(), 3u);
+}
+
+// --- The shared models: their published exact extreme counts -----------------------------------------
+
+TEST(EngineModels, ExtremeCountsMatchTheModelsReadme) {
+  const std::filesystem::path dir = CUDAHULL_MODELS_DIR;
+  if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no ../shared/models beside the checkout";
+  const std::map<std::string, std::size_t> expected{{"bun_zipper.ply", 1564},        {"stanford-bunny.obj", 1562},
+                                                    {"dragonStandRight_0.ply", 439}, {"dragon_scans.ply", 207},
+                                                    {"teapot.obj", 878},             {"spot.obj", 305}};
+  for (const auto& [name, count] : expected) {
+    const auto points = read_points((dir / name).string());
+    const RunResult r = run_engine(points);
+    EXPECT_EQ(r.hull.vertex_ids.size(), count) << name;
+    expect_exact(points, r.hull);
+  }
+}
+
+// --- The step API and the decision array ----------------------------------------------------------
+
+TEST(EngineSteps, DecisionArrayMatchesTheSwapsAndRemovals) {
+  const auto points = generate_points(Distribution::kBall, 20000, 17);
+  Engine engine(points, make_cpu_backend(2));
+  std::size_t iterations = 0;
+  while (!engine.done()) {
+    const IterationRecord r = engine.step();
+    ++iterations;
+    // One decision entry per performed swap and per removal (Fig. 7).
+    EXPECT_EQ(r.decisions.size(), r.swaps_regular + r.swaps_complementary + r.vertices_removed);
+    std::size_t rejected = 0;
+    for (const SwapRecord& s : r.swaps) {
+      const bool is_rejected = s.kind != SwapKind::kRegular && s.kind != SwapKind::kComplementary;
+      rejected += is_rejected;
+      if (!is_rejected) {
+        ASSERT_GE(s.decision_index, 0);
+        EXPECT_EQ(r.decisions[s.decision_index].kind, kDecisionSwap);
+      }
+    }
+    EXPECT_EQ(rejected, r.swaps_rejected);
+    // Each refinement makes 1 face into 3; swaps keep the count; each removal takes away 2.
+    if (r.iteration > 0) {
+      EXPECT_EQ(r.faces_after, r.faces_before + 2 * r.faces_refined - 2 * r.vertices_removed);
+    }
+    // The mesh stays a closed triangulated sphere: F = 2V - 4.
+    EXPECT_EQ(engine.mesh().live_faces(), 2 * engine.mesh().vertex_count() - 4);
+  }
+  EXPECT_GT(iterations, 3u);
+  // Every remaining point state is consistent: after the last step nothing is external.
+  for (std::int32_t f : engine.point_faces()) EXPECT_EQ(f, -1);
+}
+
+TEST(EngineSteps, FaceCellsSeparateNeighbours) {
+  const auto points = generate_points(Distribution::kBall, 5000, 19);
+  Engine engine(points, make_cpu_backend(1));
+  engine.step();
+  engine.step();
+  const Mesh& mesh = engine.mesh();
+  for (FaceId f = 0; f < mesh.face_capacity(); ++f) {
+    const FaceCell cell = engine.face_cell(f);
+    const MeshFace& face = mesh.face(f);
+    // The face's own centroid is inside its cell; its neighbour's centroid is outside the shared plane.
+    Point3 c{};
+    for (PointIndex v : face.v) c = {c.x + points[v].x / 3, c.y + points[v].y / 3, c.z + points[v].z / 3};
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_GT(plane_value(cell.edge_plane[i], c), 0);
+      const MeshFace& nb = mesh.face(face.n[i]);
+      Point3 d{};
+      for (PointIndex v : nb.v) d = {d.x + points[v].x / 3, d.y + points[v].y / 3, d.z + points[v].z / 3};
+      EXPECT_LT(plane_value(cell.edge_plane[i], d), 0);
+    }
+  }
+}
+
+TEST(EngineSteps, ThreadCountDoesNotChangeTheHull) {
+  const auto points = generate_points(Distribution::kGauss, 300000, 23);
+  const RunResult one = run_engine(points, 1), four = run_engine(points, 4);
+  EXPECT_EQ(one.hull.vertex_ids, four.hull.vertex_ids);
+  EXPECT_EQ(one.hull.triangles, four.hull.triangles);
+  ASSERT_EQ(one.records.size(), four.records.size());
+}
+
+}  // namespace
+}  // namespace cudahull

@@ -1,0 +1,603 @@
+#include "cudahull/engine.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <set>
+#include <stdexcept>
+#include <unordered_set>
+
+#include "cudahull/exact_hull.hpp"
+#include "cudahull/predicates.hpp"
+
+namespace cudahull {
+
+const char* swap_kind_name(SwapKind kind) {
+  switch (kind) {
+    case SwapKind::kRegular: return "regular";
+    case SwapKind::kComplementary: return "complementary";
+    case SwapKind::kRejectedFoldover: return "rejected_foldover";
+    case SwapKind::kRejectedEdgeExists: return "rejected_edge_exists";
+    case SwapKind::kRejectedDegenerate: return "rejected_degenerate";
+  }
+  return "unknown";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+Vec3d add(const Vec3d& a, const Vec3d& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+Vec3d cross(const Vec3d& a, const Vec3d& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+double dot(const Vec3d& a, const Vec3d& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+Vec3d normalized(const Vec3d& a) {
+  // Scale first so that huge or tiny coordinates (1e30, 1e-30) neither overflow nor underflow.
+  const double m = std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)});
+  if (m == 0) return {0, 0, 0};
+  const Vec3d s{a.x / m, a.y / m, a.z / m};
+  const double len = std::sqrt(dot(s, s));
+  return {s.x / len, s.y / len, s.z / len};
+}
+
+// The plane through a and b that contains direction `along`, positive on the side of `inside`.
+SeparatingPlane plane_through_edge(const Vec3d& a, const Vec3d& b, const Vec3d& along, const Vec3d& inside) {
+  Vec3d m = normalized(cross(normalized(sub(b, a)), along));
+  double d = -dot(m, a);
+  if (dot(m, inside) + d < 0) {
+    m = {-m.x, -m.y, -m.z};
+    d = -d;
+  }
+  return {m.x, m.y, m.z, d};
+}
+
+struct Edge {
+  FaceId face;
+  int index;
+};
+
+}  // namespace
+
+struct Engine::Impl {
+  // One iteration's mesh edits (Algorithm 1) and their decision entries, in work ids (face ids before
+  // compaction).  Entries target work ids; they become route codes once the new ids are known.
+  Engine& e;
+  IterationRecord& record;
+  std::vector<DecisionEntry> entries;
+  std::vector<std::array<FaceId, 2>> entry_targets;  // work ids: above, below
+  std::vector<std::int32_t> killed_by_entry;         // work id -> decision entry, or -1
+  std::deque<Edge> queue;
+  std::vector<PointIndex> touched;  // vertices whose neighbourhood changed: removal candidates
+  std::vector<PointIndex> doomed;   // vertices proven not extreme, to be taken out (Fig. 4)
+  std::set<std::pair<PointIndex, PointIndex>> rejected_edges;
+  std::vector<PointIndex> ring;     // scratch
+  std::vector<FaceId> ring_faces;   // scratch
+  int sequence = 0;
+
+  explicit Impl(Engine& engine, IterationRecord& r) : e(engine), record(r) {}
+
+  Vec3d P(PointIndex i) const { return to_vec3d(e.points_[i]); }
+  Vec3d unit_normal(FaceId f) const {
+    const MeshFace& face = e.mesh_.face(f);
+    return normalized(cross(sub(P(face.v[1]), P(face.v[0])), sub(P(face.v[2]), P(face.v[0]))));
+  }
+  bool is_doomed(PointIndex v) const { return e.doomed_flag_[v] != 0; }
+
+  void note_killed(FaceId f, std::int32_t entry) {
+    if (killed_by_entry.size() <= f) killed_by_entry.resize(f + 1, -1);
+    killed_by_entry[f] = entry;
+  }
+
+  std::int32_t add_entry(const DecisionEntry& entry, FaceId above, FaceId below) {
+    entries.push_back(entry);
+    entry_targets.push_back({above, below});
+    return static_cast<std::int32_t>(entries.size() - 1);
+  }
+
+  // Is x inside the cone from the interior point c over triangle (a, b, d)?  Exact.
+  bool in_cone(const Vec3d& a, const Vec3d& b, const Vec3d& d, const Vec3d& x) const {
+    const Vec3d& c = e.interior_;
+    const int s = orient3d(c, a, b, d);
+    if (s == 0) return false;
+    return orient3d(c, a, b, x) * s >= 0 && orient3d(c, b, d, x) * s >= 0 && orient3d(c, d, a, x) * s >= 0;
+  }
+
+  // Is x in the closed tetrahedron (c, a, b, d)?  Then x is inside the hull of the input and not extreme.
+  bool proven_inside(const Vec3d& a, const Vec3d& b, const Vec3d& d, const Vec3d& x) const {
+    const int s = orient3d(a, b, d, e.interior_);
+    if (s == 0) return false;
+    return orient3d(a, b, d, x) * s >= 0 && in_cone(a, b, d, x);
+  }
+
+  // The swap of edge u - v (faces (u, v, x) and (v, u, y)) is valid when, in the central projection from
+  // the interior point c (where the hull is a sphere), the old and the new edge cross: u, v on opposite sides
+  // of the plane (c, x, y) and x, y on opposite sides of (c, u, v).  Otherwise a vertex of the old edge lies
+  // beneath a new triangle: a foldover (Fig. 5).
+  SwapKind swap_validity(PointIndex u, PointIndex v, PointIndex x, PointIndex y, SwapRecord& swap) const {
+    if (e.mesh_.adjacent(x, y)) return SwapKind::kRejectedEdgeExists;
+    const Vec3d &c = e.interior_, pu = P(u), pv = P(v), px = P(x), py = P(y);
+    const int su = orient3d(c, px, py, pu), sv = orient3d(c, px, py, pv);
+    const int sx = orient3d(c, pu, pv, px), sy = orient3d(c, pu, pv, py);
+    if (su == 0 || sv == 0 || sx == 0 || sy == 0) return SwapKind::kRejectedDegenerate;
+    if (su != sv && sx != sy) return SwapKind::kRegular;  // valid
+    if (in_cone(py, pv, px, pu)) {
+      swap.beneath_vertex = u;
+      swap.beneath_triangle[0] = y, swap.beneath_triangle[1] = v, swap.beneath_triangle[2] = x;
+    } else if (in_cone(px, pu, py, pv)) {
+      swap.beneath_vertex = v;
+      swap.beneath_triangle[0] = x, swap.beneath_triangle[1] = u, swap.beneath_triangle[2] = y;
+    }
+    return SwapKind::kRejectedFoldover;
+  }
+
+  // Fig. 3b: swap edge i of face f.  Only concave edges, unless `around_doomed` (a complementary swap that
+  // lowers the degree of a vertex being taken out).  Returns true if swapped.
+  bool try_swap(FaceId f, int i, SwapKind kind, bool around_doomed = false) {
+    const MeshFace& face = e.mesh_.face(f);
+    const PointIndex u = face.v[i], v = face.v[(i + 1) % 3], x = face.v[(i + 2) % 3];
+    const FaceId g = face.n[i];
+    const int j = e.mesh_.edge_index(g, v, u);
+    const PointIndex y = e.mesh_.face(g).v[(j + 2) % 3];
+    if (!around_doomed) {
+      if (orient3d(P(u), P(v), P(x), P(y)) <= 0) return false;  // convex or flat: nothing to do
+      // Never give a vertex that is being taken out a new edge; its removal re-queues this edge.
+      if (is_doomed(x) || is_doomed(y)) return false;
+    }
+    SwapRecord swap;
+    swap.old_edge[0] = u;
+    swap.old_edge[1] = v;
+    swap.new_edge[0] = x;
+    swap.new_edge[1] = y;
+    const SwapKind verdict = swap_validity(u, v, x, y, swap);
+    if (verdict != SwapKind::kRegular) {
+      if (around_doomed) return false;
+      // The vertex beneath is inside the hull when it is inside the tetrahedron of c and that triangle:
+      // take it out with complementary swaps and a removal (Fig. 4).
+      if (swap.beneath_vertex != kNoPoint && !is_doomed(swap.beneath_vertex) &&
+          proven_inside(P(swap.beneath_triangle[0]), P(swap.beneath_triangle[1]), P(swap.beneath_triangle[2]),
+                        P(swap.beneath_vertex))) {
+        e.doomed_flag_[swap.beneath_vertex] = 1;
+        doomed.push_back(swap.beneath_vertex);
+      }
+      // Record each rejected edge once per iteration, however often a neighbour change re-queues it.
+      if (rejected_edges.insert({std::min(u, v), std::max(u, v)}).second) {
+        swap.kind = verdict;
+        swap.sequence = sequence++;
+        record.swaps.push_back(swap);
+        ++record.swaps_rejected;
+      }
+      return false;
+    }
+
+    const auto [n1, n2] = e.mesh_.swap(f, i);
+    // Points of f and g go to n1 (the u side) or n2 (the v side) by the new edge's separating plane.
+    const Vec3d along = add(unit_normal(n1), unit_normal(n2));
+    DecisionEntry entry;
+    entry.kind = kDecisionSwap;
+    entry.plane = plane_through_edge(P(x), P(y), along, P(u));
+    const std::int32_t index = add_entry(entry, n1, n2);
+    note_killed(f, index);
+    note_killed(g, index);
+    swap.kind = kind;
+    swap.sequence = sequence++;
+    swap.decision_index = index;
+    record.swaps.push_back(swap);
+    (kind == SwapKind::kRegular ? record.swaps_regular : record.swaps_complementary)++;
+    for (const Edge& edge : {Edge{n1, 0}, Edge{n1, 1}, Edge{n2, 0}, Edge{n2, 1}}) queue.push_back(edge);
+    for (PointIndex p : {u, v, x, y}) touched.push_back(p);
+    return true;
+  }
+
+  // Fig. 4: a vertex of degree 3 becomes one triangle: when it is concave or flat (not above the plane of
+  // its three neighbours), or when it was proven inside the hull (`doomed`).
+  bool try_remove(PointIndex v, bool doomed_vertex) {
+    if (!e.mesh_.has_vertex(v)) return false;
+    e.mesh_.ring(v, ring, ring_faces);
+    if (ring.size() != 3) return false;
+    const PointIndex a = ring[0], b = ring[1], d = ring[2];
+    if (!doomed_vertex && orient3d(P(a), P(b), P(d), P(v)) > 0) return false;  // convex: stays
+
+    RemovalRecord removal;
+    removal.vertex = v;
+    removal.ring[0] = a, removal.ring[1] = b, removal.ring[2] = d;
+    // Valid only if the new triangle covers v seen from c (no foldover), and its outer neighbours are
+    // three different faces none of which holds the remaining ring vertex: otherwise the result would
+    // hold two congruent triangles back to back.
+    bool valid = in_cone(P(a), P(b), P(d), P(v));
+    std::array<FaceId, 3> outer{};
+    for (int k = 0; k < 3 && valid; ++k) {
+      const PointIndex from = ring[k], to = ring[(k + 1) % 3], other = ring[(k + 2) % 3];
+      outer[k] = e.mesh_.face(ring_faces[k]).n[e.mesh_.edge_index(ring_faces[k], from, to)];
+      const MeshFace& out = e.mesh_.face(outer[k]);
+      if (out.v[0] == other || out.v[1] == other || out.v[2] == other) valid = false;
+    }
+    if (valid && (outer[0] == outer[1] || outer[1] == outer[2] || outer[0] == outer[2])) valid = false;
+    if (!valid) {
+      removal.rejected = true;
+      record.removals.push_back(removal);
+      ++record.removals_rejected;
+      return false;
+    }
+    const std::vector<FaceId> old_faces = ring_faces;
+    const FaceId n = e.mesh_.remove_degree3(v);
+    DecisionEntry entry;
+    entry.kind = kDecisionRemoval;
+    const std::int32_t index = add_entry(entry, n, n);
+    for (FaceId f : old_faces) note_killed(f, index);
+    removal.decision_index = index;
+    record.removals.push_back(removal);
+    ++record.vertices_removed;
+    e.removed_vertices_.push_back(v);
+    for (int k = 0; k < 3; ++k) queue.push_back({n, k});
+    for (PointIndex p : {a, b, d}) touched.push_back(p);
+    return true;
+  }
+
+  // Complementary swaps around a doomed vertex until its degree is 3, then its removal (Fig. 4).  Each swap
+  // takes one edge of the vertex's star whose quadrilateral is convex seen from c; concave edges first.
+  bool take_out(PointIndex w) {
+    for (;;) {
+      if (!e.mesh_.has_vertex(w)) return true;
+      e.mesh_.ring(w, ring, ring_faces);
+      if (ring.size() == 3) return try_remove(w, true);
+      bool swapped = false;
+      for (int pass = 0; pass < 2 && !swapped; ++pass) {
+        for (std::size_t k = 0; k < ring.size() && !swapped; ++k) {
+          const std::size_t prev = (k + ring.size() - 1) % ring.size(), next = (k + 1) % ring.size();
+          // Edge w -> ring[k] lies in face (w, ring[k], ring[k+1]); swapping it gives ring[k+1] - ring[k-1].
+          const bool concave = orient3d(P(w), P(ring[k]), P(ring[next]), P(ring[prev])) > 0;
+          if (pass == 0 && !concave) continue;
+          const FaceId f = ring_faces[k];
+          const int i = e.mesh_.edge_index(f, w, ring[k]);
+          SwapRecord probe;
+          if (swap_validity(w, ring[k], ring[next], ring[prev], probe) != SwapKind::kRegular) continue;
+          swapped = try_swap(f, i, SwapKind::kComplementary, true);
+        }
+      }
+      if (!swapped) return false;
+    }
+  }
+
+  // Regular swaps are done; now complementary swaps and removals until nothing changes.  Concave swaps add
+  // volume and take-outs lower the vertex count, so this terminates; the budget only guards against a bug.
+  void settle() {
+    std::size_t budget = 20 * e.mesh_.face_capacity() + 1000;
+    bool changed = true;
+    while (changed && budget > 0) {
+      changed = false;
+      while (!queue.empty() && budget > 0) {
+        const Edge edge = queue.front();
+        queue.pop_front();
+        if (e.mesh_.alive(edge.face) && try_swap(edge.face, edge.index, SwapKind::kComplementary)) {
+          changed = true;
+          --budget;
+        }
+      }
+      std::vector<PointIndex> out = std::move(doomed);
+      doomed.clear();
+      for (PointIndex w : out) {
+        if (take_out(w)) changed = true;
+        e.doomed_flag_[w] = 0;
+      }
+      std::sort(touched.begin(), touched.end());
+      touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+      std::vector<PointIndex> candidates = std::move(touched);
+      touched.clear();
+      for (PointIndex v : candidates) {
+        if (e.mesh_.has_vertex(v) && e.mesh_.degree(v) == 3 && try_remove(v, false)) changed = true;
+      }
+      if (!queue.empty()) changed = true;
+      --budget;
+    }
+  }
+
+  std::int32_t route_code(FaceId work, const std::vector<FaceId>& remap) const {
+    if (remap[work] != kNoFace) return static_cast<std::int32_t>(remap[work]);
+    return -(killed_by_entry.at(work) + 1);
+  }
+};
+
+Engine::Engine(std::vector<Point3> points, std::unique_ptr<Backend> backend, EngineOptions options)
+    : points_(std::move(points)), backend_(std::move(backend)), options_(options) {
+  if (!backend_) throw std::invalid_argument("Engine needs a backend");
+  if (points_.size() >= 0xffffffffu) throw std::invalid_argument("too many points (at most 2^32 - 2)");
+}
+
+Engine::~Engine() = default;
+
+IterationRecord Engine::step() {
+  if (done_) throw std::logic_error("Engine::step() after done()");
+  if (!started_) {
+    started_ = true;
+    return initialize();
+  }
+  return iterate();
+}
+
+void Engine::run(const std::function<void(const IterationRecord&)>& on_step) {
+  while (!done_) {
+    IterationRecord r = step();
+    if (on_step) on_step(r);
+  }
+}
+
+std::vector<std::int32_t> Engine::point_faces() const {
+  std::vector<std::int32_t> out;
+  if (started_ && dimension_ == 3) backend_->point_faces(out);
+  for (auto& f : out) {
+    if (f < 0) f = -1;
+  }
+  return out;
+}
+
+FaceCell Engine::face_cell(FaceId f) const {
+  auto P = [&](PointIndex i) { return to_vec3d(points_[i]); };
+  auto unit_normal = [&](FaceId g) {
+    const MeshFace& face = mesh_.face(g);
+    return normalized(cross(sub(P(face.v[1]), P(face.v[0])), sub(P(face.v[2]), P(face.v[0]))));
+  };
+  const MeshFace& face = mesh_.face(f);
+  FaceCell cell;
+  const Vec3d n = unit_normal(f);
+  cell.face_plane = {n.x, n.y, n.z, -dot(n, P(face.v[0]))};
+  for (int i = 0; i < 3; ++i) {
+    const Vec3d along = add(n, unit_normal(face.n[i]));
+    cell.edge_plane[i] = plane_through_edge(P(face.v[i]), P(face.v[(i + 1) % 3]), along, P(face.v[(i + 2) % 3]));
+  }
+  return cell;
+}
+
+IterationRecord Engine::initialize() {
+  const auto t0 = Clock::now();
+  IterationRecord record;
+  record.iteration = iteration_++;
+  const std::size_t n = points_.size();
+  auto finish_lower = [&](int dim, const char* why) {
+    dimension_ = dim;
+    result_ = exact_hull(points_);
+    record.note = why;
+    record.host_ms = ms_since(t0);
+    done_ = true;
+    return record;
+  };
+  if (n == 0) return finish_lower(-1, "no points");
+  record.external_before = n;
+
+  const auto tb = Clock::now();
+  backend_->upload_points(points_);
+  record.upload_ms = ms_since(tb);
+  auto [p0, p1] = backend_->extremes_x();
+  double backend_ms = ms_since(tb);
+  auto P = [&](PointIndex i) { return to_vec3d(points_[i]); };
+
+  // Section 3.1, with each choice confirmed exactly: the ranking is in floating point, so a "furthest"
+  // point can still be exactly collinear or coplanar; then any exact witness will do, and none at all means
+  // the input is lower-dimensional.
+  if (points_[p0].x == points_[p1].x) {
+    // Every x is equal: the points lie in a plane.  exact_hull finds the dimension and the answer.
+    return finish_lower(affine_dimension(points_), "degenerate input: all points share one x");
+  }
+  auto tb2 = Clock::now();
+  PointIndex p2 = backend_->furthest_from_line(p0, p1);
+  if (collinear3d(P(p0), P(p1), P(p2))) {
+    p2 = kNoPoint;
+    for (PointIndex i = 0; i < n && p2 == kNoPoint; ++i) {
+      if (!collinear3d(P(p0), P(p1), P(i))) p2 = i;
+    }
+    if (p2 == kNoPoint) return finish_lower(1, "degenerate input: all points are collinear (dimension 1)");
+  }
+  PointIndex p3 = backend_->furthest_from_plane(p0, p1, p2);
+  backend_ms += ms_since(tb2);
+  if (orient3d(P(p0), P(p1), P(p2), P(p3)) == 0) {
+    p3 = kNoPoint;
+    for (PointIndex i = 0; i < n && p3 == kNoPoint; ++i) {
+      if (orient3d(P(p0), P(p1), P(p2), P(i)) != 0) p3 = i;
+    }
+    if (p3 == kNoPoint) return finish_lower(2, "degenerate input: all points are coplanar (dimension 2)");
+  }
+  dimension_ = 3;
+  if (orient3d(P(p0), P(p1), P(p2), P(p3)) > 0) std::swap(p1, p2);  // p3 must lie below (p0, p1, p2)
+  mesh_.make_tetrahedron(n, p0, p1, p2, p3);
+  doomed_flag_.assign(n, 0);
+  used_vertices_ = {p0, p1, p2, p3};
+
+  // The interior reference point c: the tetrahedron's centroid, confirmed strictly inside exactly.  It
+  // anchors every discard (a point is dropped only inside a tetrahedron of c and a face).
+  interior_ = {(P(p0).x + P(p1).x + P(p2).x + P(p3).x) / 4, (P(p0).y + P(p1).y + P(p2).y + P(p3).y) / 4,
+               (P(p0).z + P(p1).z + P(p2).z + P(p3).z) / 4};
+  for (FaceId f = 0; f < 4; ++f) {
+    const MeshFace& face = mesh_.face(f);
+    if (orient3d(P(face.v[0]), P(face.v[1]), P(face.v[2]), interior_) >= 0) {
+      // A tetrahedron so flat that its rounded centroid is not inside: finish exactly on all points.
+      record.repairs = 1;
+      return finish_lower(3, "tetrahedron too flat for an interior point: exact hull of all points");
+    }
+  }
+
+  IterationTables tables;
+  tables.interior = interior_;
+  for (FaceId f = 0; f < 4; ++f) {
+    const FaceCell cell = face_cell(f);
+    for (int i = 0; i < 3; ++i) tables.initial_cells.push_back(cell.edge_plane[i]);
+  }
+  tables.faces.resize(4);
+  for (FaceId f = 0; f < 4; ++f) {
+    const MeshFace& face = mesh_.face(f);
+    FaceGeometry& g = tables.faces[f];
+    for (int k = 0; k < 3; ++k) {
+      g.v[k] = points_[face.v[k]];
+      g.neighbor[k] = static_cast<std::int32_t>(face.n[k]);
+    }
+    face_tetrahedron_signs(interior_, g.v, g.tet);
+  }
+  tables.refinement.resize(1);
+  record.host_ms = ms_since(t0) - backend_ms;
+  const auto tb3 = Clock::now();
+  backend_->distribute_points(tables);
+  external_ = backend_->compact_index_array();
+  backend_->get_extreme_points(extremes_);
+  record.backend_ms = backend_ms + ms_since(tb3);
+  record.faces_after = 4;
+  record.external_after = external_;
+  record.bytes_to_backend = backend_->bytes_to_backend();
+  record.bytes_from_backend = backend_->bytes_from_backend();
+  record.refined_apexes = {p0, p1, p2, p3};
+  if (external_ == 0) finish(record);
+  return record;
+}
+
+IterationRecord Engine::iterate() {
+  const auto t0 = Clock::now();
+  const std::uint64_t to_before = backend_->bytes_to_backend(), from_before = backend_->bytes_from_backend();
+  IterationRecord record;
+  record.iteration = iteration_++;
+  record.faces_before = mesh_.live_faces();
+  record.external_before = external_;
+  Impl impl(*this, record);
+
+  // Refinement (Fig. 3a): every face with external points splits at its furthest point.
+  const FaceId old_faces = static_cast<FaceId>(mesh_.face_capacity());
+  std::vector<RefinementEntry> refinement(old_faces);
+  std::vector<std::array<FaceId, 3>> children(old_faces, {kNoFace, kNoFace, kNoFace});
+  std::vector<Edge> regular_candidates;
+  for (FaceId f = 0; f < old_faces; ++f) {
+    if (extremes_[f].count == 0) continue;
+    const PointIndex apex = extremes_[f].furthest;
+    const MeshFace old = mesh_.face(f);
+    children[f] = mesh_.split(f, apex);
+    refinement[f].apex = apex;
+    record.refined_apexes.push_back(apex);
+    used_vertices_.push_back(apex);
+    // plane[i] through the apex and old vertex i separates child i-1 from child i, along the average of
+    // their normals; child i is on its positive side.
+    for (int i = 0; i < 3; ++i) {
+      const FaceId here = children[f][i], before = children[f][(i + 2) % 3];
+      const Vec3d along = add(impl.unit_normal(here), impl.unit_normal(before));
+      const Vec3d inside = impl.P(old.v[(i + 1) % 3]);
+      refinement[f].plane[i] = plane_through_edge(impl.P(apex), impl.P(old.v[i]), along, inside);
+    }
+    for (FaceId c : children[f]) regular_candidates.push_back({c, 0});
+    for (PointIndex v : old.v) impl.touched.push_back(v);
+  }
+  record.faces_refined = record.refined_apexes.size();
+
+  // Regular swaps of the refined faces' old edges, then complementary swaps and removals (Figs. 3b, 4).
+  for (const Edge& edge : regular_candidates) {
+    if (mesh_.alive(edge.face)) impl.try_swap(edge.face, edge.index, SwapKind::kRegular);
+  }
+  impl.settle();
+
+  // Renumber the faces and turn work ids into route codes (Fig. 7).
+  const std::vector<FaceId> remap = mesh_.compact();
+  IterationTables tables;
+  tables.interior = interior_;
+  tables.refinement = std::move(refinement);
+  for (FaceId f = 0; f < old_faces; ++f) {
+    RefinementEntry& r = tables.refinement[f];
+    if (r.apex == kNoPoint) {
+      r.route = impl.route_code(f, remap);
+    } else {
+      for (int i = 0; i < 3; ++i) r.child[i] = impl.route_code(children[f][i], remap);
+    }
+  }
+  tables.decision = impl.entries;
+  for (std::size_t k = 0; k < tables.decision.size(); ++k) {
+    tables.decision[k].above = impl.route_code(impl.entry_targets[k][0], remap);
+    tables.decision[k].below = impl.route_code(impl.entry_targets[k][1], remap);
+  }
+  tables.faces.resize(mesh_.live_faces());
+  for (FaceId f = 0; f < tables.faces.size(); ++f) {
+    const MeshFace& face = mesh_.face(f);
+    FaceGeometry& g = tables.faces[f];
+    for (int k = 0; k < 3; ++k) {
+      g.v[k] = points_[face.v[k]];
+      g.neighbor[k] = static_cast<std::int32_t>(face.n[k]);
+    }
+    face_tetrahedron_signs(interior_, g.v, g.tet);
+  }
+  record.decision_entries = tables.decision.size();
+  record.host_ms = ms_since(t0);
+
+  // Algorithm 2 on the backend: distribute, compact, extremes.
+  const auto tb = Clock::now();
+  backend_->distribute_points(tables);
+  external_ = backend_->compact_index_array();
+  backend_->get_extreme_points(extremes_);
+  record.backend_ms = ms_since(tb);
+
+  record.faces_after = mesh_.live_faces();
+  record.external_after = external_;
+  record.bytes_to_backend = backend_->bytes_to_backend() - to_before;
+  record.bytes_from_backend = backend_->bytes_from_backend() - from_before;
+  if (options_.keep_decisions) record.decisions = tables.decision;
+  last_decisions_ = std::move(tables.decision);
+  last_refinement_ = std::move(tables.refinement);
+  if (external_ == 0) finish(record);
+  return record;
+}
+
+void Engine::finish(IterationRecord& record) {
+  const auto t0 = Clock::now();
+  auto P = [&](PointIndex i) { return to_vec3d(points_[i]); };
+  // The mesh is the exact hull when every edge is strictly convex (so every vertex is strictly extreme), c
+  // is inside, and every vertex it ever dropped lies inside it.  Everything else was discarded inside a
+  // tetrahedron of c and input points, so nothing outside is left.
+  std::size_t faults = 0;
+  const FaceId faces = static_cast<FaceId>(mesh_.face_capacity());
+  for (FaceId f = 0; f < faces; ++f) {
+    const MeshFace& face = mesh_.face(f);
+    if (orient3d(P(face.v[0]), P(face.v[1]), P(face.v[2]), interior_) >= 0) ++faults;
+    for (int i = 0; i < 3; ++i) {
+      const FaceId g = face.n[i];
+      if (g < f) continue;
+      const int j = mesh_.edge_index(g, face.v[(i + 1) % 3], face.v[i]);
+      const PointIndex y = mesh_.face(g).v[(j + 2) % 3];
+      if (orient3d(P(face.v[0]), P(face.v[1]), P(face.v[2]), P(y)) >= 0) ++faults;
+    }
+  }
+  std::sort(used_vertices_.begin(), used_vertices_.end());
+  used_vertices_.erase(std::unique(used_vertices_.begin(), used_vertices_.end()), used_vertices_.end());
+  if (faults == 0) {
+    for (PointIndex r : used_vertices_) {
+      if (mesh_.has_vertex(r)) continue;
+      for (FaceId f = 0; f < faces; ++f) {
+        const MeshFace& face = mesh_.face(f);
+        if (orient3d(P(face.v[0]), P(face.v[1]), P(face.v[2]), P(r)) > 0) {
+          ++faults;
+          break;
+        }
+      }
+    }
+  }
+  if (faults == 0) {
+    result_ = HullMesh{};
+    result_.dimension = 3;
+    result_.vertex_ids = mesh_.vertices();
+    std::unordered_map<PointIndex, std::uint32_t> local;
+    for (std::uint32_t k = 0; k < result_.vertex_ids.size(); ++k) {
+      local[result_.vertex_ids[k]] = k;
+      result_.vertices.push_back(points_[result_.vertex_ids[k]]);
+    }
+    for (FaceId f = 0; f < faces; ++f) {
+      const MeshFace& face = mesh_.face(f);
+      result_.triangles.push_back({local[face.v[0]], local[face.v[1]], local[face.v[2]]});
+    }
+  } else {
+    // The paper's local procedure stopped short (coplanar or cospherical input): finish exactly from the
+    // candidates, which contain every extreme point.
+    result_ = exact_hull(points_, used_vertices_);
+    record.repairs += faults;
+    record.note = "finished by an exact hull of " + std::to_string(used_vertices_.size()) +
+                  " candidate vertices (" + std::to_string(faults) + " non-convex edges or outside vertices)";
+  }
+  record.host_ms += ms_since(t0);
+  done_ = true;
+}
+
+}  // namespace cudahull

@@ -1,0 +1,208 @@
+#include "cudahull/mesh.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace cudahull {
+
+namespace {
+int next(int i) { return i == 2 ? 0 : i + 1; }
+int prev(int i) { return i == 0 ? 2 : i - 1; }
+}  // namespace
+
+FaceId Mesh::add_face(PointIndex a, PointIndex b, PointIndex c) {
+  FaceId id = static_cast<FaceId>(faces_.size());
+  MeshFace face;
+  face.v = {a, b, c};
+  faces_.push_back(face);
+  alive_.push_back(1);
+  ++live_count_;
+  for (PointIndex p : {a, b, c}) {
+    if (vertex_face_[p] == kNoFace) ++vertex_count_;
+    vertex_face_[p] = id;
+  }
+  return id;
+}
+
+void Mesh::kill(FaceId f) {
+  alive_[f] = 0;
+  --live_count_;
+}
+
+void Mesh::make_tetrahedron(std::size_t point_count, PointIndex p0, PointIndex p1, PointIndex p2, PointIndex p3) {
+  faces_.clear();
+  alive_.clear();
+  live_count_ = 0;
+  vertex_face_.assign(point_count, kNoFace);
+  vertex_count_ = 0;
+  // p3 lies below (p0, p1, p2), so that triangle already faces outward; the other three are oriented to
+  // match, each edge appearing once in each direction.
+  FaceId f0 = add_face(p0, p1, p2);
+  FaceId f1 = add_face(p1, p0, p3);
+  FaceId f2 = add_face(p2, p1, p3);
+  FaceId f3 = add_face(p0, p2, p3);
+  auto link_all = [&](FaceId f) {
+    for (int i = 0; i < 3; ++i) {
+      PointIndex a = faces_[f].v[i], b = faces_[f].v[next(i)];
+      for (FaceId g : {f0, f1, f2, f3}) {
+        if (g != f && edge_index(g, b, a) >= 0) faces_[f].n[i] = g;
+      }
+    }
+  };
+  for (FaceId f : {f0, f1, f2, f3}) link_all(f);
+}
+
+std::vector<PointIndex> Mesh::vertices() const {
+  std::vector<PointIndex> out;
+  out.reserve(vertex_count_);
+  for (PointIndex v = 0; v < vertex_face_.size(); ++v) {
+    if (vertex_face_[v] != kNoFace) out.push_back(v);
+  }
+  return out;
+}
+
+int Mesh::edge_index(FaceId f, PointIndex a, PointIndex b) const {
+  const MeshFace& face = faces_[f];
+  for (int i = 0; i < 3; ++i) {
+    if (face.v[i] == a && face.v[next(i)] == b) return i;
+  }
+  return -1;
+}
+
+void Mesh::relink(FaceId g, PointIndex a, PointIndex b, FaceId to) {
+  int j = edge_index(g, a, b);
+  if (j < 0) throw std::logic_error("mesh adjacency is inconsistent");
+  faces_[g].n[j] = to;
+}
+
+std::array<FaceId, 3> Mesh::split(FaceId f, PointIndex p) {
+  const MeshFace old = faces_[f];
+  const PointIndex a = old.v[0], b = old.v[1], c = old.v[2];
+  kill(f);
+  FaceId c0 = add_face(a, b, p), c1 = add_face(b, c, p), c2 = add_face(c, a, p);
+  faces_[c0].n = {old.n[0], c1, c2};
+  faces_[c1].n = {old.n[1], c2, c0};
+  faces_[c2].n = {old.n[2], c0, c1};
+  relink(old.n[0], b, a, c0);
+  relink(old.n[1], c, b, c1);
+  relink(old.n[2], a, c, c2);
+  return {c0, c1, c2};
+}
+
+std::array<FaceId, 2> Mesh::swap(FaceId f, int i) {
+  const MeshFace ff = faces_[f];
+  const PointIndex u = ff.v[i], v = ff.v[next(i)], x = ff.v[prev(i)];
+  const FaceId g = ff.n[i];
+  const MeshFace gg = faces_[g];
+  const int j = edge_index(g, v, u);
+  const PointIndex y = gg.v[prev(j)];
+  const FaceId across_vx = ff.n[next(i)], across_xu = ff.n[prev(i)];
+  const FaceId across_uy = gg.n[next(j)], across_yv = gg.n[prev(j)];
+  kill(f);
+  kill(g);
+  FaceId n1 = add_face(x, u, y), n2 = add_face(y, v, x);
+  faces_[n1].n = {across_xu, across_uy, n2};
+  faces_[n2].n = {across_yv, across_vx, n1};
+  relink(across_xu, u, x, n1);
+  relink(across_uy, y, u, n1);
+  relink(across_yv, v, y, n2);
+  relink(across_vx, x, v, n2);
+  return {n1, n2};
+}
+
+void Mesh::ring(PointIndex v, std::vector<PointIndex>& ring_vertices, std::vector<FaceId>& ring_faces) const {
+  ring_vertices.clear();
+  ring_faces.clear();
+  if (!has_vertex(v)) return;
+  const FaceId start = vertex_face_[v];
+  FaceId f = start;
+  do {
+    const MeshFace& face = faces_[f];
+    int k = 0;
+    while (face.v[k] != v) ++k;
+    ring_vertices.push_back(face.v[next(k)]);
+    ring_faces.push_back(f);
+    f = face.n[prev(k)];  // across the edge v[k+2] -> v, the next face counter-clockwise around v
+    if (ring_faces.size() > faces_.size()) throw std::logic_error("mesh ring does not close");
+  } while (f != start);
+}
+
+bool Mesh::adjacent(PointIndex a, PointIndex b) const {
+  if (!has_vertex(a)) return false;
+  const FaceId start = vertex_face_[a];
+  FaceId f = start;
+  std::size_t steps = 0;
+  do {
+    const MeshFace& face = faces_[f];
+    int k = 0;
+    while (face.v[k] != a) ++k;
+    if (face.v[next(k)] == b) return true;
+    f = face.n[prev(k)];
+    if (++steps > faces_.size()) throw std::logic_error("mesh ring does not close");
+  } while (f != start);
+  return false;
+}
+
+std::size_t Mesh::degree(PointIndex v) const {
+  if (!has_vertex(v)) return 0;
+  const FaceId start = vertex_face_[v];
+  FaceId f = start;
+  std::size_t count = 0;
+  do {
+    const MeshFace& face = faces_[f];
+    int k = 0;
+    while (face.v[k] != v) ++k;
+    ++count;
+    f = face.n[prev(k)];
+    if (count > faces_.size()) throw std::logic_error("mesh ring does not close");
+  } while (f != start);
+  return count;
+}
+
+FaceId Mesh::remove_degree3(PointIndex v) {
+  std::vector<PointIndex> rv;
+  std::vector<FaceId> rf;
+  ring(v, rv, rf);
+  if (rv.size() != 3) throw std::logic_error("remove_degree3 on a vertex of degree != 3");
+  const PointIndex a = rv[0], b = rv[1], d = rv[2];
+  // Face rf[k] = (v, ring[k], ring[k+1]); its outer edge ring[k] -> ring[k+1] keeps its neighbour.
+  FaceId outer[3];
+  for (int k = 0; k < 3; ++k) {
+    const MeshFace& face = faces_[rf[k]];
+    outer[k] = face.n[edge_index(rf[k], rv[k], rv[(k + 1) % 3])];
+  }
+  for (FaceId f : rf) kill(f);
+  vertex_face_[v] = kNoFace;
+  --vertex_count_;
+  FaceId n = add_face(a, b, d);
+  faces_[n].n = {outer[0], outer[1], outer[2]};
+  relink(outer[0], b, a, n);
+  relink(outer[1], d, b, n);
+  relink(outer[2], a, d, n);
+  return n;
+}
+
+std::vector<FaceId> Mesh::compact() {
+  std::vector<FaceId> remap(faces_.size(), kNoFace);
+  FaceId next_id = 0;
+  for (FaceId f = 0; f < faces_.size(); ++f) {
+    if (alive_[f]) remap[f] = next_id++;
+  }
+  std::vector<MeshFace> kept;
+  kept.reserve(next_id);
+  for (FaceId f = 0; f < faces_.size(); ++f) {
+    if (!alive_[f]) continue;
+    MeshFace face = faces_[f];
+    for (FaceId& nb : face.n) nb = remap[nb];
+    kept.push_back(face);
+  }
+  faces_ = std::move(kept);
+  alive_.assign(faces_.size(), 1);
+  live_count_ = faces_.size();
+  for (FaceId& f : vertex_face_) {
+    if (f != kNoFace) f = remap[f];
+  }
+  return remap;
+}
+
+}  // namespace cudahull

@@ -1,0 +1,70 @@
+// The backend: the paper's GPU module (section 4) as a small interface.  The engine edits the mesh on the
+// host and hands the backend only O(faces) tables; the backend owns the O(points) work.
+//
+// Call order: upload_points() once, then the section 3.1 queries (extremes_x, furthest_from_line,
+// furthest_from_plane), then per iteration distribute_points() -> compact_index_array() ->
+// get_extreme_points().  Implementations: CpuBackend (engine/), CudaBackend (cuda/).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cudahull/routing.hpp"
+#include "cudahull/types.hpp"
+
+namespace cudahull {
+
+// The per-iteration tables (Fig. 7) and the new mesh's faces.
+struct IterationTables {
+  std::vector<RefinementEntry> refinement;  // one per face of the previous mesh
+  std::vector<DecisionEntry> decision;
+  std::vector<FaceGeometry> faces;          // the new mesh, compacted
+  std::vector<SeparatingPlane> initial_cells;  // first distribution only (4 faces x 3 planes)
+  Vec3d interior;
+
+  std::uint64_t bytes() const {
+    return refinement.size() * sizeof(RefinementEntry) + decision.size() * sizeof(DecisionEntry) +
+           faces.size() * sizeof(FaceGeometry) + initial_cells.size() * sizeof(SeparatingPlane) +
+           sizeof(Vec3d);
+  }
+};
+
+// What getExtremePoints returns per face: how many external points it holds and the furthest one.
+struct FaceExtreme {
+  std::uint32_t count = 0;
+  PointIndex furthest = 0xffffffffu;
+};
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  virtual std::string name() const = 0;
+
+  // Keeps (or uploads) the points; they stay resident for the whole run.
+  virtual void upload_points(const std::vector<Point3>& points) = 0;
+
+  // Section 3.1.  Ties go to the lowest index.  furthest_* rank by an inexact distance; the engine checks
+  // the answers with exact predicates.
+  virtual std::array<PointIndex, 2> extremes_x() = 0;
+  virtual PointIndex furthest_from_line(PointIndex a, PointIndex b) = 0;
+  virtual PointIndex furthest_from_plane(PointIndex a, PointIndex b, PointIndex c) = 0;
+
+  // Algorithm 2: routes every remaining point through the tables to its new face, or marks it internal.
+  virtual void distribute_points(const IterationTables& tables) = 0;
+  // Drops internal points from the index array; returns how many remain (all external).
+  virtual std::size_t compact_index_array() = 0;
+  // One entry per face of the new mesh.
+  virtual void get_extreme_points(std::vector<FaceExtreme>& out) = 0;
+
+  // Debugger support: each point's face in the current mesh, or -1 when it is internal (or a vertex).
+  // For a GPU backend this copies O(points) data; the engine calls it only when asked.
+  virtual void point_faces(std::vector<std::int32_t>& out) = 0;
+
+  // Bytes moved between host and backend so far (0 for the CPU backend, which shares memory).
+  virtual std::uint64_t bytes_to_backend() const { return 0; }
+  virtual std::uint64_t bytes_from_backend() const { return 0; }
+};
+
+}  // namespace cudahull

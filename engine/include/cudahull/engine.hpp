@@ -1,0 +1,133 @@
+// The CudaHull engine: Algorithm 1 of Stein, Geva and El-Sana (2012), one iteration per step().
+//
+//   Engine engine(points, make_cpu_backend());
+//   while (!engine.done()) IterationRecord r = engine.step();
+//   HullMesh hull = engine.result();
+//
+// Exactness (README, "Exactness"): every decision that changes the result uses exact orient3d; points are
+// discarded only when proven inside the hull; when no external point remains, the mesh is checked exactly
+// and, where the paper's local procedure could not reach the exact hull (degenerate input), finished by an
+// exact hull of the vertices it used.  IterationRecord::repairs counts those fixes (0 in general position).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cudahull/backend.hpp"
+#include "cudahull/mesh.hpp"
+#include "cudahull/types.hpp"
+
+namespace cudahull {
+
+enum class SwapKind : std::uint8_t {
+  kRegular,           // a concave edge of a refined face, swapped (Fig. 3b)
+  kComplementary,     // a concave edge made by an earlier swap or removal of the same iteration (Fig. 4)
+  kRejectedFoldover,  // swapping would fold the surface over: a vertex lies beneath a new triangle (Fig. 5)
+  kRejectedEdgeExists,  // the new edge is already an edge of the mesh (would not be a 2-manifold)
+  kRejectedDegenerate,  // the four points are coplanar in the projection from the interior point
+};
+const char* swap_kind_name(SwapKind kind);
+
+struct SwapRecord {
+  SwapKind kind = SwapKind::kRegular;
+  int sequence = 0;                        // order within the iteration, over all swaps and rejections
+  PointIndex old_edge[2] = {0, 0};         // u, v
+  PointIndex new_edge[2] = {0, 0};         // x, y (the edge it would become, for rejected ones)
+  PointIndex beneath_vertex = kNoPoint;    // foldover: the vertex of the old edge lying beneath ...
+  PointIndex beneath_triangle[3] = {kNoPoint, kNoPoint, kNoPoint};  // ... this would-be triangle
+  std::int32_t decision_index = -1;        // its entry in the decision array, for performed swaps
+};
+
+struct RemovalRecord {
+  PointIndex vertex = 0;
+  PointIndex ring[3] = {0, 0, 0};  // the new face
+  std::int32_t decision_index = -1;
+  bool rejected = false;           // concave but removal would fold over or create congruent triangles
+};
+
+struct IterationRecord {
+  int iteration = 0;  // 0 is the initial tetrahedron and first distribution (section 3.1)
+  std::size_t faces_before = 0, faces_after = 0, faces_refined = 0;
+  std::size_t swaps_regular = 0, swaps_complementary = 0, swaps_rejected = 0;
+  std::size_t vertices_removed = 0, removals_rejected = 0;
+  std::size_t decision_entries = 0;
+  std::size_t external_before = 0, external_after = 0;  // points still outside the current hull
+  std::size_t repairs = 0;       // exact fixes where the local procedure fell short (0 in general position)
+  double host_ms = 0, backend_ms = 0;
+  double upload_ms = 0;  // iteration 0: putting the points on the backend (part of backend_ms)
+  std::uint64_t bytes_to_backend = 0, bytes_from_backend = 0;
+  std::vector<SwapRecord> swaps;
+  std::vector<RemovalRecord> removals;
+  std::vector<PointIndex> refined_apexes;  // the extreme points used, one per refined face
+  std::vector<DecisionEntry> decisions;    // the decision array (Fig. 7) sent this iteration
+  std::string note;                        // e.g. "degenerate input: dimension 2"
+};
+
+// Each face's cell (section 3): its plane and its three separating planes (through edge i, containing the
+// average of the unit normals of the two faces of the edge), positive inside the cell.
+struct FaceCell {
+  SeparatingPlane face_plane;  // unit normal, positive outside
+  SeparatingPlane edge_plane[3];
+};
+
+struct EngineOptions {
+  bool keep_decisions = true;  // copy the decision array into each IterationRecord
+};
+
+class Engine {
+ public:
+  Engine(std::vector<Point3> points, std::unique_ptr<Backend> backend, EngineOptions options = {});
+  ~Engine();
+  Engine(const Engine&) = delete;
+  Engine& operator=(const Engine&) = delete;
+
+  bool done() const { return done_; }
+  // One iteration of Algorithm 1 (the first call builds the tetrahedron and distributes the points).
+  IterationRecord step();
+  // Steps until no external point remains; `on_step` sees every record.
+  void run(const std::function<void(const IterationRecord&)>& on_step = {});
+
+  const std::vector<Point3>& points() const { return points_; }
+  const Mesh& mesh() const { return mesh_; }
+  const Backend& backend() const { return *backend_; }
+  int dimension() const { return dimension_; }  // affine dimension of the input, known after step 0
+  Vec3d interior_point() const { return interior_; }
+  FaceCell face_cell(FaceId f) const;
+  // Per point: its face in the current mesh, or -1 (internal or a vertex).  O(points); for the debugger.
+  std::vector<std::int32_t> point_faces() const;
+  const std::vector<FaceExtreme>& face_extremes() const { return extremes_; }
+  const std::vector<DecisionEntry>& last_decisions() const { return last_decisions_; }
+  const std::vector<RefinementEntry>& last_refinement() const { return last_refinement_; }
+  const std::vector<PointIndex>& removed_vertices() const { return removed_vertices_; }
+
+  // The exact hull; valid once done().
+  const HullMesh& result() const { return result_; }
+
+ private:
+  struct Impl;
+  IterationRecord initialize();
+  IterationRecord iterate();
+  void finish(IterationRecord& record);
+
+  std::vector<Point3> points_;
+  std::unique_ptr<Backend> backend_;
+  EngineOptions options_;
+  Mesh mesh_;
+  int iteration_ = 0;
+  bool started_ = false, done_ = false;
+  int dimension_ = -2;
+  Vec3d interior_;
+  std::size_t external_ = 0;
+  std::vector<FaceExtreme> extremes_;
+  std::vector<DecisionEntry> last_decisions_;
+  std::vector<RefinementEntry> last_refinement_;
+  std::vector<PointIndex> removed_vertices_;
+  std::vector<PointIndex> used_vertices_;  // every point that was ever a mesh vertex
+  std::vector<std::uint8_t> doomed_flag_;  // per point: a vertex proven inside, being taken out
+  HullMesh result_;
+};
+
+}  // namespace cudahull

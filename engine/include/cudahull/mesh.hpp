@@ -1,0 +1,77 @@
+// The hull mesh: triangles with adjacency in flat index arrays (DESIGN.md: no pointer graphs).
+//
+// Face f has vertices v[0..2] (input point indices, counter-clockwise seen from outside) and neighbours
+// n[0..2], where n[i] is the face across the directed edge v[i] -> v[(i+1) % 3].  Faces are created by the
+// three local edits of the paper (split at an apex, edge swap, degree-3 vertex removal) and killed when
+// replaced; compact() renumbers the live faces 0..F-1 between iterations.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "cudahull/types.hpp"
+
+namespace cudahull {
+
+using FaceId = std::uint32_t;
+inline constexpr FaceId kNoFace = 0xffffffffu;
+inline constexpr PointIndex kNoPoint = 0xffffffffu;
+
+struct MeshFace {
+  std::array<PointIndex, 3> v{};
+  std::array<FaceId, 3> n{kNoFace, kNoFace, kNoFace};
+};
+
+class Mesh {
+ public:
+  // The initial tetrahedron (section 3.1); (p0, p1, p2) must be clockwise seen from p3, i.e. p3 below the
+  // counter-clockwise triangle (p0, p1, p2).
+  // `point_count` sizes the vertex lookup (one slot per input point).
+  void make_tetrahedron(std::size_t point_count, PointIndex p0, PointIndex p1, PointIndex p2, PointIndex p3);
+
+  std::size_t face_capacity() const { return faces_.size(); }  // ids in use, live or dead
+  std::size_t live_faces() const { return live_count_; }
+  bool alive(FaceId f) const { return alive_[f] != 0; }
+  const MeshFace& face(FaceId f) const { return faces_[f]; }
+  std::size_t vertex_count() const { return vertex_count_; }
+  bool has_vertex(PointIndex v) const { return v < vertex_face_.size() && vertex_face_[v] != kNoFace; }
+  std::size_t degree(PointIndex v) const;
+  std::vector<PointIndex> vertices() const;  // sorted
+
+  // Index i such that face f has the directed edge a -> b as v[i] -> v[i+1], or -1.
+  int edge_index(FaceId f, PointIndex a, PointIndex b) const;
+
+  // Refinement (Fig. 3a): face (a, b, c) becomes (a, b, p), (b, c, p), (c, a, p), returned in that order.
+  // Edge 0 of each child is the child's edge of the old face.
+  std::array<FaceId, 3> split(FaceId f, PointIndex p);
+
+  // Edge swap (Fig. 3b): the edge v[i] -> v[i+1] of f (u -> v, opposite x) and its twin in g (opposite y)
+  // are replaced by the edge x - y: returns N1 = (x, u, y) and N2 = (y, v, x).  Caller checks validity.
+  std::array<FaceId, 2> swap(FaceId f, int i);
+
+  // Vertex removal (Fig. 4): the degree-3 vertex v with ring a, b, d becomes one face (a, b, d).
+  FaceId remove_degree3(PointIndex v);
+
+  // The vertices around v, counter-clockwise seen from outside, and the faces (face k holds v, ring[k],
+  // ring[k+1]).  Empty when v is not a vertex.
+  void ring(PointIndex v, std::vector<PointIndex>& ring_vertices, std::vector<FaceId>& ring_faces) const;
+  bool adjacent(PointIndex a, PointIndex b) const;  // is a - b an edge?
+
+  // Renumbers live faces 0..F-1 in id order; returns old id -> new id (kNoFace for dead faces).
+  std::vector<FaceId> compact();
+
+ private:
+  FaceId add_face(PointIndex a, PointIndex b, PointIndex c);
+  void kill(FaceId f);
+  // In face g, point the neighbour slot of directed edge a -> b at `to`.
+  void relink(FaceId g, PointIndex a, PointIndex b, FaceId to);
+
+  std::vector<MeshFace> faces_;
+  std::vector<std::uint8_t> alive_;
+  std::size_t live_count_ = 0;
+  std::vector<FaceId> vertex_face_;  // per input point: some live face that holds it, or kNoFace
+  std::size_t vertex_count_ = 0;
+};
+
+}  // namespace cudahull

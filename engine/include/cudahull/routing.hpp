@@ -1,0 +1,223 @@
+// The O(faces) tables the host sends the backend each iteration (section 4, Fig. 7), and the per-point
+// classification both backends run on them.  Plain structs and CUDAHULL_HD functions only: the CUDA backend
+// compiles this same header, so the CPU and GPU route every point identically.
+//
+// Route codes: a code >= 0 is a face id of the new (compacted) mesh; a code < 0 names decision entry
+// (-code - 1).  A point of old face f follows refinement[f] (three separating planes, if f was refined) and
+// then decision entries (one separating plane each, for swaps; none for removals) until it reaches a face.
+#pragma once
+
+#include <cstdint>
+
+#include "cudahull/host_device.hpp"
+#include "cudahull/predicates.hpp"
+#include "cudahull/types.hpp"
+
+namespace cudahull {
+
+// A separating plane n.x + d (section 3: through an edge, containing the average normal of its two faces).
+// The positive side is "above".  Planes only route points among cells, so they need not be exact.
+// Stored in double: an offset of float coordinates near 1e38 would overflow a float.
+struct SeparatingPlane {
+  double nx = 0, ny = 0, nz = 0, d = 0;
+};
+
+inline constexpr std::int32_t kRouteInternal = -0x7fffffff;  // point proven inside the hull
+
+struct RefinementEntry {
+  PointIndex apex = 0xffffffffu;  // 0xffffffff: face not refined; then `route` applies
+  std::int32_t route = 0;         // unrefined faces: where the face's points go
+  std::int32_t child[3] = {0, 0, 0};  // route codes of (a, b, p), (b, c, p), (c, a, p)
+  // plane[i] passes through the apex and vertex i of the old face; its positive side is child i's side.
+  SeparatingPlane plane[3];
+};
+
+enum DecisionKind : std::uint8_t { kDecisionSwap = 0, kDecisionRemoval = 1 };
+
+struct DecisionEntry {
+  SeparatingPlane plane;        // swap: the separating plane of the new edge; removal: unused
+  std::int32_t above = 0;       // route code on the plane's positive side (or always, for removals)
+  std::int32_t below = 0;       // route code on the other side
+  std::uint8_t kind = kDecisionSwap;
+};
+
+// A face of the new mesh as the backend sees it: its corners (exact tests) and neighbours (stray walks).
+struct FaceGeometry {
+  Point3 v[3];
+  std::int32_t neighbor[3];  // across v[i] -> v[i+1]
+  std::int8_t tet[4];        // see face_tetrahedron_signs()
+};
+
+// Evaluated in double with explicit rounding so host and device agree bit for bit.
+CUDAHULL_HD inline double plane_value(const SeparatingPlane& p, const Point3& x) {
+#if defined(__CUDA_ARCH__)
+  return __dadd_rn(__dadd_rn(__dadd_rn(__dmul_rn(p.nx, x.x), __dmul_rn(p.ny, x.y)), __dmul_rn(p.nz, x.z)), p.d);
+#else
+  return ((p.nx * x.x + p.ny * x.y) + p.nz * x.z) + p.d;  // -ffp-contract=off keeps this unfused
+#endif
+}
+
+// Algorithm 2, lines "refinement" and "decision": the route code of the face that receives point x, which
+// belonged to old face `old_face`.
+CUDAHULL_HD inline std::int32_t route_point(const Point3& x, std::int32_t old_face, const RefinementEntry* refinement,
+                                            const DecisionEntry* decision) {
+  const RefinementEntry& r = refinement[old_face];
+  std::int32_t code;
+  if (r.apex == 0xffffffffu) {
+    code = r.route;
+  } else {
+    // Child i lies on the positive side of plane[i] and the negative side of plane[i+1].  Exactly one child
+    // matches unless the point is "behind" the apex (all signs equal); then the child with the highest
+    // plane value of its trailing plane is as good as any: such points are far from this face.
+    const bool s0 = plane_value(r.plane[0], x) >= 0, s1 = plane_value(r.plane[1], x) >= 0,
+               s2 = plane_value(r.plane[2], x) >= 0;
+    if (s0 && !s1) {
+      code = r.child[0];
+    } else if (s1 && !s2) {
+      code = r.child[1];
+    } else if (s2 && !s0) {
+      code = r.child[2];
+    } else {
+      code = r.child[0];
+    }
+  }
+  while (code < 0 && code != kRouteInternal) {
+    const DecisionEntry& e = decision[-code - 1];
+    if (e.kind == kDecisionRemoval) {
+      code = e.above;
+    } else {
+      code = plane_value(e.plane, x) >= 0 ? e.above : e.below;
+    }
+  }
+  return code;
+}
+
+enum PointVerdict : int { kVerdictInternal = 0, kVerdictExternal = 1, kVerdictStray = 2 };
+
+// Signs the exact tetrahedron test needs per face, computed once per iteration on the host by
+// face_tetrahedron_signs(): tet[0..2] = orientation of the opposite corner for the radial planes
+// (c, a, b), (c, b, d), (c, d, a); tet[3] = orient3d(a, b, d, c), which is -1 when the interior point c is
+// below the face, as it is wherever the mesh is convex.
+CUDAHULL_HD inline void face_tetrahedron_signs(const Vec3d& c, const Point3 v[3], std::int8_t tet[4]) {
+  const Vec3d a = to_vec3d(v[0]), b = to_vec3d(v[1]), d = to_vec3d(v[2]);
+  tet[0] = static_cast<std::int8_t>(orient3d(c, a, b, d));
+  tet[1] = static_cast<std::int8_t>(orient3d(c, b, d, a));
+  tet[2] = static_cast<std::int8_t>(orient3d(c, d, a, b));
+  tet[3] = static_cast<std::int8_t>(orient3d(a, b, d, c));
+}
+
+// The exact verdict for point x in face f: external (strictly above f), internal (in the closed
+// tetrahedron of f and the interior point c), or stray (neither).  Every such tetrahedron lies in the
+// convex hull of the input (c is inside the first tetrahedron, the corners are input points), so discarding
+// a point inside one is always safe, whatever shape the mesh has mid-iteration.  For a stray point,
+// *exit_edge names the radial plane it is beyond (the neighbour to walk to), or -1.
+CUDAHULL_HD inline PointVerdict face_verdict(const FaceGeometry& f, const Vec3d& c, const Point3& x, int* exit_edge) {
+  const Vec3d a = to_vec3d(f.v[0]), b = to_vec3d(f.v[1]), d = to_vec3d(f.v[2]), p = to_vec3d(x);
+  *exit_edge = -1;
+  const int above = orient3d(a, b, d, p);
+  if (above > 0) return kVerdictExternal;
+  if (f.tet[0] == 0 || f.tet[1] == 0 || f.tet[2] == 0 || f.tet[3] == 0) return kVerdictStray;  // flat
+  if (above * f.tet[3] < 0) return kVerdictStray;  // c is above this (concave) face, x strictly below it
+  if (orient3d(c, a, b, p) * f.tet[0] < 0) {
+    *exit_edge = 0;
+    return kVerdictStray;
+  }
+  if (orient3d(c, b, d, p) * f.tet[1] < 0) {
+    *exit_edge = 1;
+    return kVerdictStray;
+  }
+  if (orient3d(c, d, a, p) * f.tet[2] < 0) {
+    *exit_edge = 2;
+    return kVerdictStray;
+  }
+  return kVerdictInternal;
+}
+
+// Ranking distance for the extreme-point search (getExtremePoints): proportional to the distance above face
+// f.  Not exact; only its order matters, and both backends compute it identically.
+CUDAHULL_HD inline double face_height(const FaceGeometry& f, const Point3& x) {
+#if defined(__CUDA_ARCH__)
+  const double ux = __dsub_rn(f.v[1].x, f.v[0].x), uy = __dsub_rn(f.v[1].y, f.v[0].y),
+               uz = __dsub_rn(f.v[1].z, f.v[0].z);
+  const double vx = __dsub_rn(f.v[2].x, f.v[0].x), vy = __dsub_rn(f.v[2].y, f.v[0].y),
+               vz = __dsub_rn(f.v[2].z, f.v[0].z);
+  const double wx = __dsub_rn(x.x, f.v[0].x), wy = __dsub_rn(x.y, f.v[0].y), wz = __dsub_rn(x.z, f.v[0].z);
+  const double nx = __dsub_rn(__dmul_rn(uy, vz), __dmul_rn(uz, vy));
+  const double ny = __dsub_rn(__dmul_rn(uz, vx), __dmul_rn(ux, vz));
+  const double nz = __dsub_rn(__dmul_rn(ux, vy), __dmul_rn(uy, vx));
+  return __dadd_rn(__dadd_rn(__dmul_rn(nx, wx), __dmul_rn(ny, wy)), __dmul_rn(nz, wz));
+#else
+  const double ux = double(f.v[1].x) - f.v[0].x, uy = double(f.v[1].y) - f.v[0].y, uz = double(f.v[1].z) - f.v[0].z;
+  const double vx = double(f.v[2].x) - f.v[0].x, vy = double(f.v[2].y) - f.v[0].y, vz = double(f.v[2].z) - f.v[0].z;
+  const double wx = double(x.x) - f.v[0].x, wy = double(x.y) - f.v[0].y, wz = double(x.z) - f.v[0].z;
+  const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+  return nx * wx + ny * wy + nz * wz;
+#endif
+}
+
+// Packs (height, point index) so that a 64-bit max picks the highest point and, among equal heights, the
+// lowest index: duplicates then always elect their lowest-index copy.  Heights are > 0 here.
+CUDAHULL_HD inline std::uint64_t pack_extreme(double height, PointIndex index) {
+  const float h = height > 0 ? static_cast<float>(height) : 0.0f;  // keep the sign bit clear
+  std::uint32_t bits;
+#if defined(__CUDA_ARCH__)
+  bits = __float_as_uint(h);
+#else
+  __builtin_memcpy(&bits, &h, sizeof bits);
+#endif
+  return (static_cast<std::uint64_t>(bits) << 32) | static_cast<std::uint64_t>(0xffffffffu - index);
+}
+CUDAHULL_HD inline PointIndex unpack_extreme_index(std::uint64_t packed) {
+  return 0xffffffffu - static_cast<PointIndex>(packed & 0xffffffffu);
+}
+
+// Views of the per-iteration tables, as both backends hold them (host vectors or device buffers).
+struct RoutingView {
+  const RefinementEntry* refinement = nullptr;  // indexed by the point's old face
+  const DecisionEntry* decision = nullptr;
+  const FaceGeometry* faces = nullptr;          // the new mesh
+  std::int32_t face_count = 0;
+  const SeparatingPlane* initial_cells = nullptr;  // first distribution only: 3 planes per tetrahedron face
+  Vec3d interior;                                  // the interior reference point c
+};
+
+inline constexpr int kMaxStrayWalk = 64;
+
+// Algorithm 2 for one point: the new face id that x belongs to (x strictly above it), or kRouteInternal when
+// x is proven inside the hull.  Deterministic and exact in its verdict; only the choice of face among those
+// x is above depends on the (inexact) separating planes.
+CUDAHULL_HD inline std::int32_t classify_point(const Point3& x, std::int32_t old_face, const RoutingView& t) {
+  std::int32_t g;
+  if (t.initial_cells != nullptr) {
+    g = 0;  // section 3.1: the first tetrahedron face whose cell holds x
+    for (std::int32_t f = 0; f < 4; ++f) {
+      const SeparatingPlane* cell = t.initial_cells + 3 * f;
+      if (plane_value(cell[0], x) >= 0 && plane_value(cell[1], x) >= 0 && plane_value(cell[2], x) >= 0) {
+        g = f;
+        break;
+      }
+    }
+  } else {
+    g = route_point(x, old_face, t.refinement, t.decision);
+    if (g == kRouteInternal) return kRouteInternal;
+  }
+  // A point below its face but outside the face's tetrahedron with c crossed a radial plane: walk to the
+  // neighbour across it.  Rare; bounded, with an exhaustive exact fallback.
+  for (int step = 0; step < kMaxStrayWalk; ++step) {
+    int exit_edge;
+    const PointVerdict verdict = face_verdict(t.faces[g], t.interior, x, &exit_edge);
+    if (verdict == kVerdictExternal) return g;
+    if (verdict == kVerdictInternal) return kRouteInternal;
+    if (exit_edge < 0) break;
+    g = t.faces[g].neighbor[exit_edge];
+  }
+  // Exhaustive: above some face, or below every face plane of the closed mesh and hence inside it (and so
+  // inside the hull of the input).
+  for (std::int32_t f = 0; f < t.face_count; ++f) {
+    const FaceGeometry& face = t.faces[f];
+    if (orient3d(to_vec3d(face.v[0]), to_vec3d(face.v[1]), to_vec3d(face.v[2]), to_vec3d(x)) > 0) return f;
+  }
+  return kRouteInternal;
+}
+
+}  // namespace cudahull
