@@ -121,19 +121,31 @@ struct Engine::Impl {
   // beneath a new triangle: a foldover (Fig. 5).
   SwapKind swap_validity(PointIndex u, PointIndex v, PointIndex x, PointIndex y, SwapRecord& swap) const {
     if (e.mesh_.adjacent(x, y)) return SwapKind::kRejectedEdgeExists;
-    const Vec3d &c = e.interior_, pu = P(u), pv = P(v), px = P(x), py = P(y);
+    const Vec3d pu = P(u), pv = P(v), px = P(x), py = P(y);
+    // The viewpoint: far below the edge along the average normal of its two faces, so that the test is the
+    // parallel projection along that normal (the height-field view of Fig. 5), yet still an exact predicate.
+    const Vec3d n = add(normalized(cross(sub(pv, pu), sub(px, pu))), normalized(cross(sub(pu, pv), sub(py, pv))));
+    const double reach = 1e3 * std::max({std::fabs(px.x - py.x), std::fabs(px.y - py.y), std::fabs(px.z - py.z),
+                                         std::fabs(pu.x - pv.x), std::fabs(pu.y - pv.y), std::fabs(pu.z - pv.z)});
+    const Vec3d c{(pu.x + pv.x) / 2 - reach * n.x, (pu.y + pv.y) / 2 - reach * n.y, (pu.z + pv.z) / 2 - reach * n.z};
     const int su = orient3d(c, px, py, pu), sv = orient3d(c, px, py, pv);
     const int sx = orient3d(c, pu, pv, px), sy = orient3d(c, pu, pv, py);
     if (su == 0 || sv == 0 || sx == 0 || sy == 0) return SwapKind::kRejectedDegenerate;
     if (su != sv && sx != sy) return SwapKind::kRegular;  // valid
-    if (in_cone(py, pv, px, pu)) {
+    if (in_cone_from(c, py, pv, px, pu)) {
       swap.beneath_vertex = u;
       swap.beneath_triangle[0] = y, swap.beneath_triangle[1] = v, swap.beneath_triangle[2] = x;
-    } else if (in_cone(px, pu, py, pv)) {
+    } else if (in_cone_from(c, px, pu, py, pv)) {
       swap.beneath_vertex = v;
       swap.beneath_triangle[0] = x, swap.beneath_triangle[1] = u, swap.beneath_triangle[2] = y;
     }
     return SwapKind::kRejectedFoldover;
+  }
+
+  static bool in_cone_from(const Vec3d& c, const Vec3d& a, const Vec3d& b, const Vec3d& d, const Vec3d& x) {
+    const int s = orient3d(c, a, b, d);
+    if (s == 0) return false;
+    return orient3d(c, a, b, x) * s >= 0 && orient3d(c, b, d, x) * s >= 0 && orient3d(c, d, a, x) * s >= 0;
   }
 
   // Fig. 3b: swap edge i of face f.  Only concave edges, unless `around_doomed` (a complementary swap that
@@ -201,7 +213,8 @@ struct Engine::Impl {
     e.mesh_.ring(v, ring, ring_faces);
     if (ring.size() != 3) return false;
     const PointIndex a = ring[0], b = ring[1], d = ring[2];
-    if (!doomed_vertex && orient3d(P(a), P(b), P(d), P(v)) > 0) return false;  // convex: stays
+    const int height = orient3d(P(a), P(b), P(d), P(v));
+    if (!doomed_vertex && height > 0) return false;  // convex: stays
 
     RemovalRecord removal;
     removal.vertex = v;
@@ -209,7 +222,16 @@ struct Engine::Impl {
     // Valid only if the new triangle covers v seen from c (no foldover), and its outer neighbours are
     // three different faces none of which holds the remaining ring vertex: otherwise the result would
     // hold two congruent triangles back to back.
-    bool valid = in_cone(P(a), P(b), P(d), P(v));
+    // Seen from far below the new triangle (its normal's parallel projection, as for swaps).
+    const Vec3d pa = P(a), pb = P(b), pd = P(d);
+    const Vec3d up = normalized(cross(sub(pb, pa), sub(pd, pa)));
+    const double reach = 1e3 * std::max({std::fabs(pb.x - pa.x), std::fabs(pb.y - pa.y), std::fabs(pb.z - pa.z),
+                                         std::fabs(pd.x - pa.x), std::fabs(pd.y - pa.y), std::fabs(pd.z - pa.z)});
+    const Vec3d view{(pa.x + pb.x + pd.x) / 3 - reach * up.x, (pa.y + pb.y + pd.y) / 3 - reach * up.y,
+                     (pa.z + pb.z + pd.z) / 3 - reach * up.z};
+    // A strictly concave vertex is the apex of a tetrahedron (v, a, b, d) that removal adds whole, so it is
+    // valid however folded the three faces look; a flat or doomed one must project inside (a, b, d).
+    bool valid = height < 0 || in_cone_from(view, pa, pb, pd, P(v));
     std::array<FaceId, 3> outer{};
     for (int k = 0; k < 3 && valid; ++k) {
       const PointIndex from = ring[k], to = ring[(k + 1) % 3], other = ring[(k + 2) % 3];
@@ -545,6 +567,23 @@ IterationRecord Engine::iterate() {
 void Engine::finish(IterationRecord& record) {
   const auto t0 = Clock::now();
   auto P = [&](PointIndex i) { return to_vec3d(points_[i]); };
+  {
+    // No point is outside any more, but rejected swaps can have left concave edges: keep applying the
+    // paper's local steps (swaps, complementary swaps, removals) to every edge until nothing changes.
+    Impl impl(*this, record);
+    for (int round = 0; round < 8; ++round) {
+      for (FaceId f = 0; f < mesh_.face_capacity(); ++f) {
+        if (!mesh_.alive(f)) continue;
+        for (int i = 0; i < 3; ++i) impl.queue.push_back({f, i});
+      }
+      for (PointIndex v : mesh_.vertices()) impl.touched.push_back(v);
+      const std::size_t before = record.swaps.size() + record.removals.size();
+      impl.rejected_edges.clear();
+      impl.settle();
+      mesh_.compact();
+      if (record.swaps.size() + record.removals.size() == before) break;
+    }
+  }
   // The mesh is the exact hull when every edge is strictly convex (so every vertex is strictly extreme), c
   // is inside, and every vertex it ever dropped lies inside it.  Everything else was discarded inside a
   // tetrahedron of c and input points, so nothing outside is left.

@@ -26,6 +26,10 @@ CUDAHULL_HD inline Vec3d to_vec3d(const Point3& p) { return {p.x, p.y, p.z}; }
 // every float32 input and for double points such as the engine's interior reference point.
 CUDAHULL_HD int orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d);
 
+// The same determinant in plain double arithmetic, same sign convention, NOT exact: for ranking only (e.g.
+// "furthest point above a face"), never for a decision.  Bit-identical on host and device.
+CUDAHULL_HD double orient3d_fast(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d);
+
 // Sign of the 2D determinant det[b-a, c-a]: +1 counter-clockwise, 0 collinear, -1 clockwise.  Exact.
 CUDAHULL_HD int orient2d(double ax, double ay, double bx, double by, double cx, double cy);
 
