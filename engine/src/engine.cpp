@@ -62,6 +62,11 @@ struct Edge {
   int index;
 };
 
+// Per-point flags of the mesh edits.
+constexpr std::uint8_t kDoomed = 1;        // a vertex proven inside the hull, being taken out
+constexpr std::uint8_t kRemovedOnce = 2;   // removed as concave before: a fold made it look concave
+constexpr int kStallLimit = 8;             // iterations without fewer external points before finishing
+
 }  // namespace
 
 struct Engine::Impl {
@@ -87,7 +92,7 @@ struct Engine::Impl {
     const MeshFace& face = e.mesh_.face(f);
     return normalized(cross(sub(P(face.v[1]), P(face.v[0])), sub(P(face.v[2]), P(face.v[0]))));
   }
-  bool is_doomed(PointIndex v) const { return e.doomed_flag_[v] != 0; }
+  bool is_doomed(PointIndex v) const { return (e.vertex_flags_[v] & kDoomed) != 0; }
 
   void note_killed(FaceId f, std::int32_t entry) {
     if (killed_by_entry.size() <= f) killed_by_entry.resize(f + 1, -1);
@@ -174,7 +179,7 @@ struct Engine::Impl {
       if (swap.beneath_vertex != kNoPoint && !is_doomed(swap.beneath_vertex) &&
           proven_inside(P(swap.beneath_triangle[0]), P(swap.beneath_triangle[1]), P(swap.beneath_triangle[2]),
                         P(swap.beneath_vertex))) {
-        e.doomed_flag_[swap.beneath_vertex] = 1;
+        e.vertex_flags_[swap.beneath_vertex] |= kDoomed;
         doomed.push_back(swap.beneath_vertex);
       }
       // Record each rejected edge once per iteration, however often a neighbour change re-queues it.
@@ -215,6 +220,9 @@ struct Engine::Impl {
     const PointIndex a = ring[0], b = ring[1], d = ring[2];
     const int height = orient3d(P(a), P(b), P(d), P(v));
     if (!doomed_vertex && height > 0) return false;  // convex: stays
+    // A vertex that came back after a removal sits in a fold, where looking concave proves nothing; removing
+    // it again would loop.  The exact finish deals with it if the fold remains.
+    if (!doomed_vertex && (e.vertex_flags_[v] & kRemovedOnce)) return false;
 
     RemovalRecord removal;
     removal.vertex = v;
@@ -255,6 +263,7 @@ struct Engine::Impl {
     removal.decision_index = index;
     record.removals.push_back(removal);
     ++record.vertices_removed;
+    e.vertex_flags_[v] |= kRemovedOnce;
     e.removed_vertices_.push_back(v);
     for (int k = 0; k < 3; ++k) queue.push_back({n, k});
     for (PointIndex p : {a, b, d}) touched.push_back(p);
@@ -305,7 +314,7 @@ struct Engine::Impl {
       doomed.clear();
       for (PointIndex w : out) {
         if (take_out(w)) changed = true;
-        e.doomed_flag_[w] = 0;
+        e.vertex_flags_[w] &= static_cast<std::uint8_t>(~kDoomed);
       }
       std::sort(touched.begin(), touched.end());
       touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
@@ -426,7 +435,7 @@ IterationRecord Engine::initialize() {
   dimension_ = 3;
   if (orient3d(P(p0), P(p1), P(p2), P(p3)) > 0) std::swap(p1, p2);  // p3 must lie below (p0, p1, p2)
   mesh_.make_tetrahedron(n, p0, p1, p2, p3);
-  doomed_flag_.assign(n, 0);
+  vertex_flags_.assign(n, 0);
   used_vertices_ = {p0, p1, p2, p3};
 
   // The interior reference point c: the tetrahedron's centroid, confirmed strictly inside exactly.  It
@@ -560,7 +569,8 @@ IterationRecord Engine::iterate() {
   if (options_.keep_decisions) record.decisions = tables.decision;
   last_decisions_ = std::move(tables.decision);
   last_refinement_ = std::move(tables.refinement);
-  if (external_ == 0) finish(record);
+  stalled_ = external_ < record.external_before ? 0 : stalled_ + 1;
+  if (external_ == 0 || stalled_ >= kStallLimit) finish(record);
   return record;
 }
 
@@ -614,6 +624,7 @@ void Engine::finish(IterationRecord& record) {
       }
     }
   }
+  faults += external_;  // after a stall: points still outside the mesh
   if (faults == 0) {
     result_ = HullMesh{};
     result_.dimension = 3;
@@ -630,9 +641,19 @@ void Engine::finish(IterationRecord& record) {
   } else {
     // The paper's local procedure stopped short (coplanar or cospherical input): finish exactly from the
     // candidates, which contain every extreme point.
-    result_ = exact_hull(points_, used_vertices_);
+    // Points still external (only after a stall) are candidates too.
+    std::vector<PointIndex> candidates = used_vertices_;
+    if (external_ > 0) {
+      const std::vector<std::int32_t> faces_of_points = point_faces();
+      for (PointIndex i = 0; i < faces_of_points.size(); ++i) {
+        if (faces_of_points[i] >= 0) candidates.push_back(i);
+      }
+      std::sort(candidates.begin(), candidates.end());
+      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    }
+    result_ = exact_hull(points_, candidates);
     record.repairs += faults;
-    record.note = "finished by an exact hull of " + std::to_string(used_vertices_.size()) +
+    record.note = "finished by an exact hull of " + std::to_string(candidates.size()) +
                   " candidate vertices (" + std::to_string(faults) + " non-convex edges or outside vertices)";
   }
   record.host_ms += ms_since(t0);

@@ -126,7 +126,8 @@ class Engine {
   std::vector<RefinementEntry> last_refinement_;
   std::vector<PointIndex> removed_vertices_;
   std::vector<PointIndex> used_vertices_;  // every point that was ever a mesh vertex
-  std::vector<std::uint8_t> doomed_flag_;  // per point: a vertex proven inside, being taken out
+  std::vector<std::uint8_t> vertex_flags_;  // per point: kDoomed, kRemovedOnce (engine.cpp)
+  int stalled_ = 0;                         // iterations without progress
   HullMesh result_;
 };
 
