@@ -81,6 +81,7 @@ class CpuBackend final : public Backend {
     face_count_ = tables.faces.size();
     // Per-worker counts and packed maxima, reduced afterwards (getExtremePoints fused into the pass).
     per_worker_.assign(workers_, {});
+    for (PointIndex i : tables.retired) face_of_[i] = kRouteInternal;
     const auto& p = *points_;
     parallel_chunks(active_.size(), workers_, [&](std::size_t begin, std::size_t end, unsigned w) {
       auto& local = per_worker_[w];
@@ -88,6 +89,7 @@ class CpuBackend final : public Backend {
       local.best.assign(face_count_, 0);
       for (std::size_t k = begin; k < end; ++k) {
         const PointIndex i = active_[k];
+        if (face_of_[i] == kRouteInternal) continue;  // retired
         const std::int32_t face = classify_point(p[i], face_of_[i], view);
         face_of_[i] = face;
         if (face == kRouteInternal) continue;

@@ -537,6 +537,7 @@ IterationRecord Engine::iterate() {
       for (int i = 0; i < 3; ++i) r.child[i] = impl.route_code(children[f][i], remap);
     }
   }
+  tables.retired = record.refined_apexes;
   tables.decision = impl.entries;
   for (std::size_t k = 0; k < tables.decision.size(); ++k) {
     tables.decision[k].above = impl.route_code(impl.entry_targets[k][0], remap);

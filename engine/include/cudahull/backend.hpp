@@ -22,11 +22,15 @@ struct IterationTables {
   std::vector<DecisionEntry> decision;
   std::vector<FaceGeometry> faces;          // the new mesh, compacted
   std::vector<SeparatingPlane> initial_cells;  // first distribution only (4 faces x 3 planes)
+  // Points that became vertices this iteration (the apexes): they leave the point set without routing.  The
+  // engine accounts for them exactly (they are hull candidates until its final check).
+  std::vector<PointIndex> retired;
   Vec3d interior;
 
   std::uint64_t bytes() const {
     return refinement.size() * sizeof(RefinementEntry) + decision.size() * sizeof(DecisionEntry) +
            faces.size() * sizeof(FaceGeometry) + initial_cells.size() * sizeof(SeparatingPlane) +
+           retired.size() * sizeof(PointIndex) +
            sizeof(Vec3d);
   }
 };
