@@ -54,9 +54,9 @@ std::unique_ptr<Backend> choose_backend(const std::string& requested, bool quiet
     return backend;
   }
   const CudaDeviceInfo info = query_cuda_device();
-  const std::string why = info.usable ? "the CUDA backend is not built into this version; GPU " + info.name +
-                                            " left unused"
-                                      : "no usable CUDA device: " + info.reason;
+  const std::string why =
+      info.usable ? "the CUDA backend is not built into this version; GPU " + info.name + " left unused"
+                  : "no usable CUDA device: " + info.reason;
   if (requested == "cuda") throw DeviceError("--backend cuda: " + why);
   auto backend = make_cpu_backend();
   if (!quiet) std::fprintf(stderr, "backend: %s (auto: %s)\n", backend->name().c_str(), why.c_str());
@@ -76,11 +76,16 @@ void write_text(const std::string& path, const std::string& text) {
 
 const char* dimension_name(int d) {
   switch (d) {
-    case -1: return "empty";
-    case 0: return "a single point";
-    case 1: return "a segment";
-    case 2: return "a convex polygon";
-    default: return "a polyhedron";
+    case -1:
+      return "empty";
+    case 0:
+      return "a single point";
+    case 1:
+      return "a segment";
+    case 2:
+      return "a convex polygon";
+    default:
+      return "a polyhedron";
   }
 }
 
@@ -150,9 +155,10 @@ int run_hull(const HullOptions& o) {
     bytes_from += r.bytes_from_backend;
     if (!o.trace.empty()) trace << iteration_to_json(r).dump() << "\n";
     if (o.table) {
-      std::printf("%4d %9zu %9zu %8zu %7zu %7zu %7zu %7zu %11zu %11zu %9.3f %9.3f\n", r.iteration, r.faces_after,
-                  r.faces_refined, r.swaps_regular, r.swaps_complementary, r.swaps_rejected, r.vertices_removed,
-                  r.decision_entries, r.external_before, r.external_after, r.host_ms, r.backend_ms);
+      std::printf("%4d %9zu %9zu %8zu %7zu %7zu %7zu %7zu %11zu %11zu %9.3f %9.3f\n", r.iteration,
+                  r.faces_after, r.faces_refined, r.swaps_regular, r.swaps_complementary, r.swaps_rejected,
+                  r.vertices_removed, r.decision_entries, r.external_before, r.external_after, r.host_ms,
+                  r.backend_ms);
     }
     if (!o.quiet && !r.note.empty()) std::fprintf(stderr, "note: %s\n", r.note.c_str());
   });
@@ -170,9 +176,10 @@ int run_hull(const HullOptions& o) {
     const CheckResult check = check_hull(engine.points(), hull);
     verify_ms = ms_since(t_verify);
     if (!check.ok) {
-      for (const auto& line : check.failures) std::fprintf(stderr, "verify: %s\n", line.c_str());
-      std::fprintf(stderr, "cudahull: error: --verify failed: %zu problem(s), first: %s\n", check.failures.size(),
-                   check.failures.empty() ? "?" : check.failures.front().c_str());
+      for (const auto& line : check.failures)
+        std::fprintf(stderr, "verify: %s\n", line.c_str());
+      std::fprintf(stderr, "cudahull: error: --verify failed: %zu problem(s), first: %s\n",
+                   check.failures.size(), check.failures.empty() ? "?" : check.failures.front().c_str());
       return kExitVerifyFailed;
     }
     verified = true;
@@ -183,25 +190,26 @@ int run_hull(const HullOptions& o) {
   if (!o.trace.empty()) write_text(o.trace, trace.str());
 
   if (!o.stats.empty()) {
-    nlohmann::json j{{"input", o.input},
-                     {"points", point_count},
-                     {"dimension", hull.dimension},
-                     {"hull_vertices", hull.vertex_ids.size()},
-                     {"hull_faces", hull.dimension == 3 ? hull.triangles.size() : (hull.dimension == 2 ? 1 : 0)},
-                     {"iterations", iterations},
-                     {"swaps", swaps},
-                     {"swaps_rejected", rejected},
-                     {"vertices_removed", removed},
-                     {"repairs", repairs},
-                     {"backend", backend_name},
-                     {"device", device},
-                     {"read_ms", read_ms},
-                     {"total_ms", run_ms},
-                     {"host_ms", host_ms},
-                     {"backend_ms", backend_ms},
-                     {"bytes_to_backend", bytes_to},
-                     {"bytes_from_backend", bytes_from},
-                     {"verified", verified}};
+    nlohmann::json j{
+        {"input", o.input},
+        {"points", point_count},
+        {"dimension", hull.dimension},
+        {"hull_vertices", hull.vertex_ids.size()},
+        {"hull_faces", hull.dimension == 3 ? hull.triangles.size() : (hull.dimension == 2 ? 1 : 0)},
+        {"iterations", iterations},
+        {"swaps", swaps},
+        {"swaps_rejected", rejected},
+        {"vertices_removed", removed},
+        {"repairs", repairs},
+        {"backend", backend_name},
+        {"device", device},
+        {"read_ms", read_ms},
+        {"total_ms", run_ms},
+        {"host_ms", host_ms},
+        {"backend_ms", backend_ms},
+        {"bytes_to_backend", bytes_to},
+        {"bytes_from_backend", bytes_from},
+        {"verified", verified}};
     if (o.verify) j["verify_ms"] = verify_ms;
     if (o.stats == "-") {
       std::cout << j.dump(2) << "\n";
@@ -277,14 +285,15 @@ int run_bench(const BenchOptions& o) {
     return kExitOk;
   }
   const double t = median(total), h = median(host);
-  std::printf("%-28s %10s %10s %10s %10s %7s %9s %10s %s\n", "input", "qhull ms", "total ms", "host ms", "device ms",
-              "host %", "speedup", "upload ms", "vertices");
-  std::printf("%-28s %10s %10.2f %10.2f %10.2f %6.1f%% %9s %10.2f %zu%s\n", label.c_str(),
-              o.versus.empty() ? "-" : std::to_string(qhull_ms).substr(0, 9).c_str(), t, h, median(dev),
-              t > 0 ? 100.0 * h / t : 0.0,
-              o.versus.empty() ? "-" : (std::to_string(qhull_ms / t).substr(0, 6) + "x").c_str(), median(upload),
-              hull.vertex_ids.size(),
-              o.versus.empty() ? "" : (same ? " (same vertices as Qhull)" : " (DIFFERENT vertices from Qhull)"));
+  std::printf("%-28s %10s %10s %10s %10s %7s %9s %10s %s\n", "input", "qhull ms", "total ms", "host ms",
+              "device ms", "host %", "speedup", "upload ms", "vertices");
+  std::printf(
+      "%-28s %10s %10.2f %10.2f %10.2f %6.1f%% %9s %10.2f %zu%s\n", label.c_str(),
+      o.versus.empty() ? "-" : std::to_string(qhull_ms).substr(0, 9).c_str(), t, h, median(dev),
+      t > 0 ? 100.0 * h / t : 0.0,
+      o.versus.empty() ? "-" : (std::to_string(qhull_ms / t).substr(0, 6) + "x").c_str(), median(upload),
+      hull.vertex_ids.size(),
+      o.versus.empty() ? "" : (same ? " (same vertices as Qhull)" : " (DIFFERENT vertices from Qhull)"));
   std::printf("backend: %s\n", backend_name.c_str());
   return kExitOk;
 }

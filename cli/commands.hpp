@@ -22,25 +22,25 @@ int run_gen(const GenOptions& options);
 
 struct HullOptions {
   std::string input;
-  std::string output;          // -o: .obj, .off or .ply
-  std::string vertices_out;    // --vertices-out
+  std::string output;        // -o: .obj, .off or .ply
+  std::string vertices_out;  // --vertices-out
   std::string backend = "auto";
   bool verify = false;
-  std::string stats;           // --stats FILE or "-"
-  std::string trace;           // --trace FILE (JSON lines)
-  bool table = false;          // --table: the per-iteration table on stdout
+  std::string stats;   // --stats FILE or "-"
+  std::string trace;   // --trace FILE (JSON lines)
+  bool table = false;  // --table: the per-iteration table on stdout
   bool quiet = false;
 };
 int run_hull(const HullOptions& options);
 
 struct BenchOptions {
-  std::string input;          // a file, or empty with --dist
+  std::string input;  // a file, or empty with --dist
   std::string distribution = "cube";
   std::uint64_t count = 1000000;
   std::uint64_t seed = 1;
   std::string backend = "auto";
   int repeat = 3;
-  std::string versus;         // "qhull" or empty
+  std::string versus;  // "qhull" or empty
   bool json = false;
 };
 int run_bench(const BenchOptions& options);

@@ -23,38 +23,47 @@ int fail(int code, const std::string& message) {
 
 int main(int argc, char** argv) {
   using namespace cudahull;
-  CLI::App app{"cudahull: exact 3D convex hulls with the CudaHull algorithm (Stein, Geva, El-Sana 2012).\n"
-               "Points are read and computed as float32; the hull is exact for those values."};
+  CLI::App app{
+      "cudahull: exact 3D convex hulls with the CudaHull algorithm (Stein, Geva, El-Sana 2012).\n"
+      "Points are read and computed as float32; the hull is exact for those values."};
   app.footer(kExitCodes);
   app.require_subcommand(1);
   app.set_version_flag("--version", "cudahull 0.1.0");
 
   cli::InfoOptions info;
   auto* info_cmd = app.add_subcommand("info", "Print a point set's size and bounding box as one JSON object");
-  info_cmd->add_option("FILE", info.input, "Input: .ply .obj .off .xyz .txt, or - for xyz on stdin")->required();
+  info_cmd->add_option("FILE", info.input, "Input: .ply .obj .off .xyz .txt, or - for xyz on stdin")
+      ->required();
 
   cli::GenOptions gen;
   std::string dist_help = "Distribution:";
-  for (const auto& name : distribution_names()) dist_help += " " + name;
+  for (const auto& name : distribution_names())
+    dist_help += " " + name;
   auto* gen_cmd = app.add_subcommand("gen", "Generate a synthetic point set");
   gen_cmd->add_option("DIST", gen.distribution, dist_help)->required();
   gen_cmd->add_option("N", gen.count, "Number of points")->required()->check(CLI::Range(1ull, 4000000000ull));
   gen_cmd->add_option("--seed", gen.seed, "Random seed (same seed, same points)")->capture_default_str();
-  gen_cmd->add_option("-o,--output", gen.output, "Output: .ply (binary), .xyz, .txt, .obj or .off")->required();
+  gen_cmd->add_option("-o,--output", gen.output, "Output: .ply (binary), .xyz, .txt, .obj or .off")
+      ->required();
 
   cli::HullOptions hull;
   auto* hull_cmd = app.add_subcommand("hull", "Compute the exact convex hull of a point set");
-  hull_cmd->add_option("INPUT", hull.input, "Input: .ply .obj .off .xyz .txt, or - for xyz on stdin")->required();
+  hull_cmd->add_option("INPUT", hull.input, "Input: .ply .obj .off .xyz .txt, or - for xyz on stdin")
+      ->required();
   hull_cmd->add_option("-o,--output", hull.output, "Write the hull mesh: .obj, .off or .ply");
-  hull_cmd->add_option("--vertices-out", hull.vertices_out,
-                       "Write the hull vertices, one 'index x y z' line each (0-based input indices, sorted)");
+  hull_cmd->add_option(
+      "--vertices-out", hull.vertices_out,
+      "Write the hull vertices, one 'index x y z' line each (0-based input indices, sorted)");
   hull_cmd->add_option("--backend", hull.backend, "auto (CUDA when a GPU is usable, else CPU), cuda or cpu")
       ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
       ->capture_default_str();
-  hull_cmd->add_flag("--verify", hull.verify, "Check the result with the independent exact checker (exit 5 if wrong)");
+  hull_cmd->add_flag("--verify", hull.verify,
+                     "Check the result with the independent exact checker (exit 5 if wrong)");
   hull_cmd->add_option("--stats", hull.stats, "Write counts and times as JSON to FILE, or - for stdout");
-  hull_cmd->add_option("--trace", hull.trace, "Write one JSON line per iteration (the IterationRecord) to FILE");
-  hull_cmd->add_flag("--table", hull.table, "Print the per-iteration table (cf. the paper's Fig. 9) on stdout");
+  hull_cmd->add_option("--trace", hull.trace,
+                       "Write one JSON line per iteration (the IterationRecord) to FILE");
+  hull_cmd->add_flag("--table", hull.table,
+                     "Print the per-iteration table (cf. the paper's Fig. 9) on stdout");
   hull_cmd->add_flag("-q,--quiet", hull.quiet, "No progress or summary on stderr");
 
   cli::BenchOptions bench;
@@ -66,7 +75,8 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--backend", bench.backend, "auto, cuda or cpu")
       ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
       ->capture_default_str();
-  bench_cmd->add_option("--repeat", bench.repeat, "Runs to take the median of")->check(CLI::Range(1, 1000))
+  bench_cmd->add_option("--repeat", bench.repeat, "Runs to take the median of")
+      ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   bench_cmd->add_option("--vs", bench.versus, "Also run this reference in the same process: qhull")
       ->check(CLI::IsMember({"qhull"}));

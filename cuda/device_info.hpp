@@ -8,8 +8,8 @@ namespace cudahull {
 
 struct CudaDeviceInfo {
   bool usable = false;
-  std::string name;         // e.g. "NVIDIA H100 80GB HBM3"
-  std::string reason;       // why not usable, e.g. "no CUDA-capable device is detected"
+  std::string name;    // e.g. "NVIDIA H100 80GB HBM3"
+  std::string reason;  // why not usable, e.g. "no CUDA-capable device is detected"
   std::size_t total_memory = 0;
   int compute_major = 0, compute_minor = 0;
 };

@@ -41,7 +41,8 @@ void expect_exact(const std::vector<Point3>& points, const HullMesh& hull) {
 }
 
 std::vector<Point3> scaled(std::vector<Point3> p, float s) {
-  for (auto& q : p) q = {q.x * s, q.y * s, q.z * s};
+  for (auto& q : p)
+    q = {q.x * s, q.y * s, q.z * s};
   return p;
 }
 
@@ -71,16 +72,14 @@ TEST_P(GeneralPosition, MatchesQhullExactly) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Engine, GeneralPosition,
-                         ::testing::Values(DistCase{Distribution::kCube, 1000}, DistCase{Distribution::kCube, 100000},
-                                           DistCase{Distribution::kCube, 1000000}, DistCase{Distribution::kBall, 1000},
-                                           DistCase{Distribution::kBall, 100000}, DistCase{Distribution::kBall, 1000000},
-                                           DistCase{Distribution::kGauss, 1000}, DistCase{Distribution::kGauss, 200000},
-                                           DistCase{Distribution::kSphere, 1000},
-                                           DistCase{Distribution::kSphere, 100000}),
-                         [](const auto& info) {
-                           return distribution_name(info.param.dist) + "_" + std::to_string(info.param.n);
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Engine, GeneralPosition,
+    ::testing::Values(DistCase{Distribution::kCube, 1000}, DistCase{Distribution::kCube, 100000},
+                      DistCase{Distribution::kCube, 1000000}, DistCase{Distribution::kBall, 1000},
+                      DistCase{Distribution::kBall, 100000}, DistCase{Distribution::kBall, 1000000},
+                      DistCase{Distribution::kGauss, 1000}, DistCase{Distribution::kGauss, 200000},
+                      DistCase{Distribution::kSphere, 1000}, DistCase{Distribution::kSphere, 100000}),
+    [](const auto& info) { return distribution_name(info.param.dist) + "_" + std::to_string(info.param.n); });
 
 // The paper's local procedure (swaps, complementary swaps, removals) should leave nothing for the exact
 // finish to repair in general position.  It does not always yet: a concave edge whose swap folds over can
@@ -107,7 +106,8 @@ TEST(Engine, SmallRandomSetsMatchBruteForce) {
   for (int trial = 0; trial < 60; ++trial) {
     std::vector<Point3> points(8 + trial % 25);
     // Small integers: lots of coplanar and collinear coincidences and duplicates.
-    for (auto& p : points) p = {float(coord(rng)), float(coord(rng)), float(coord(rng))};
+    for (auto& p : points)
+      p = {float(coord(rng)), float(coord(rng)), float(coord(rng))};
     const RunResult r = run_engine(points, 1);
     if (r.hull.dimension != 3) continue;
     EXPECT_EQ(r.hull.vertex_ids, testing::brute_force_extreme(points)) << "trial " << trial;
@@ -121,7 +121,8 @@ std::vector<Point3> grid(int side) {
   std::vector<Point3> p;
   for (int z = 0; z < side; ++z)
     for (int y = 0; y < side; ++y)
-      for (int x = 0; x < side; ++x) p.push_back({float(x), float(y), float(z)});
+      for (int x = 0; x < side; ++x)
+        p.push_back({float(x), float(y), float(z)});
   return p;
 }
 
@@ -148,7 +149,8 @@ TEST(EngineDegenerate, GridOnCubeSurfaceHasEightCorners) {
 TEST(EngineDegenerate, TripledPointsKeepTheLowestIndex) {
   const auto base = generate_points(Distribution::kBall, 3000, 5);
   std::vector<Point3> points;
-  for (int copy = 0; copy < 3; ++copy) points.insert(points.end(), base.begin(), base.end());
+  for (int copy = 0; copy < 3; ++copy)
+    points.insert(points.end(), base.begin(), base.end());
   const RunResult single = run_engine(base), tripled = run_engine(points);
   EXPECT_EQ(tripled.hull.vertex_ids, single.hull.vertex_ids);  // the first copy, indices < 3000
   expect_exact(points, tripled.hull);
@@ -164,7 +166,8 @@ TEST(EngineDegenerate, CylinderRings) {
 TEST(EngineDegenerate, IntegerParaboloidIsAllExtreme) {
   std::vector<Point3> points;
   for (int x = -20; x <= 20; ++x)
-    for (int y = -20; y <= 20; ++y) points.push_back({float(x), float(y), float(x * x + y * y)});
+    for (int y = -20; y <= 20; ++y)
+      points.push_back({float(x), float(y), float(x * x + y * y)});
   const RunResult r = run_engine(points);
   EXPECT_EQ(r.hull.vertex_ids.size(), points.size());  // every lifted lattice point is strictly extreme
   expect_exact(points, r.hull);
@@ -172,7 +175,8 @@ TEST(EngineDegenerate, IntegerParaboloidIsAllExtreme) {
 
 TEST(EngineDegenerate, ThinSlab) {
   auto points = generate_points(Distribution::kCube, 50000, 11);
-  for (auto& p : points) p.z = (p.z + 1.0f) * 0.5e-6f;
+  for (auto& p : points)
+    p.z = (p.z + 1.0f) * 0.5e-6f;
   const RunResult r = run_engine(points);
   ASSERT_EQ(r.hull.dimension, 3);
   expect_exact(points, r.hull);
@@ -219,9 +223,9 @@ TEST(EngineDegenerate, LowerDimensionalInputs) {
 TEST(EngineModels, ExtremeCountsMatchTheModelsReadme) {
   const std::filesystem::path dir = CUDAHULL_MODELS_DIR;
   if (!std::filesystem::exists(dir)) GTEST_SKIP() << "no ../shared/models beside the checkout";
-  const std::map<std::string, std::size_t> expected{{"bun_zipper.ply", 1564},        {"stanford-bunny.obj", 1562},
-                                                    {"dragonStandRight_0.ply", 439}, {"dragon_scans.ply", 207},
-                                                    {"teapot.obj", 878},             {"spot.obj", 305}};
+  const std::map<std::string, std::size_t> expected{
+      {"bun_zipper.ply", 1564},  {"stanford-bunny.obj", 1562}, {"dragonStandRight_0.ply", 439},
+      {"dragon_scans.ply", 207}, {"teapot.obj", 878},          {"spot.obj", 305}};
   for (const auto& [name, count] : expected) {
     const auto points = read_points((dir / name).string());
     const RunResult r = run_engine(points);
@@ -260,7 +264,8 @@ TEST(EngineSteps, DecisionArrayMatchesTheSwapsAndRemovals) {
   }
   EXPECT_GT(iterations, 3u);
   // Every remaining point state is consistent: after the last step nothing is external.
-  for (std::int32_t f : engine.point_faces()) EXPECT_EQ(f, -1);
+  for (std::int32_t f : engine.point_faces())
+    EXPECT_EQ(f, -1);
 }
 
 TEST(EngineSteps, FaceCellsSeparateNeighbours) {
@@ -274,12 +279,14 @@ TEST(EngineSteps, FaceCellsSeparateNeighbours) {
     const MeshFace& face = mesh.face(f);
     // The face's own centroid is inside its cell; its neighbour's centroid is outside the shared plane.
     Point3 c{};
-    for (PointIndex v : face.v) c = {c.x + points[v].x / 3, c.y + points[v].y / 3, c.z + points[v].z / 3};
+    for (PointIndex v : face.v)
+      c = {c.x + points[v].x / 3, c.y + points[v].y / 3, c.z + points[v].z / 3};
     for (int i = 0; i < 3; ++i) {
       EXPECT_GT(plane_value(cell.edge_plane[i], c), 0);
       const MeshFace& nb = mesh.face(face.n[i]);
       Point3 d{};
-      for (PointIndex v : nb.v) d = {d.x + points[v].x / 3, d.y + points[v].y / 3, d.z + points[v].z / 3};
+      for (PointIndex v : nb.v)
+        d = {d.x + points[v].x / 3, d.y + points[v].y / 3, d.z + points[v].z / 3};
       EXPECT_LT(plane_value(cell.edge_plane[i], d), 0);
     }
   }

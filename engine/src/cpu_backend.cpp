@@ -23,7 +23,8 @@ void parallel_chunks(std::size_t n, unsigned workers, Body&& body) {
     threads.emplace_back([&body, begin, end, w] { body(begin, end, w); });
   }
   body(std::size_t{0}, std::min(n, chunk), 0u);
-  for (auto& t : threads) t.join();
+  for (auto& t : threads)
+    t.join();
 }
 
 class CpuBackend final : public Backend {
@@ -36,7 +37,8 @@ class CpuBackend final : public Backend {
   void upload_points(const std::vector<Point3>& points) override {
     points_ = &points;
     active_.resize(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i) active_[i] = static_cast<PointIndex>(i);
+    for (std::size_t i = 0; i < points.size(); ++i)
+      active_[i] = static_cast<PointIndex>(i);
     face_of_.assign(points.size(), 0);
   }
 
@@ -81,7 +83,8 @@ class CpuBackend final : public Backend {
     face_count_ = tables.faces.size();
     // Per-worker counts and packed maxima, reduced afterwards (getExtremePoints fused into the pass).
     per_worker_.assign(workers_, {});
-    for (PointIndex i : tables.retired) face_of_[i] = kRouteInternal;
+    for (PointIndex i : tables.retired)
+      face_of_[i] = kRouteInternal;
     const auto& p = *points_;
     parallel_chunks(active_.size(), workers_, [&](std::size_t begin, std::size_t end, unsigned w) {
       auto& local = per_worker_[w];
@@ -124,7 +127,8 @@ class CpuBackend final : public Backend {
 
   void point_faces(std::vector<std::int32_t>& out) override {
     out.assign(points_->size(), -1);
-    for (PointIndex i : active_) out[i] = face_of_[i];
+    for (PointIndex i : active_)
+      out[i] = face_of_[i];
   }
 
  private:
@@ -162,6 +166,8 @@ class CpuBackend final : public Backend {
 
 }  // namespace
 
-std::unique_ptr<Backend> make_cpu_backend(unsigned threads) { return std::make_unique<CpuBackend>(threads); }
+std::unique_ptr<Backend> make_cpu_backend(unsigned threads) {
+  return std::make_unique<CpuBackend>(threads);
+}
 
 }  // namespace cudahull

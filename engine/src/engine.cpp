@@ -15,11 +15,16 @@ namespace cudahull {
 
 const char* swap_kind_name(SwapKind kind) {
   switch (kind) {
-    case SwapKind::kRegular: return "regular";
-    case SwapKind::kComplementary: return "complementary";
-    case SwapKind::kRejectedFoldover: return "rejected_foldover";
-    case SwapKind::kRejectedEdgeExists: return "rejected_edge_exists";
-    case SwapKind::kRejectedDegenerate: return "rejected_degenerate";
+    case SwapKind::kRegular:
+      return "regular";
+    case SwapKind::kComplementary:
+      return "complementary";
+    case SwapKind::kRejectedFoldover:
+      return "rejected_foldover";
+    case SwapKind::kRejectedEdgeExists:
+      return "rejected_edge_exists";
+    case SwapKind::kRejectedDegenerate:
+      return "rejected_degenerate";
   }
   return "unknown";
 }
@@ -31,12 +36,18 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-Vec3d sub(const Vec3d& a, const Vec3d& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-Vec3d add(const Vec3d& a, const Vec3d& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+Vec3d sub(const Vec3d& a, const Vec3d& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+Vec3d add(const Vec3d& a, const Vec3d& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
 Vec3d cross(const Vec3d& a, const Vec3d& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-double dot(const Vec3d& a, const Vec3d& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+double dot(const Vec3d& a, const Vec3d& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 Vec3d normalized(const Vec3d& a) {
   // Scale first so that huge or tiny coordinates (1e30, 1e-30) neither overflow nor underflow.
   const double m = std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)});
@@ -63,9 +74,9 @@ struct Edge {
 };
 
 // Per-point flags of the mesh edits.
-constexpr std::uint8_t kDoomed = 1;        // a vertex proven inside the hull, being taken out
-constexpr std::uint8_t kRemovedOnce = 2;   // removed as concave before: a fold made it look concave
-constexpr int kStallLimit = 8;             // iterations without fewer external points before finishing
+constexpr std::uint8_t kDoomed = 1;       // a vertex proven inside the hull, being taken out
+constexpr std::uint8_t kRemovedOnce = 2;  // removed as concave before: a fold made it look concave
+constexpr int kStallLimit = 8;            // iterations without fewer external points before finishing
 
 }  // namespace
 
@@ -81,8 +92,8 @@ struct Engine::Impl {
   std::vector<PointIndex> touched;  // vertices whose neighbourhood changed: removal candidates
   std::vector<PointIndex> doomed;   // vertices proven not extreme, to be taken out (Fig. 4)
   std::set<std::pair<PointIndex, PointIndex>> rejected_edges;
-  std::vector<PointIndex> ring;     // scratch
-  std::vector<FaceId> ring_faces;   // scratch
+  std::vector<PointIndex> ring;    // scratch
+  std::vector<FaceId> ring_faces;  // scratch
   int sequence = 0;
 
   explicit Impl(Engine& engine, IterationRecord& r) : e(engine), record(r) {}
@@ -129,10 +140,13 @@ struct Engine::Impl {
     const Vec3d pu = P(u), pv = P(v), px = P(x), py = P(y);
     // The viewpoint: far below the edge along the average normal of its two faces, so that the test is the
     // parallel projection along that normal (the height-field view of Fig. 5), yet still an exact predicate.
-    const Vec3d n = add(normalized(cross(sub(pv, pu), sub(px, pu))), normalized(cross(sub(pu, pv), sub(py, pv))));
-    const double reach = 1e3 * std::max({std::fabs(px.x - py.x), std::fabs(px.y - py.y), std::fabs(px.z - py.z),
-                                         std::fabs(pu.x - pv.x), std::fabs(pu.y - pv.y), std::fabs(pu.z - pv.z)});
-    const Vec3d c{(pu.x + pv.x) / 2 - reach * n.x, (pu.y + pv.y) / 2 - reach * n.y, (pu.z + pv.z) / 2 - reach * n.z};
+    const Vec3d n =
+        add(normalized(cross(sub(pv, pu), sub(px, pu))), normalized(cross(sub(pu, pv), sub(py, pv))));
+    const double reach =
+        1e3 * std::max({std::fabs(px.x - py.x), std::fabs(px.y - py.y), std::fabs(px.z - py.z),
+                        std::fabs(pu.x - pv.x), std::fabs(pu.y - pv.y), std::fabs(pu.z - pv.z)});
+    const Vec3d c{(pu.x + pv.x) / 2 - reach * n.x, (pu.y + pv.y) / 2 - reach * n.y,
+                  (pu.z + pv.z) / 2 - reach * n.z};
     const int su = orient3d(c, px, py, pu), sv = orient3d(c, px, py, pv);
     const int sx = orient3d(c, pu, pv, px), sy = orient3d(c, pu, pv, py);
     if (su == 0 || sv == 0 || sx == 0 || sy == 0) return SwapKind::kRejectedDegenerate;
@@ -206,8 +220,10 @@ struct Engine::Impl {
     swap.decision_index = index;
     record.swaps.push_back(swap);
     (kind == SwapKind::kRegular ? record.swaps_regular : record.swaps_complementary)++;
-    for (const Edge& edge : {Edge{n1, 0}, Edge{n1, 1}, Edge{n2, 0}, Edge{n2, 1}}) queue.push_back(edge);
-    for (PointIndex p : {u, v, x, y}) touched.push_back(p);
+    for (const Edge& edge : {Edge{n1, 0}, Edge{n1, 1}, Edge{n2, 0}, Edge{n2, 1}})
+      queue.push_back(edge);
+    for (PointIndex p : {u, v, x, y})
+      touched.push_back(p);
     return true;
   }
 
@@ -233,8 +249,9 @@ struct Engine::Impl {
     // Seen from far below the new triangle (its normal's parallel projection, as for swaps).
     const Vec3d pa = P(a), pb = P(b), pd = P(d);
     const Vec3d up = normalized(cross(sub(pb, pa), sub(pd, pa)));
-    const double reach = 1e3 * std::max({std::fabs(pb.x - pa.x), std::fabs(pb.y - pa.y), std::fabs(pb.z - pa.z),
-                                         std::fabs(pd.x - pa.x), std::fabs(pd.y - pa.y), std::fabs(pd.z - pa.z)});
+    const double reach =
+        1e3 * std::max({std::fabs(pb.x - pa.x), std::fabs(pb.y - pa.y), std::fabs(pb.z - pa.z),
+                        std::fabs(pd.x - pa.x), std::fabs(pd.y - pa.y), std::fabs(pd.z - pa.z)});
     const Vec3d view{(pa.x + pb.x + pd.x) / 3 - reach * up.x, (pa.y + pb.y + pd.y) / 3 - reach * up.y,
                      (pa.z + pb.z + pd.z) / 3 - reach * up.z};
     // A strictly concave vertex is the apex of a tetrahedron (v, a, b, d) that removal adds whole, so it is
@@ -259,14 +276,17 @@ struct Engine::Impl {
     DecisionEntry entry;
     entry.kind = kDecisionRemoval;
     const std::int32_t index = add_entry(entry, n, n);
-    for (FaceId f : old_faces) note_killed(f, index);
+    for (FaceId f : old_faces)
+      note_killed(f, index);
     removal.decision_index = index;
     record.removals.push_back(removal);
     ++record.vertices_removed;
     e.vertex_flags_[v] |= kRemovedOnce;
     e.removed_vertices_.push_back(v);
-    for (int k = 0; k < 3; ++k) queue.push_back({n, k});
-    for (PointIndex p : {a, b, d}) touched.push_back(p);
+    for (int k = 0; k < 3; ++k)
+      queue.push_back({n, k});
+    for (PointIndex p : {a, b, d})
+      touched.push_back(p);
     return true;
   }
 
@@ -379,7 +399,8 @@ FaceCell Engine::face_cell(FaceId f) const {
   cell.face_plane = {n.x, n.y, n.z, -dot(n, P(face.v[0]))};
   for (int i = 0; i < 3; ++i) {
     const Vec3d along = add(n, unit_normal(face.n[i]));
-    cell.edge_plane[i] = plane_through_edge(P(face.v[i]), P(face.v[(i + 1) % 3]), along, P(face.v[(i + 2) % 3]));
+    cell.edge_plane[i] =
+        plane_through_edge(P(face.v[i]), P(face.v[(i + 1) % 3]), along, P(face.v[(i + 2) % 3]));
   }
   return cell;
 }
@@ -455,7 +476,8 @@ IterationRecord Engine::initialize() {
   tables.interior = interior_;
   for (FaceId f = 0; f < 4; ++f) {
     const FaceCell cell = face_cell(f);
-    for (int i = 0; i < 3; ++i) tables.initial_cells.push_back(cell.edge_plane[i]);
+    for (int i = 0; i < 3; ++i)
+      tables.initial_cells.push_back(cell.edge_plane[i]);
   }
   tables.faces.resize(4);
   for (FaceId f = 0; f < 4; ++f) {
@@ -513,8 +535,10 @@ IterationRecord Engine::iterate() {
       const Vec3d inside = impl.P(old.v[(i + 1) % 3]);
       refinement[f].plane[i] = plane_through_edge(impl.P(apex), impl.P(old.v[i]), along, inside);
     }
-    for (FaceId c : children[f]) regular_candidates.push_back({c, 0});
-    for (PointIndex v : old.v) impl.touched.push_back(v);
+    for (FaceId c : children[f])
+      regular_candidates.push_back({c, 0});
+    for (PointIndex v : old.v)
+      impl.touched.push_back(v);
   }
   record.faces_refined = record.refined_apexes.size();
 
@@ -534,7 +558,8 @@ IterationRecord Engine::iterate() {
     if (r.apex == kNoPoint) {
       r.route = impl.route_code(f, remap);
     } else {
-      for (int i = 0; i < 3; ++i) r.child[i] = impl.route_code(children[f][i], remap);
+      for (int i = 0; i < 3; ++i)
+        r.child[i] = impl.route_code(children[f][i], remap);
     }
   }
   tables.retired = record.refined_apexes;
@@ -585,9 +610,11 @@ void Engine::finish(IterationRecord& record) {
     for (int round = 0; round < 8; ++round) {
       for (FaceId f = 0; f < mesh_.face_capacity(); ++f) {
         if (!mesh_.alive(f)) continue;
-        for (int i = 0; i < 3; ++i) impl.queue.push_back({f, i});
+        for (int i = 0; i < 3; ++i)
+          impl.queue.push_back({f, i});
       }
-      for (PointIndex v : mesh_.vertices()) impl.touched.push_back(v);
+      for (PointIndex v : mesh_.vertices())
+        impl.touched.push_back(v);
       const std::size_t before = record.swaps.size() + record.removals.size();
       impl.rejected_edges.clear();
       impl.settle();

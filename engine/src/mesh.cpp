@@ -6,8 +6,12 @@
 namespace cudahull {
 
 namespace {
-int next(int i) { return i == 2 ? 0 : i + 1; }
-int prev(int i) { return i == 0 ? 2 : i - 1; }
+int next(int i) {
+  return i == 2 ? 0 : i + 1;
+}
+int prev(int i) {
+  return i == 0 ? 2 : i - 1;
+}
 }  // namespace
 
 FaceId Mesh::add_face(PointIndex a, PointIndex b, PointIndex c) {
@@ -29,7 +33,8 @@ void Mesh::kill(FaceId f) {
   --live_count_;
 }
 
-void Mesh::make_tetrahedron(std::size_t point_count, PointIndex p0, PointIndex p1, PointIndex p2, PointIndex p3) {
+void Mesh::make_tetrahedron(std::size_t point_count, PointIndex p0, PointIndex p1, PointIndex p2,
+                            PointIndex p3) {
   faces_.clear();
   alive_.clear();
   live_count_ = 0;
@@ -49,7 +54,8 @@ void Mesh::make_tetrahedron(std::size_t point_count, PointIndex p0, PointIndex p
       }
     }
   };
-  for (FaceId f : {f0, f1, f2, f3}) link_all(f);
+  for (FaceId f : {f0, f1, f2, f3})
+    link_all(f);
 }
 
 std::vector<PointIndex> Mesh::vertices() const {
@@ -119,7 +125,8 @@ void Mesh::ring(PointIndex v, std::vector<PointIndex>& ring_vertices, std::vecto
   do {
     const MeshFace& face = faces_[f];
     int k = 0;
-    while (face.v[k] != v) ++k;
+    while (face.v[k] != v)
+      ++k;
     ring_vertices.push_back(face.v[next(k)]);
     ring_faces.push_back(f);
     f = face.n[prev(k)];  // across the edge v[k+2] -> v, the next face counter-clockwise around v
@@ -135,7 +142,8 @@ bool Mesh::adjacent(PointIndex a, PointIndex b) const {
   do {
     const MeshFace& face = faces_[f];
     int k = 0;
-    while (face.v[k] != a) ++k;
+    while (face.v[k] != a)
+      ++k;
     if (face.v[next(k)] == b) return true;
     f = face.n[prev(k)];
     if (++steps > faces_.size()) throw std::logic_error("mesh ring does not close");
@@ -151,7 +159,8 @@ std::size_t Mesh::degree(PointIndex v) const {
   do {
     const MeshFace& face = faces_[f];
     int k = 0;
-    while (face.v[k] != v) ++k;
+    while (face.v[k] != v)
+      ++k;
     ++count;
     f = face.n[prev(k)];
     if (count > faces_.size()) throw std::logic_error("mesh ring does not close");
@@ -171,7 +180,8 @@ FaceId Mesh::remove_degree3(PointIndex v) {
     const MeshFace& face = faces_[rf[k]];
     outer[k] = face.n[edge_index(rf[k], rv[k], rv[(k + 1) % 3])];
   }
-  for (FaceId f : rf) kill(f);
+  for (FaceId f : rf)
+    kill(f);
   vertex_face_[v] = kNoFace;
   --vertex_count_;
   FaceId n = add_face(a, b, d);
@@ -193,7 +203,8 @@ std::vector<FaceId> Mesh::compact() {
   for (FaceId f = 0; f < faces_.size(); ++f) {
     if (!alive_[f]) continue;
     MeshFace face = faces_[f];
-    for (FaceId& nb : face.n) nb = remap[nb];
+    for (FaceId& nb : face.n)
+      nb = remap[nb];
     kept.push_back(face);
   }
   faces_ = std::move(kept);

@@ -4,7 +4,9 @@ namespace cudahull {
 
 namespace {
 
-nlohmann::json plane_json(const SeparatingPlane& p) { return {p.nx, p.ny, p.nz, p.d}; }
+nlohmann::json plane_json(const SeparatingPlane& p) {
+  return {p.nx, p.ny, p.nz, p.d};
+}
 
 // Route codes as the trace shows them: {"face": id}, {"entry": k} or "internal".
 nlohmann::json route_json(std::int32_t code) {
@@ -46,8 +48,8 @@ nlohmann::json iteration_to_json(const IterationRecord& r) {
     if (s.decision_index >= 0) e["decision"] = s.decision_index;
     if (s.beneath_vertex != kNoPoint) {
       e["reason"] = "vertex " + std::to_string(s.beneath_vertex) + " lies beneath triangle (" +
-                    std::to_string(s.beneath_triangle[0]) + ", " + std::to_string(s.beneath_triangle[1]) + ", " +
-                    std::to_string(s.beneath_triangle[2]) + ")";
+                    std::to_string(s.beneath_triangle[0]) + ", " + std::to_string(s.beneath_triangle[1]) +
+                    ", " + std::to_string(s.beneath_triangle[2]) + ")";
       e["beneath_vertex"] = s.beneath_vertex;
       e["beneath_triangle"] = {s.beneath_triangle[0], s.beneath_triangle[1], s.beneath_triangle[2]};
     } else if (s.kind == SwapKind::kRejectedEdgeExists) {
@@ -61,7 +63,8 @@ nlohmann::json iteration_to_json(const IterationRecord& r) {
   }
   auto& removals = j["removals"] = nlohmann::json::array();
   for (const RemovalRecord& m : r.removals) {
-    nlohmann::json e{{"vertex", m.vertex}, {"new_face", {m.ring[0], m.ring[1], m.ring[2]}}, {"rejected", m.rejected}};
+    nlohmann::json e{
+        {"vertex", m.vertex}, {"new_face", {m.ring[0], m.ring[1], m.ring[2]}}, {"rejected", m.rejected}};
     if (m.decision_index >= 0) e["decision"] = m.decision_index;
     removals.push_back(std::move(e));
   }

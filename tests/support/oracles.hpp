@@ -43,7 +43,9 @@ inline std::vector<PointIndex> brute_force_extreme(const std::vector<Point3>& p)
         const double nx = (b.y - a.y) * (c.z - a.z) - (b.z - a.z) * (c.y - a.y);
         const double ny = (b.z - a.z) * (c.x - a.x) - (b.x - a.x) * (c.z - a.z);
         const double nz = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-        const int drop = std::abs(nx) >= std::abs(ny) && std::abs(nx) >= std::abs(nz) ? 0 : (std::abs(ny) >= std::abs(nz) ? 1 : 2);
+        const int drop = std::abs(nx) >= std::abs(ny) && std::abs(nx) >= std::abs(nz)
+                             ? 0
+                             : (std::abs(ny) >= std::abs(nz) ? 1 : 2);
         auto proj = [&](std::size_t m, double& u, double& v) {
           const Vec3d q = V(m);
           u = drop == 0 ? q.y : q.x;
@@ -53,7 +55,8 @@ inline std::vector<PointIndex> brute_force_extreme(const std::vector<Point3>& p)
           bool corner = true;
           double qu, qv;
           proj(q, qu, qv);
-          // q is not a corner if it equals a lower-index point, or lies in the closed triangle of three others.
+          // q is not a corner if it equals a lower-index point, or lies in the closed triangle of three
+          // others.
           for (std::size_t r : on) {
             if (r != q && p[r] == p[q] && r < q) corner = false;
           }
@@ -74,10 +77,11 @@ inline std::vector<PointIndex> brute_force_extreme(const std::vector<Point3>& p)
                 } else {
                   // Degenerate triple: q on a segment between two of them?
                   auto between = [&](double xu, double xv, double yu, double yv) {
-                    return orient2d(xu, xv, yu, yv, qu, qv) == 0 && std::min(xu, yu) <= qu && qu <= std::max(xu, yu) &&
-                           std::min(xv, yv) <= qv && qv <= std::max(xv, yv);
+                    return orient2d(xu, xv, yu, yv, qu, qv) == 0 && std::min(xu, yu) <= qu &&
+                           qu <= std::max(xu, yu) && std::min(xv, yv) <= qv && qv <= std::max(xv, yv);
                   };
-                  if (between(au, av, bu, bv) || between(bu, bv, cu, cv) || between(au, av, cu, cv)) corner = false;
+                  if (between(au, av, bu, bv) || between(bu, bv, cu, cv) || between(au, av, cu, cv))
+                    corner = false;
                 }
               }
           if (corner) extreme[q] = true;

@@ -20,7 +20,7 @@ namespace cudahull {
 struct IterationTables {
   std::vector<RefinementEntry> refinement;  // one per face of the previous mesh
   std::vector<DecisionEntry> decision;
-  std::vector<FaceGeometry> faces;          // the new mesh, compacted
+  std::vector<FaceGeometry> faces;             // the new mesh, compacted
   std::vector<SeparatingPlane> initial_cells;  // first distribution only (4 faces x 3 planes)
   // Points that became vertices this iteration (the apexes): they leave the point set without routing.  The
   // engine accounts for them exactly (they are hull candidates until its final check).
@@ -30,8 +30,7 @@ struct IterationTables {
   std::uint64_t bytes() const {
     return refinement.size() * sizeof(RefinementEntry) + decision.size() * sizeof(DecisionEntry) +
            faces.size() * sizeof(FaceGeometry) + initial_cells.size() * sizeof(SeparatingPlane) +
-           retired.size() * sizeof(PointIndex) +
-           sizeof(Vec3d);
+           retired.size() * sizeof(PointIndex) + sizeof(Vec3d);
   }
 };
 

@@ -23,9 +23,9 @@
 namespace cudahull {
 
 enum class SwapKind : std::uint8_t {
-  kRegular,           // a concave edge of a refined face, swapped (Fig. 3b)
-  kComplementary,     // a concave edge made by an earlier swap or removal of the same iteration (Fig. 4)
-  kRejectedFoldover,  // swapping would fold the surface over: a vertex lies beneath a new triangle (Fig. 5)
+  kRegular,             // a concave edge of a refined face, swapped (Fig. 3b)
+  kComplementary,       // a concave edge made by an earlier swap or removal of the same iteration (Fig. 4)
+  kRejectedFoldover,    // swapping would fold the surface over: a vertex lies beneath a new triangle (Fig. 5)
   kRejectedEdgeExists,  // the new edge is already an edge of the mesh (would not be a 2-manifold)
   kRejectedDegenerate,  // the four points are coplanar in the projection from the interior point
 };
@@ -33,19 +33,19 @@ const char* swap_kind_name(SwapKind kind);
 
 struct SwapRecord {
   SwapKind kind = SwapKind::kRegular;
-  int sequence = 0;                        // order within the iteration, over all swaps and rejections
-  PointIndex old_edge[2] = {0, 0};         // u, v
-  PointIndex new_edge[2] = {0, 0};         // x, y (the edge it would become, for rejected ones)
-  PointIndex beneath_vertex = kNoPoint;    // foldover: the vertex of the old edge lying beneath ...
+  int sequence = 0;                      // order within the iteration, over all swaps and rejections
+  PointIndex old_edge[2] = {0, 0};       // u, v
+  PointIndex new_edge[2] = {0, 0};       // x, y (the edge it would become, for rejected ones)
+  PointIndex beneath_vertex = kNoPoint;  // foldover: the vertex of the old edge lying beneath ...
   PointIndex beneath_triangle[3] = {kNoPoint, kNoPoint, kNoPoint};  // ... this would-be triangle
-  std::int32_t decision_index = -1;        // its entry in the decision array, for performed swaps
+  std::int32_t decision_index = -1;  // its entry in the decision array, for performed swaps
 };
 
 struct RemovalRecord {
   PointIndex vertex = 0;
   PointIndex ring[3] = {0, 0, 0};  // the new face
   std::int32_t decision_index = -1;
-  bool rejected = false;           // concave but removal would fold over or create congruent triangles
+  bool rejected = false;  // concave but removal would fold over or create congruent triangles
 };
 
 struct IterationRecord {
@@ -55,7 +55,7 @@ struct IterationRecord {
   std::size_t vertices_removed = 0, removals_rejected = 0;
   std::size_t decision_entries = 0;
   std::size_t external_before = 0, external_after = 0;  // points still outside the current hull
-  std::size_t repairs = 0;       // exact fixes where the local procedure fell short (0 in general position)
+  std::size_t repairs = 0;  // exact fixes where the local procedure fell short (0 in general position)
   double host_ms = 0, backend_ms = 0;
   double upload_ms = 0;  // iteration 0: putting the points on the backend (part of backend_ms)
   std::uint64_t bytes_to_backend = 0, bytes_from_backend = 0;
@@ -125,7 +125,7 @@ class Engine {
   std::vector<DecisionEntry> last_decisions_;
   std::vector<RefinementEntry> last_refinement_;
   std::vector<PointIndex> removed_vertices_;
-  std::vector<PointIndex> used_vertices_;  // every point that was ever a mesh vertex
+  std::vector<PointIndex> used_vertices_;   // every point that was ever a mesh vertex
   std::vector<std::uint8_t> vertex_flags_;  // per point: kDoomed, kRemovedOnce (engine.cpp)
   int stalled_ = 0;                         // iterations without progress
   HullMesh result_;

@@ -8,11 +8,11 @@ namespace cudahull {
 
 enum ExitCode : int {
   kExitOk = 0,
-  kExitUsage = 2,       // bad command line
-  kExitBadInput = 3,    // unreadable or invalid input file
-  kExitDevice = 4,      // out of memory, no device, kernel fault
-  kExitOutput = 1,      // an output file could not be written
-  kExitVerifyFailed = 5 // --verify found the hull wrong
+  kExitUsage = 2,        // bad command line
+  kExitBadInput = 3,     // unreadable or invalid input file
+  kExitDevice = 4,       // out of memory, no device, kernel fault
+  kExitOutput = 1,       // an output file could not be written
+  kExitVerifyFailed = 5  // --verify found the hull wrong
 };
 
 // Unreadable or malformed input.  The message names the file and the line or element index.

@@ -24,6 +24,7 @@ struct CheckResult {
 //     points with the same coordinates.
 // For dimension 0..2 it checks the lower-dimensional analogues (all points on the line/plane, inside the
 // segment/polygon, ends/corners strictly extreme).  Reports at most `max_failures` lines.
-CheckResult check_hull(const std::vector<Point3>& points, const HullMesh& hull, std::size_t max_failures = 20);
+CheckResult check_hull(const std::vector<Point3>& points, const HullMesh& hull,
+                       std::size_t max_failures = 20);
 
 }  // namespace cudahull

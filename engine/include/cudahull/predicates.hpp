@@ -17,7 +17,9 @@ struct Vec3d {
   double x = 0, y = 0, z = 0;
 };
 
-CUDAHULL_HD inline Vec3d to_vec3d(const Point3& p) { return {p.x, p.y, p.z}; }
+CUDAHULL_HD inline Vec3d to_vec3d(const Point3& p) {
+  return {p.x, p.y, p.z};
+}
 
 // Sign of det[b-a, c-a, d-a] = ((b - a) x (c - a)) . (d - a):
 //  +1 when d is above the plane of triangle (a, b, c), i.e. on the side its counter-clockwise normal points

@@ -25,8 +25,8 @@ struct SeparatingPlane {
 inline constexpr std::int32_t kRouteInternal = -0x7fffffff;  // point proven inside the hull
 
 struct RefinementEntry {
-  PointIndex apex = 0xffffffffu;  // 0xffffffff: face not refined; then `route` applies
-  std::int32_t route = 0;         // unrefined faces: where the face's points go
+  PointIndex apex = 0xffffffffu;      // 0xffffffff: face not refined; then `route` applies
+  std::int32_t route = 0;             // unrefined faces: where the face's points go
   std::int32_t child[3] = {0, 0, 0};  // route codes of (a, b, p), (b, c, p), (c, a, p)
   // plane[i] passes through the apex and vertex i of the old face; its positive side is child i's side.
   SeparatingPlane plane[3];
@@ -35,9 +35,9 @@ struct RefinementEntry {
 enum DecisionKind : std::uint8_t { kDecisionSwap = 0, kDecisionRemoval = 1 };
 
 struct DecisionEntry {
-  SeparatingPlane plane;        // swap: the separating plane of the new edge; removal: unused
-  std::int32_t above = 0;       // route code on the plane's positive side (or always, for removals)
-  std::int32_t below = 0;       // route code on the other side
+  SeparatingPlane plane;   // swap: the separating plane of the new edge; removal: unused
+  std::int32_t above = 0;  // route code on the plane's positive side (or always, for removals)
+  std::int32_t below = 0;  // route code on the other side
   std::uint8_t kind = kDecisionSwap;
 };
 
@@ -51,7 +51,8 @@ struct FaceGeometry {
 // Evaluated in double with explicit rounding so host and device agree bit for bit.
 CUDAHULL_HD inline double plane_value(const SeparatingPlane& p, const Point3& x) {
 #if defined(__CUDA_ARCH__)
-  return __dadd_rn(__dadd_rn(__dadd_rn(__dmul_rn(p.nx, x.x), __dmul_rn(p.ny, x.y)), __dmul_rn(p.nz, x.z)), p.d);
+  return __dadd_rn(__dadd_rn(__dadd_rn(__dmul_rn(p.nx, x.x), __dmul_rn(p.ny, x.y)), __dmul_rn(p.nz, x.z)),
+                   p.d);
 #else
   return ((p.nx * x.x + p.ny * x.y) + p.nz * x.z) + p.d;  // -ffp-contract=off keeps this unfused
 #endif
@@ -59,7 +60,8 @@ CUDAHULL_HD inline double plane_value(const SeparatingPlane& p, const Point3& x)
 
 // Algorithm 2, lines "refinement" and "decision": the route code of the face that receives point x, which
 // belonged to old face `old_face`.
-CUDAHULL_HD inline std::int32_t route_point(const Point3& x, std::int32_t old_face, const RefinementEntry* refinement,
+CUDAHULL_HD inline std::int32_t route_point(const Point3& x, std::int32_t old_face,
+                                            const RefinementEntry* refinement,
                                             const DecisionEntry* decision) {
   const RefinementEntry& r = refinement[old_face];
   std::int32_t code;
@@ -111,7 +113,8 @@ CUDAHULL_HD inline void face_tetrahedron_signs(const Vec3d& c, const Point3 v[3]
 // convex hull of the input (c is inside the first tetrahedron, the corners are input points), so discarding
 // a point inside one is always safe, whatever shape the mesh has mid-iteration.  For a stray point,
 // *exit_edge names the radial plane it is beyond (the neighbour to walk to), or -1.
-CUDAHULL_HD inline PointVerdict face_verdict(const FaceGeometry& f, const Vec3d& c, const Point3& x, int* exit_edge) {
+CUDAHULL_HD inline PointVerdict face_verdict(const FaceGeometry& f, const Vec3d& c, const Point3& x,
+                                             int* exit_edge) {
   const Vec3d a = to_vec3d(f.v[0]), b = to_vec3d(f.v[1]), d = to_vec3d(f.v[2]), p = to_vec3d(x);
   *exit_edge = -1;
   const int above = orient3d(a, b, d, p);
@@ -147,8 +150,10 @@ CUDAHULL_HD inline double face_height(const FaceGeometry& f, const Point3& x) {
   const double nz = __dsub_rn(__dmul_rn(ux, vy), __dmul_rn(uy, vx));
   return __dadd_rn(__dadd_rn(__dmul_rn(nx, wx), __dmul_rn(ny, wy)), __dmul_rn(nz, wz));
 #else
-  const double ux = double(f.v[1].x) - f.v[0].x, uy = double(f.v[1].y) - f.v[0].y, uz = double(f.v[1].z) - f.v[0].z;
-  const double vx = double(f.v[2].x) - f.v[0].x, vy = double(f.v[2].y) - f.v[0].y, vz = double(f.v[2].z) - f.v[0].z;
+  const double ux = double(f.v[1].x) - f.v[0].x, uy = double(f.v[1].y) - f.v[0].y,
+               uz = double(f.v[1].z) - f.v[0].z;
+  const double vx = double(f.v[2].x) - f.v[0].x, vy = double(f.v[2].y) - f.v[0].y,
+               vz = double(f.v[2].z) - f.v[0].z;
   const double wx = double(x.x) - f.v[0].x, wy = double(x.y) - f.v[0].y, wz = double(x.z) - f.v[0].z;
   const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
   return nx * wx + ny * wy + nz * wz;
@@ -175,7 +180,7 @@ CUDAHULL_HD inline PointIndex unpack_extreme_index(std::uint64_t packed) {
 struct RoutingView {
   const RefinementEntry* refinement = nullptr;  // indexed by the point's old face
   const DecisionEntry* decision = nullptr;
-  const FaceGeometry* faces = nullptr;          // the new mesh
+  const FaceGeometry* faces = nullptr;  // the new mesh
   std::int32_t face_count = 0;
   const SeparatingPlane* initial_cells = nullptr;  // first distribution only: 3 planes per tetrahedron face
   Vec3d interior;                                  // the interior reference point c
