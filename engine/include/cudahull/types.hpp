@@ -12,7 +12,9 @@ namespace cudahull {
 
 struct Point3 {
   float x = 0, y = 0, z = 0;
-  friend bool operator==(const Point3&, const Point3&) = default;
+  // Written out (not "= default") so that CUDA sources, compiled as C++17, can include this header.
+  friend bool operator==(const Point3& a, const Point3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+  friend bool operator!=(const Point3& a, const Point3& b) { return !(a == b); }
 };
 
 using PointIndex = std::uint32_t;
