@@ -135,18 +135,32 @@ struct Engine::Impl {
   // the interior point c (where the hull is a sphere), the old and the new edge cross: u, v on opposite sides
   // of the plane (c, x, y) and x, y on opposite sides of (c, u, v).  Otherwise a vertex of the old edge lies
   // beneath a new triangle: a foldover (Fig. 5).
-  SwapKind swap_validity(PointIndex u, PointIndex v, PointIndex x, PointIndex y, SwapRecord& swap) const {
+  // The viewpoint far below `at` along direction `up` (scaled to `size`): seen from there, orientation tests
+  // are the parallel projection along `up` (the height-field view of Fig. 5), yet still exact predicates.
+  static Vec3d far_below(const Vec3d& at, const Vec3d& up, double size) {
+    const double reach = 1e3 * size;
+    return {at.x - reach * up.x, at.y - reach * up.y, at.z - reach * up.z};
+  }
+  static double extent(std::initializer_list<Vec3d> points) {
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (const Vec3d& p : points) {
+      lo[0] = std::min(lo[0], p.x), hi[0] = std::max(hi[0], p.x);
+      lo[1] = std::min(lo[1], p.y), hi[1] = std::max(hi[1], p.y);
+      lo[2] = std::min(lo[2], p.z), hi[2] = std::max(hi[2], p.z);
+    }
+    return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  }
+
+  // The view is from far below the edge along the average normal of its two faces, or `view` when given
+  // (one common viewpoint for the swaps around a vertex being taken out).
+  SwapKind swap_validity(PointIndex u, PointIndex v, PointIndex x, PointIndex y, SwapRecord& swap,
+                         const Vec3d* view = nullptr) const {
     if (e.mesh_.adjacent(x, y)) return SwapKind::kRejectedEdgeExists;
     const Vec3d pu = P(u), pv = P(v), px = P(x), py = P(y);
-    // The viewpoint: far below the edge along the average normal of its two faces, so that the test is the
-    // parallel projection along that normal (the height-field view of Fig. 5), yet still an exact predicate.
     const Vec3d n =
         add(normalized(cross(sub(pv, pu), sub(px, pu))), normalized(cross(sub(pu, pv), sub(py, pv))));
-    const double reach =
-        1e3 * std::max({std::fabs(px.x - py.x), std::fabs(px.y - py.y), std::fabs(px.z - py.z),
-                        std::fabs(pu.x - pv.x), std::fabs(pu.y - pv.y), std::fabs(pu.z - pv.z)});
-    const Vec3d c{(pu.x + pv.x) / 2 - reach * n.x, (pu.y + pv.y) / 2 - reach * n.y,
-                  (pu.z + pv.z) / 2 - reach * n.z};
+    const Vec3d mid{(pu.x + pv.x) / 2, (pu.y + pv.y) / 2, (pu.z + pv.z) / 2};
+    const Vec3d c = view ? *view : far_below(mid, normalized(n), extent({pu, pv, px, py}));
     const int su = orient3d(c, px, py, pu), sv = orient3d(c, px, py, pv);
     const int sx = orient3d(c, pu, pv, px), sy = orient3d(c, pu, pv, py);
     if (su == 0 || sv == 0 || sx == 0 || sy == 0) return SwapKind::kRejectedDegenerate;
@@ -169,7 +183,7 @@ struct Engine::Impl {
 
   // Fig. 3b: swap edge i of face f.  Only concave edges, unless `around_doomed` (a complementary swap that
   // lowers the degree of a vertex being taken out).  Returns true if swapped.
-  bool try_swap(FaceId f, int i, SwapKind kind, bool around_doomed = false) {
+  bool try_swap(FaceId f, int i, SwapKind kind, const Vec3d* around_doomed = nullptr) {
     const MeshFace& face = e.mesh_.face(f);
     const PointIndex u = face.v[i], v = face.v[(i + 1) % 3], x = face.v[(i + 2) % 3];
     const FaceId g = face.n[i];
@@ -185,7 +199,7 @@ struct Engine::Impl {
     swap.old_edge[1] = v;
     swap.new_edge[0] = x;
     swap.new_edge[1] = y;
-    const SwapKind verdict = swap_validity(u, v, x, y, swap);
+    const SwapKind verdict = swap_validity(u, v, x, y, swap, around_doomed);
     if (verdict != SwapKind::kRegular) {
       if (around_doomed) return false;
       // The vertex beneath is inside the hull when it is inside the tetrahedron of c and that triangle:
@@ -248,12 +262,8 @@ struct Engine::Impl {
     // hold two congruent triangles back to back.
     // Seen from far below the new triangle (its normal's parallel projection, as for swaps).
     const Vec3d pa = P(a), pb = P(b), pd = P(d);
-    const Vec3d up = normalized(cross(sub(pb, pa), sub(pd, pa)));
-    const double reach =
-        1e3 * std::max({std::fabs(pb.x - pa.x), std::fabs(pb.y - pa.y), std::fabs(pb.z - pa.z),
-                        std::fabs(pd.x - pa.x), std::fabs(pd.y - pa.y), std::fabs(pd.z - pa.z)});
-    const Vec3d view{(pa.x + pb.x + pd.x) / 3 - reach * up.x, (pa.y + pb.y + pd.y) / 3 - reach * up.y,
-                     (pa.z + pb.z + pd.z) / 3 - reach * up.z};
+    const Vec3d centroid{(pa.x + pb.x + pd.x) / 3, (pa.y + pb.y + pd.y) / 3, (pa.z + pb.z + pd.z) / 3};
+    const Vec3d view = far_below(centroid, normalized(cross(sub(pb, pa), sub(pd, pa))), extent({pa, pb, pd}));
     // A strictly concave vertex is the apex of a tetrahedron (v, a, b, d) that removal adds whole, so it is
     // valid however folded the three faces look; a flat or doomed one must project inside (a, b, d).
     bool valid = height < 0 || in_cone_from(view, pa, pb, pd, P(v));
@@ -297,6 +307,15 @@ struct Engine::Impl {
       if (!e.mesh_.has_vertex(w)) return true;
       e.mesh_.ring(w, ring, ring_faces);
       if (ring.size() == 3) return try_remove(w, true);
+      // One viewpoint for the whole star: far below w along the mean normal of its faces.
+      Vec3d mean{0, 0, 0};
+      double size = 0;
+      for (std::size_t k = 0; k < ring.size(); ++k) {
+        const Vec3d a = P(ring[k]), b = P(ring[(k + 1) % ring.size()]);
+        mean = add(mean, normalized(cross(sub(a, P(w)), sub(b, P(w)))));
+        size = std::max(size, extent({P(w), a}));
+      }
+      const Vec3d view = far_below(P(w), normalized(mean), size);
       bool swapped = false;
       for (int pass = 0; pass < 2 && !swapped; ++pass) {
         for (std::size_t k = 0; k < ring.size() && !swapped; ++k) {
@@ -307,8 +326,8 @@ struct Engine::Impl {
           const FaceId f = ring_faces[k];
           const int i = e.mesh_.edge_index(f, w, ring[k]);
           SwapRecord probe;
-          if (swap_validity(w, ring[k], ring[next], ring[prev], probe) != SwapKind::kRegular) continue;
-          swapped = try_swap(f, i, SwapKind::kComplementary, true);
+          if (swap_validity(w, ring[k], ring[next], ring[prev], probe, &view) != SwapKind::kRegular) continue;
+          swapped = try_swap(f, i, SwapKind::kComplementary, &view);
         }
       }
       if (!swapped) return false;
