@@ -360,7 +360,7 @@ struct Engine::Impl {
       std::vector<PointIndex> candidates = std::move(touched);
       touched.clear();
       for (PointIndex v : candidates) {
-        if (e.mesh_.has_vertex(v) && e.mesh_.degree(v) == 3 && try_remove(v, false)) changed = true;
+        if (e.mesh_.has_vertex(v) && e.mesh_.degree(v, 4) == 3 && try_remove(v, false)) changed = true;
       }
       if (!queue.empty()) changed = true;
       --budget;
@@ -385,9 +385,11 @@ IterationRecord Engine::step() {
   if (done_) throw std::logic_error("Engine::step() after done()");
   if (!started_) {
     started_ = true;
-    return initialize();
+    last_record_ = initialize();
+  } else {
+    last_record_ = iterate();
   }
-  return iterate();
+  return last_record_;
 }
 
 void Engine::run(const std::function<void(const IterationRecord&)>& on_step) {

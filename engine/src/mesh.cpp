@@ -151,7 +151,7 @@ bool Mesh::adjacent(PointIndex a, PointIndex b) const {
   return false;
 }
 
-std::size_t Mesh::degree(PointIndex v) const {
+std::size_t Mesh::degree(PointIndex v, std::size_t limit) const {
   if (!has_vertex(v)) return 0;
   const FaceId start = vertex_face_[v];
   FaceId f = start;
@@ -161,7 +161,7 @@ std::size_t Mesh::degree(PointIndex v) const {
     int k = 0;
     while (face.v[k] != v)
       ++k;
-    ++count;
+    if (++count >= limit) return count;
     f = face.n[prev(k)];
     if (count > faces_.size()) throw std::logic_error("mesh ring does not close");
   } while (f != start);

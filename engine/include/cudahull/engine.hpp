@@ -102,6 +102,9 @@ class Engine {
   const std::vector<DecisionEntry>& last_decisions() const { return last_decisions_; }
   const std::vector<RefinementEntry>& last_refinement() const { return last_refinement_; }
   const std::vector<PointIndex>& removed_vertices() const { return removed_vertices_; }
+  // The record of the last step(): its swaps with their kinds (rejected ones with the vertex beneath),
+  // removals, refined apexes and decision array.
+  const IterationRecord& last_record() const { return last_record_; }
 
   // The exact hull; valid once done().
   const HullMesh& result() const { return result_; }
@@ -129,6 +132,7 @@ class Engine {
   std::vector<std::uint8_t> vertex_flags_;  // per point: kDoomed, kRemovedOnce (engine.cpp)
   int stalled_ = 0;                         // iterations without progress
   HullMesh result_;
+  IterationRecord last_record_;
 };
 
 }  // namespace cudahull

@@ -36,7 +36,8 @@ class Mesh {
   const MeshFace& face(FaceId f) const { return faces_[f]; }
   std::size_t vertex_count() const { return vertex_count_; }
   bool has_vertex(PointIndex v) const { return v < vertex_face_.size() && vertex_face_[v] != kNoFace; }
-  std::size_t degree(PointIndex v) const;
+  // The number of edges at v, counting no further than `limit`.
+  std::size_t degree(PointIndex v, std::size_t limit = SIZE_MAX) const;
   std::vector<PointIndex> vertices() const;  // sorted
 
   // Index i such that face f has the directed edge a -> b as v[i] -> v[i+1], or -1.
