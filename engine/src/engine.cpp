@@ -408,6 +408,20 @@ std::vector<std::int32_t> Engine::point_faces() const {
   return out;
 }
 
+std::vector<FaceGeometry> Engine::face_geometry() const {
+  std::vector<FaceGeometry> faces(mesh_.live_faces());
+  for (FaceId f = 0; f < faces.size(); ++f) {
+    const MeshFace& face = mesh_.face(f);
+    FaceGeometry& g = faces[f];
+    for (int k = 0; k < 3; ++k) {
+      g.v[k] = points_[face.v[k]];
+      g.neighbor[k] = static_cast<std::int32_t>(face.n[k]);
+    }
+    face_tetrahedron_signs(interior_, g.v, g.tet);
+  }
+  return faces;
+}
+
 FaceCell Engine::face_cell(FaceId f) const {
   auto P = [&](PointIndex i) { return to_vec3d(points_[i]); };
   auto unit_normal = [&](FaceId g) {
@@ -500,16 +514,7 @@ IterationRecord Engine::initialize() {
     for (int i = 0; i < 3; ++i)
       tables.initial_cells.push_back(cell.edge_plane[i]);
   }
-  tables.faces.resize(4);
-  for (FaceId f = 0; f < 4; ++f) {
-    const MeshFace& face = mesh_.face(f);
-    FaceGeometry& g = tables.faces[f];
-    for (int k = 0; k < 3; ++k) {
-      g.v[k] = points_[face.v[k]];
-      g.neighbor[k] = static_cast<std::int32_t>(face.n[k]);
-    }
-    face_tetrahedron_signs(interior_, g.v, g.tet);
-  }
+  tables.faces = face_geometry();
   tables.refinement.resize(1);
   record.host_ms = ms_since(t0) - backend_ms;
   const auto tb3 = Clock::now();
@@ -589,16 +594,7 @@ IterationRecord Engine::iterate() {
     tables.decision[k].above = impl.route_code(impl.entry_targets[k][0], remap);
     tables.decision[k].below = impl.route_code(impl.entry_targets[k][1], remap);
   }
-  tables.faces.resize(mesh_.live_faces());
-  for (FaceId f = 0; f < tables.faces.size(); ++f) {
-    const MeshFace& face = mesh_.face(f);
-    FaceGeometry& g = tables.faces[f];
-    for (int k = 0; k < 3; ++k) {
-      g.v[k] = points_[face.v[k]];
-      g.neighbor[k] = static_cast<std::int32_t>(face.n[k]);
-    }
-    face_tetrahedron_signs(interior_, g.v, g.tet);
-  }
+  tables.faces = face_geometry();
   record.decision_entries = tables.decision.size();
   record.host_ms = ms_since(t0);
 

@@ -116,55 +116,44 @@ std::array<FaceId, 2> Mesh::swap(FaceId f, int i) {
   return {n1, n2};
 }
 
-void Mesh::ring(PointIndex v, std::vector<PointIndex>& ring_vertices, std::vector<FaceId>& ring_faces) const {
-  ring_vertices.clear();
-  ring_faces.clear();
+// Calls visit(face, k) for each face around v, counter-clockwise from outside (v == face.v[k]), until it
+// returns false.  Every walk around a vertex goes through here.
+template <class Visit>
+void Mesh::walk_around(PointIndex v, Visit&& visit) const {
   if (!has_vertex(v)) return;
   const FaceId start = vertex_face_[v];
-  FaceId f = start;
-  do {
-    const MeshFace& face = faces_[f];
-    int k = 0;
-    while (face.v[k] != v)
-      ++k;
-    ring_vertices.push_back(face.v[next(k)]);
-    ring_faces.push_back(f);
-    f = face.n[prev(k)];  // across the edge v[k+2] -> v, the next face counter-clockwise around v
-    if (ring_faces.size() > faces_.size()) throw std::logic_error("mesh ring does not close");
-  } while (f != start);
-}
-
-bool Mesh::adjacent(PointIndex a, PointIndex b) const {
-  if (!has_vertex(a)) return false;
-  const FaceId start = vertex_face_[a];
   FaceId f = start;
   std::size_t steps = 0;
   do {
     const MeshFace& face = faces_[f];
     int k = 0;
-    while (face.v[k] != a)
+    while (face.v[k] != v)
       ++k;
-    if (face.v[next(k)] == b) return true;
-    f = face.n[prev(k)];
+    if (!visit(f, k)) return;
+    f = face.n[prev(k)];  // across the edge v[k+2] -> v: the next face counter-clockwise around v
     if (++steps > faces_.size()) throw std::logic_error("mesh ring does not close");
   } while (f != start);
-  return false;
+}
+
+void Mesh::ring(PointIndex v, std::vector<PointIndex>& ring_vertices, std::vector<FaceId>& ring_faces) const {
+  ring_vertices.clear();
+  ring_faces.clear();
+  walk_around(v, [&](FaceId f, int k) {
+    ring_vertices.push_back(faces_[f].v[next(k)]);
+    ring_faces.push_back(f);
+    return true;
+  });
+}
+
+bool Mesh::adjacent(PointIndex a, PointIndex b) const {
+  bool found = false;
+  walk_around(a, [&](FaceId f, int k) { return !(found = faces_[f].v[next(k)] == b); });
+  return found;
 }
 
 std::size_t Mesh::degree(PointIndex v, std::size_t limit) const {
-  if (!has_vertex(v)) return 0;
-  const FaceId start = vertex_face_[v];
-  FaceId f = start;
   std::size_t count = 0;
-  do {
-    const MeshFace& face = faces_[f];
-    int k = 0;
-    while (face.v[k] != v)
-      ++k;
-    if (++count >= limit) return count;
-    f = face.n[prev(k)];
-    if (count > faces_.size()) throw std::logic_error("mesh ring does not close");
-  } while (f != start);
+  walk_around(v, [&](FaceId, int) { return ++count < limit; });
   return count;
 }
 

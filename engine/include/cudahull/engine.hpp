@@ -114,6 +114,7 @@ class Engine {
   IterationRecord initialize();
   IterationRecord iterate();
   void finish(IterationRecord& record);
+  std::vector<FaceGeometry> face_geometry() const;  // the (compacted) mesh as the backend sees it
 
   std::vector<Point3> points_;
   std::unique_ptr<Backend> backend_;

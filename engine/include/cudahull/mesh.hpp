@@ -64,6 +64,8 @@ class Mesh {
 
  private:
   FaceId add_face(PointIndex a, PointIndex b, PointIndex c);
+  template <class Visit>
+  void walk_around(PointIndex v, Visit&& visit) const;
   void kill(FaceId f);
   // In face g, point the neighbour slot of directed edge a -> b at `to`.
   void relink(FaceId g, PointIndex a, PointIndex b, FaceId to);
