@@ -1,0 +1,371 @@
+// The CUDA backend against the CPU backend (label gpu: runs on the GPU machine only).  Both run the same
+// routing.hpp code on the same float points, so everything must agree exactly: every iteration record
+// (faces, swaps, removals, decisions, external counts), every face's count and extreme point, every point's
+// face, and the final hull.  Without a usable CUDA device every test here FAILS (it never skips): the gpu
+// label is only run where a GPU is expected.
+//
+// Environment: CUDAHULL_MODELS_DIR overrides the compiled-in folder of the shared models (the GPU machine
+// gets a copy carried beside the binary); CUDAHULL_TIMING_POINTS=N makes CudaTiming.Cube print per-iteration
+// times for N cube points (skipped otherwise).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <random>
+#include <string>
+
+#include "cuda_backend.hpp"
+#include "cudahull/cpu_backend.hpp"
+#include "cudahull/engine.hpp"
+#include "cudahull/errors.hpp"
+#include "cudahull/generators.hpp"
+#include "cudahull/hull_checker.hpp"
+#include "cudahull/point_io.hpp"
+#include "device_info.hpp"
+
+namespace cudahull {
+namespace {
+
+// Every test needs the device: fail (never skip) with the reason when there is none.
+class Cuda : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const CudaDeviceInfo info = query_cuda_device();
+    ASSERT_TRUE(info.usable) << "no usable CUDA device (" << info.reason
+                             << "): the gpu-labelled tests must run on a machine with an NVIDIA GPU";
+  }
+};
+
+std::string describe(const IterationRecord& r) {
+  return "iteration " + std::to_string(r.iteration);
+}
+
+void expect_same_record(const IterationRecord& c, const IterationRecord& g) {
+  const std::string at = describe(c);
+  EXPECT_EQ(g.iteration, c.iteration);
+  EXPECT_EQ(g.faces_before, c.faces_before) << at;
+  EXPECT_EQ(g.faces_after, c.faces_after) << at;
+  EXPECT_EQ(g.faces_refined, c.faces_refined) << at;
+  EXPECT_EQ(g.swaps_regular, c.swaps_regular) << at;
+  EXPECT_EQ(g.swaps_complementary, c.swaps_complementary) << at;
+  EXPECT_EQ(g.swaps_rejected, c.swaps_rejected) << at;
+  EXPECT_EQ(g.vertices_removed, c.vertices_removed) << at;
+  EXPECT_EQ(g.removals_rejected, c.removals_rejected) << at;
+  EXPECT_EQ(g.decision_entries, c.decision_entries) << at;
+  EXPECT_EQ(g.external_before, c.external_before) << at;
+  EXPECT_EQ(g.external_after, c.external_after) << at;
+  EXPECT_EQ(g.repairs, c.repairs) << at;
+  EXPECT_EQ(g.refined_apexes, c.refined_apexes) << at;
+  EXPECT_EQ(g.note, c.note) << at;
+  ASSERT_EQ(g.swaps.size(), c.swaps.size()) << at;
+  for (std::size_t k = 0; k < c.swaps.size(); ++k) {
+    EXPECT_EQ(g.swaps[k].kind, c.swaps[k].kind) << at << " swap " << k;
+    EXPECT_EQ(g.swaps[k].old_edge[0], c.swaps[k].old_edge[0]) << at << " swap " << k;
+    EXPECT_EQ(g.swaps[k].old_edge[1], c.swaps[k].old_edge[1]) << at << " swap " << k;
+    EXPECT_EQ(g.swaps[k].new_edge[0], c.swaps[k].new_edge[0]) << at << " swap " << k;
+    EXPECT_EQ(g.swaps[k].new_edge[1], c.swaps[k].new_edge[1]) << at << " swap " << k;
+  }
+  ASSERT_EQ(g.removals.size(), c.removals.size()) << at;
+  for (std::size_t k = 0; k < c.removals.size(); ++k) {
+    EXPECT_EQ(g.removals[k].vertex, c.removals[k].vertex) << at << " removal " << k;
+    EXPECT_EQ(g.removals[k].rejected, c.removals[k].rejected) << at << " removal " << k;
+  }
+}
+
+void expect_same_hull(const HullMesh& c, const HullMesh& g) {
+  EXPECT_EQ(g.dimension, c.dimension);
+  EXPECT_EQ(g.vertex_ids, c.vertex_ids);
+  EXPECT_EQ(g.vertices, c.vertices);
+  EXPECT_EQ(g.triangles, c.triangles);
+  EXPECT_EQ(g.polygon, c.polygon);
+}
+
+struct CompareOptions {
+  bool point_faces = false;  // compare every point's face after every step (O(points) copies)
+  bool check_hull = false;   // run the exact checker on the result too
+};
+
+// Runs the engine on both backends in lockstep and compares after every step.  Returns the CUDA records.
+std::vector<IterationRecord> compare_backends(const std::vector<Point3>& points, const std::string& what,
+                                              CompareOptions options = {}) {
+  SCOPED_TRACE(what);
+  Engine cpu(points, make_cpu_backend());
+  Engine gpu(points, make_cuda_backend());
+  std::vector<IterationRecord> records;
+  while (!cpu.done()) {
+    EXPECT_FALSE(gpu.done());
+    if (gpu.done()) break;
+    const IterationRecord c = cpu.step();
+    const IterationRecord g = gpu.step();
+    expect_same_record(c, g);
+    records.push_back(g);
+    const auto& ce = cpu.face_extremes();
+    const auto& ge = gpu.face_extremes();
+    EXPECT_EQ(ge.size(), ce.size()) << describe(c);
+    if (ge.size() == ce.size()) {
+      std::size_t differing = 0, first = 0;
+      for (std::size_t f = 0; f < ce.size(); ++f) {
+        if (ce[f].count != ge[f].count || ce[f].furthest != ge[f].furthest) {
+          if (differing++ == 0) first = f;
+        }
+      }
+      EXPECT_EQ(differing, 0u) << describe(c) << ": first differing face " << first << " (cpu count "
+                               << ce[first].count << " furthest " << ce[first].furthest << ", cuda count "
+                               << ge[first].count << " furthest " << ge[first].furthest << ")";
+    }
+    if (options.point_faces && cpu.dimension() == 3) {
+      const auto cf = cpu.point_faces(), gf = gpu.point_faces();
+      EXPECT_EQ(gf, cf) << describe(c) << ": per-point faces differ";
+    }
+    if (::testing::Test::HasFatalFailure()) break;
+  }
+  EXPECT_TRUE(gpu.done());
+  expect_same_hull(cpu.result(), gpu.result());
+  if (options.check_hull) {
+    const CheckResult check = check_hull(points, gpu.result());
+    EXPECT_TRUE(check.ok) << (check.failures.empty() ? "" : check.failures.front());
+  }
+  return records;
+}
+
+// --- The backend's own queries ------------------------------------------------------------------------
+
+TEST_F(Cuda, BackendNameAndBadDevice) {
+  auto backend = make_cuda_backend();
+  EXPECT_NE(backend->name().find("cuda"), std::string::npos) << backend->name();
+  try {
+    make_cuda_backend(4096);
+    FAIL() << "device 4096 accepted";
+  } catch (const DeviceError& e) {
+    EXPECT_NE(std::string(e.what()).find("4096"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(Cuda, QueriesMatchTheCpuWithTies) {
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 12; ++trial) {
+    std::vector<Point3> p;
+    if (trial < 4) {
+      p = generate_points(Distribution::kCube, 1000 + 77777 * trial, trial);
+    } else {
+      // Small integers: many equal scores, so the lowest-index rule decides.
+      std::uniform_int_distribution<int> coord(-3, 3);
+      p.resize(500 + 40000 * (trial - 4));
+      for (auto& q : p)
+        q = {float(coord(rng)), float(coord(rng)), float(coord(rng))};
+      p[p.size() / 2] = {-0.0f, 3.0f, 0.0f};
+      p[p.size() / 3] = {0.0f, -3.0f, -0.0f};
+    }
+    auto cpu = make_cpu_backend(3), gpu = make_cuda_backend();
+    cpu->upload_points(p);
+    gpu->upload_points(p);
+    const auto cx = cpu->extremes_x(), gx = gpu->extremes_x();
+    EXPECT_EQ(gx, cx) << "trial " << trial;
+    for (int k = 0; k < 5; ++k) {
+      std::uniform_int_distribution<PointIndex> pick(0, static_cast<PointIndex>(p.size() - 1));
+      const PointIndex a = pick(rng), b = pick(rng), c = pick(rng);
+      EXPECT_EQ(gpu->furthest_from_line(a, b), cpu->furthest_from_line(a, b)) << "trial " << trial;
+      EXPECT_EQ(gpu->furthest_from_plane(a, b, c), cpu->furthest_from_plane(a, b, c)) << "trial " << trial;
+    }
+  }
+}
+
+// --- Whole runs: identical on both backends -------------------------------------------------------------
+
+struct DistCase {
+  Distribution dist;
+  std::size_t n;
+};
+
+class CudaGeneral : public Cuda, public ::testing::WithParamInterface<DistCase> {};
+
+TEST_P(CudaGeneral, SameAsCpu) {
+  const auto [dist, n] = GetParam();
+  const auto points = generate_points(dist, n, 20261122 + n);
+  CompareOptions options;
+  options.point_faces = n <= 100000;
+  options.check_hull = n <= 100000;
+  const auto records = compare_backends(points, distribution_name(dist) + " " + std::to_string(n), options);
+  ASSERT_FALSE(records.empty());
+  EXPECT_EQ(records.back().external_after, 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Engine, CudaGeneral,
+    ::testing::Values(DistCase{Distribution::kCube, 1000}, DistCase{Distribution::kCube, 100000},
+                      DistCase{Distribution::kCube, 1000000}, DistCase{Distribution::kBall, 1000},
+                      DistCase{Distribution::kBall, 100000}, DistCase{Distribution::kBall, 1000000},
+                      DistCase{Distribution::kSphere, 1000}, DistCase{Distribution::kSphere, 100000},
+                      DistCase{Distribution::kSphere, 1000000}, DistCase{Distribution::kGauss, 1000},
+                      DistCase{Distribution::kGauss, 100000}, DistCase{Distribution::kGauss, 1000000},
+                      DistCase{Distribution::kParaboloid, 20000}, DistCase{Distribution::kCylinder, 20000},
+                      DistCase{Distribution::kGrid, 27000}),
+    [](const auto& info) { return distribution_name(info.param.dist) + "_" + std::to_string(info.param.n); });
+
+TEST_F(Cuda, ManySmallSeeds) {
+  for (Distribution dist : {Distribution::kCube, Distribution::kBall, Distribution::kGauss}) {
+    for (std::uint64_t seed = 1; seed <= 10; ++seed) {
+      compare_backends(generate_points(dist, 2000, seed),
+                       distribution_name(dist) + " seed " + std::to_string(seed), {true, false});
+    }
+  }
+}
+
+std::vector<Point3> grid(int side) {
+  std::vector<Point3> p;
+  for (int z = 0; z < side; ++z)
+    for (int y = 0; y < side; ++y)
+      for (int x = 0; x < side; ++x)
+        p.push_back({float(x), float(y), float(z)});
+  return p;
+}
+
+std::vector<Point3> scaled(std::vector<Point3> p, float s) {
+  for (auto& q : p)
+    q = {q.x * s, q.y * s, q.z * s};
+  return p;
+}
+
+TEST_F(Cuda, DegenerateInputs) {
+  compare_backends(grid(6), "integer grid 6x6x6", {true, true});
+  std::vector<Point3> surface;
+  for (const Point3& p : grid(9)) {
+    if (p.x == 0 || p.y == 0 || p.z == 0 || p.x == 8 || p.y == 8 || p.z == 8)
+      surface.push_back({p.x / 8.0f, p.y / 8.0f, p.z / 8.0f});
+  }
+  compare_backends(surface, "grid on a cube surface", {true, true});
+
+  const auto base = generate_points(Distribution::kBall, 3000, 5);
+  std::vector<Point3> tripled;
+  for (int copy = 0; copy < 3; ++copy)
+    tripled.insert(tripled.end(), base.begin(), base.end());
+  compare_backends(tripled, "tripled ball", {true, true});
+
+  std::vector<Point3> paraboloid;
+  for (int x = -20; x <= 20; ++x)
+    for (int y = -20; y <= 20; ++y)
+      paraboloid.push_back({float(x), float(y), float(x * x + y * y)});
+  compare_backends(paraboloid, "integer paraboloid", {true, true});
+
+  auto slab = generate_points(Distribution::kCube, 50000, 11);
+  for (auto& p : slab)
+    p.z = (p.z + 1.0f) * 0.5e-6f;
+  compare_backends(slab, "thin slab", {false, true});
+
+  const auto ball = generate_points(Distribution::kBall, 20000, 13);
+  for (float s : {0x1p100f, 0x1p-100f, 1e30f, 1e-30f}) {
+    compare_backends(scaled(ball, s), "ball scaled by " + std::to_string(s), {true, true});
+  }
+
+  std::vector<Point3> coplanar, collinear, single(10, Point3{1.5f, -2.0f, 3.0f});
+  for (int i = 0; i < 200; ++i) {
+    coplanar.push_back({float(i % 17), float((i * 7) % 13), 4.0f});
+    collinear.push_back({float(i), float(2 * i), float(-i)});
+  }
+  compare_backends(coplanar, "coplanar");
+  compare_backends(collinear, "collinear");
+  compare_backends(single, "one point ten times");
+  compare_backends({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, "three points");
+  compare_backends({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, "four points");
+}
+
+TEST_F(Cuda, SmallRandomIntegerSets) {
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> coord(-4, 4);
+  for (int trial = 0; trial < 60; ++trial) {
+    std::vector<Point3> points(8 + trial % 25);
+    for (auto& p : points)
+      p = {float(coord(rng)), float(coord(rng)), float(coord(rng))};
+    compare_backends(points, "small integer set " + std::to_string(trial), {true, false});
+  }
+}
+
+std::filesystem::path models_dir() {
+  if (const char* env = std::getenv("CUDAHULL_MODELS_DIR"); env != nullptr && *env != '\0') return env;
+  return CUDAHULL_MODELS_DIR;
+}
+
+TEST_F(Cuda, SharedModels) {
+  const std::filesystem::path dir = models_dir();
+  if (!std::filesystem::exists(dir))
+    GTEST_SKIP() << "no models folder " << dir << " (set CUDAHULL_MODELS_DIR)";
+  int found = 0;
+  for (const char* name : {"bun_zipper.ply", "stanford-bunny.obj", "dragonStandRight_0.ply",
+                           "dragon_scans.ply", "teapot.obj", "spot.obj"}) {
+    if (!std::filesystem::exists(dir / name)) continue;
+    ++found;
+    const auto points = read_points((dir / name).string());
+    compare_backends(points, name, {false, true});
+  }
+  std::printf("compared %d shared models from %s\n", found, dir.string().c_str());
+  EXPECT_GT(found, 0) << "no known model in " << dir;
+}
+
+// --- Only O(faces) data crosses per iteration ---------------------------------------------------------
+
+TEST_F(Cuda, TrafficPerIterationIsOFaces) {
+  const std::size_t n = 1000000;
+  const auto points = generate_points(Distribution::kCube, n, 99);
+  Engine engine(points, make_cuda_backend());
+  int iterations = 0;
+  engine.run([&](const IterationRecord& r) {
+    ++iterations;
+    const std::uint64_t from_bound = 64 * r.faces_after + 1024;
+    EXPECT_LT(r.bytes_from_backend, from_bound) << describe(r) << ", faces " << r.faces_after;
+    if (r.iteration == 0) {
+      // The one O(points) transfer: the points themselves, once.
+      EXPECT_GE(r.bytes_to_backend, n * sizeof(Point3));
+      EXPECT_LT(r.bytes_to_backend, n * sizeof(Point3) + 4096);
+    } else {
+      const std::uint64_t to_bound =
+          128 * r.faces_before + 64 * r.decision_entries + 64 * r.faces_after + 8 * r.faces_refined + 1024;
+      EXPECT_LT(r.bytes_to_backend, to_bound) << describe(r);
+    }
+  });
+  EXPECT_GT(iterations, 3);
+}
+
+// --- Timing (opt-in) ------------------------------------------------------------------------------------
+
+TEST_F(Cuda, Timing) {
+  const char* env = std::getenv("CUDAHULL_TIMING_POINTS");
+  if (env == nullptr) GTEST_SKIP() << "set CUDAHULL_TIMING_POINTS=N to time N cube points";
+  const std::size_t n = std::strtoull(env, nullptr, 10);
+  const auto points = generate_points(Distribution::kCube, n, 1);
+  using Clock = std::chrono::steady_clock;
+  auto run = [&](std::unique_ptr<Backend> backend, bool table) {
+    const auto t0 = Clock::now();
+    Engine engine(points, std::move(backend));
+    double host = 0, back = 0;
+    if (table) {
+      std::printf("%4s %8s %9s %10s %9s %9s %9s %12s\n", "iter", "faces", "refined", "ext after", "host ms",
+                  "back ms", "upload ms", "bytes moved");
+    }
+    engine.run([&](const IterationRecord& r) {
+      host += r.host_ms;
+      back += r.backend_ms;
+      if (table) {
+        std::printf("%4d %8zu %9zu %10zu %9.3f %9.3f %9.3f %12llu\n", r.iteration, r.faces_after,
+                    r.faces_refined, r.external_after, r.host_ms, r.backend_ms, r.upload_ms,
+                    static_cast<unsigned long long>(r.bytes_to_backend + r.bytes_from_backend));
+      }
+    });
+    const double total = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    std::printf("%s: %zu points, %zu hull vertices, host %.1f ms, backend %.1f ms, total %.1f ms\n",
+                engine.backend().name().c_str(), n, engine.result().vertex_ids.size(), host, back, total);
+    return engine.result();
+  };
+  {  // warm up: context creation and module load stay out of the numbers
+    Engine warm(generate_points(Distribution::kCube, 10000, 2), make_cuda_backend());
+    warm.run();
+  }
+  const HullMesh gpu = run(make_cuda_backend(), true);
+  run(make_cuda_backend(), false);
+  const HullMesh cpu = run(make_cpu_backend(), false);
+  expect_same_hull(cpu, gpu);
+}
+
+}  // namespace
+}  // namespace cudahull
