@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "cuda_backend.hpp"
 #include "cudahull/cpu_backend.hpp"
 #include "cudahull/engine.hpp"
 #include "cudahull/errors.hpp"
@@ -44,8 +45,8 @@ ProgressFn stderr_progress(const std::string& what, bool quiet) {
   };
 }
 
-// --backend: picks the backend and says which, in one line.  The CUDA backend arrives with issue 4; until
-// then `auto` uses the CPU and says why, and `cuda` is a device failure (exit 4).
+// --backend: picks the backend and says which, in one line.  `auto` takes CUDA when a usable device is
+// present and the CPU otherwise; `cuda` without a usable device is a device failure (exit 4).
 std::unique_ptr<Backend> choose_backend(const std::string& requested, bool quiet, std::string* device) {
   if (requested == "cpu") {
     auto backend = make_cpu_backend();
@@ -54,12 +55,21 @@ std::unique_ptr<Backend> choose_backend(const std::string& requested, bool quiet
     return backend;
   }
   const CudaDeviceInfo info = query_cuda_device();
-  const std::string why =
-      info.usable ? "the CUDA backend is not built into this version; GPU " + info.name + " left unused"
-                  : "no usable CUDA device: " + info.reason;
-  if (requested == "cuda") throw DeviceError("--backend cuda: " + why);
+  if (info.usable) {
+    auto backend = make_cuda_backend();
+    if (!quiet) {
+      std::fprintf(stderr, "backend: %s (%s)\n", backend->name().c_str(),
+                   requested == "auto" ? "auto: a usable CUDA device" : "as requested");
+    }
+    *device = info.name;
+    return backend;
+  }
+  if (requested == "cuda") throw DeviceError("--backend cuda: no usable CUDA device: " + info.reason);
   auto backend = make_cpu_backend();
-  if (!quiet) std::fprintf(stderr, "backend: %s (auto: %s)\n", backend->name().c_str(), why.c_str());
+  if (!quiet) {
+    std::fprintf(stderr, "backend: %s (auto: no usable CUDA device: %s)\n", backend->name().c_str(),
+                 info.reason.c_str());
+  }
   *device = "cpu";
   return backend;
 }

@@ -139,13 +139,22 @@ TEST(CliHull, WritesEveryMeshFormat) {
   }
 }
 
-TEST(CliHull, CudaBackendWithoutAGpuIsADeviceError) {
-  // This machine may have a GPU but this build has no CUDA backend yet (issue 4): exit 4, one line.
+TEST(CliHull, BackendAutoSaysWhichAndCudaNeedsADevice) {
   TempDir dir;
   write_points((dir / "in.xyz").string(), generate_points(Distribution::kCube, 100, 1));
-  const CliRun r = run_cli({"hull", (dir / "in.xyz").string(), "--backend", "cuda"});
-  EXPECT_EQ(r.exit_code, kExitDevice) << describe(r);
-  EXPECT_THAT(r.err, HasSubstr("cudahull: error: --backend cuda"));
+  const CliRun automatic = run_cli({"hull", (dir / "in.xyz").string()});
+  ASSERT_EQ(automatic.exit_code, kExitOk) << describe(automatic);
+  EXPECT_THAT(automatic.err, HasSubstr("backend: "));
+  const bool has_gpu = automatic.err.find("backend: cuda") != std::string::npos;
+  // With a usable GPU, --backend cuda works; without one it is a device failure: exit 4, one line.
+  const CliRun cuda = run_cli({"hull", (dir / "in.xyz").string(), "--backend", "cuda"});
+  if (has_gpu) {
+    EXPECT_EQ(cuda.exit_code, kExitOk) << describe(cuda);
+  } else {
+    EXPECT_THAT(automatic.err, HasSubstr("auto: no usable CUDA device"));
+    EXPECT_EQ(cuda.exit_code, kExitDevice) << describe(cuda);
+    EXPECT_THAT(cuda.err, HasSubstr("cudahull: error: --backend cuda: no usable CUDA device"));
+  }
 }
 
 }  // namespace

@@ -60,10 +60,12 @@ void Mesh::make_tetrahedron(std::size_t point_count, PointIndex p0, PointIndex p
 
 std::vector<PointIndex> Mesh::vertices() const {
   std::vector<PointIndex> out;
-  out.reserve(vertex_count_);
-  for (PointIndex v = 0; v < vertex_face_.size(); ++v) {
-    if (vertex_face_[v] != kNoFace) out.push_back(v);
+  out.reserve(3 * live_count_);
+  for (FaceId f = 0; f < faces_.size(); ++f) {
+    if (alive_[f]) out.insert(out.end(), faces_[f].v.begin(), faces_[f].v.end());
   }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 
@@ -199,8 +201,10 @@ std::vector<FaceId> Mesh::compact() {
   faces_ = std::move(kept);
   alive_.assign(faces_.size(), 1);
   live_count_ = faces_.size();
-  for (FaceId& f : vertex_face_) {
-    if (f != kNoFace) f = remap[f];
+  // O(faces), not O(points): every live vertex is a corner of some kept face.
+  for (FaceId f = 0; f < faces_.size(); ++f) {
+    for (PointIndex p : faces_[f].v)
+      vertex_face_[p] = f;
   }
   return remap;
 }

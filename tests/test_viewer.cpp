@@ -1,0 +1,369 @@
+// cudahull-viewer end to end, as a user runs it: headless (EGL; Mesa's llvmpipe in CI) and windowed (GLFW
+// under Xvfb), screenshots read back and checked pixel by pixel: not blank, the hull visible in the colours
+// of its faces' states, the picture changing between steps and with a layer hidden; script errors name the
+// line.  Plus the parts that need no GL: camera JSON, script parsing, numbered paths.  Label: gl.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb/stb_image.h>
+
+#include "camera.hpp"
+#include "png.hpp"
+#include "renderer.hpp"
+#include "script.hpp"
+
+namespace cudahull::viewer {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+const std::string kViewer = CUDAHULL_VIEWER_PATH;
+const std::string kBunny = std::string(CUDAHULL_ASSETS_DIR) + "/bun_zipper.ply";
+
+class TempDir {
+ public:
+  TempDir() {
+    static int counter = 0;
+    path_ = fs::temp_directory_path() /
+            ("cudahull_viewer_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  std::string operator/(const std::string& name) const { return (path_ / name).string(); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path_ / name) << text;
+    return *this / name;
+  }
+
+ private:
+  fs::path path_;
+};
+
+std::string quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s)
+    out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+struct ViewerRun {
+  int exit_code = -1;
+  std::string err;
+};
+
+ViewerRun run_viewer(const std::vector<std::string>& args) {
+  TempDir dir;
+  const std::string err_path = dir / "stderr.txt";
+  std::string cmd = quote(kViewer);
+  for (const auto& a : args)
+    cmd += " " + quote(a);
+  cmd += " 2>" + quote(err_path) + " >/dev/null </dev/null";
+  ViewerRun r;
+  const int status = std::system(cmd.c_str());
+  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  std::ifstream in(err_path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  r.err = ss.str();
+  return r;
+}
+
+bool has_display() {
+  return std::getenv("DISPLAY") != nullptr || std::getenv("WAYLAND_DISPLAY") != nullptr;
+}
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<std::array<float, 3>> rgb;  // 0..1, top row first
+  std::array<float, 3> at(int x, int y) const { return rgb[static_cast<std::size_t>(y) * width + x]; }
+};
+
+Image read_png(const std::string& path) {
+  Image img;
+  int channels = 0;
+  unsigned char* data = stbi_load(path.c_str(), &img.width, &img.height, &channels, 3);
+  if (data == nullptr) {
+    ADD_FAILURE() << "cannot read PNG " << path << ": " << stbi_failure_reason();
+    return img;
+  }
+  img.rgb.resize(static_cast<std::size_t>(img.width) * img.height);
+  for (std::size_t i = 0; i < img.rgb.size(); ++i)
+    img.rgb[i] = {data[3 * i] / 255.0f, data[3 * i + 1] / 255.0f, data[3 * i + 2] / 255.0f};
+  stbi_image_free(data);
+  return img;
+}
+
+// Variance of the luminance: 0 for a blank picture.
+double variance(const Image& img) {
+  double sum = 0, sum2 = 0;
+  for (const auto& p : img.rgb) {
+    const double l = 0.3 * p[0] + 0.59 * p[1] + 0.11 * p[2];
+    sum += l;
+    sum2 += l * l;
+  }
+  const double n = static_cast<double>(img.rgb.size());
+  return n > 0 ? sum2 / n - (sum / n) * (sum / n) : 0.0;
+}
+
+// Is the pixel a shade (k * colour, k in [0.2, 1.05]) of `c`?  The hull shader only ever scales a face's
+// base colour (hull.frag.glsl), so an opaque hull's pixels are shades of its states' colours.
+bool shade_of(const std::array<float, 3>& p, const glm::vec3& c) {
+  const float k = (p[0] * c.r + p[1] * c.g + p[2] * c.b) / glm::dot(c, c);
+  if (k < 0.2f || k > 1.05f) return false;
+  const float dr = p[0] - k * c.r, dg = p[1] - k * c.g, db = p[2] - k * c.b;
+  return std::sqrt(dr * dr + dg * dg + db * db) < 0.05f;
+}
+
+// The fraction of pixels in the central box (half the width and height) that satisfy `pred`.
+template <typename Pred>
+double central_fraction(const Image& img, Pred pred) {
+  int hits = 0, total = 0;
+  for (int y = img.height / 4; y < img.height * 3 / 4; ++y) {
+    for (int x = img.width / 4; x < img.width * 3 / 4; ++x) {
+      ++total;
+      hits += pred(img.at(x, y)) ? 1 : 0;
+    }
+  }
+  return total ? static_cast<double>(hits) / total : 0.0;
+}
+
+bool hull_colored(const std::array<float, 3>& p) {
+  for (const glm::vec3& c : kFaceStateColors) {
+    if (shade_of(p, c)) return true;
+  }
+  return false;
+}
+
+double differing_fraction(const Image& a, const Image& b) {
+  if (a.width != b.width || a.height != b.height) return 1.0;
+  int differ = 0;
+  for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+    const float d = std::abs(a.rgb[i][0] - b.rgb[i][0]) + std::abs(a.rgb[i][1] - b.rgb[i][1]) +
+                    std::abs(a.rgb[i][2] - b.rgb[i][2]);
+    differ += d > 0.1f ? 1 : 0;
+  }
+  return static_cast<double>(differ) / static_cast<double>(a.rgb.size());
+}
+
+std::string describe(const ViewerRun& r) {
+  return "exit " + std::to_string(r.exit_code) + "\n--- stderr:\n" + r.err;
+}
+
+// Only the polyhedron, opaque: what the hull checks look at.
+const char* kHullOnly = "hide internal\nhide external\nhide vertices\nset hull-opacity 1\n";
+
+TEST(ViewerHeadless, BunnyHullIsVisibleInItsStateColours) {
+  TempDir dir;
+  const std::string script =
+      dir.write("hull.txt", std::string(kHullOnly) + "run\nscreenshot " + (dir / "end.png") +
+                                "\nrewind 1\nscreenshot " + (dir / "tetra.png") + "\n");
+  const ViewerRun r =
+      run_viewer({kBunny, "--headless", "--width", "320", "--height", "240", "--script", script});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_THAT(r.err, HasSubstr("CPU upload"));  // the log says which upload path is active
+
+  const Image end = read_png(dir / "end.png");
+  ASSERT_EQ(end.width, 320);
+  ASSERT_EQ(end.height, 240);
+  EXPECT_GT(variance(end), 1e-3);
+  EXPECT_GT(central_fraction(end, hull_colored), 0.4);
+  EXPECT_TRUE(hull_colored(end.at(160, 120)));
+
+  // Position 1 is the tetrahedron of section 3.1: every face is new, in the "refined" colour.
+  const Image tetra = read_png(dir / "tetra.png");
+  const glm::vec3 refined = kFaceStateColors[static_cast<int>(FaceState::kRefined)];
+  EXPECT_GT(central_fraction(tetra, [&](const auto& p) { return shade_of(p, refined); }), 0.3);
+  EXPECT_GT(differing_fraction(end, tetra), 0.05);
+}
+
+TEST(ViewerHeadless, PngSequenceChangesBetweenSteps) {
+  TempDir dir;
+  const ViewerRun r = run_viewer({"--gen", "ball", "20000", "--seed", "3", "--headless", "--width", "256",
+                                  "--height", "192", "--steps", "5", "--screenshot", dir / "step_%02d.png"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  for (int k = 0; k <= 5; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "step_%02d.png", k);
+    EXPECT_TRUE(fs::exists(dir / name)) << name;
+  }
+  EXPECT_FALSE(fs::exists(dir / "step_06.png"));
+  const Image points = read_png(dir / "step_00.png"), one = read_png(dir / "step_01.png"),
+              five = read_png(dir / "step_05.png");
+  EXPECT_GT(variance(points), 1e-4);  // the bare point cloud is drawn
+  EXPECT_GT(variance(one), 1e-3);
+  EXPECT_GT(differing_fraction(one, five), 0.05);
+  // No temporary file left behind by the atomic writes.
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(fs::path(dir / "")))
+    ++files;
+  EXPECT_EQ(files, 6);
+}
+
+TEST(ViewerHeadless, HidingTheHullAndMovingTheCameraChangeThePicture) {
+  TempDir dir;
+  const std::string script =
+      dir.write("layers.txt", "step 5\nscreenshot " + (dir / "shown.png") +
+                                  "\nhide hull\nhide wireframe\nscreenshot " + (dir / "hidden.png") +
+                                  "\nshow hull\nshow wireframe\ncamera {\"yaw\": 120, \"pitch\": 10}\n" +
+                                  "screenshot " + (dir / "turned.png") + "\n");
+  const ViewerRun r =
+      run_viewer({kBunny, "--headless", "--width", "256", "--height", "192", "--script", script});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const Image shown = read_png(dir / "shown.png"), hidden = read_png(dir / "hidden.png"),
+              turned = read_png(dir / "turned.png");
+  EXPECT_GT(differing_fraction(shown, hidden), 0.05);
+  EXPECT_GT(differing_fraction(shown, turned), 0.05);
+  // With the hull hidden, no pixel near the centre is a hull colour any more.
+  EXPECT_LT(central_fraction(hidden, hull_colored), 0.02);
+}
+
+TEST(ViewerHeadless, BadScriptLineExits2NamingTheLine) {
+  TempDir dir;
+  const std::string script =
+      dir.write("bad.txt", "# a demo\nstep 2\njump 4\nscreenshot " + (dir / "x.png") + "\n");
+  const ViewerRun r = run_viewer({kBunny, "--headless", "--script", script});
+  EXPECT_EQ(r.exit_code, 2) << describe(r);
+  EXPECT_THAT(r.err, HasSubstr("bad.txt:3: unknown command 'jump'"));
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;  // one line
+  EXPECT_FALSE(fs::exists(dir / "x.png"));                              // checked before anything ran
+
+  const std::string layer = dir.write("layer.txt", "hide hulls\n");
+  const ViewerRun l = run_viewer({kBunny, "--headless", "--script", layer});
+  EXPECT_EQ(l.exit_code, 2) << describe(l);
+  EXPECT_THAT(l.err, HasSubstr("layer.txt:1:"));
+  EXPECT_THAT(l.err, HasSubstr("wireframe"));  // lists the layers
+
+  const std::string camera = dir.write("camera.txt", "step\ncamera {\"pitch\": 95}\n");
+  const ViewerRun c = run_viewer({kBunny, "--headless", "--script", camera});
+  EXPECT_EQ(c.exit_code, 2) << describe(c);
+  EXPECT_THAT(c.err, HasSubstr("camera.txt:2: camera: \"pitch\" must be in [-89, 89]"));
+}
+
+TEST(ViewerHeadless, ErrorsHaveTheCliExitCodes) {
+  TempDir dir;
+  EXPECT_EQ(run_viewer({dir / "missing.ply", "--headless", "--screenshot", dir / "x.png"}).exit_code, 3);
+  const std::string bad = dir.write("bad.xyz", "1 2 3\n4 nan 6\n");
+  const ViewerRun b = run_viewer({bad, "--headless", "--screenshot", dir / "x.png"});
+  EXPECT_EQ(b.exit_code, 3) << describe(b);
+  EXPECT_THAT(b.err, HasSubstr("bad.xyz"));
+  EXPECT_EQ(run_viewer({kBunny, "--headless"}).exit_code, 2);  // nothing to write
+  EXPECT_EQ(run_viewer({"--headless", "--screenshot", dir / "x.png"}).exit_code, 2);
+  EXPECT_EQ(run_viewer({"--gen", "donut", "10", "--headless", "--screenshot", dir / "x.png"}).exit_code, 2);
+  EXPECT_EQ(
+      run_viewer({kBunny, "--gen", "ball", "10", "--headless", "--screenshot", dir / "x.png"}).exit_code, 2);
+  EXPECT_EQ(run_viewer({kBunny, "--headless", "--script", dir / "none.txt"}).exit_code, 3);
+  EXPECT_EQ(run_viewer({kBunny, "--backend", "cuda", "--headless", "--screenshot", dir / "x.png"}).exit_code,
+            4);
+  const ViewerRun w =
+      run_viewer({kBunny, "--headless", "--steps", "1", "--screenshot", dir / "no/such/dir/x.png"});
+  EXPECT_EQ(w.exit_code, 1) << describe(w);
+}
+
+TEST(ViewerWindow, StepsScreenshotAndCloseAfterFrames) {
+  if (!has_display()) GTEST_SKIP() << "no display (run under xvfb-run, as scripts/test does)";
+  TempDir dir;
+  const std::string script =
+      dir.write("win.txt", std::string(kHullOnly) + "step 5\nscreenshot " + (dir / "five.png") +
+                               "\nrewind 1\n" + "screenshot " + (dir / "one.png") + "\n");
+  const ViewerRun r =
+      run_viewer({kBunny, "--width", "320", "--height", "240", "--script", script, "--frames", "3"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_THAT(r.err, HasSubstr("CPU upload"));
+  const Image five = read_png(dir / "five.png"), one = read_png(dir / "one.png");
+  EXPECT_GT(five.width, 0);
+  EXPECT_GT(variance(five), 1e-3);
+  EXPECT_GT(central_fraction(five, hull_colored), 0.5);
+  EXPECT_GT(differing_fraction(one, five), 0.05);
+
+  // The command-line options, windowed: --steps then --screenshot, then 2 frames more.
+  const ViewerRun o = run_viewer({"--gen", "ball", "5000", "--width", "256", "--height", "192", "--steps",
+                                  "3", "--screenshot", dir / "opt.png", "--frames", "2"});
+  ASSERT_EQ(o.exit_code, 0) << describe(o);
+  EXPECT_GT(variance(read_png(dir / "opt.png")), 1e-3);
+}
+
+TEST(ViewerParts, CameraJsonRoundTripsAndRejectsBadValues) {
+  Camera a;
+  a.fit({-1, -2, -3}, {1, 2, 3});
+  a.orbit(40, -25, 600);
+  a.pan(10, 5, 600);
+  a.zoom(2);
+  Camera b;
+  b.from_json(nlohmann::json::parse(a.to_json().dump()));
+  EXPECT_EQ(a.to_json(), b.to_json());
+  EXPECT_FLOAT_EQ(b.yaw(), a.yaw());
+
+  Camera c = b;
+  c.from_json({{"yaw", 10}});  // a subset changes only those keys
+  EXPECT_FLOAT_EQ(c.yaw(), 10.0f);
+  EXPECT_FLOAT_EQ(c.distance(), b.distance());
+  EXPECT_THROW(c.from_json({{"distance", -1}}), std::invalid_argument);
+  EXPECT_THROW(c.from_json({{"target", {1, 2}}}), std::invalid_argument);
+  EXPECT_THROW(c.from_json({{"zoom", 2}}), std::invalid_argument);
+  EXPECT_THROW(c.from_json(nlohmann::json::array()), std::invalid_argument);
+  EXPECT_FLOAT_EQ(c.yaw(), 10.0f);  // unchanged by the failures
+
+  a.reset();  // back to the view fit() chose
+  Camera fitted;
+  fitted.fit({-1, -2, -3}, {1, 2, 3});
+  EXPECT_EQ(a.to_json(), fitted.to_json());
+}
+
+TEST(ViewerParts, ScriptParsing) {
+  std::istringstream ok(
+      "step\nstep 3  # three\n\n  run\nrewind 0\nselect-face 7\nshow cells\nhide hull\n"
+      "camera {\"yaw\": 1}\nscreenshot out/a b.png\nset point-colors face\n");
+  const auto commands = parse_script(ok, "ok.txt");
+  ASSERT_EQ(commands.size(), 10u);
+  EXPECT_EQ(commands[0].number, 1);
+  EXPECT_EQ(commands[1].number, 3);
+  EXPECT_EQ(commands[2].kind, ScriptCommand::Kind::kRun);
+  EXPECT_EQ(commands[2].where, "ok.txt:4");
+  EXPECT_EQ(commands[8].text, "out/a b.png");
+
+  auto error_of = [](const std::string& text) {
+    std::istringstream in(text);
+    try {
+      parse_script(in, "s");
+    } catch (const ScriptError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_THAT(error_of("step -1\n"), HasSubstr("s:1: 'step' needs a count"));
+  EXPECT_THAT(error_of("step\nrewind\n"), HasSubstr("s:2: 'rewind' needs"));
+  EXPECT_THAT(error_of("run 3\n"), HasSubstr("s:1: 'run' takes no argument"));
+  EXPECT_THAT(error_of("camera {yaw}\n"), HasSubstr("s:1: 'camera' needs a JSON object"));
+  EXPECT_THAT(error_of("set hull-opacity 2\n"), HasSubstr("s:1: hull-opacity must be a number in [0, 1]"));
+  EXPECT_THAT(error_of("screenshot\n"), HasSubstr("s:1: 'screenshot' needs a PNG path"));
+}
+
+TEST(ViewerParts, NumberedPaths) {
+  EXPECT_EQ(format_numbered_path("a/%d.png", 7), "a/7.png");
+  EXPECT_EQ(format_numbered_path("a/s_%03d.png", 7), "a/s_007.png");
+  EXPECT_EQ(format_numbered_path("a/plain.png", 7), "a/plain.png");
+  EXPECT_EQ(format_numbered_path("100%_%d.png", 2), "100%_2.png");
+  EXPECT_FALSE(has_number_field("a/%s.png"));
+  EXPECT_TRUE(layer_from_name("wireframe").has_value());
+  EXPECT_FALSE(layer_from_name("cell").has_value());
+}
+
+}  // namespace
+}  // namespace cudahull::viewer
