@@ -1,0 +1,59 @@
+#version 450 core
+// The point cloud (Fig. 1): one vertex per input point.  a_state is the per-point state buffer
+// (render_data.hpp): >= 0 the face an external point belongs to, -1 internal, -2 hull vertex.
+// u_pass 0 draws the cloud; u_pass 1 draws the hull vertices (an index buffer of vertex ids), larger.
+
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in int a_state;
+
+uniform mat4 u_view_proj;
+uniform float u_point_size;  // framebuffer pixels
+uniform int u_pass;
+uniform int u_color_mode;  // 0: by state (internal red, external brown), 1: by associated face
+uniform bool u_show_internal;
+uniform bool u_show_external;
+uniform vec3 u_internal_color;
+uniform vec3 u_external_color;
+uniform vec3 u_vertex_color;
+
+flat out vec3 v_color;
+flat out int v_visible;
+
+vec3 hsv_to_rgb(float h, float s, float v) {
+  vec3 k = clamp(abs(mod(h * 6.0 + vec3(0.0, 4.0, 2.0), 6.0) - 3.0) - 1.0, 0.0, 1.0);
+  return v * mix(vec3(1.0), k, s);
+}
+
+// A stable, well spread colour per face id, so neighbouring cells differ (cf. the cells of Fig. 10).
+vec3 face_color(int face) {
+  uint h = uint(face) * 2654435761u;
+  h ^= h >> 15;
+  h *= 2246822519u;
+  h ^= h >> 13;
+  float hue = float(h & 1023u) / 1024.0;
+  float value = 0.65 + 0.3 * float((h >> 10) & 3u) / 3.0;
+  return hsv_to_rgb(hue, 0.7, value);
+}
+
+void main() {
+  gl_Position = u_view_proj * vec4(a_position, 1.0);
+  gl_PointSize = u_point_size;
+  v_visible = 1;
+  if (u_pass == 1) {
+    v_color = u_vertex_color;
+    gl_PointSize = u_point_size * 1.4 + 1.0;
+    return;
+  }
+  if (a_state == -2) {
+    v_visible = 0;  // the vertices pass draws hull vertices
+  } else if (a_state < 0) {
+    // By face, internal points step back to grey: the cells' colours are what matters there.
+    v_color = u_color_mode == 1 ? vec3(0.32) : u_internal_color;
+    v_visible = u_show_internal ? 1 : 0;
+  } else {
+    v_color = u_color_mode == 1 ? face_color(a_state) : u_external_color;
+    v_visible = u_show_external ? 1 : 0;
+  }
+  // Outside the clip volume: hidden points cost no fragments.
+  if (v_visible == 0) gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+}

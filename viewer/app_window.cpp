@@ -1,0 +1,606 @@
+// The window backend around the session: GLFW (OpenGL 4.5 core, loaded through glad) and Dear ImGui's GLFW
+// and OpenGL3 backends from Debian's libimgui.
+//
+// Features:
+//   - orbit (left drag), pan (right or middle drag, or Shift + left), zoom (wheel), fit and reset view,
+//     Ctrl-C / Ctrl-V copy and paste the view as JSON through the clipboard;
+//   - panels: data (open a path, drag and drop, generate, loading progress), stepping (Step, Run/Pause with a
+//     speed, Run to end, Reset, the timeline slider that rewinds by replay), display (layers, sizes,
+//     opacities, colour modes), the current IterationRecord, and plots over the iterations of the external
+//     points and of host vs backend time (cf. Fig. 9);
+//   - a help overlay (F1) listing the keyboard shortcuts;
+//   - high-DPI: the UI and point sizes follow the monitor's content scale, drawing uses the framebuffer size
+//     queried every frame, so resizing is clean;
+//   - --script and --steps/--screenshot play one action per frame (run_plan.hpp); --frames N closes the
+//     window N frames after that.
+#include <glad/gl.h>
+// glad first: GLFW must not pull in the system GL header.
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cudahull/errors.hpp"
+#include "cudahull/generators.hpp"
+#include "options.hpp"
+#include "run_plan.hpp"
+#include "session.hpp"
+
+namespace cudahull::viewer {
+
+namespace {
+
+struct Shortcut {
+  const char* keys;
+  const char* what;
+};
+constexpr Shortcut kShortcuts[] = {
+    {"S, Right", "one step (one iteration of Algorithm 1)"},
+    {"Left", "back one step (replays from the start)"},
+    {"Space", "run / pause"},
+    {"E", "run to the end"},
+    {"R", "reset to position 0 (the bare points)"},
+    {"1 .. 5", "toggle hull, wireframe, internal, external, vertices"},
+    {"C", "points coloured by state / by associated face"},
+    {"A", "faces coloured by last step's state / by age"},
+    {"F", "fit the view to the data"},
+    {"Home", "reset the view"},
+    {"Ctrl-C", "copy the view as JSON"},
+    {"Ctrl-V", "paste a view (JSON)"},
+    {"Left drag", "orbit"},
+    {"Right / middle drag, Shift + left drag", "pan"},
+    {"Wheel", "zoom"},
+    {"F1, ?", "this help"},
+    {"Ctrl-Q", "quit"},
+};
+
+std::string format_bytes(std::uint64_t b) {
+  char s[32];
+  if (b >= (1u << 20)) {
+    std::snprintf(s, sizeof s, "%.1f MiB", b / 1048576.0);
+  } else if (b >= 1024) {
+    std::snprintf(s, sizeof s, "%.1f KiB", b / 1024.0);
+  } else {
+    std::snprintf(s, sizeof s, "%llu B", static_cast<unsigned long long>(b));
+  }
+  return s;
+}
+
+class AppWindow {
+ public:
+  AppWindow(const ViewerOptions& options, GLFWwindow* window) : o_(options), window_(window) {}
+  int run();
+
+ private:
+  void start_load(const PointSource& source);
+  void poll_load();
+  void handle_input();
+  void draw_ui();
+  void panel_main();
+  void panel_record();
+  void panel_plots();
+  void help_overlay();
+  void log(const std::string& line);
+  void copy_view();
+  void paste_view();
+
+  const ViewerOptions& o_;
+  GLFWwindow* window_;
+  std::unique_ptr<Session> session_;
+  std::unique_ptr<BackgroundLoad> load_;
+  bool first_load_ = true;
+  Scene::BackendFactory backend_;
+  std::string backend_note_;
+  std::unique_ptr<RunPlan> plan_;
+  bool running_ = false;
+  float steps_per_second_ = 4.0f;
+  double step_credit_ = 0.0;
+  bool show_help_ = false;
+  std::string status_;  // last message for the UI
+  char path_field_[1024] = {};
+  int gen_dist_ = 1;  // ball
+  int gen_count_ = 20000;
+  int gen_seed_ = 1;
+  float ui_scale_ = 1.0f;
+  float pixel_scale_ = 1.0f;
+  std::vector<std::string> pending_drops_;
+  friend void drop_callback(GLFWwindow*, int, const char**);
+};
+
+void drop_callback(GLFWwindow* window, int count, const char** paths) {
+  auto* app = static_cast<AppWindow*>(glfwGetWindowUserPointer(window));
+  if (app != nullptr && count > 0) app->pending_drops_.push_back(paths[0]);
+}
+
+void AppWindow::log(const std::string& line) {
+  log_line(o_, line);
+  status_ = line;
+}
+
+void AppWindow::start_load(const PointSource& source) {
+  running_ = false;
+  load_ = std::make_unique<BackgroundLoad>(source);
+  status_ = "loading " + source.label() + " ...";
+}
+
+void AppWindow::poll_load() {
+  if (!load_ || !load_->ready()) return;
+  const PointSource source = load_->source();
+  try {
+    auto points = load_->take();
+    load_.reset();
+    session_->set_scene(std::make_unique<Scene>(points, backend_, source.label()), true);
+    log(source.label() + ": " + std::to_string(points->size()) + " points; backend " + backend_note_ +
+        "; per-point state: " + session_->upload_path());
+  } catch (const std::exception& e) {
+    load_.reset();
+    // The input named on the command line fails the run (exit 3, like the CLI); one opened from the UI
+    // only says why in the panel.
+    if (first_load_) throw;
+    log(std::string("cannot open: ") + e.what());
+  }
+  first_load_ = false;
+}
+
+void AppWindow::copy_view() {
+  glfwSetClipboardString(window_, session_->camera().to_json().dump().c_str());
+  log("view copied to the clipboard");
+}
+
+void AppWindow::paste_view() {
+  const char* text = glfwGetClipboardString(window_);
+  try {
+    session_->camera().from_json(nlohmann::json::parse(text ? text : ""));
+    log("view pasted");
+  } catch (const std::exception& e) {
+    log(std::string("paste view: not a camera JSON (") + e.what() + ")");
+  }
+}
+
+void AppWindow::handle_input() {
+  ImGuiIO& io = ImGui::GetIO();
+  Scene* scene = session_->scene();
+  Camera& camera = session_->camera();
+  RenderSettings& s = session_->settings();
+  int win_w = 1, win_h = 1;
+  glfwGetWindowSize(window_, &win_w, &win_h);
+
+  if (!io.WantCaptureMouse) {
+    const float h = static_cast<float>(win_h);
+    const bool pan = ImGui::IsMouseDown(ImGuiMouseButton_Right) ||
+                     ImGui::IsMouseDown(ImGuiMouseButton_Middle) ||
+                     (ImGui::IsMouseDown(ImGuiMouseButton_Left) && io.KeyShift);
+    if (io.MouseDelta.x != 0 || io.MouseDelta.y != 0) {
+      if (pan) {
+        camera.pan(io.MouseDelta.x, io.MouseDelta.y, h);
+      } else if (ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+        camera.orbit(io.MouseDelta.x, io.MouseDelta.y, h);
+      }
+    }
+    if (io.MouseWheel != 0) camera.zoom(io.MouseWheel);
+  }
+  if (io.WantCaptureKeyboard) return;
+  auto pressed = [](int key) { return ImGui::IsKeyPressed(key, false); };
+  auto pressed_repeat = [](int key) { return ImGui::IsKeyPressed(key, true); };
+  if (io.KeyCtrl) {
+    if (pressed(GLFW_KEY_C)) copy_view();
+    if (pressed(GLFW_KEY_V)) paste_view();
+    if (pressed(GLFW_KEY_Q)) glfwSetWindowShouldClose(window_, GLFW_TRUE);
+    return;
+  }
+  if (pressed(GLFW_KEY_F1) || (pressed(GLFW_KEY_SLASH) && io.KeyShift)) show_help_ = !show_help_;
+  if (pressed(GLFW_KEY_ESCAPE)) show_help_ = false;
+  if (pressed(GLFW_KEY_F)) session_->fit_view();
+  if (pressed(GLFW_KEY_HOME)) camera.reset();
+  const int layer_keys[] = {GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_4, GLFW_KEY_5};
+  for (int i = 0; i < 5; ++i) {
+    if (pressed(layer_keys[i])) s.show(static_cast<Layer>(i), !s.shown(static_cast<Layer>(i)));
+  }
+  if (pressed(GLFW_KEY_C))
+    s.point_colors = s.point_colors == PointColors::kState ? PointColors::kFace : PointColors::kState;
+  if (pressed(GLFW_KEY_A))
+    s.face_colors = s.face_colors == FaceColors::kState ? FaceColors::kAge : FaceColors::kState;
+  if (!scene || load_) return;
+  if (pressed_repeat(GLFW_KEY_S) || pressed_repeat(GLFW_KEY_RIGHT)) scene->step();
+  if (pressed_repeat(GLFW_KEY_LEFT)) scene->rewind(scene->position() - 1);
+  if (pressed(GLFW_KEY_SPACE)) running_ = !running_;
+  if (pressed(GLFW_KEY_E)) scene->run_to_end();
+  if (pressed(GLFW_KEY_R)) {
+    running_ = false;
+    scene->reset();
+  }
+}
+
+void AppWindow::panel_main() {
+  ImGui::SetNextWindowPos(ImVec2(10 * ui_scale_, 10 * ui_scale_), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(340 * ui_scale_, 0), ImVec2(340 * ui_scale_, FLT_MAX));
+  ImGui::Begin("cudahull", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  Scene* scene = session_->scene();
+  RenderSettings& s = session_->settings();
+
+  // The path that per-point state takes to the GL buffer (issue 5, item 3), said in the UI and the log.
+  ImGui::Text("Per-point state: %s", session_->upload_path());
+  ImGui::TextWrapped("Backend: %s", backend_note_.c_str());
+  ImGui::Text("%.0f fps", static_cast<double>(ImGui::GetIO().Framerate));
+
+  if (ImGui::CollapsingHeader("Data", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::InputText("##path", path_field_, sizeof path_field_);
+    ImGui::SameLine();
+    if (ImGui::Button("Open") && path_field_[0] != '\0' && !load_) start_load({path_field_, "", 0, 1});
+    ImGui::TextDisabled("or drop a file on the window");
+    const std::vector<std::string> names = distribution_names();
+    std::vector<const char*> items;
+    for (const auto& n : names)
+      items.push_back(n.c_str());
+    ImGui::Combo("distribution", &gen_dist_, items.data(), static_cast<int>(items.size()));
+    ImGui::InputInt("N", &gen_count_, 1000, 100000);
+    gen_count_ = std::clamp(gen_count_, 4, 200000000);
+    ImGui::InputInt("seed", &gen_seed_);
+    if (ImGui::Button("Generate") && !load_)
+      start_load({"", names[gen_dist_], static_cast<std::uint64_t>(gen_count_),
+                  static_cast<std::uint64_t>(gen_seed_)});
+    if (load_) {
+      const double p = load_->progress();
+      if (p >= 0) {
+        ImGui::ProgressBar(static_cast<float>(p), ImVec2(-1, 0),
+                           ("loading " + load_->source().label()).c_str());
+      } else {
+        ImGui::Text("loading %s ...", load_->source().label().c_str());
+      }
+    } else if (scene) {
+      ImGui::Text("%s: %zu points", scene->label().c_str(), scene->points().size());
+    }
+  }
+
+  if (ImGui::CollapsingHeader("Steps", ImGuiTreeNodeFlags_DefaultOpen) && scene && !load_) {
+    if (ImGui::Button("Step")) scene->step();
+    ImGui::SameLine();
+    if (ImGui::Button(running_ ? "Pause" : "Run")) running_ = !running_;
+    ImGui::SameLine();
+    if (ImGui::Button("Run to end")) scene->run_to_end();
+    ImGui::SameLine();
+    if (ImGui::Button("Reset")) {
+      running_ = false;
+      scene->reset();
+    }
+    ImGui::SliderFloat("steps/s", &steps_per_second_, 0.25f, 60.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+    int position = scene->position();
+    const int end = std::max(scene->known_end(), position);
+    // Rewinding replays from the start (scene.hpp); forward positions already seen step on.
+    if (ImGui::SliderInt("timeline", &position, 0, std::max(end, 1),
+                         scene->final_known() ? "%d (end known)" : "%d"))
+      scene->rewind(position);
+    ImGui::Text("position %d%s", scene->position(), scene->done() ? ": done, the exact hull" : "");
+  }
+
+  if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) {
+    for (int i = 0; i < kLayerCount; ++i) {
+      const Layer layer = static_cast<Layer>(i);
+      bool on = s.shown(layer);
+      ImGui::BeginDisabled(layer_reserved(layer));
+      if (ImGui::Checkbox(layer_name(layer), &on)) s.show(layer, on);
+      ImGui::EndDisabled();
+      if (i % 4 != 3 && i + 1 < kLayerCount) ImGui::SameLine();
+    }
+    ImGui::SliderFloat("point size", &s.point_size, 1.0f, 16.0f, "%.1f");
+    ImGui::SliderFloat("point opacity", &s.point_opacity, 0.05f, 1.0f, "%.2f");
+    ImGui::SliderFloat("hull opacity", &s.hull_opacity, 0.0f, 1.0f, "%.2f");
+    ImGui::SliderFloat("wire width", &s.wire_width, 0.5f, 4.0f, "%.1f");
+    int pc = static_cast<int>(s.point_colors);
+    ImGui::Text("points:");
+    ImGui::SameLine();
+    ImGui::RadioButton("state##p", &pc, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("face##p", &pc, 1);
+    s.point_colors = static_cast<PointColors>(pc);
+    int fc = static_cast<int>(s.face_colors);
+    ImGui::Text("faces:");
+    ImGui::SameLine();
+    ImGui::RadioButton("last step##f", &fc, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("age##f", &fc, 1);
+    s.face_colors = static_cast<FaceColors>(fc);
+    // The legend (Figs. 1, 10): what each colour means.
+    const char* names[kFaceStateCount] = {"unchanged", "refined", "swapped", "removal"};
+    for (int i = 0; i < kFaceStateCount; ++i) {
+      const glm::vec3 c = kFaceStateColors[i];
+      ImGui::ColorButton(names[i], ImVec4(c.r, c.g, c.b, 1), ImGuiColorEditFlags_NoTooltip,
+                         ImVec2(10 * ui_scale_, 10 * ui_scale_));
+      ImGui::SameLine();
+      ImGui::Text("%s", names[i]);
+      if (i + 1 < kFaceStateCount) ImGui::SameLine();
+    }
+    const glm::vec3 pcs[3] = {kInternalColor, kExternalColor, kVertexColor};
+    const char* pnames[3] = {"internal", "external", "hull vertex"};
+    for (int i = 0; i < 3; ++i) {
+      ImGui::ColorButton(pnames[i], ImVec4(pcs[i].r, pcs[i].g, pcs[i].b, 1), ImGuiColorEditFlags_NoTooltip,
+                         ImVec2(10 * ui_scale_, 10 * ui_scale_));
+      ImGui::SameLine();
+      ImGui::Text("%s", pnames[i]);
+      if (i < 2) ImGui::SameLine();
+    }
+    if (ImGui::Button("Fit view")) session_->fit_view();
+    ImGui::SameLine();
+    if (ImGui::Button("Reset view")) session_->camera().reset();
+    ImGui::SameLine();
+    if (ImGui::Button("Copy view")) copy_view();
+    ImGui::SameLine();
+    if (ImGui::Button("Paste view")) paste_view();
+  }
+  if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
+  ImGui::TextDisabled("F1: keyboard shortcuts");
+  ImGui::End();
+}
+
+void AppWindow::panel_record() {
+  Scene* scene = session_->scene();
+  const float w = static_cast<float>(ImGui::GetIO().DisplaySize.x);
+  ImGui::SetNextWindowPos(ImVec2(w - 330 * ui_scale_, 10 * ui_scale_), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(320 * ui_scale_, 0), ImVec2(320 * ui_scale_, FLT_MAX));
+  ImGui::Begin("Iteration", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  const IterationRecord* r = scene && !load_ ? scene->current_record() : nullptr;
+  if (r == nullptr) {
+    ImGui::TextDisabled("no step taken yet");
+  } else if (ImGui::BeginTable("record", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
+    auto row = [](const char* name, const std::string& value) {
+      ImGui::TableNextRow();
+      ImGui::TableSetColumnIndex(0);
+      ImGui::TextUnformatted(name);
+      ImGui::TableSetColumnIndex(1);
+      ImGui::TextUnformatted(value.c_str());
+    };
+    auto num = [](double x) {
+      char s[32];
+      std::snprintf(s, sizeof s, "%.3f", x);
+      return std::string(s);
+    };
+    row("iteration", std::to_string(r->iteration));
+    row("faces", std::to_string(r->faces_before) + " -> " + std::to_string(r->faces_after));
+    row("refined", std::to_string(r->faces_refined));
+    row("swaps regular", std::to_string(r->swaps_regular));
+    row("swaps complementary", std::to_string(r->swaps_complementary));
+    row("swaps rejected", std::to_string(r->swaps_rejected));
+    row("vertices removed", std::to_string(r->vertices_removed));
+    row("removals rejected", std::to_string(r->removals_rejected));
+    row("decision entries", std::to_string(r->decision_entries));
+    row("external", std::to_string(r->external_before) + " -> " + std::to_string(r->external_after));
+    row("repairs", std::to_string(r->repairs));
+    row("host ms", num(r->host_ms));
+    row("backend ms", num(r->backend_ms));
+    row("to backend", format_bytes(r->bytes_to_backend));
+    row("from backend", format_bytes(r->bytes_from_backend));
+    row("per-point upload",
+        format_bytes(session_->renderer().last_point_upload_bytes()) + " (" + session_->upload_path() + ")");
+    if (session_->selected_face() >= 0) row("selected face", std::to_string(session_->selected_face()));
+    ImGui::EndTable();
+    if (!r->note.empty()) ImGui::TextWrapped("%s", r->note.c_str());
+  }
+  ImGui::End();
+}
+
+void AppWindow::panel_plots() {
+  Scene* scene = session_->scene();
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x - 330 * ui_scale_, display.y - 330 * ui_scale_),
+                          ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(320 * ui_scale_, 320 * ui_scale_), ImGuiCond_FirstUseEver);
+  ImGui::Begin("Over the iterations");
+  if (scene && !load_ && !scene->history().empty()) {
+    // Cf. Fig. 9: the points still outside the hull, and where the time goes.
+    const auto& h = scene->history();
+    std::vector<float> external, host, backend;
+    for (const IterationRecord& r : h) {
+      external.push_back(static_cast<float>(r.external_after));
+      host.push_back(static_cast<float>(r.host_ms));
+      backend.push_back(static_cast<float>(r.backend_ms));
+    }
+    const float height = 70 * ui_scale_;
+    const int n = static_cast<int>(h.size());
+    ImGui::Text("external points (after each iteration)");
+    // Dear ImGui 1.86's plots take their width from the item width, not from a negative size.
+    ImGui::PushItemWidth(-FLT_MIN);
+    ImGui::PlotLines("##external", external.data(), n, 0, nullptr, 0.0f, FLT_MAX, ImVec2(0, height));
+    const float max_ms = std::max(*std::max_element(host.begin(), host.end()),
+                                  *std::max_element(backend.begin(), backend.end()));
+    // Host and backend time on one scale, overlaid: the host's share should stay small (section 4).
+    const ImVec4 host_color(1.0f, 0.75f, 0.3f, 1.0f), backend_color(0.4f, 0.8f, 1.0f, 1.0f);
+    ImGui::TextColored(host_color, "host ms");
+    ImGui::SameLine();
+    ImGui::Text("vs");
+    ImGui::SameLine();
+    ImGui::TextColored(backend_color, "backend ms");
+    const ImVec2 at = ImGui::GetCursorPos();
+    ImGui::PushStyleColor(ImGuiCol_PlotLines, backend_color);
+    ImGui::PlotLines("##backend", backend.data(), n, 0, nullptr, 0.0f, max_ms, ImVec2(0, 2 * height));
+    ImGui::SetCursorPos(at);
+    ImGui::PushStyleColor(ImGuiCol_FrameBg, ImVec4(0, 0, 0, 0));
+    ImGui::PushStyleColor(ImGuiCol_PlotLines, host_color);
+    ImGui::PlotLines("##host", host.data(), n, 0, nullptr, 0.0f, max_ms, ImVec2(0, 2 * height));
+    ImGui::PopStyleColor(3);
+    ImGui::PopItemWidth();
+    ImGui::TextDisabled("at position %d of %d%s", scene->position(), n,
+                        scene->final_known() ? "" : " so far");
+  } else {
+    ImGui::TextDisabled("step to see the plots");
+  }
+  ImGui::End();
+}
+
+void AppWindow::help_overlay() {
+  if (!show_help_) return;
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, display.y * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  ImGui::SetNextWindowBgAlpha(0.9f);
+  ImGui::Begin(
+      "Keyboard and mouse", &show_help_,
+      ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings);
+  if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg)) {
+    for (const Shortcut& k : kShortcuts) {
+      ImGui::TableNextRow();
+      ImGui::TableSetColumnIndex(0);
+      ImGui::TextUnformatted(k.keys);
+      ImGui::TableSetColumnIndex(1);
+      ImGui::TextUnformatted(k.what);
+    }
+    ImGui::EndTable();
+  }
+  ImGui::TextDisabled("Esc or F1 closes this");
+  ImGui::End();
+}
+
+void AppWindow::draw_ui() {
+  panel_main();
+  panel_record();
+  panel_plots();
+  help_overlay();
+}
+
+int AppWindow::run() {
+  glfwSetWindowUserPointer(window_, this);
+  glfwSetDropCallback(window_, drop_callback);
+
+  session_ = std::make_unique<Session>();
+  backend_ = backend_factory(o_.backend, &backend_note_);
+  log("window: " + gl_description());
+  if (!o_.source.empty()) {
+    start_load(o_.source);
+  } else {
+    first_load_ = false;
+  }
+
+  long long frames_after_plan = 0;
+  auto last = std::chrono::steady_clock::now();
+
+  while (!glfwWindowShouldClose(window_)) {
+    glfwPollEvents();
+    poll_load();
+    for (const std::string& path : pending_drops_) {
+      std::snprintf(path_field_, sizeof path_field_, "%s", path.c_str());
+      if (!load_) start_load({path, "", 0, 1});
+    }
+    pending_drops_.clear();
+
+    int fb_w = 0, fb_h = 0, win_w = 0, win_h = 0;
+    glfwGetFramebufferSize(window_, &fb_w, &fb_h);
+    glfwGetWindowSize(window_, &win_w, &win_h);
+    float scale_x = 1, scale_y = 1;
+    glfwGetWindowContentScale(window_, &scale_x, &scale_y);
+    pixel_scale_ = std::max(scale_x, 1.0f);
+    // ImGui works in window coordinates; where those are already scaled (macOS), it must not scale twice.
+    ui_scale_ =
+        std::max(1.0f, pixel_scale_ * (win_w > 0 ? static_cast<float>(win_w) / std::max(fb_w, 1) : 1.0f));
+
+    // The command-line plan, one action per frame once the data is in; its screenshots have the size the
+    // framebuffer has when it starts.
+    const bool waiting = load_ != nullptr || first_load_;
+    if (!plan_ && !waiting && fb_w > 0 && fb_h > 0)
+      plan_ = std::make_unique<RunPlan>(PlanOptions{o_.steps, o_.script, o_.screenshot, fb_w, fb_h});
+    if (plan_ && !plan_->finished()) {
+      std::string line;
+      plan_->next(*session_, line);
+      if (!line.empty()) log(line);
+    } else if (plan_ && o_.frames && ++frames_after_plan > *o_.frames) {
+      glfwSetWindowShouldClose(window_, GLFW_TRUE);
+    }
+
+    // Run: steps at the chosen rate, at most one replay-free step per frame.
+    const auto now = std::chrono::steady_clock::now();
+    const double dt = std::chrono::duration<double>(now - last).count();
+    last = now;
+    Scene* scene = session_->scene();
+    if (running_ && scene && !load_) {
+      step_credit_ = std::min(step_credit_ + dt * steps_per_second_, 1.0);
+      if (step_credit_ >= 1.0) {
+        step_credit_ -= 1.0;
+        scene->step();
+      }
+      if (scene->done()) running_ = false;
+    }
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    handle_input();
+    draw_ui();
+    ImGui::Render();
+
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (fb_w > 0 && fb_h > 0) {  // minimised: nothing to draw into
+      session_->draw(fb_w, fb_h, pixel_scale_);
+      ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    }
+    glfwSwapBuffers(window_);
+  }
+  session_.reset();  // GL objects go while the context is alive
+  return kExitOk;
+}
+
+void glfw_error(int code, const char* what) {
+  std::fprintf(stderr, "cudahull-viewer: GLFW %d: %s\n", code, what);
+}
+
+}  // namespace
+
+int run_window(const ViewerOptions& o) {
+  glfwSetErrorCallback(o.quiet ? nullptr : glfw_error);
+  if (!glfwInit())
+    throw DeviceError("no window system (no display?); use --headless for offscreen rendering");
+  struct GlfwGuard {
+    ~GlfwGuard() { glfwTerminate(); }
+  } glfw_guard;
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);  // high-DPI: the window grows with the content scale
+  glfwWindowHint(GLFW_SAMPLES, 4);
+  GLFWwindow* window = glfwCreateWindow(o.width, o.height, "cudahull-viewer", nullptr, nullptr);
+  if (window == nullptr) throw DeviceError("cannot open a window with an OpenGL 4.5 core context");
+  struct WindowGuard {
+    GLFWwindow* w;
+    ~WindowGuard() { glfwDestroyWindow(w); }
+  } window_guard{window};
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(1);
+  if (gladLoadGL(glfwGetProcAddress) == 0) throw DeviceError("cannot load the OpenGL 4.5 functions");
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  struct ImGuiGuard {
+    ~ImGuiGuard() { ImGui::DestroyContext(); }
+  } imgui_guard;
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;  // no imgui.ini left in whatever folder the viewer ran from
+  ImGui::StyleColorsDark();
+  float scale_x = 1, scale_y = 1;
+  glfwGetWindowContentScale(window, &scale_x, &scale_y);
+  int win_w = 1, fb_w = 1, h = 1;
+  glfwGetWindowSize(window, &win_w, &h);
+  glfwGetFramebufferSize(window, &fb_w, &h);
+  const float ui_scale = std::max(1.0f, scale_x * static_cast<float>(win_w) / std::max(fb_w, 1));
+  ImGui::GetStyle().ScaleAllSizes(ui_scale);
+  ImFontConfig font;
+  font.SizePixels = 13.0f * ui_scale;
+  io.Fonts->AddFontDefault(&font);
+  if (!ImGui_ImplGlfw_InitForOpenGL(window, true) || !ImGui_ImplOpenGL3_Init("#version 450 core"))
+    throw DeviceError("Dear ImGui cannot initialise its GLFW or OpenGL backend");
+  struct BackendGuard {
+    ~BackendGuard() {
+      ImGui_ImplOpenGL3_Shutdown();
+      ImGui_ImplGlfw_Shutdown();
+    }
+  } backend_guard;
+
+  AppWindow app(o, window);
+  return app.run();
+}
+
+}  // namespace cudahull::viewer

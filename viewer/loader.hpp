@@ -1,0 +1,60 @@
+// Where the points come from (a file, or a generated distribution) and loading them, in the foreground
+// (headless) or on a worker thread with progress (the window, so large files do not freeze it).
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <exception>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cudahull/point_io.hpp"
+#include "cudahull/types.hpp"
+#include "scene.hpp"
+
+namespace cudahull::viewer {
+
+struct PointSource {
+  std::string path;          // a file, or empty
+  std::string distribution;  // else a generator name (generators.hpp)
+  std::uint64_t count = 0;
+  std::uint64_t seed = 1;
+
+  bool empty() const { return path.empty() && distribution.empty(); }
+  std::string label() const;  // "bun_zipper.ply" or "ball 20000 seed 1"
+};
+
+// Throws InputError (unreadable or invalid file) or std::invalid_argument (unknown distribution).
+std::shared_ptr<const std::vector<Point3>> load_points(const PointSource& source,
+                                                       const ProgressFn& progress = {});
+
+// --backend: "cpu", or "auto" (the CPU until the viewer's CUDA path lands; issue 5, item 3).  Throws
+// DeviceError for "cuda", which the viewer does not have yet.  `note` says what was chosen and why.
+Scene::BackendFactory backend_factory(const std::string& requested, std::string* note);
+
+// Loads on a worker thread.  The destructor waits for it.
+class BackgroundLoad {
+ public:
+  explicit BackgroundLoad(PointSource source);
+  ~BackgroundLoad();
+  BackgroundLoad(const BackgroundLoad&) = delete;
+  BackgroundLoad& operator=(const BackgroundLoad&) = delete;
+
+  const PointSource& source() const { return source_; }
+  bool ready() const { return ready_.load(std::memory_order_acquire); }
+  double progress() const { return progress_.load(std::memory_order_relaxed); }  // < 0: unknown
+  // Once ready(): the points, or the loader's exception rethrown.
+  std::shared_ptr<const std::vector<Point3>> take();
+
+ private:
+  PointSource source_;
+  std::atomic<bool> ready_{false};
+  std::atomic<double> progress_{-1.0};
+  std::shared_ptr<const std::vector<Point3>> points_;
+  std::exception_ptr error_;
+  std::thread worker_;
+};
+
+}  // namespace cudahull::viewer

@@ -1,0 +1,56 @@
+// What the renderer draws, as plain CPU arrays (libigl's ViewerData): the scene fills it from the engine
+// state, the renderer uploads what the dirty bits name and clears them.  No GL and no engine types here
+// beyond Point3, so either side can change without the other.
+//
+// Per-point state (one int32 per point, the layout of the GL buffer the CUDA backend will write through
+// CUDA-GL interop): >= 0 is the point's face in the current mesh (an external point), kPointInternal a point
+// proven inside, kPointVertex a point that is a vertex of the current polyhedron.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "cudahull/types.hpp"
+
+namespace cudahull::viewer {
+
+inline constexpr std::int32_t kPointInternal = -1;
+inline constexpr std::int32_t kPointVertex = -2;
+
+// What happened to a face in the last iteration (Algorithm 1), for the colour-by-state mode.
+enum class FaceState : std::uint8_t {
+  kUnchanged = 0,
+  kRefined = 1,  // made by splitting a face at its extreme point (Fig. 3a)
+  kSwapped = 2,  // made by a regular or complementary edge swap (Figs. 3b, 4)
+  kRemoval = 3,  // made by removing a concave degree-3 vertex (Fig. 4)
+};
+inline constexpr int kFaceStateCount = 4;
+
+// One corner of a face; faces are unindexed triangles (3 corners each) so that each face keeps its own
+// state and the fragment shader can find its edges from the corner number (gl_VertexID % 3).
+struct HullCorner {
+  float x = 0, y = 0, z = 0;
+  std::uint32_t info = 0;  // FaceState in the low 8 bits, the face's age in iterations above them
+};
+inline std::uint32_t pack_face_info(FaceState state, std::uint32_t age) {
+  return static_cast<std::uint32_t>(state) | (std::min<std::uint32_t>(age, 0xffffffu) << 8);
+}
+
+enum DirtyBits : std::uint32_t {
+  kDirtyPositions = 1u << 0,   // a new point set (reallocates the point buffers)
+  kDirtyPointState = 1u << 1,  // point_state changed (same size)
+  kDirtyHull = 1u << 2,        // hull corners or hull vertex ids changed
+  kDirtyAll = kDirtyPositions | kDirtyPointState | kDirtyHull,
+};
+
+struct RenderData {
+  std::shared_ptr<const std::vector<Point3>> positions;  // shared with the scene, never copied
+  std::vector<std::int32_t> point_state;                 // one per position
+  std::vector<HullCorner> hull;                          // 3 per face of the current polyhedron
+  std::vector<std::uint32_t> hull_vertex_ids;            // indices into positions
+  std::uint32_t dirty = kDirtyAll;
+};
+
+}  // namespace cudahull::viewer

@@ -1,0 +1,324 @@
+#include "renderer.hpp"
+
+#include <glad/gl.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <glm/gtc/type_ptr.hpp>
+#include <string>
+#include <vector>
+
+#include "cudahull/errors.hpp"
+#include "embedded_shaders.hpp"
+
+namespace cudahull::viewer {
+
+namespace {
+
+constexpr const char* kLayerNames[kLayerCount] = {"hull",     "wireframe", "internal", "external",
+                                                  "vertices", "cells",     "swaps"};
+
+unsigned compile(GLenum type, const char* source, const char* name) {
+  const GLuint shader = glCreateShader(type);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    glDeleteShader(shader);
+    throw DeviceError(std::string("OpenGL: shader ") + name + " does not compile: " + log);
+  }
+  return shader;
+}
+
+unsigned link(const char* vertex, const char* fragment, const char* name) {
+  const GLuint vs = compile(GL_VERTEX_SHADER, vertex, name);
+  const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment, name);
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, vs);
+  glAttachShader(program, fs);
+  glLinkProgram(program);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    glDeleteProgram(program);
+    throw DeviceError(std::string("OpenGL: program ") + name + " does not link: " + log);
+  }
+  return program;
+}
+
+GLint loc(unsigned program, const char* name) {
+  return glGetUniformLocation(program, name);
+}
+
+// Grows a buffer to at least `bytes` (doubling), so per-step hull uploads rarely reallocate.
+void ensure_capacity(unsigned buffer, std::size_t& capacity, std::size_t bytes) {
+  if (bytes <= capacity && capacity != 0) return;
+  capacity = std::max<std::size_t>({bytes, capacity * 2, 256});
+  glNamedBufferData(buffer, static_cast<GLsizeiptr>(capacity), nullptr, GL_DYNAMIC_DRAW);
+}
+
+}  // namespace
+
+const char* layer_name(Layer layer) {
+  return kLayerNames[static_cast<int>(layer)];
+}
+
+std::optional<Layer> layer_from_name(std::string_view name) {
+  for (int i = 0; i < kLayerCount; ++i) {
+    if (name == kLayerNames[i]) return static_cast<Layer>(i);
+  }
+  return std::nullopt;
+}
+
+std::string layer_names() {
+  std::string out;
+  for (int i = 0; i < kLayerCount; ++i)
+    out += (i ? ", " : "") + std::string(kLayerNames[i]);
+  return out;
+}
+
+bool layer_reserved(Layer layer) {
+  return layer == Layer::kCells || layer == Layer::kSwaps;
+}
+
+std::string gl_description() {
+  auto str = [](GLenum e) {
+    const GLubyte* s = glGetString(e);
+    return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
+  };
+  return str(GL_RENDERER) + ", OpenGL " + str(GL_VERSION);
+}
+
+void finish_gl() {
+  glFinish();
+}
+
+Renderer::Renderer() {
+  points_program_ = link(shaders::points_vert, shaders::points_frag, "points");
+  hull_program_ = link(shaders::hull_vert, shaders::hull_frag, "hull");
+
+  GLuint buffers[4];
+  glCreateBuffers(4, buffers);
+  position_buffer_ = buffers[0];
+  state_buffer_ = buffers[1];
+  vertex_id_buffer_ = buffers[2];
+  hull_buffer_ = buffers[3];
+  GLuint vaos[3];
+  glCreateVertexArrays(3, vaos);
+  points_vao_ = vaos[0];
+  vertices_vao_ = vaos[1];
+  hull_vao_ = vaos[2];
+
+  // The cloud and the vertex highlight read the same two point buffers; the latter through vertex ids.
+  for (GLuint vao : {points_vao_, vertices_vao_}) {
+    glVertexArrayVertexBuffer(vao, 0, position_buffer_, 0, sizeof(Point3));
+    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, 0, 0);
+    glEnableVertexArrayAttrib(vao, 0);
+    glVertexArrayVertexBuffer(vao, 1, state_buffer_, 0, sizeof(std::int32_t));
+    glVertexArrayAttribIFormat(vao, 1, 1, GL_INT, 0);
+    glVertexArrayAttribBinding(vao, 1, 1);
+    glEnableVertexArrayAttrib(vao, 1);
+  }
+  glVertexArrayElementBuffer(vertices_vao_, vertex_id_buffer_);
+
+  glVertexArrayVertexBuffer(hull_vao_, 0, hull_buffer_, 0, sizeof(HullCorner));
+  glVertexArrayAttribFormat(hull_vao_, 0, 3, GL_FLOAT, GL_FALSE, offsetof(HullCorner, x));
+  glVertexArrayAttribBinding(hull_vao_, 0, 0);
+  glEnableVertexArrayAttrib(hull_vao_, 0);
+  glVertexArrayAttribIFormat(hull_vao_, 1, 1, GL_UNSIGNED_INT, offsetof(HullCorner, info));
+  glVertexArrayAttribBinding(hull_vao_, 1, 0);
+  glEnableVertexArrayAttrib(hull_vao_, 1);
+
+  // Empty but valid stores, so a draw before the first upload is harmless.
+  glNamedBufferData(position_buffer_, 16, nullptr, GL_STATIC_DRAW);
+  glNamedBufferData(state_buffer_, 16, nullptr, GL_DYNAMIC_DRAW);
+  if (const GLenum e = glGetError(); e != GL_NO_ERROR)
+    throw DeviceError("OpenGL: error " + std::to_string(e) + " while creating the renderer's buffers");
+}
+
+Renderer::~Renderer() {
+  const GLuint buffers[4] = {position_buffer_, state_buffer_, vertex_id_buffer_, hull_buffer_};
+  glDeleteBuffers(4, buffers);
+  const GLuint vaos[3] = {points_vao_, vertices_vao_, hull_vao_};
+  glDeleteVertexArrays(3, vaos);
+  glDeleteProgram(points_program_);
+  glDeleteProgram(hull_program_);
+}
+
+void Renderer::upload(RenderData& data) {
+  if (data.dirty == 0) return;  // last_point_upload_bytes() keeps describing the last real upload
+  last_point_bytes_ = 0;
+  if (data.dirty & kDirtyPositions) {
+    point_count_ = data.positions ? data.positions->size() : 0;
+    const std::size_t bytes = std::max<std::size_t>(point_count_ * sizeof(Point3), 16);
+    glNamedBufferData(position_buffer_, static_cast<GLsizeiptr>(bytes),
+                      point_count_ ? data.positions->data() : nullptr, GL_STATIC_DRAW);
+    // Reallocated to the new size here; its contents come with kDirtyPointState (or from CUDA).
+    glNamedBufferData(state_buffer_, static_cast<GLsizeiptr>(std::max<std::size_t>(point_count_ * 4, 16)),
+                      nullptr, GL_DYNAMIC_DRAW);
+    last_point_bytes_ += point_count_ * sizeof(Point3);
+    data.dirty |= kDirtyPointState;
+  }
+  if (data.dirty & kDirtyPointState) {
+    const std::size_t n = std::min(point_count_, data.point_state.size());
+    if (n > 0)
+      glNamedBufferSubData(state_buffer_, 0, static_cast<GLsizeiptr>(n * 4), data.point_state.data());
+    last_point_bytes_ += n * 4;
+  }
+  if (data.dirty & kDirtyHull) {
+    hull_corner_count_ = data.hull.size();
+    hull_vertex_count_ = data.hull_vertex_ids.size();
+    ensure_capacity(hull_buffer_, hull_buffer_capacity_, hull_corner_count_ * sizeof(HullCorner));
+    ensure_capacity(vertex_id_buffer_, vertex_id_capacity_, hull_vertex_count_ * 4);
+    if (hull_corner_count_)
+      glNamedBufferSubData(hull_buffer_, 0, static_cast<GLsizeiptr>(hull_corner_count_ * sizeof(HullCorner)),
+                           data.hull.data());
+    if (hull_vertex_count_)
+      glNamedBufferSubData(vertex_id_buffer_, 0, static_cast<GLsizeiptr>(hull_vertex_count_ * 4),
+                           data.hull_vertex_ids.data());
+  }
+  total_point_bytes_ += last_point_bytes_;
+  data.dirty = 0;
+}
+
+void Renderer::draw(const ViewParams& view, const RenderSettings& s) const {
+  glViewport(0, 0, view.width, view.height);
+  glClearColor(s.background.r, s.background.g, s.background.b, 1.0f);
+  glClearDepth(1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glEnable(GL_BLEND);
+  // Destination alpha stays 1, so screenshots and composited windows are opaque.
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  glEnable(GL_PROGRAM_POINT_SIZE);
+  glEnable(GL_MULTISAMPLE);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_STENCIL_TEST);
+
+  const glm::mat4 view_proj = view.projection * view.view;
+
+  // Points first: the translucent hull then blends over the ones inside it.
+  const bool any_points = s.shown(Layer::kInternal) || s.shown(Layer::kExternal);
+  const bool vertices = s.shown(Layer::kVertices) && hull_vertex_count_ > 0;
+  if ((any_points && point_count_ > 0) || vertices) {
+    glUseProgram(points_program_);
+    glUniformMatrix4fv(loc(points_program_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+    glUniform1f(loc(points_program_, "u_point_size"), std::max(1.0f, s.point_size * view.pixel_scale));
+    glUniform1i(loc(points_program_, "u_color_mode"), s.point_colors == PointColors::kFace ? 1 : 0);
+    glUniform1i(loc(points_program_, "u_show_internal"), s.shown(Layer::kInternal));
+    glUniform1i(loc(points_program_, "u_show_external"), s.shown(Layer::kExternal));
+    glUniform3fv(loc(points_program_, "u_internal_color"), 1, glm::value_ptr(kInternalColor));
+    glUniform3fv(loc(points_program_, "u_external_color"), 1, glm::value_ptr(kExternalColor));
+    glUniform3fv(loc(points_program_, "u_vertex_color"), 1, glm::value_ptr(kVertexColor));
+    glUniform1f(loc(points_program_, "u_opacity"), s.point_opacity);
+    glDepthMask(s.point_opacity >= 1.0f ? GL_TRUE : GL_FALSE);
+    if (any_points && point_count_ > 0) {
+      glUniform1i(loc(points_program_, "u_pass"), 0);
+      glBindVertexArray(points_vao_);
+      glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(point_count_));
+    }
+    if (vertices) {
+      glUniform1i(loc(points_program_, "u_pass"), 1);
+      glUniform1f(loc(points_program_, "u_opacity"), 1.0f);
+      glDepthMask(GL_TRUE);
+      glBindVertexArray(vertices_vao_);
+      glDrawElements(GL_POINTS, static_cast<GLsizei>(hull_vertex_count_), GL_UNSIGNED_INT, nullptr);
+    }
+  }
+
+  const bool faces = s.shown(Layer::kHull), wire = s.shown(Layer::kWireframe);
+  if ((faces || wire) && hull_corner_count_ > 0) {
+    glUseProgram(hull_program_);
+    glUniformMatrix4fv(loc(hull_program_, "u_view"), 1, GL_FALSE, glm::value_ptr(view.view));
+    glUniformMatrix4fv(loc(hull_program_, "u_proj"), 1, GL_FALSE, glm::value_ptr(view.projection));
+    glUniform3fv(loc(hull_program_, "u_state_colors"), kFaceStateCount, glm::value_ptr(kFaceStateColors[0]));
+    glUniform1i(loc(hull_program_, "u_color_mode"), s.face_colors == FaceColors::kAge ? 1 : 0);
+    glUniform1f(loc(hull_program_, "u_age_span"), s.age_span);
+    glUniform1i(loc(hull_program_, "u_show_faces"), faces);
+    glUniform1i(loc(hull_program_, "u_show_wire"), wire);
+    glUniform1f(loc(hull_program_, "u_opacity"), s.hull_opacity);
+    glUniform1f(loc(hull_program_, "u_wire_width"), s.wire_width * view.pixel_scale);
+    // Faces are counter-clockwise seen from outside (mesh.hpp): with faces shown only the front ones are
+    // drawn, so a translucent hull blends once; a bare wireframe shows the back edges too.
+    if (faces) {
+      glEnable(GL_CULL_FACE);
+      glCullFace(GL_BACK);
+      glFrontFace(GL_CCW);
+    } else {
+      glDisable(GL_CULL_FACE);
+    }
+    glDepthMask(faces && s.hull_opacity >= 1.0f ? GL_TRUE : GL_FALSE);
+    glBindVertexArray(hull_vao_);
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(hull_corner_count_));
+    glDisable(GL_CULL_FACE);
+  }
+  glDepthMask(GL_TRUE);
+  glBindVertexArray(0);
+  glUseProgram(0);
+}
+
+OffscreenTarget::OffscreenTarget(int width, int height, int samples) : width_(width), height_(height) {
+  GLint max_samples = 0;
+  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+  samples = std::max(1, std::min(samples, static_cast<int>(max_samples)));
+
+  glCreateRenderbuffers(1, &color_);
+  glNamedRenderbufferStorageMultisample(color_, samples, GL_RGBA8, width, height);
+  glCreateRenderbuffers(1, &depth_);
+  glNamedRenderbufferStorageMultisample(depth_, samples, GL_DEPTH_COMPONENT24, width, height);
+  glCreateFramebuffers(1, &fbo_);
+  glNamedFramebufferRenderbuffer(fbo_, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
+  glNamedFramebufferRenderbuffer(fbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
+
+  glCreateRenderbuffers(1, &resolve_color_);
+  glNamedRenderbufferStorage(resolve_color_, GL_RGBA8, width, height);
+  glCreateFramebuffers(1, &resolve_fbo_);
+  glNamedFramebufferRenderbuffer(resolve_fbo_, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolve_color_);
+
+  for (GLuint fb : {fbo_, resolve_fbo_}) {
+    const GLenum status = glCheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+      throw DeviceError("OpenGL: offscreen framebuffer " + std::to_string(width) + "x" +
+                        std::to_string(height) + " incomplete (status " + std::to_string(status) + ")");
+  }
+}
+
+OffscreenTarget::~OffscreenTarget() {
+  const GLuint fbos[2] = {fbo_, resolve_fbo_};
+  glDeleteFramebuffers(2, fbos);
+  const GLuint rbs[3] = {color_, depth_, resolve_color_};
+  glDeleteRenderbuffers(3, rbs);
+}
+
+void OffscreenTarget::bind() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glViewport(0, 0, width_, height_);
+}
+
+std::vector<std::uint8_t> OffscreenTarget::read_rgba() const {
+  glBlitNamedFramebuffer(fbo_, resolve_fbo_, 0, 0, width_, height_, 0, 0, width_, height_,
+                         GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  const std::size_t row = static_cast<std::size_t>(width_) * 4;
+  std::vector<std::uint8_t> pixels(row * height_), flipped(row * height_);
+  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (const GLenum e = glGetError(); e != GL_NO_ERROR)
+    throw DeviceError("OpenGL: error " + std::to_string(e) + " while reading the offscreen framebuffer");
+  // GL's first row is the bottom one.
+  for (int y = 0; y < height_; ++y)
+    std::copy_n(pixels.data() + (height_ - 1 - y) * row, row, flipped.data() + y * row);
+  return flipped;
+}
+
+}  // namespace cudahull::viewer

@@ -1,0 +1,122 @@
+// The renderer: plain OpenGL 4.5 core on whatever context is current (DESIGN.md, "Layout"); it knows
+// nothing of GLFW, EGL or the engine.
+//
+// Draws (cf. the paper's Figs. 1 and 10):
+//   - the point cloud, coloured by state (internal red, external brown) or by associated face;
+//   - the hull vertices, highlighted;
+//   - the current polyhedron, shaded faces coloured by what the last iteration did to them (refined,
+//     swapped, made by a vertex removal, unchanged) or by age, plus a wireframe;
+//   - layers toggled by name: hull, wireframe, internal, external, vertices (cells and swaps are reserved
+//     for the debugger views of issue 6 and draw nothing yet).
+//
+// Contract: construct, use and destroy it with the same context current and glad loaded.  upload() copies
+// what RenderData's dirty bits name into GL buffers and clears those bits; draw() renders into the bound
+// framebuffer.  The per-point state lives in one GL buffer, point_state_buffer(): an int32 per point, laid
+// out as render_data.hpp says; the CUDA backend can register it with cudaGraphicsGLRegisterBuffer and write
+// it after each step (then leave kDirtyPointState clear: upload() would overwrite it).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <glm/glm.hpp>
+
+#include "render_data.hpp"
+
+namespace cudahull::viewer {
+
+enum class Layer { kHull, kWireframe, kInternal, kExternal, kVertices, kCells, kSwaps };
+inline constexpr int kLayerCount = 7;
+const char* layer_name(Layer layer);
+std::optional<Layer> layer_from_name(std::string_view name);
+std::string layer_names();         // "hull, wireframe, ..." for messages
+bool layer_reserved(Layer layer);  // named but drawn only from issue 6 on
+
+enum class PointColors { kState, kFace };
+enum class FaceColors { kState, kAge };
+
+struct RenderSettings {
+  std::array<bool, kLayerCount> layers{true, true, true, true, true, false, false};
+  float point_size = 3.0f;     // logical pixels (times pixel_scale)
+  float point_opacity = 1.0f;  // 0..1
+  float hull_opacity = 0.6f;   // 0..1; below 1 the points inside show through
+  float wire_width = 1.2f;     // logical pixels
+  PointColors point_colors = PointColors::kState;
+  FaceColors face_colors = FaceColors::kState;
+  float age_span = 5.0f;  // iterations over which "by age" fades from new to old
+  glm::vec3 background{0.11f, 0.115f, 0.13f};
+
+  bool shown(Layer layer) const { return layers[static_cast<int>(layer)]; }
+  void show(Layer layer, bool on) { layers[static_cast<int>(layer)] = on; }
+};
+
+// The palette, shared with tests that recognise colours in screenshots.
+inline constexpr glm::vec3 kInternalColor{0.85f, 0.16f, 0.12f};
+inline constexpr glm::vec3 kExternalColor{0.62f, 0.40f, 0.20f};
+inline constexpr glm::vec3 kVertexColor{1.0f, 0.92f, 0.35f};
+inline constexpr std::array<glm::vec3, kFaceStateCount> kFaceStateColors{
+    glm::vec3{0.33f, 0.55f, 0.88f},  // unchanged
+    glm::vec3{0.96f, 0.62f, 0.16f},  // refined this step
+    glm::vec3{0.30f, 0.80f, 0.42f},  // swapped this step
+    glm::vec3{0.80f, 0.35f, 0.85f},  // made by a vertex removal this step
+};
+
+struct ViewParams {
+  glm::mat4 view{1.0f}, projection{1.0f};
+  int width = 1, height = 1;  // framebuffer pixels
+  float pixel_scale = 1.0f;   // framebuffer pixels per logical pixel (high-DPI)
+};
+
+class Renderer {
+ public:
+  Renderer();  // compiles the embedded shaders; throws DeviceError on a GL failure
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  void upload(RenderData& data);
+  void draw(const ViewParams& view, const RenderSettings& settings) const;
+
+  unsigned point_state_buffer() const { return state_buffer_; }
+  // Bytes of per-point data copied from host memory into GL buffers by the last upload() and in total.
+  std::uint64_t last_point_upload_bytes() const { return last_point_bytes_; }
+  std::uint64_t total_point_upload_bytes() const { return total_point_bytes_; }
+
+ private:
+  unsigned points_program_ = 0, hull_program_ = 0;
+  unsigned points_vao_ = 0, vertices_vao_ = 0, hull_vao_ = 0;
+  unsigned position_buffer_ = 0, state_buffer_ = 0, vertex_id_buffer_ = 0, hull_buffer_ = 0;
+  std::size_t point_count_ = 0, hull_corner_count_ = 0, hull_vertex_count_ = 0;
+  std::size_t hull_buffer_capacity_ = 0, vertex_id_capacity_ = 0;
+  std::uint64_t last_point_bytes_ = 0, total_point_bytes_ = 0;
+};
+
+// A multisampled offscreen framebuffer for screenshots and headless rendering, resolved on readback.
+class OffscreenTarget {
+ public:
+  OffscreenTarget(int width, int height, int samples = 4);  // throws DeviceError when incomplete
+  ~OffscreenTarget();
+  OffscreenTarget(const OffscreenTarget&) = delete;
+  OffscreenTarget& operator=(const OffscreenTarget&) = delete;
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  void bind() const;  // as the draw framebuffer, with the viewport set
+  // RGBA8, top row first (as PNG wants).  Leaves the default framebuffer bound.
+  std::vector<std::uint8_t> read_rgba() const;
+
+ private:
+  int width_, height_;
+  unsigned fbo_ = 0, color_ = 0, depth_ = 0;      // multisampled
+  unsigned resolve_fbo_ = 0, resolve_color_ = 0;  // single-sampled
+};
+
+// GL_RENDERER and GL_VERSION of the current context, for logs.
+std::string gl_description();
+// glFinish: for timings.
+void finish_gl();
+
+}  // namespace cudahull::viewer

@@ -1,0 +1,193 @@
+#include "scene.hpp"
+
+#include <algorithm>
+#include <unordered_set>
+#include <utility>
+
+namespace cudahull::viewer {
+
+namespace {
+
+// A face as a key that survives renumbering: its vertices rotated so the smallest comes first (the
+// orientation is kept, so a face and its flipped twin differ).
+std::array<PointIndex, 3> rotated(PointIndex a, PointIndex b, PointIndex c) {
+  if (b < a && b < c) return {b, c, a};
+  if (c < a && c < b) return {c, a, b};
+  return {a, b, c};
+}
+
+std::uint64_t edge_key(PointIndex a, PointIndex b) {
+  if (a > b) std::swap(a, b);
+  return (std::uint64_t{a} << 32) | b;
+}
+
+std::array<PointIndex, 3> sorted(std::array<PointIndex, 3> k) {
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+}  // namespace
+
+Scene::Scene(std::shared_ptr<const std::vector<Point3>> points, BackendFactory make_backend,
+             std::string label)
+    : points_(std::move(points)), make_backend_(std::move(make_backend)), label_(std::move(label)) {
+  restart();
+  render_.positions = points_;
+  render_.dirty = kDirtyAll;
+}
+
+void Scene::restart() {
+  engine_ = std::make_unique<Engine>(*points_, make_backend_());
+  position_ = 0;
+  born_.clear();
+  render_stale_ = true;
+}
+
+void Scene::step_once() {
+  IterationRecord record = engine_->step();
+  ++position_;
+  record.swaps.clear();
+  record.removals.clear();
+  record.refined_apexes.clear();
+  record.decisions.clear();
+  record.swaps.shrink_to_fit();
+  record.decisions.shrink_to_fit();
+  if (static_cast<std::size_t>(position_) > history_.size()) {
+    history_.push_back(std::move(record));
+  } else {
+    history_[position_ - 1] = std::move(record);  // the same iteration again, timed anew
+  }
+  if (engine_->done()) {
+    final_known_ = true;
+    history_.resize(position_);  // nothing lies beyond the end
+  }
+
+  // The birth iteration of every face now shown, for the colour-by-age mode.
+  const int iteration = engine_->last_record().iteration;
+  std::vector<FaceKey> faces;
+  current_faces(faces);
+  BirthMap born;
+  born.reserve(faces.size());
+  for (const FaceKey& f : faces) {
+    const auto it = born_.find(f);
+    born.emplace(f, it == born_.end() ? iteration : it->second);
+  }
+  born_ = std::move(born);
+  render_stale_ = true;
+}
+
+void Scene::step(int count) {
+  for (int i = 0; i < count && !engine_->done(); ++i)
+    step_once();
+}
+
+void Scene::run_to_end() {
+  while (!engine_->done())
+    step_once();
+}
+
+void Scene::rewind(int position) {
+  position = std::max(position, 0);
+  if (position < position_) restart();
+  step(position - position_);
+}
+
+void Scene::current_faces(std::vector<FaceKey>& faces) const {
+  faces.clear();
+  if (position_ == 0) return;
+  if (engine_->done()) {
+    const HullMesh& hull = engine_->result();
+    for (const Triangle& t : hull.triangles)
+      faces.push_back(rotated(hull.vertex_ids[t[0]], hull.vertex_ids[t[1]], hull.vertex_ids[t[2]]));
+    return;
+  }
+  const Mesh& mesh = engine_->mesh();
+  for (FaceId f = 0; f < mesh.face_capacity(); ++f) {
+    if (!mesh.alive(f)) continue;
+    const auto& v = mesh.face(f).v;
+    faces.push_back(rotated(v[0], v[1], v[2]));
+  }
+}
+
+void Scene::bounds(float lo[3], float hi[3]) const {
+  for (int k = 0; k < 3; ++k)
+    lo[k] = hi[k] = 0;
+  if (points_->empty()) return;
+  const Point3& p0 = points_->front();
+  lo[0] = hi[0] = p0.x;
+  lo[1] = hi[1] = p0.y;
+  lo[2] = hi[2] = p0.z;
+  for (const Point3& p : *points_) {
+    const float c[3] = {p.x, p.y, p.z};
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], c[k]);
+      hi[k] = std::max(hi[k], c[k]);
+    }
+  }
+}
+
+RenderData& Scene::render_data() {
+  if (render_stale_) refresh_render_data();
+  return render_;
+}
+
+void Scene::refresh_render_data() {
+  render_stale_ = false;
+  const std::size_t n = points_->size();
+
+  // Per-point state.  Before the first step no point has a face yet: all are shown as external.
+  if (position_ == 0) {
+    render_.point_state.assign(n, 0);
+  } else {
+    render_.point_state = engine_->point_faces();
+    if (render_.point_state.size() != n) render_.point_state.assign(n, kPointInternal);
+  }
+
+  std::vector<FaceKey> faces;
+  current_faces(faces);
+  render_.hull_vertex_ids.clear();
+  if (engine_->done()) {
+    render_.hull_vertex_ids = engine_->result().vertex_ids;
+  } else if (position_ > 0) {
+    render_.hull_vertex_ids = engine_->mesh().vertices();
+  }
+  for (PointIndex v : render_.hull_vertex_ids)
+    render_.point_state[v] = kPointVertex;
+
+  // What the last iteration did to each face (Algorithm 1): made by a swap, by a removal, or otherwise new
+  // (a refinement, Fig. 3a; at iteration 0 the tetrahedron).
+  render_.hull.clear();
+  if (position_ > 0) {
+    const IterationRecord& record = engine_->last_record();
+    std::unordered_set<std::uint64_t> swapped_edges;
+    for (const SwapRecord& s : record.swaps) {
+      if (s.kind == SwapKind::kRegular || s.kind == SwapKind::kComplementary)
+        swapped_edges.insert(edge_key(s.new_edge[0], s.new_edge[1]));
+    }
+    std::unordered_set<FaceKey, FaceKeyHash> removal_faces;
+    for (const RemovalRecord& r : record.removals) {
+      if (!r.rejected) removal_faces.insert(sorted({r.ring[0], r.ring[1], r.ring[2]}));
+    }
+    render_.hull.reserve(faces.size() * 3);
+    for (const FaceKey& f : faces) {
+      const auto it = born_.find(f);
+      const int born = it == born_.end() ? record.iteration : it->second;
+      FaceState state = FaceState::kUnchanged;
+      if (born == record.iteration) {
+        state = FaceState::kRefined;
+        if (swapped_edges.count(edge_key(f[0], f[1])) || swapped_edges.count(edge_key(f[1], f[2])) ||
+            swapped_edges.count(edge_key(f[2], f[0])))
+          state = FaceState::kSwapped;
+        if (removal_faces.count(sorted(f))) state = FaceState::kRemoval;
+      }
+      const std::uint32_t info = pack_face_info(state, static_cast<std::uint32_t>(record.iteration - born));
+      for (PointIndex v : f) {
+        const Point3& p = (*points_)[v];
+        render_.hull.push_back({p.x, p.y, p.z, info});
+      }
+    }
+  }
+  render_.dirty |= kDirtyPointState | kDirtyHull;
+}
+
+}  // namespace cudahull::viewer

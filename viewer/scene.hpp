@@ -1,0 +1,88 @@
+// The scene: the engine stepping one iteration at a time, and the render data derived from it (libigl's
+// ViewerData: engine state -> CPU arrays with dirty bits; the renderer turns those into GL buffers).
+//
+// Positions on the timeline count engine steps: 0 is before the first step (the bare point set), 1 is after
+// iteration 0 (the tetrahedron and the first distribution, section 3.1), k after iteration k - 1.  Rewinding
+// replays deterministically from the start: a new Engine on the same points, stepped k times (the engine is
+// deterministic, so the replay passes through the same meshes).  The history keeps one record per position
+// reached, without the O(faces) vectors, for the plots (cf. Fig. 9).
+//
+// render_data() is derived lazily, once per position shown, not once per step of a replay or a run.
+// Per-point state comes from Engine::point_faces() (the "CPU upload" path): O(points) per refresh.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "cudahull/backend.hpp"
+#include "cudahull/engine.hpp"
+#include "render_data.hpp"
+
+namespace cudahull::viewer {
+
+class Scene {
+ public:
+  using BackendFactory = std::function<std::unique_ptr<Backend>()>;
+
+  // `label` names the data in the UI and logs (a file name, or "ball 20000 seed 1").
+  Scene(std::shared_ptr<const std::vector<Point3>> points, BackendFactory make_backend, std::string label);
+
+  const std::string& label() const { return label_; }
+  const std::vector<Point3>& points() const { return *points_; }
+  std::string backend_name() const { return engine_->backend().name(); }
+
+  int position() const { return position_; }
+  // The last position known: the end of the timeline when final_known(), else the furthest reached.
+  int known_end() const { return static_cast<int>(history_.size()); }
+  bool final_known() const { return final_known_; }
+  bool done() const { return engine_->done(); }
+
+  void step(int count = 1);  // stops early once done
+  void run_to_end();
+  void rewind(int position);  // any position >= 0; forward positions are stepped to
+  void reset() { rewind(0); }
+
+  // One record per position 1..known_end() (index position - 1), without swaps, removals, apexes and
+  // decisions.
+  const std::vector<IterationRecord>& history() const { return history_; }
+  // The full record of the step that led to the current position; nullptr at position 0.
+  const IterationRecord* current_record() const { return position_ > 0 ? &engine_->last_record() : nullptr; }
+  const Engine& engine() const { return *engine_; }
+
+  RenderData& render_data();
+  // Bounds of the point set (all zero when empty).
+  void bounds(float lo[3], float hi[3]) const;
+
+ private:
+  struct FaceKeyHash {
+    std::size_t operator()(const std::array<PointIndex, 3>& k) const {
+      return (std::size_t{k[0]} * 73856093u) ^ (std::size_t{k[1]} * 19349663u) ^
+             (std::size_t{k[2]} * 83492791u);
+    }
+  };
+  using FaceKey = std::array<PointIndex, 3>;
+  using BirthMap = std::unordered_map<FaceKey, int, FaceKeyHash>;
+
+  void restart();
+  void step_once();
+  void current_faces(std::vector<FaceKey>& faces) const;  // the polyhedron shown now, input indices
+  void refresh_render_data();
+
+  std::shared_ptr<const std::vector<Point3>> points_;
+  BackendFactory make_backend_;
+  std::string label_;
+  std::unique_ptr<Engine> engine_;
+  int position_ = 0;
+  bool final_known_ = false;
+  std::vector<IterationRecord> history_;
+  BirthMap born_;  // the iteration each face of the current polyhedron was made in (for "by age")
+  RenderData render_;
+  bool render_stale_ = true;
+};
+
+}  // namespace cudahull::viewer

@@ -1,0 +1,132 @@
+#include "script.hpp"
+
+#include <cctype>
+#include <charconv>
+#include <fstream>
+#include <sstream>
+
+#include "cudahull/errors.hpp"
+#include "renderer.hpp"
+
+namespace cudahull::viewer {
+
+namespace {
+
+std::string trim(const std::string& s) {
+  std::size_t b = 0, e = s.size();
+  while (b < e && std::isspace(static_cast<unsigned char>(s[b])))
+    ++b;
+  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1])))
+    --e;
+  return s.substr(b, e - b);
+}
+
+bool parse_integer(const std::string& s, long long& out) {
+  const char* end = s.data() + s.size();
+  const auto [ptr, ec] = std::from_chars(s.data(), end, out);
+  return ec == std::errc() && ptr == end;
+}
+
+bool parse_number(const std::string& s, double& out) {
+  std::istringstream in(s);
+  in >> out;
+  return in && (in >> std::ws).eof();
+}
+
+const char* kSettings[] = {"point-size", "point-opacity", "hull-opacity",
+                           "wire-width", "point-colors",  "face-colors"};
+
+}  // namespace
+
+std::vector<ScriptCommand> parse_script(std::istream& in, const std::string& name) {
+  std::vector<ScriptCommand> commands;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const std::string where = name + ":" + std::to_string(number);
+    auto fail = [&](const std::string& why) { throw ScriptError(where + ": " + why); };
+    // A '#' starts a comment, except inside camera JSON, where it cannot occur anyway.
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    line = trim(line);
+    if (line.empty()) continue;
+    const auto space = line.find_first_of(" \t");
+    const std::string verb = line.substr(0, space);
+    const std::string rest = space == std::string::npos ? "" : trim(line.substr(space));
+
+    ScriptCommand c;
+    c.where = where;
+    auto one_integer = [&](long long min, const char* what) {
+      if (rest.empty()) fail("'" + verb + "' needs " + what);
+      if (!parse_integer(rest, c.number) || c.number < min)
+        fail("'" + verb + "' needs " + what + ", not '" + rest + "'");
+    };
+    auto layer = [&] {
+      if (rest.empty() || !layer_from_name(rest))
+        fail("'" + verb + "' needs a layer (" + layer_names() + "), not '" + rest + "'");
+      c.text = rest;
+    };
+    if (verb == "step") {
+      c.kind = ScriptCommand::Kind::kStep;
+      c.number = 1;
+      if (!rest.empty()) one_integer(0, "a count of steps >= 0");
+    } else if (verb == "run") {
+      c.kind = ScriptCommand::Kind::kRun;
+      if (!rest.empty()) fail("'run' takes no argument");
+    } else if (verb == "rewind") {
+      c.kind = ScriptCommand::Kind::kRewind;
+      one_integer(0, "a timeline position >= 0");
+    } else if (verb == "select-face") {
+      c.kind = ScriptCommand::Kind::kSelectFace;
+      one_integer(-1, "a face id (-1 clears)");
+    } else if (verb == "show" || verb == "hide") {
+      c.kind = verb == "show" ? ScriptCommand::Kind::kShow : ScriptCommand::Kind::kHide;
+      layer();
+    } else if (verb == "camera") {
+      c.kind = ScriptCommand::Kind::kCamera;
+      try {
+        c.json = nlohmann::json::parse(rest);
+      } catch (const nlohmann::json::exception&) {
+        fail("'camera' needs a JSON object such as {\"yaw\": 30, \"pitch\": -20}");
+      }
+      if (!c.json.is_object()) fail("'camera' needs a JSON object");
+    } else if (verb == "screenshot") {
+      c.kind = ScriptCommand::Kind::kScreenshot;
+      if (rest.empty()) fail("'screenshot' needs a PNG path");
+      c.text = rest;
+    } else if (verb == "set") {
+      c.kind = ScriptCommand::Kind::kSet;
+      std::istringstream words(rest);
+      words >> c.text >> c.value;
+      std::string extra;
+      if (c.text.empty() || c.value.empty() || (words >> extra))
+        fail("'set' needs a name and a value, e.g. 'set point-size 4'");
+      double x = 0;
+      if (c.text == "point-colors") {
+        if (c.value != "state" && c.value != "face") fail("point-colors is 'state' or 'face'");
+      } else if (c.text == "face-colors") {
+        if (c.value != "state" && c.value != "age") fail("face-colors is 'state' or 'age'");
+      } else if (c.text == "point-size" || c.text == "wire-width") {
+        if (!parse_number(c.value, x) || x <= 0 || x > 64) fail(c.text + " must be a number in (0, 64]");
+      } else if (c.text == "point-opacity" || c.text == "hull-opacity") {
+        if (!parse_number(c.value, x) || x < 0 || x > 1) fail(c.text + " must be a number in [0, 1]");
+      } else {
+        std::string names;
+        for (const char* s : kSettings)
+          names += (names.empty() ? "" : ", ") + std::string(s);
+        fail("unknown setting '" + c.text + "' (" + names + ")");
+      }
+    } else {
+      fail("unknown command '" + verb +
+           "' (step, run, rewind, select-face, show, hide, camera, screenshot, set)");
+    }
+    commands.push_back(std::move(c));
+  }
+  return commands;
+}
+
+std::vector<ScriptCommand> read_script(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open the script");
+  return parse_script(in, path);
+}
+
+}  // namespace cudahull::viewer

@@ -1,0 +1,117 @@
+#include "session.hpp"
+
+#include <chrono>
+#include <cstdlib>
+
+#include "cudahull/errors.hpp"
+#include "png.hpp"
+
+namespace cudahull::viewer {
+
+Session::Session() = default;
+
+void Session::set_scene(std::unique_ptr<Scene> scene, bool fit_camera) {
+  scene_ = std::move(scene);
+  selected_face_ = -1;
+  if (scene_ && (fit_camera || !camera_fitted_)) fit_view();
+}
+
+void Session::fit_view() {
+  if (!scene_) return;
+  float lo[3], hi[3];
+  scene_->bounds(lo, hi);
+  camera_.fit({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]});
+  camera_fitted_ = true;
+}
+
+void Session::draw(int width, int height, float pixel_scale) {
+  if (scene_) renderer_.upload(scene_->render_data());
+  ViewParams view;
+  view.width = std::max(width, 1);
+  view.height = std::max(height, 1);
+  view.pixel_scale = pixel_scale;
+  view.view = camera_.view();
+  view.projection = camera_.projection(static_cast<float>(view.width) / static_cast<float>(view.height));
+  renderer_.draw(view, settings_);
+}
+
+std::string Session::screenshot(const std::string& path, int width, int height) {
+  if (!offscreen_ || offscreen_->width() != width || offscreen_->height() != height)
+    offscreen_ = std::make_unique<OffscreenTarget>(width, height);
+  offscreen_->bind();
+  // Screenshots use logical pixels = framebuffer pixels, whatever the screen's scale.
+  draw(width, height, 1.0f);
+  const std::vector<std::uint8_t> rgba = offscreen_->read_rgba();
+  const std::string out = format_numbered_path(path, scene_ ? scene_->position() : 0);
+  write_png(out, rgba, width, height);
+  return out;
+}
+
+double Session::time_frames(int frames, int width, int height) {
+  if (!offscreen_ || offscreen_->width() != width || offscreen_->height() != height)
+    offscreen_ = std::make_unique<OffscreenTarget>(width, height);
+  offscreen_->bind();
+  draw(width, height, 1.0f);  // warm-up: uploads and first-use costs stay out of the timing
+  finish_gl();
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int i = 0; i < frames; ++i)
+    draw(width, height, 1.0f);
+  finish_gl();
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  offscreen_->read_rgba();  // leaves the default framebuffer bound, as screenshot() does
+  return frames > 0 ? ms / frames : 0.0;
+}
+
+std::string Session::execute(const ScriptCommand& c, int width, int height) {
+  using Kind = ScriptCommand::Kind;
+  switch (c.kind) {
+    case Kind::kStep:
+      if (scene_) scene_->step(static_cast<int>(c.number));
+      return "";
+    case Kind::kRun:
+      if (scene_) scene_->run_to_end();
+      return "";
+    case Kind::kRewind:
+      if (scene_) scene_->rewind(static_cast<int>(c.number));
+      return "";
+    case Kind::kSelectFace:
+      selected_face_ = c.number;
+      return "";
+    case Kind::kShow:
+    case Kind::kHide: {
+      const Layer layer = *layer_from_name(c.text);
+      settings_.show(layer, c.kind == Kind::kShow);
+      if (layer_reserved(layer))
+        return c.where + ": note: layer '" + c.text + "' draws nothing yet (issue 6)";
+      return "";
+    }
+    case Kind::kCamera:
+      try {
+        camera_.from_json(c.json);
+      } catch (const std::exception& e) {
+        throw ScriptError(c.where + ": " + e.what());
+      }
+      return "";
+    case Kind::kScreenshot:
+      try {
+        return "wrote " + screenshot(c.text, width, height);
+      } catch (const OutputError& e) {
+        throw OutputError(c.where + ": " + e.what());
+      }
+    case Kind::kSet: {
+      const double x = std::strtod(c.value.c_str(), nullptr);
+      if (c.text == "point-size") settings_.point_size = static_cast<float>(x);
+      if (c.text == "point-opacity") settings_.point_opacity = static_cast<float>(x);
+      if (c.text == "hull-opacity") settings_.hull_opacity = static_cast<float>(x);
+      if (c.text == "wire-width") settings_.wire_width = static_cast<float>(x);
+      if (c.text == "point-colors")
+        settings_.point_colors = c.value == "face" ? PointColors::kFace : PointColors::kState;
+      if (c.text == "face-colors")
+        settings_.face_colors = c.value == "age" ? FaceColors::kAge : FaceColors::kState;
+      return "";
+    }
+  }
+  return "";
+}
+
+}  // namespace cudahull::viewer

@@ -1,0 +1,60 @@
+// What one viewer holds, windowed or headless: the scene (engine -> render data), the camera, the render
+// settings and the selection; it runs script commands and takes screenshots.  The window (app_window.cpp)
+// and the headless run (main.cpp) are thin backends around it, as the renderer is around GL.
+//
+// Contract: construct and use it with the GL context current (it owns the Renderer).  set_scene() fits
+// the camera the first time only (so a view pasted or scripted before a reload survives it) unless asked.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "camera.hpp"
+#include "renderer.hpp"
+#include "scene.hpp"
+#include "script.hpp"
+
+namespace cudahull::viewer {
+
+class Session {
+ public:
+  Session();
+  Scene* scene() { return scene_.get(); }
+  void set_scene(std::unique_ptr<Scene> scene, bool fit_camera);
+
+  Camera& camera() { return camera_; }
+  void fit_view();  // to the scene's points
+  RenderSettings& settings() { return settings_; }
+  const Renderer& renderer() const { return renderer_; }
+  long long selected_face() const { return selected_face_; }
+  void select_face(long long face) { selected_face_ = face; }
+
+  // How per-point state reaches the GL buffer.  Only the CPU path exists so far (issue 5, item 3).
+  const char* upload_path() const { return "CPU upload"; }
+
+  // Uploads what changed and draws into the bound framebuffer.
+  void draw(int width, int height, float pixel_scale);
+  // Renders the scene offscreen at width x height and writes a PNG atomically; %d in `path` becomes the
+  // timeline position.  Returns the path written.  Throws OutputError or DeviceError.
+  std::string screenshot(const std::string& path, int width, int height);
+
+  // Draws `frames` frames offscreen at width x height, waiting for the GPU after the last; returns the
+  // milliseconds per frame (upload included where something changed).
+  double time_frames(int frames, int width, int height);
+
+  // Runs one script command; screenshots are width x height.  Failures name c.where: ScriptError for a
+  // value the parser could not check (a camera value), OutputError for a screenshot that cannot be written.
+  // Returns a line for the log, or "".
+  std::string execute(const ScriptCommand& c, int width, int height);
+
+ private:
+  Renderer renderer_;
+  std::unique_ptr<Scene> scene_;
+  Camera camera_;
+  bool camera_fitted_ = false;
+  RenderSettings settings_;
+  long long selected_face_ = -1;
+  std::unique_ptr<OffscreenTarget> offscreen_;
+};
+
+}  // namespace cudahull::viewer
