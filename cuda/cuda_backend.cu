@@ -467,14 +467,20 @@ class CudaBackend final : public Backend {
     const auto face_count = static_cast<std::int32_t>(face_count_);
 
     // One staging area, one copy: the sections at 16-byte aligned offsets.
-    const std::size_t sizes[5] = {
-        tables.refinement.size() * sizeof(RefinementEntry), tables.decision.size() * sizeof(DecisionEntry),
-        tables.faces.size() * sizeof(FaceGeometry), tables.initial_cells.size() * sizeof(SeparatingPlane),
-        tables.retired.size() * sizeof(PointIndex)};
-    const void* sources[5] = {tables.refinement.data(), tables.decision.data(), tables.faces.data(),
-                              tables.initial_cells.data(), tables.retired.data()};
-    std::size_t offsets[5], total = 0;
-    for (int s = 0; s < 5; ++s) {
+    constexpr int kSections = 7;
+    const std::size_t sizes[kSections] = {tables.refinement.size() * sizeof(RefinementEntry),
+                                          tables.decision.size() * sizeof(DecisionEntry),
+                                          tables.faces.size() * sizeof(FaceGeometry),
+                                          tables.initial_cells.size() * sizeof(SeparatingPlane),
+                                          tables.retired.size() * sizeof(PointIndex),
+                                          tables.old_face_split.size() * sizeof(std::int32_t),
+                                          tables.old_face_route.size() * sizeof(std::int32_t)};
+    const void* sources[kSections] = {tables.refinement.data(),    tables.decision.data(),
+                                      tables.faces.data(),         tables.initial_cells.data(),
+                                      tables.retired.data(),       tables.old_face_split.data(),
+                                      tables.old_face_route.data()};
+    std::size_t offsets[kSections], total = 0;
+    for (int s = 0; s < kSections; ++s) {
       offsets[s] = total;
       total = align_up(total + sizes[s], 16);
     }
@@ -482,7 +488,7 @@ class CudaBackend final : public Backend {
     check(cudaEventSynchronize(staging_free_), "waiting for the previous table upload");
     staging_.reserve(total, "the table staging area");
     tables_dev_.reserve(total, "the iteration tables", true);
-    for (int s = 0; s < 5; ++s) {
+    for (int s = 0; s < kSections; ++s) {
       if (sizes[s] != 0) std::memcpy(staging_.get() + offsets[s], sources[s], sizes[s]);
     }
     if (total != 0) {
@@ -495,6 +501,8 @@ class CudaBackend final : public Backend {
     unsigned char* base = tables_dev_.get();
     RoutingView view;
     view.refinement = reinterpret_cast<const RefinementEntry*>(base + offsets[0]);
+    view.old_face_split = reinterpret_cast<const std::int32_t*>(base + offsets[5]);
+    view.old_face_route = reinterpret_cast<const std::int32_t*>(base + offsets[6]);
     view.decision = reinterpret_cast<const DecisionEntry*>(base + offsets[1]);
     view.faces = reinterpret_cast<const FaceGeometry*>(base + offsets[2]);
     view.face_count = face_count;

@@ -74,6 +74,8 @@ class CpuBackend final : public Backend {
 
   void distribute_points(const IterationTables& tables) override {
     RoutingView view;
+    view.old_face_split = tables.old_face_split.data();
+    view.old_face_route = tables.old_face_route.data();
     view.refinement = tables.refinement.data();
     view.decision = tables.decision.data();
     view.faces = tables.faces.data();

@@ -76,6 +76,7 @@ struct Edge {
 // Per-point flags of the mesh edits.
 constexpr std::uint8_t kDoomed = 1;       // a vertex proven inside the hull, being taken out
 constexpr std::uint8_t kRemovedOnce = 2;  // removed as concave before: a fold made it look concave
+constexpr std::uint8_t kTouched = 4;      // queued as a removal candidate
 constexpr int kStallLimit = 8;            // iterations without fewer external points before finishing
 
 }  // namespace
@@ -104,6 +105,12 @@ struct Engine::Impl {
     return normalized(cross(sub(P(face.v[1]), P(face.v[0])), sub(P(face.v[2]), P(face.v[0]))));
   }
   bool is_doomed(PointIndex v) const { return (e.vertex_flags_[v] & kDoomed) != 0; }
+  // Queues v once as a removal candidate.
+  void touch(PointIndex v) {
+    if (e.vertex_flags_[v] & kTouched) return;
+    e.vertex_flags_[v] |= kTouched;
+    touched.push_back(v);
+  }
 
   void note_killed(FaceId f, std::int32_t entry) {
     if (killed_by_entry.size() <= f) killed_by_entry.resize(f + 1, -1);
@@ -237,7 +244,7 @@ struct Engine::Impl {
     for (const Edge& edge : {Edge{n1, 0}, Edge{n1, 1}, Edge{n2, 0}, Edge{n2, 1}})
       queue.push_back(edge);
     for (PointIndex p : {u, v, x, y})
-      touched.push_back(p);
+      touch(p);
     return true;
   }
 
@@ -296,7 +303,7 @@ struct Engine::Impl {
     for (int k = 0; k < 3; ++k)
       queue.push_back({n, k});
     for (PointIndex p : {a, b, d})
-      touched.push_back(p);
+      touch(p);
     return true;
   }
 
@@ -355,10 +362,10 @@ struct Engine::Impl {
         if (take_out(w)) changed = true;
         e.vertex_flags_[w] &= static_cast<std::uint8_t>(~kDoomed);
       }
-      std::sort(touched.begin(), touched.end());
-      touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
       std::vector<PointIndex> candidates = std::move(touched);
       touched.clear();
+      for (PointIndex v : candidates)
+        e.vertex_flags_[v] &= static_cast<std::uint8_t>(~kTouched);
       for (PointIndex v : candidates) {
         if (e.mesh_.has_vertex(v) && e.mesh_.degree(v, 4) == 3 && try_remove(v, false)) changed = true;
       }
@@ -408,8 +415,17 @@ std::vector<std::int32_t> Engine::point_faces() const {
   return out;
 }
 
-std::vector<FaceGeometry> Engine::face_geometry() const {
+std::vector<FaceGeometry> Engine::face_geometry(const std::vector<FaceId>* remap) const {
   std::vector<FaceGeometry> faces(mesh_.live_faces());
+  // Faces that survived the iteration keep their tetrahedron signs (4 exact orient3d each); only new faces
+  // need them computed.
+  std::vector<FaceId> origin;
+  if (remap != nullptr) {
+    origin.assign(faces.size(), kNoFace);
+    for (FaceId o = 0; o < geometry_.size() && o < remap->size(); ++o) {
+      if ((*remap)[o] != kNoFace) origin[(*remap)[o]] = o;
+    }
+  }
   for (FaceId f = 0; f < faces.size(); ++f) {
     const MeshFace& face = mesh_.face(f);
     FaceGeometry& g = faces[f];
@@ -417,7 +433,11 @@ std::vector<FaceGeometry> Engine::face_geometry() const {
       g.v[k] = points_[face.v[k]];
       g.neighbor[k] = static_cast<std::int32_t>(face.n[k]);
     }
-    face_tetrahedron_signs(interior_, g.v, g.tet);
+    if (!origin.empty() && origin[f] != kNoFace) {
+      std::copy(geometry_[origin[f]].tet, geometry_[origin[f]].tet + 4, g.tet);
+    } else {
+      face_tetrahedron_signs(interior_, g.v, g.tet);
+    }
   }
   return faces;
 }
@@ -491,7 +511,7 @@ IterationRecord Engine::initialize() {
   dimension_ = 3;
   if (orient3d(P(p0), P(p1), P(p2), P(p3)) > 0) std::swap(p1, p2);  // p3 must lie below (p0, p1, p2)
   mesh_.make_tetrahedron(n, p0, p1, p2, p3);
-  vertex_flags_.assign(n, 0);
+  vertex_flags_ = ZeroedArray<std::uint8_t>(n);
   used_vertices_ = {p0, p1, p2, p3};
 
   // The interior reference point c: the tetrahedron's centroid, confirmed strictly inside exactly.  It
@@ -515,7 +535,9 @@ IterationRecord Engine::initialize() {
       tables.initial_cells.push_back(cell.edge_plane[i]);
   }
   tables.faces = face_geometry();
-  tables.refinement.resize(1);
+  geometry_ = tables.faces;
+  tables.old_face_split.assign(1, -1);  // unused: the first distribution goes by the initial cells
+  tables.old_face_route.assign(1, 0);
   record.host_ms = ms_since(t0) - backend_ms;
   const auto tb3 = Clock::now();
   backend_->distribute_points(tables);
@@ -542,29 +564,31 @@ IterationRecord Engine::iterate() {
 
   // Refinement (Fig. 3a): every face with external points splits at its furthest point.
   const FaceId old_faces = static_cast<FaceId>(mesh_.face_capacity());
-  std::vector<RefinementEntry> refinement(old_faces);
-  std::vector<std::array<FaceId, 3>> children(old_faces, {kNoFace, kNoFace, kNoFace});
+  std::vector<RefinementEntry> refinement;      // one per refined face (Fig. 7's refinement[])
+  std::vector<std::array<FaceId, 3>> children;  // work ids, one triple per refinement entry
   std::vector<Edge> regular_candidates;
   for (FaceId f = 0; f < old_faces; ++f) {
     if (extremes_[f].count == 0) continue;
     const PointIndex apex = extremes_[f].furthest;
     const MeshFace old = mesh_.face(f);
-    children[f] = mesh_.split(f, apex);
-    refinement[f].apex = apex;
+    const std::array<FaceId, 3> kids = mesh_.split(f, apex);
+    children.push_back(kids);
+    RefinementEntry& entry = refinement.emplace_back();
+    entry.face = f;
+    entry.apex = apex;
     record.refined_apexes.push_back(apex);
     used_vertices_.push_back(apex);
     // plane[i] through the apex and old vertex i separates child i-1 from child i, along the average of
     // their normals; child i is on its positive side.
     for (int i = 0; i < 3; ++i) {
-      const FaceId here = children[f][i], before = children[f][(i + 2) % 3];
-      const Vec3d along = add(impl.unit_normal(here), impl.unit_normal(before));
+      const Vec3d along = add(impl.unit_normal(kids[i]), impl.unit_normal(kids[(i + 2) % 3]));
       const Vec3d inside = impl.P(old.v[(i + 1) % 3]);
-      refinement[f].plane[i] = plane_through_edge(impl.P(apex), impl.P(old.v[i]), along, inside);
+      entry.plane[i] = plane_through_edge(impl.P(apex), impl.P(old.v[i]), along, inside);
     }
-    for (FaceId c : children[f])
+    for (FaceId c : kids)
       regular_candidates.push_back({c, 0});
     for (PointIndex v : old.v)
-      impl.touched.push_back(v);
+      impl.touch(v);
   }
   record.faces_refined = record.refined_apexes.size();
 
@@ -579,14 +603,16 @@ IterationRecord Engine::iterate() {
   IterationTables tables;
   tables.interior = interior_;
   tables.refinement = std::move(refinement);
+  tables.old_face_split.assign(old_faces, -1);
+  tables.old_face_route.assign(old_faces, 0);
+  for (std::size_t k = 0; k < tables.refinement.size(); ++k) {
+    RefinementEntry& r = tables.refinement[k];
+    tables.old_face_split[r.face] = static_cast<std::int32_t>(k);
+    for (int i = 0; i < 3; ++i)
+      r.child[i] = impl.route_code(children[k][i], remap);
+  }
   for (FaceId f = 0; f < old_faces; ++f) {
-    RefinementEntry& r = tables.refinement[f];
-    if (r.apex == kNoPoint) {
-      r.route = impl.route_code(f, remap);
-    } else {
-      for (int i = 0; i < 3; ++i)
-        r.child[i] = impl.route_code(children[f][i], remap);
-    }
+    if (tables.old_face_split[f] < 0) tables.old_face_route[f] = impl.route_code(f, remap);
   }
   tables.retired = record.refined_apexes;
   tables.decision = impl.entries;
@@ -594,7 +620,8 @@ IterationRecord Engine::iterate() {
     tables.decision[k].above = impl.route_code(impl.entry_targets[k][0], remap);
     tables.decision[k].below = impl.route_code(impl.entry_targets[k][1], remap);
   }
-  tables.faces = face_geometry();
+  tables.faces = face_geometry(&remap);
+  geometry_ = tables.faces;
   record.decision_entries = tables.decision.size();
   record.host_ms = ms_since(t0);
 
@@ -631,7 +658,7 @@ void Engine::finish(IterationRecord& record) {
           impl.queue.push_back({f, i});
       }
       for (PointIndex v : mesh_.vertices())
-        impl.touched.push_back(v);
+        impl.touch(v);
       const std::size_t before = record.swaps.size() + record.removals.size();
       impl.rejected_edges.clear();
       impl.settle();
@@ -658,15 +685,14 @@ void Engine::finish(IterationRecord& record) {
   std::sort(used_vertices_.begin(), used_vertices_.end());
   used_vertices_.erase(std::unique(used_vertices_.begin(), used_vertices_.end()), used_vertices_.end());
   if (faults == 0) {
+    // The mesh is convex with c inside: locate each dropped vertex by a walk through the radial cones.
+    const std::vector<FaceGeometry> geometry = face_geometry();  // after the clean-up: all recomputed
+    const int walk = 64 + 4 * static_cast<int>(std::sqrt(static_cast<double>(geometry.size())));
     for (PointIndex r : used_vertices_) {
       if (mesh_.has_vertex(r)) continue;
-      for (FaceId f = 0; f < faces; ++f) {
-        const MeshFace& face = mesh_.face(f);
-        if (orient3d(P(face.v[0]), P(face.v[1]), P(face.v[2]), P(r)) > 0) {
-          ++faults;
-          break;
-        }
-      }
+      const std::int32_t found = locate_point(points_[r], 0, geometry.data(),
+                                              static_cast<std::int32_t>(geometry.size()), interior_, walk);
+      if (found != kRouteInternal) ++faults;
     }
   }
   faults += external_;  // after a stall: points still outside the mesh

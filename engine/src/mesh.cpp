@@ -22,8 +22,8 @@ FaceId Mesh::add_face(PointIndex a, PointIndex b, PointIndex c) {
   alive_.push_back(1);
   ++live_count_;
   for (PointIndex p : {a, b, c}) {
-    if (vertex_face_[p] == kNoFace) ++vertex_count_;
-    vertex_face_[p] = id;
+    if (vertex_face_[p] == 0) ++vertex_count_;
+    vertex_face_[p] = id + 1;
   }
   return id;
 }
@@ -38,7 +38,7 @@ void Mesh::make_tetrahedron(std::size_t point_count, PointIndex p0, PointIndex p
   faces_.clear();
   alive_.clear();
   live_count_ = 0;
-  vertex_face_.assign(point_count, kNoFace);
+  vertex_face_ = ZeroedArray<FaceId>(point_count);
   vertex_count_ = 0;
   // p3 lies below (p0, p1, p2), so that triangle already faces outward; the other three are oriented to
   // match, each edge appearing once in each direction.
@@ -123,7 +123,7 @@ std::array<FaceId, 2> Mesh::swap(FaceId f, int i) {
 template <class Visit>
 void Mesh::walk_around(PointIndex v, Visit&& visit) const {
   if (!has_vertex(v)) return;
-  const FaceId start = vertex_face_[v];
+  const FaceId start = face_of_vertex(v);
   FaceId f = start;
   std::size_t steps = 0;
   do {
@@ -173,7 +173,7 @@ FaceId Mesh::remove_degree3(PointIndex v) {
   }
   for (FaceId f : rf)
     kill(f);
-  vertex_face_[v] = kNoFace;
+  vertex_face_[v] = 0;
   --vertex_count_;
   FaceId n = add_face(a, b, d);
   faces_[n].n = {outer[0], outer[1], outer[2]};
@@ -204,7 +204,7 @@ std::vector<FaceId> Mesh::compact() {
   // O(faces), not O(points): every live vertex is a corner of some kept face.
   for (FaceId f = 0; f < faces_.size(); ++f) {
     for (PointIndex p : faces_[f].v)
-      vertex_face_[p] = f;
+      vertex_face_[p] = f + 1;
   }
   return remap;
 }

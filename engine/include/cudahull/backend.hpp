@@ -18,7 +18,9 @@ namespace cudahull {
 
 // The per-iteration tables (Fig. 7) and the new mesh's faces.
 struct IterationTables {
-  std::vector<RefinementEntry> refinement;  // one per face of the previous mesh
+  std::vector<std::int32_t> old_face_split;  // per face of the previous mesh: refinement index, or -1
+  std::vector<std::int32_t> old_face_route;  // per face of the previous mesh: route code if not refined
+  std::vector<RefinementEntry> refinement;   // one per refined face
   std::vector<DecisionEntry> decision;
   std::vector<FaceGeometry> faces;             // the new mesh, compacted
   std::vector<SeparatingPlane> initial_cells;  // first distribution only (4 faces x 3 planes)
@@ -28,7 +30,8 @@ struct IterationTables {
   Vec3d interior;
 
   std::uint64_t bytes() const {
-    return refinement.size() * sizeof(RefinementEntry) + decision.size() * sizeof(DecisionEntry) +
+    return (old_face_split.size() + old_face_route.size()) * sizeof(std::int32_t) +
+           refinement.size() * sizeof(RefinementEntry) + decision.size() * sizeof(DecisionEntry) +
            faces.size() * sizeof(FaceGeometry) + initial_cells.size() * sizeof(SeparatingPlane) +
            retired.size() * sizeof(PointIndex) + sizeof(Vec3d);
   }

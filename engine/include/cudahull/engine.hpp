@@ -19,6 +19,7 @@
 #include "cudahull/backend.hpp"
 #include "cudahull/mesh.hpp"
 #include "cudahull/types.hpp"
+#include "cudahull/zeroed_array.hpp"
 
 namespace cudahull {
 
@@ -114,7 +115,9 @@ class Engine {
   IterationRecord initialize();
   IterationRecord iterate();
   void finish(IterationRecord& record);
-  std::vector<FaceGeometry> face_geometry() const;  // the (compacted) mesh as the backend sees it
+  // The (compacted) mesh as the backend sees it; with `remap` (old id -> new id from the last compaction),
+  // surviving faces reuse geometry_'s exact signs.
+  std::vector<FaceGeometry> face_geometry(const std::vector<FaceId>* remap = nullptr) const;
 
   std::vector<Point3> points_;
   std::unique_ptr<Backend> backend_;
@@ -130,10 +133,11 @@ class Engine {
   std::vector<RefinementEntry> last_refinement_;
   std::vector<PointIndex> removed_vertices_;
   std::vector<PointIndex> used_vertices_;   // every point that was ever a mesh vertex
-  std::vector<std::uint8_t> vertex_flags_;  // per point: kDoomed, kRemovedOnce (engine.cpp)
+  ZeroedArray<std::uint8_t> vertex_flags_;  // per point: kDoomed, kRemovedOnce (engine.cpp)
   int stalled_ = 0;                         // iterations without progress
   HullMesh result_;
   IterationRecord last_record_;
+  std::vector<FaceGeometry> geometry_;  // the current mesh's faces as last sent to the backend
 };
 
 }  // namespace cudahull

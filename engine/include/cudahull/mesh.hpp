@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cudahull/types.hpp"
+#include "cudahull/zeroed_array.hpp"
 
 namespace cudahull {
 
@@ -35,7 +36,7 @@ class Mesh {
   bool alive(FaceId f) const { return alive_[f] != 0; }
   const MeshFace& face(FaceId f) const { return faces_[f]; }
   std::size_t vertex_count() const { return vertex_count_; }
-  bool has_vertex(PointIndex v) const { return v < vertex_face_.size() && vertex_face_[v] != kNoFace; }
+  bool has_vertex(PointIndex v) const { return v < vertex_face_.size() && vertex_face_[v] != 0; }
   // The number of edges at v, counting no further than `limit`.
   std::size_t degree(PointIndex v, std::size_t limit = SIZE_MAX) const;
   std::vector<PointIndex> vertices() const;  // sorted
@@ -73,7 +74,9 @@ class Mesh {
   std::vector<MeshFace> faces_;
   std::vector<std::uint8_t> alive_;
   std::size_t live_count_ = 0;
-  std::vector<FaceId> vertex_face_;  // per input point: some live face that holds it, or kNoFace
+  // Per input point: 1 + some live face that holds it, or 0 when it is not a vertex.
+  ZeroedArray<FaceId> vertex_face_;
+  FaceId face_of_vertex(PointIndex v) const { return vertex_face_[v] - 1; }
   std::size_t vertex_count_ = 0;
 };
 

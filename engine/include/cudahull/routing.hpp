@@ -24,9 +24,12 @@ struct SeparatingPlane {
 
 inline constexpr std::int32_t kRouteInternal = -0x7fffffff;  // point proven inside the hull
 
+// One refined face (Fig. 3a): its apex and three children.  Only refined faces have an entry; every old
+// face has a slot in `old_face_split` (the entry's index, or -1) and `old_face_route` (unrefined faces:
+// where its points go), so the per-face traffic is 8 bytes plus 116 per refined face.
 struct RefinementEntry {
-  PointIndex apex = 0xffffffffu;      // 0xffffffff: face not refined; then `route` applies
-  std::int32_t route = 0;             // unrefined faces: where the face's points go
+  std::uint32_t face = 0;  // the old face
+  PointIndex apex = 0xffffffffu;
   std::int32_t child[3] = {0, 0, 0};  // route codes of (a, b, p), (b, c, p), (c, a, p)
   // plane[i] passes through the apex and vertex i of the old face; its positive side is child i's side.
   SeparatingPlane plane[3];
@@ -61,16 +64,19 @@ CUDAHULL_HD inline double plane_value(const SeparatingPlane& p, const Point3& x)
 // Algorithm 2, lines "refinement" and "decision": the route code of the face that receives point x, which
 // belonged to old face `old_face`.
 CUDAHULL_HD inline std::int32_t route_point(const Point3& x, std::int32_t old_face,
+                                            const std::int32_t* old_face_split,
+                                            const std::int32_t* old_face_route,
                                             const RefinementEntry* refinement,
                                             const DecisionEntry* decision) {
-  const RefinementEntry& r = refinement[old_face];
+  const std::int32_t split = old_face_split[old_face];
   std::int32_t code;
-  if (r.apex == 0xffffffffu) {
-    code = r.route;
+  if (split < 0) {
+    code = old_face_route[old_face];
   } else {
+    const RefinementEntry& r = refinement[split];
     // Child i lies on the positive side of plane[i] and the negative side of plane[i+1].  Exactly one child
-    // matches unless the point is "behind" the apex (all signs equal); then the child with the highest
-    // plane value of its trailing plane is as good as any: such points are far from this face.
+    // matches unless the point is "behind" the apex (all signs equal); then child 0 is as good as any: such
+    // points are far from this face, and the exact verdict that follows sends them where they belong.
     const bool s0 = plane_value(r.plane[0], x) >= 0, s1 = plane_value(r.plane[1], x) >= 0,
                s2 = plane_value(r.plane[2], x) >= 0;
     if (s0 && !s1) {
@@ -178,7 +184,9 @@ CUDAHULL_HD inline PointIndex unpack_extreme_index(std::uint64_t packed) {
 
 // Views of the per-iteration tables, as both backends hold them (host vectors or device buffers).
 struct RoutingView {
-  const RefinementEntry* refinement = nullptr;  // indexed by the point's old face
+  const std::int32_t* old_face_split = nullptr;  // per old face: refinement index or -1
+  const std::int32_t* old_face_route = nullptr;  // per old face: route code when not refined
+  const RefinementEntry* refinement = nullptr;
   const DecisionEntry* decision = nullptr;
   const FaceGeometry* faces = nullptr;  // the new mesh
   std::int32_t face_count = 0;
@@ -187,6 +195,29 @@ struct RoutingView {
 };
 
 inline constexpr int kMaxStrayWalk = 64;
+
+// From face `start`, the face x is strictly above, or kRouteInternal when x is proven inside the hull.  A
+// point below a face but outside that face's tetrahedron with c crossed a radial plane: walk to the
+// neighbour across it, at most `max_walk` steps, then fall back to an exhaustive exact scan.
+CUDAHULL_HD inline std::int32_t locate_point(const Point3& x, std::int32_t start, const FaceGeometry* faces,
+                                             std::int32_t face_count, const Vec3d& interior, int max_walk) {
+  std::int32_t g = start;
+  for (int step = 0; step < max_walk; ++step) {
+    int exit_edge;
+    const PointVerdict verdict = face_verdict(faces[g], interior, x, &exit_edge);
+    if (verdict == kVerdictExternal) return g;
+    if (verdict == kVerdictInternal) return kRouteInternal;
+    if (exit_edge < 0) break;
+    g = faces[g].neighbor[exit_edge];
+  }
+  // Exhaustive: above some face, or below every face plane of the closed mesh and hence inside it (and so
+  // inside the hull of the input).
+  for (std::int32_t f = 0; f < face_count; ++f) {
+    const FaceGeometry& face = faces[f];
+    if (orient3d(to_vec3d(face.v[0]), to_vec3d(face.v[1]), to_vec3d(face.v[2]), to_vec3d(x)) > 0) return f;
+  }
+  return kRouteInternal;
+}
 
 // Algorithm 2 for one point: the new face id that x belongs to (x strictly above it), or kRouteInternal when
 // x is proven inside the hull.  Deterministic and exact in its verdict; only the choice of face among those
@@ -203,26 +234,10 @@ CUDAHULL_HD inline std::int32_t classify_point(const Point3& x, std::int32_t old
       }
     }
   } else {
-    g = route_point(x, old_face, t.refinement, t.decision);
+    g = route_point(x, old_face, t.old_face_split, t.old_face_route, t.refinement, t.decision);
     if (g == kRouteInternal) return kRouteInternal;
   }
-  // A point below its face but outside the face's tetrahedron with c crossed a radial plane: walk to the
-  // neighbour across it.  Rare; bounded, with an exhaustive exact fallback.
-  for (int step = 0; step < kMaxStrayWalk; ++step) {
-    int exit_edge;
-    const PointVerdict verdict = face_verdict(t.faces[g], t.interior, x, &exit_edge);
-    if (verdict == kVerdictExternal) return g;
-    if (verdict == kVerdictInternal) return kRouteInternal;
-    if (exit_edge < 0) break;
-    g = t.faces[g].neighbor[exit_edge];
-  }
-  // Exhaustive: above some face, or below every face plane of the closed mesh and hence inside it (and so
-  // inside the hull of the input).
-  for (std::int32_t f = 0; f < t.face_count; ++f) {
-    const FaceGeometry& face = t.faces[f];
-    if (orient3d(to_vec3d(face.v[0]), to_vec3d(face.v[1]), to_vec3d(face.v[2]), to_vec3d(x)) > 0) return f;
-  }
-  return kRouteInternal;
+  return locate_point(x, g, t.faces, t.face_count, t.interior, kMaxStrayWalk);
 }
 
 }  // namespace cudahull
