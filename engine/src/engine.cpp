@@ -647,9 +647,28 @@ IterationRecord Engine::iterate() {
 void Engine::finish(IterationRecord& record) {
   const auto t0 = Clock::now();
   auto P = [&](PointIndex i) { return to_vec3d(points_[i]); };
-  {
-    // No point is outside any more, but rejected swaps can have left concave edges: keep applying the
-    // paper's local steps (swaps, complementary swaps, removals) to every edge until nothing changes.
+  // The mesh is the exact hull when every edge is strictly convex (so every vertex is strictly extreme), c
+  // is inside, and every vertex it ever dropped lies inside it.  Everything else was discarded inside a
+  // tetrahedron of c and input points, so nothing outside is left.
+  auto count_faults = [&] {
+    std::size_t count = 0;
+    for (FaceId f = 0; f < mesh_.face_capacity(); ++f) {
+      const MeshFace& face = mesh_.face(f);
+      if (geometry_[f].tet[3] >= 0) ++count;  // c not strictly below this face
+      for (int i = 0; i < 3; ++i) {
+        const FaceId g = face.n[i];
+        if (g < f) continue;
+        const int j = mesh_.edge_index(g, face.v[(i + 1) % 3], face.v[i]);
+        const PointIndex y = mesh_.face(g).v[(j + 2) % 3];
+        if (orient3d(P(face.v[0]), P(face.v[1]), P(face.v[2]), P(y)) >= 0) ++count;
+      }
+    }
+    return count;
+  };
+  std::size_t faults = count_faults();
+  if (faults > 0) {
+    // No point is outside any more, but rejected swaps have left concave edges: keep applying the paper's
+    // local steps (swaps, complementary swaps, removals) to every edge until nothing changes.
     Impl impl(*this, record);
     for (int round = 0; round < 8; ++round) {
       for (FaceId f = 0; f < mesh_.face_capacity(); ++f) {
@@ -665,28 +684,15 @@ void Engine::finish(IterationRecord& record) {
       mesh_.compact();
       if (record.swaps.size() + record.removals.size() == before) break;
     }
+    geometry_ = face_geometry();
+    faults = count_faults();
   }
-  // The mesh is the exact hull when every edge is strictly convex (so every vertex is strictly extreme), c
-  // is inside, and every vertex it ever dropped lies inside it.  Everything else was discarded inside a
-  // tetrahedron of c and input points, so nothing outside is left.
-  std::size_t faults = 0;
   const FaceId faces = static_cast<FaceId>(mesh_.face_capacity());
-  for (FaceId f = 0; f < faces; ++f) {
-    const MeshFace& face = mesh_.face(f);
-    if (orient3d(P(face.v[0]), P(face.v[1]), P(face.v[2]), interior_) >= 0) ++faults;
-    for (int i = 0; i < 3; ++i) {
-      const FaceId g = face.n[i];
-      if (g < f) continue;
-      const int j = mesh_.edge_index(g, face.v[(i + 1) % 3], face.v[i]);
-      const PointIndex y = mesh_.face(g).v[(j + 2) % 3];
-      if (orient3d(P(face.v[0]), P(face.v[1]), P(face.v[2]), P(y)) >= 0) ++faults;
-    }
-  }
   std::sort(used_vertices_.begin(), used_vertices_.end());
   used_vertices_.erase(std::unique(used_vertices_.begin(), used_vertices_.end()), used_vertices_.end());
   if (faults == 0) {
     // The mesh is convex with c inside: locate each dropped vertex by a walk through the radial cones.
-    const std::vector<FaceGeometry> geometry = face_geometry();  // after the clean-up: all recomputed
+    const std::vector<FaceGeometry>& geometry = geometry_;
     const int walk = 64 + 4 * static_cast<int>(std::sqrt(static_cast<double>(geometry.size())));
     for (PointIndex r : used_vertices_) {
       if (mesh_.has_vertex(r)) continue;

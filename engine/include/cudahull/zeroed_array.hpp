@@ -13,7 +13,8 @@ template <class T>
 class ZeroedArray {
  public:
   ZeroedArray() = default;
-  explicit ZeroedArray(std::size_t size) : data_(static_cast<T*>(std::calloc(size ? size : 1, sizeof(T)))), size_(size) {
+  explicit ZeroedArray(std::size_t size)
+      : data_(static_cast<T*>(std::calloc(size ? size : 1, sizeof(T)))), size_(size) {
     if (!data_) throw std::bad_alloc();
   }
   T& operator[](std::size_t i) { return data_.get()[i]; }
