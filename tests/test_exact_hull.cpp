@@ -2,6 +2,7 @@
 // facets, duplicates, lower dimensions, extreme scales) and the shared models' known extreme counts.  Every
 // result must also pass the independent checker.
 #include "cudahull/exact_hull.hpp"
+#include "support/rng.hpp"
 
 #include <gtest/gtest.h>
 
@@ -23,20 +24,7 @@
 namespace cudahull {
 namespace {
 
-// Deterministic generator (splitmix64); coordinates are multiples of 2^-23 in [-1, 1], so that scaling by
-// powers of two is exact.
-struct Rng {
-  std::uint64_t s;
-  explicit Rng(std::uint64_t seed) : s(seed) {}
-  std::uint64_t next() {
-    std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  float unit() { return static_cast<float>(static_cast<std::int64_t>(next() >> 40) - (1 << 23)) / (1 << 23); }
-  std::size_t below(std::size_t n) { return static_cast<std::size_t>(next() % n); }
-};
+using testing::Rng;
 
 std::vector<Point3> cube(std::size_t n, std::uint64_t seed) {
   Rng r(seed);

@@ -12,21 +12,12 @@
 #include <vector>
 
 #include "cudahull/exact_hull.hpp"
+#include "support/rng.hpp"
 
 namespace cudahull {
 namespace {
 
-struct Rng {
-  std::uint64_t s;
-  explicit Rng(std::uint64_t seed) : s(seed) {}
-  std::uint64_t next() {
-    std::uint64_t z = (s += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  float unit() { return static_cast<float>(static_cast<std::int64_t>(next() >> 40) - (1 << 23)) / (1 << 23); }
-};
+using testing::Rng;
 
 std::vector<Point3> ball(std::size_t n, std::uint64_t seed) {
   Rng r(seed);
