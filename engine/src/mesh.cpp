@@ -103,6 +103,7 @@ std::array<FaceId, 2> Mesh::swap(FaceId f, int i) {
   const FaceId g = ff.n[i];
   const MeshFace gg = faces_[g];
   const int j = edge_index(g, v, u);
+  if (j < 0) throw std::logic_error("mesh adjacency is inconsistent");
   const PointIndex y = gg.v[prev(j)];
   const FaceId across_vx = ff.n[next(i)], across_xu = ff.n[prev(i)];
   const FaceId across_uy = gg.n[next(j)], across_yv = gg.n[prev(j)];
