@@ -123,9 +123,8 @@ struct Engine::Impl {
     return static_cast<std::int32_t>(entries.size() - 1);
   }
 
-  // Is x inside the cone from the interior point c over triangle (a, b, d)?  Exact.
-  bool in_cone(const Vec3d& a, const Vec3d& b, const Vec3d& d, const Vec3d& x) const {
-    const Vec3d& c = e.interior_;
+  // Is x inside the cone from viewpoint c over triangle (a, b, d)?  Exact.
+  static bool in_cone_from(const Vec3d& c, const Vec3d& a, const Vec3d& b, const Vec3d& d, const Vec3d& x) {
     const int s = orient3d(c, a, b, d);
     if (s == 0) return false;
     return orient3d(c, a, b, x) * s >= 0 && orient3d(c, b, d, x) * s >= 0 && orient3d(c, d, a, x) * s >= 0;
@@ -135,7 +134,7 @@ struct Engine::Impl {
   bool proven_inside(const Vec3d& a, const Vec3d& b, const Vec3d& d, const Vec3d& x) const {
     const int s = orient3d(a, b, d, e.interior_);
     if (s == 0) return false;
-    return orient3d(a, b, d, x) * s >= 0 && in_cone(a, b, d, x);
+    return orient3d(a, b, d, x) * s >= 0 && in_cone_from(e.interior_, a, b, d, x);
   }
 
   // The swap of edge u - v (faces (u, v, x) and (v, u, y)) is valid when, in the central projection from
@@ -180,12 +179,6 @@ struct Engine::Impl {
       swap.beneath_triangle[0] = x, swap.beneath_triangle[1] = u, swap.beneath_triangle[2] = y;
     }
     return SwapKind::kRejectedFoldover;
-  }
-
-  static bool in_cone_from(const Vec3d& c, const Vec3d& a, const Vec3d& b, const Vec3d& d, const Vec3d& x) {
-    const int s = orient3d(c, a, b, d);
-    if (s == 0) return false;
-    return orient3d(c, a, b, x) * s >= 0 && orient3d(c, b, d, x) * s >= 0 && orient3d(c, d, a, x) * s >= 0;
   }
 
   // Fig. 3b: swap edge i of face f.  Only concave edges, unless `around_doomed` (a complementary swap that
