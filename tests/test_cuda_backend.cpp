@@ -9,6 +9,8 @@
 // times for N cube points (skipped otherwise).
 #include <gtest/gtest.h>
 
+#include "support/point_sets.hpp"
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -27,6 +29,9 @@
 
 namespace cudahull {
 namespace {
+
+using testing::grid;
+using testing::scaled;
 
 // Every test needs the device: fail (never skip) with the reason when there is none.
 class Cuda : public ::testing::Test {
@@ -211,21 +216,6 @@ TEST_F(Cuda, ManySmallSeeds) {
                        distribution_name(dist) + " seed " + std::to_string(seed), {true, false});
     }
   }
-}
-
-std::vector<Point3> grid(int side) {
-  std::vector<Point3> p;
-  for (int z = 0; z < side; ++z)
-    for (int y = 0; y < side; ++y)
-      for (int x = 0; x < side; ++x)
-        p.push_back({float(x), float(y), float(z)});
-  return p;
-}
-
-std::vector<Point3> scaled(std::vector<Point3> p, float s) {
-  for (auto& q : p)
-    q = {q.x * s, q.y * s, q.z * s};
-  return p;
 }
 
 TEST_F(Cuda, DegenerateInputs) {

@@ -14,9 +14,13 @@
 #include "cudahull/point_io.hpp"
 #include "qhull_reference.hpp"
 #include "support/oracles.hpp"
+#include "support/point_sets.hpp"
 
 namespace cudahull {
 namespace {
+
+using testing::grid;
+using testing::scaled;
 
 struct RunResult {
   HullMesh hull;
@@ -38,12 +42,6 @@ RunResult run_engine(const std::vector<Point3>& points, unsigned threads = 2) {
 void expect_exact(const std::vector<Point3>& points, const HullMesh& hull) {
   const CheckResult check = check_hull(points, hull);
   EXPECT_TRUE(check.ok) << (check.failures.empty() ? "" : check.failures.front());
-}
-
-std::vector<Point3> scaled(std::vector<Point3> p, float s) {
-  for (auto& q : p)
-    q = {q.x * s, q.y * s, q.z * s};
-  return p;
 }
 
 // --- General position: Qhull and the checker agree, the engine needs no repair -------------------------
@@ -120,15 +118,6 @@ TEST(Engine, SmallRandomSetsMatchBruteForce) {
 }
 
 // --- Degenerate inputs (issue 3, item 8) ------------------------------------------------------------
-
-std::vector<Point3> grid(int side) {
-  std::vector<Point3> p;
-  for (int z = 0; z < side; ++z)
-    for (int y = 0; y < side; ++y)
-      for (int x = 0; x < side; ++x)
-        p.push_back({float(x), float(y), float(z)});
-  return p;
-}
 
 TEST(EngineDegenerate, IntegerGridHasEightCorners) {
   const auto points = grid(6);

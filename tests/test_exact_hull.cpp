@@ -2,6 +2,7 @@
 // facets, duplicates, lower dimensions, extreme scales) and the shared models' known extreme counts.  Every
 // result must also pass the independent checker.
 #include "cudahull/exact_hull.hpp"
+#include "support/point_sets.hpp"
 #include "support/rng.hpp"
 
 #include <gtest/gtest.h>
@@ -25,22 +26,15 @@ namespace cudahull {
 namespace {
 
 using testing::Rng;
+std::vector<Point3> ball(std::size_t n, std::uint64_t seed) {
+  return testing::dyadic_ball(n, seed);
+}
 
 std::vector<Point3> cube(std::size_t n, std::uint64_t seed) {
   Rng r(seed);
   std::vector<Point3> p(n);
   for (Point3& q : p)
     q = {r.unit(), r.unit(), r.unit()};
-  return p;
-}
-
-std::vector<Point3> ball(std::size_t n, std::uint64_t seed) {
-  Rng r(seed);
-  std::vector<Point3> p;
-  while (p.size() < n) {
-    Point3 q{r.unit(), r.unit(), r.unit()};
-    if (double(q.x) * q.x + double(q.y) * q.y + double(q.z) * q.z <= 1) p.push_back(q);
-  }
   return p;
 }
 

@@ -12,21 +12,15 @@
 #include <vector>
 
 #include "cudahull/exact_hull.hpp"
+#include "support/point_sets.hpp"
 #include "support/rng.hpp"
 
 namespace cudahull {
 namespace {
 
 using testing::Rng;
-
 std::vector<Point3> ball(std::size_t n, std::uint64_t seed) {
-  Rng r(seed);
-  std::vector<Point3> p;
-  while (p.size() < n) {
-    Point3 q{r.unit(), r.unit(), r.unit()};
-    if (double(q.x) * q.x + double(q.y) * q.y + double(q.z) * q.z <= 1) p.push_back(q);
-  }
-  return p;
+  return testing::dyadic_ball(n, seed);
 }
 
 // A mesh whose vertices are the given input points, in the given order.
