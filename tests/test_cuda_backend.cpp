@@ -5,8 +5,8 @@
 // label is only run where a GPU is expected.
 //
 // Environment: CUDAHULL_MODELS_DIR overrides the compiled-in folder of the shared models (the GPU machine
-// gets a copy carried beside the binary); CUDAHULL_TIMING_POINTS=N makes CudaTiming.Cube print per-iteration
-// times for N cube points (skipped otherwise).
+// gets a copy carried beside the binary).  Timings are not tests: `cudahull bench` and `cudahull hull
+// --table` measure them (docs/benchmarks.md).
 #include <gtest/gtest.h>
 
 #include "support/point_sets.hpp"
@@ -315,46 +315,6 @@ TEST_F(Cuda, TrafficPerIterationIsOFaces) {
     }
   });
   EXPECT_GT(iterations, 3);
-}
-
-// --- Timing (opt-in) ------------------------------------------------------------------------------------
-
-TEST_F(Cuda, Timing) {
-  const char* env = std::getenv("CUDAHULL_TIMING_POINTS");
-  if (env == nullptr) GTEST_SKIP() << "set CUDAHULL_TIMING_POINTS=N to time N cube points";
-  const std::size_t n = std::strtoull(env, nullptr, 10);
-  const auto points = generate_points(Distribution::kCube, n, 1);
-  using Clock = std::chrono::steady_clock;
-  auto run = [&](std::unique_ptr<Backend> backend, bool table) {
-    const auto t0 = Clock::now();
-    Engine engine(points, std::move(backend));
-    double host = 0, back = 0;
-    if (table) {
-      std::printf("%4s %8s %9s %10s %9s %9s %9s %12s\n", "iter", "faces", "refined", "ext after", "host ms",
-                  "back ms", "upload ms", "bytes moved");
-    }
-    engine.run([&](const IterationRecord& r) {
-      host += r.host_ms;
-      back += r.backend_ms;
-      if (table) {
-        std::printf("%4d %8zu %9zu %10zu %9.3f %9.3f %9.3f %12llu\n", r.iteration, r.faces_after,
-                    r.faces_refined, r.external_after, r.host_ms, r.backend_ms, r.upload_ms,
-                    static_cast<unsigned long long>(r.bytes_to_backend + r.bytes_from_backend));
-      }
-    });
-    const double total = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-    std::printf("%s: %zu points, %zu hull vertices, host %.1f ms, backend %.1f ms, total %.1f ms\n",
-                engine.backend().name().c_str(), n, engine.result().vertex_ids.size(), host, back, total);
-    return engine.result();
-  };
-  {  // warm up: context creation and module load stay out of the numbers
-    Engine warm(generate_points(Distribution::kCube, 10000, 2), make_cuda_backend());
-    warm.run();
-  }
-  const HullMesh gpu = run(make_cuda_backend(), true);
-  run(make_cuda_backend(), false);
-  const HullMesh cpu = run(make_cpu_backend(), false);
-  expect_same_hull(cpu, gpu);
 }
 
 }  // namespace
