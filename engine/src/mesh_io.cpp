@@ -217,9 +217,8 @@ void write_obj(std::ostream& os, const HullMesh& hull, const Faces& faces) {
   out.flush();
 }
 
-void write_off(std::ostream& os, const HullMesh& hull, const Faces& faces) {
-  TextOut out(os);
-  out.str("OFF\n").uint(hull.vertices.size()).str(" ").uint(faces.size()).str(" 0\n");
+// The part OFF and ASCII PLY share: one vertex per line, then each face as "count i j k ...".
+void write_counted_body(TextOut& out, const HullMesh& hull, const Faces& faces) {
   for (const Point3& p : hull.vertices)
     out.point(p).str("\n");
   for (std::size_t i = 0; i < faces.size(); ++i) {
@@ -232,6 +231,12 @@ void write_off(std::ostream& os, const HullMesh& hull, const Faces& faces) {
   out.flush();
 }
 
+void write_off(std::ostream& os, const HullMesh& hull, const Faces& faces) {
+  TextOut out(os);
+  out.str("OFF\n").uint(hull.vertices.size()).str(" ").uint(faces.size()).str(" 0\n");
+  write_counted_body(out, hull, faces);
+}
+
 void write_ply(std::ostream& os, const HullMesh& hull, const Faces& faces) {
   const std::size_t longest = faces.longest();
   TextOut out(os);
@@ -241,16 +246,7 @@ void write_ply(std::ostream& os, const HullMesh& hull, const Faces& faces) {
   out.str(longest > 255 ? "\nproperty list uint int vertex_indices\n"
                         : "\nproperty list uchar int vertex_indices\n");
   out.str("end_header\n");
-  for (const Point3& p : hull.vertices)
-    out.point(p).str("\n");
-  for (std::size_t i = 0; i < faces.size(); ++i) {
-    const auto f = faces[i];
-    out.uint(f.size());
-    for (std::uint32_t v : f)
-      out.str(" ").uint(v);
-    out.str("\n");
-  }
-  out.flush();
+  write_counted_body(out, hull, faces);
 }
 
 }  // namespace
