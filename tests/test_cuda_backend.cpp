@@ -262,13 +262,9 @@ TEST_F(Cuda, DegenerateInputs) {
 }
 
 TEST_F(Cuda, SmallRandomIntegerSets) {
-  std::mt19937 rng(7);
-  std::uniform_int_distribution<int> coord(-4, 4);
-  for (int trial = 0; trial < 60; ++trial) {
-    std::vector<Point3> points(8 + trial % 25);
-    for (auto& p : points)
-      p = {float(coord(rng)), float(coord(rng)), float(coord(rng))};
-    compare_backends(points, "small integer set " + std::to_string(trial), {true, false});
+  const auto sets = testing::small_integer_sets(60);
+  for (std::size_t trial = 0; trial < sets.size(); ++trial) {
+    compare_backends(sets[trial], "small integer set " + std::to_string(trial), {true, false});
   }
 }
 

@@ -103,13 +103,9 @@ TEST(Engine, NoRepairsInGeneralPosition) {
 }
 
 TEST(Engine, SmallRandomSetsMatchBruteForce) {
-  std::mt19937 rng(7);
-  std::uniform_int_distribution<int> coord(-4, 4);
-  for (int trial = 0; trial < 60; ++trial) {
-    std::vector<Point3> points(8 + trial % 25);
-    // Small integers: lots of coplanar and collinear coincidences and duplicates.
-    for (auto& p : points)
-      p = {float(coord(rng)), float(coord(rng)), float(coord(rng))};
+  const auto sets = testing::small_integer_sets(60);
+  for (std::size_t trial = 0; trial < sets.size(); ++trial) {
+    const std::vector<Point3>& points = sets[trial];
     const RunResult r = run_engine(points, 1);
     if (r.hull.dimension != 3) continue;
     EXPECT_EQ(r.hull.vertex_ids, testing::brute_force_extreme(points)) << "trial " << trial;

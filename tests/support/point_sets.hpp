@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <random>
 #include <vector>
 
 #include "cudahull/types.hpp"
@@ -34,6 +35,21 @@ inline std::vector<Point3> dyadic_ball(std::size_t n, std::uint64_t seed) {
     if (double(q.x) * q.x + double(q.y) * q.y + double(q.z) * q.z <= 1) p.push_back(q);
   }
   return p;
+}
+
+// `count` small sets of 8..32 points with integer coordinates in [-4, 4]: full of coplanar and collinear
+// coincidences and duplicates.  The same sets on every run.
+inline std::vector<std::vector<Point3>> small_integer_sets(int count) {
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> coord(-4, 4);
+  std::vector<std::vector<Point3>> sets;
+  for (int trial = 0; trial < count; ++trial) {
+    std::vector<Point3> points(8 + trial % 25);
+    for (auto& p : points)
+      p = {float(coord(rng)), float(coord(rng)), float(coord(rng))};
+    sets.push_back(std::move(points));
+  }
+  return sets;
 }
 
 }  // namespace cudahull::testing
