@@ -4,33 +4,15 @@
 #include <cmath>
 #include <thread>
 
+#include "cudahull/parallel.hpp"
 #include "cudahull/routing.hpp"
 
 namespace cudahull {
 namespace {
 
-// Runs body(begin, end, worker) over [0, n) split into one contiguous chunk per worker.
-template <class Body>
-void parallel_chunks(std::size_t n, unsigned workers, Body&& body) {
-  if (workers <= 1 || n < 4096) {
-    body(std::size_t{0}, n, 0u);
-    return;
-  }
-  std::vector<std::thread> threads;
-  const std::size_t chunk = (n + workers - 1) / workers;
-  for (unsigned w = 1; w < workers; ++w) {
-    const std::size_t begin = std::min(n, w * chunk), end = std::min(n, begin + chunk);
-    threads.emplace_back([&body, begin, end, w] { body(begin, end, w); });
-  }
-  body(std::size_t{0}, std::min(n, chunk), 0u);
-  for (auto& t : threads)
-    t.join();
-}
-
 class CpuBackend final : public Backend {
  public:
-  explicit CpuBackend(unsigned threads)
-      : workers_(threads ? threads : std::max(1u, std::thread::hardware_concurrency())) {}
+  explicit CpuBackend(unsigned threads) : workers_(threads ? threads : hardware_workers()) {}
 
   std::string name() const override { return "cpu (" + std::to_string(workers_) + " threads)"; }
 

@@ -22,8 +22,9 @@ FaceId Mesh::add_face(PointIndex a, PointIndex b, PointIndex c) {
   alive_.push_back(1);
   ++live_count_;
   for (PointIndex p : {a, b, c}) {
-    if (vertex_face_[p] == 0) ++vertex_count_;
-    vertex_face_[p] = id + 1;
+    FaceId& slot = vertex_face_[p];
+    if (slot == 0) ++vertex_count_;
+    slot = id + 1;
   }
   return id;
 }
@@ -33,12 +34,11 @@ void Mesh::kill(FaceId f) {
   --live_count_;
 }
 
-void Mesh::make_tetrahedron(std::size_t point_count, PointIndex p0, PointIndex p1, PointIndex p2,
-                            PointIndex p3) {
+void Mesh::make_tetrahedron(PointIndex p0, PointIndex p1, PointIndex p2, PointIndex p3) {
   faces_.clear();
   alive_.clear();
   live_count_ = 0;
-  vertex_face_ = ZeroedArray<FaceId>(point_count);
+  vertex_face_.clear();
   vertex_count_ = 0;
   // p3 lies below (p0, p1, p2), so that triangle already faces outward; the other three are oriented to
   // match, each edge appearing once in each direction.
@@ -60,12 +60,11 @@ void Mesh::make_tetrahedron(std::size_t point_count, PointIndex p0, PointIndex p
 
 std::vector<PointIndex> Mesh::vertices() const {
   std::vector<PointIndex> out;
-  out.reserve(3 * live_count_);
-  for (FaceId f = 0; f < faces_.size(); ++f) {
-    if (alive_[f]) out.insert(out.end(), faces_[f].v.begin(), faces_[f].v.end());
-  }
+  out.reserve(vertex_count_);
+  vertex_face_.for_each([&](PointIndex v, FaceId slot) {
+    if (slot != 0) out.push_back(v);
+  });
   std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;
 }
 
@@ -202,11 +201,11 @@ std::vector<FaceId> Mesh::compact() {
   faces_ = std::move(kept);
   alive_.assign(faces_.size(), 1);
   live_count_ = faces_.size();
-  // O(faces), not O(points): every live vertex is a corner of some kept face.
-  for (FaceId f = 0; f < faces_.size(); ++f) {
-    for (PointIndex p : faces_[f].v)
-      vertex_face_[p] = f + 1;
-  }
+  // Each vertex's face is live (add_face sets it for every corner of every new face, and only a removed
+  // vertex loses all its faces), so renumbering it is enough.
+  vertex_face_.for_each([&](PointIndex, FaceId& slot) {
+    if (slot != 0) slot = remap[slot - 1] + 1;
+  });
   return remap;
 }
 

@@ -18,8 +18,8 @@
 
 #include "cudahull/backend.hpp"
 #include "cudahull/mesh.hpp"
+#include "cudahull/point_map.hpp"
 #include "cudahull/types.hpp"
-#include "cudahull/zeroed_array.hpp"
 
 namespace cudahull {
 
@@ -132,9 +132,9 @@ class Engine {
   std::vector<DecisionEntry> last_decisions_;
   std::vector<RefinementEntry> last_refinement_;
   std::vector<PointIndex> removed_vertices_;
-  std::vector<PointIndex> used_vertices_;   // every point that was ever a mesh vertex
-  ZeroedArray<std::uint8_t> vertex_flags_;  // per point: kDoomed, kRemovedOnce (engine.cpp)
-  int stalled_ = 0;                         // iterations without progress
+  std::vector<PointIndex> used_vertices_;  // every point that was ever a mesh vertex
+  PointMap<std::uint8_t> vertex_flags_;    // per vertex: kDoomed, kRemovedOnce (engine.cpp)
+  int stalled_ = 0;                        // iterations without progress
   HullMesh result_;
   IterationRecord last_record_;
   std::vector<FaceGeometry> geometry_;  // the current mesh's faces as last sent to the backend

@@ -10,8 +10,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "cudahull/point_map.hpp"
 #include "cudahull/types.hpp"
-#include "cudahull/zeroed_array.hpp"
 
 namespace cudahull {
 
@@ -28,15 +28,14 @@ class Mesh {
  public:
   // The initial tetrahedron (section 3.1); (p0, p1, p2) must be clockwise seen from p3, i.e. p3 below the
   // counter-clockwise triangle (p0, p1, p2).
-  // `point_count` sizes the vertex lookup (one slot per input point).
-  void make_tetrahedron(std::size_t point_count, PointIndex p0, PointIndex p1, PointIndex p2, PointIndex p3);
+  void make_tetrahedron(PointIndex p0, PointIndex p1, PointIndex p2, PointIndex p3);
 
   std::size_t face_capacity() const { return faces_.size(); }  // ids in use, live or dead
   std::size_t live_faces() const { return live_count_; }
   bool alive(FaceId f) const { return alive_[f] != 0; }
   const MeshFace& face(FaceId f) const { return faces_[f]; }
   std::size_t vertex_count() const { return vertex_count_; }
-  bool has_vertex(PointIndex v) const { return v < vertex_face_.size() && vertex_face_[v] != 0; }
+  bool has_vertex(PointIndex v) const { return vertex_face_.get(v) != 0; }
   // The number of edges at v, counting no further than `limit`.
   std::size_t degree(PointIndex v, std::size_t limit = SIZE_MAX) const;
   std::vector<PointIndex> vertices() const;  // sorted
@@ -75,8 +74,8 @@ class Mesh {
   std::vector<std::uint8_t> alive_;
   std::size_t live_count_ = 0;
   // Per input point: 1 + some live face that holds it, or 0 when it is not a vertex.
-  ZeroedArray<FaceId> vertex_face_;
-  FaceId face_of_vertex(PointIndex v) const { return vertex_face_[v] - 1; }
+  PointMap<FaceId> vertex_face_;
+  FaceId face_of_vertex(PointIndex v) const { return vertex_face_.get(v) - 1; }
   std::size_t vertex_count_ = 0;
 };
 

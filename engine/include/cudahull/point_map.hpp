@@ -1,0 +1,80 @@
+// A map from input point index to a small value that is zero for every point not yet stored, sized by the
+// points that ever become mesh vertices rather than by the input.  A per-point array of 20M entries would
+// cost a page fault (and, with transparent huge pages, a 2 MB clear) for almost every hull vertex touched,
+// which was most of the host time on a 10M-point cube (docs/benchmarks.md).
+//
+// Open addressing with linear probing; keys are never erased (a value is reset to zero instead).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "cudahull/types.hpp"
+
+namespace cudahull {
+
+template <class V>
+class PointMap {
+ public:
+  PointMap() { rehash(64); }
+
+  // The value stored for `key`, or zero.
+  V get(PointIndex key) const {
+    for (std::size_t i = slot(key);; i = (i + 1) & mask_) {
+      if (keys_[i] == key) return values_[i];
+      if (keys_[i] == kEmpty) return V{};
+    }
+  }
+  // A reference to the value for `key`, inserting a zero first if absent.  Valid until the next insert.
+  V& operator[](PointIndex key) {
+    for (std::size_t i = slot(key);; i = (i + 1) & mask_) {
+      if (keys_[i] == key) return values_[i];
+      if (keys_[i] == kEmpty) {
+        if (2 * (size_ + 1) > keys_.size()) {
+          rehash(2 * keys_.size());
+          return (*this)[key];
+        }
+        ++size_;
+        keys_[i] = key;
+        return values_[i];
+      }
+    }
+  }
+  void clear() { rehash(64); }
+  // Calls visit(key, value&) for every stored key, in no particular order.
+  template <class Visit>
+  void for_each(Visit&& visit) {
+    for (std::size_t i = 0; i < keys_.size(); ++i) {
+      if (keys_[i] != kEmpty) visit(keys_[i], values_[i]);
+    }
+  }
+  template <class Visit>
+  void for_each(Visit&& visit) const {
+    for (std::size_t i = 0; i < keys_.size(); ++i) {
+      if (keys_[i] != kEmpty) visit(keys_[i], values_[i]);
+    }
+  }
+
+ private:
+  static constexpr PointIndex kEmpty = 0xffffffffu;  // never a point index (at most 2^32 - 2 points)
+  std::size_t slot(PointIndex key) const {
+    return static_cast<std::size_t>((static_cast<std::uint64_t>(key) * 0x9E3779B97F4A7C15ull) >> 32) & mask_;
+  }
+  void rehash(std::size_t capacity) {
+    std::vector<PointIndex> old_keys = std::move(keys_);
+    std::vector<V> old_values = std::move(values_);
+    keys_.assign(capacity, kEmpty);
+    values_.assign(capacity, V{});
+    mask_ = capacity - 1;
+    size_ = 0;
+    for (std::size_t i = 0; i < old_keys.size(); ++i) {
+      if (old_keys[i] != kEmpty) (*this)[old_keys[i]] = old_values[i];
+    }
+  }
+
+  std::vector<PointIndex> keys_;
+  std::vector<V> values_;
+  std::size_t mask_ = 0, size_ = 0;
+};
+
+}  // namespace cudahull
