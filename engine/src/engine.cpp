@@ -410,9 +410,9 @@ std::vector<std::int32_t> Engine::point_faces() const {
   return out;
 }
 
-std::vector<FaceGeometry> Engine::face_geometry(const std::vector<FaceId>* remap) const {
+void Engine::face_geometry(std::vector<FaceGeometry>& faces, const std::vector<FaceId>* remap) const {
   const std::size_t count = mesh_.live_faces();
-  std::vector<FaceGeometry> faces(count);
+  faces.resize(count);  // reuses the spare buffer: a fresh 100 MB array costs page faults every iteration
   // Faces that survived the iteration keep their corners and tetrahedron signs (4 exact orient3d each);
   // compaction keeps the order, so this is one forward pass.  Only new faces are computed.
   std::vector<std::uint8_t> known(count, 0);
@@ -440,7 +440,6 @@ std::vector<FaceGeometry> Engine::face_geometry(const std::vector<FaceId>* remap
         }
       },
       16384);
-  return faces;
 }
 
 FaceCell Engine::face_cell(FaceId f) const {
@@ -528,14 +527,15 @@ IterationRecord Engine::initialize() {
     }
   }
 
-  IterationTables tables;
+  IterationTables& tables = tables_;
+  tables.clear();
   tables.interior = interior_;
   for (FaceId f = 0; f < 4; ++f) {
     const FaceCell cell = face_cell(f);
     for (int i = 0; i < 3; ++i)
       tables.initial_cells.push_back(cell.edge_plane[i]);
   }
-  tables.faces = face_geometry();
+  face_geometry(tables.faces);
   tables.old_face_split.assign(1, -1);  // unused: the first distribution goes by the initial cells
   tables.old_face_route.assign(1, 0);
   record.host_ms = ms_since(t0) - backend_ms;
@@ -544,7 +544,7 @@ IterationRecord Engine::initialize() {
   external_ = backend_->compact_index_array();
   backend_->get_extreme_points(extremes_);
   record.backend_ms = backend_ms + ms_since(tb3);
-  geometry_ = std::move(tables.faces);
+  geometry_.swap(tables.faces);  // the old geometry stays as the next iteration's buffer
   record.faces_after = 4;
   record.external_after = external_;
   record.bytes_to_backend = backend_->bytes_to_backend();
@@ -601,8 +601,9 @@ IterationRecord Engine::iterate() {
   impl.settle();
 
   // Renumber the faces and turn work ids into route codes (Fig. 7).
-  const std::vector<FaceId> remap = mesh_.compact();
-  IterationTables tables;
+  const std::vector<FaceId>& remap = mesh_.compact();
+  IterationTables& tables = tables_;
+  tables.clear();
   tables.interior = interior_;
   tables.refinement = std::move(refinement);
   tables.old_face_split.assign(old_faces, -1);
@@ -622,7 +623,7 @@ IterationRecord Engine::iterate() {
     tables.decision[k].above = impl.route_code(impl.entry_targets[k][0], remap);
     tables.decision[k].below = impl.route_code(impl.entry_targets[k][1], remap);
   }
-  tables.faces = face_geometry(&remap);
+  face_geometry(tables.faces, &remap);
   record.decision_entries = tables.decision.size();
   record.host_ms = ms_since(t0);
 
@@ -632,15 +633,15 @@ IterationRecord Engine::iterate() {
   external_ = backend_->compact_index_array();
   backend_->get_extreme_points(extremes_);
   record.backend_ms = ms_since(tb);
-  geometry_ = std::move(tables.faces);
+  geometry_.swap(tables.faces);  // the old geometry stays as the next iteration's buffer
 
   record.faces_after = mesh_.live_faces();
   record.external_after = external_;
   record.bytes_to_backend = backend_->bytes_to_backend() - to_before;
   record.bytes_from_backend = backend_->bytes_from_backend() - from_before;
   if (options_.keep_decisions) record.decisions = tables.decision;
-  last_decisions_ = std::move(tables.decision);
-  last_refinement_ = std::move(tables.refinement);
+  last_decisions_ = tables.decision;
+  last_refinement_ = tables.refinement;
   stalled_ = external_ < record.external_before ? 0 : stalled_ + 1;
   if (external_ == 0 || stalled_ >= kStallLimit) finish(record);
   return record;
@@ -706,7 +707,7 @@ void Engine::finish(IterationRecord& record) {
       mesh_.compact();
       if (record.swaps.size() + record.removals.size() == before) break;
     }
-    geometry_ = face_geometry();
+    face_geometry(geometry_);
     faults = count_faults();
   }
   const FaceId faces = static_cast<FaceId>(mesh_.face_capacity());

@@ -183,30 +183,31 @@ FaceId Mesh::remove_degree3(PointIndex v) {
   return n;
 }
 
-std::vector<FaceId> Mesh::compact() {
-  std::vector<FaceId> remap(faces_.size(), kNoFace);
+const std::vector<FaceId>& Mesh::compact() {
+  // In place (a new id is never above the old one), into buffers that keep their capacity: fresh arrays of
+  // millions of faces would cost page faults every iteration.
+  remap_.assign(faces_.size(), kNoFace);
   FaceId next_id = 0;
   for (FaceId f = 0; f < faces_.size(); ++f) {
-    if (alive_[f]) remap[f] = next_id++;
+    if (alive_[f]) remap_[f] = next_id++;
   }
-  std::vector<MeshFace> kept;
-  kept.reserve(next_id);
   for (FaceId f = 0; f < faces_.size(); ++f) {
     if (!alive_[f]) continue;
-    MeshFace face = faces_[f];
-    for (FaceId& nb : face.n)
-      nb = remap[nb];
-    kept.push_back(face);
+    MeshFace& kept = faces_[remap_[f]];
+    kept = faces_[f];
+    for (FaceId& nb : kept.n)
+      nb = remap_[nb];
   }
-  faces_ = std::move(kept);
-  alive_.assign(faces_.size(), 1);
-  live_count_ = faces_.size();
+  faces_.resize(next_id);
+  alive_.assign(next_id, 1);
+  live_count_ = next_id;
+  const std::vector<FaceId>& remap = remap_;
   // Each vertex's face is live (add_face sets it for every corner of every new face, and only a removed
   // vertex loses all its faces), so renumbering it is enough.
   vertex_face_.for_each([&](PointIndex, FaceId& slot) {
     if (slot != 0) slot = remap[slot - 1] + 1;
   });
-  return remap;
+  return remap_;
 }
 
 }  // namespace cudahull

@@ -29,6 +29,17 @@ struct IterationTables {
   std::vector<PointIndex> retired;
   Vec3d interior;
 
+  // Empties every table but keeps the allocations.
+  void clear() {
+    old_face_split.clear();
+    old_face_route.clear();
+    refinement.clear();
+    decision.clear();
+    faces.clear();
+    initial_cells.clear();
+    retired.clear();
+  }
+
   std::uint64_t bytes() const {
     return (old_face_split.size() + old_face_route.size()) * sizeof(std::int32_t) +
            refinement.size() * sizeof(RefinementEntry) + decision.size() * sizeof(DecisionEntry) +

@@ -59,8 +59,9 @@ class Mesh {
   void ring(PointIndex v, std::vector<PointIndex>& ring_vertices, std::vector<FaceId>& ring_faces) const;
   bool adjacent(PointIndex a, PointIndex b) const;  // is a - b an edge?
 
-  // Renumbers live faces 0..F-1 in id order; returns old id -> new id (kNoFace for dead faces).
-  std::vector<FaceId> compact();
+  // Renumbers live faces 0..F-1 in id order; returns old id -> new id (kNoFace for dead faces), valid until
+  // the next compact().
+  const std::vector<FaceId>& compact();
 
  private:
   FaceId add_face(PointIndex a, PointIndex b, PointIndex c);
@@ -72,6 +73,7 @@ class Mesh {
 
   std::vector<MeshFace> faces_;
   std::vector<std::uint8_t> alive_;
+  std::vector<FaceId> remap_;  // compact()'s answer
   std::size_t live_count_ = 0;
   // Per input point: 1 + some live face that holds it, or 0 when it is not a vertex.
   PointMap<FaceId> vertex_face_;
