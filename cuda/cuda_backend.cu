@@ -119,6 +119,13 @@ class PinnedBuffer {
 };
 
 constexpr int kBlock = 256;
+// Occupancy of the distribution pass: at least 2 blocks of 256 threads per SM, so at most 128 registers a
+// thread.  Measured on the H100 (docs/benchmarks.md): capping harder (3 or 4 blocks, 85 or 64 registers)
+// spills and made the 10M-point cube slower (3.4 and 3.9 ms on the device against 2.7).
+#ifndef CUDAHULL_DISTRIBUTE_BLOCKS_PER_SM
+#define CUDAHULL_DISTRIBUTE_BLOCKS_PER_SM 2
+#endif
+constexpr int kDistributeBlocksPerSm = CUDAHULL_DISTRIBUTE_BLOCKS_PER_SM;
 // Faces up to this many accumulate their counts and keys in shared memory (12 bytes a face) before one
 // global atomic per face and block; beyond it, contention is low and the kernel goes straight to global.
 constexpr std::int32_t kSharedFaces = 2048;
@@ -248,7 +255,7 @@ __global__ void retire_kernel(const PointIndex* __restrict__ retired, std::size_
 // the packed extreme key (getExtremePoints fused into the pass, as on the CPU).  With kShared, per-block
 // accumulators in shared memory take the contention of the early iterations (few faces, many points).
 template <bool kShared>
-__global__ void __launch_bounds__(kBlock)
+__global__ void __launch_bounds__(kBlock, kDistributeBlocksPerSm)
     distribute_kernel(const Point3* __restrict__ points, const PointIndex* __restrict__ active, std::size_t n,
                       std::int32_t* __restrict__ face_of, RoutingView view, std::uint32_t* __restrict__ count,
                       unsigned long long* __restrict__ best) {
@@ -312,6 +319,17 @@ __global__ void point_faces_kernel(const PointIndex* __restrict__ active, std::s
                                    const std::int32_t* __restrict__ face_of, std::int32_t* __restrict__ out) {
   const std::size_t k = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x;
   if (k < n) out[active[k]] = face_of[active[k]];
+}
+
+// CUDA-GL interop (issue 5): every point's state, written where the viewer draws from.
+__global__ void fill_kernel(std::int32_t* __restrict__ out, std::size_t n, std::int32_t value) {
+  const std::size_t k = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (k < n) out[k] = value;
+}
+__global__ void mark_kernel(const PointIndex* __restrict__ ids, std::size_t n, std::int32_t* __restrict__ out,
+                            std::int32_t value) {
+  const std::size_t k = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (k < n) out[ids[k]] = value;
 }
 
 unsigned blocks_for(std::size_t n) {
@@ -579,6 +597,33 @@ class CudaBackend final : public Backend {
     }
   }
 
+  bool has_device_point_states() const override { return true; }
+
+  bool write_point_states_on_device(std::int32_t* out, std::size_t count,
+                                    const std::vector<PointIndex>& vertices) override {
+    select_device();
+    if (count != n_points_ || count == 0) return false;
+    fill_kernel<<<blocks_for(count), kBlock, 0, stream_>>>(out, count, kPointStateInternal);
+    check(cudaGetLastError(), "launching fill_kernel");
+    if (n_active_ != 0) {  // active points are external: their face
+      point_faces_kernel<<<blocks_for(n_active_), kBlock, 0, stream_>>>(active_.get(), n_active_,
+                                                                        face_of_.get(), out);
+      check(cudaGetLastError(), "launching point_faces_kernel");
+    }
+    if (!vertices.empty()) {  // O(hull) to the device, nothing back
+      vertex_ids_.reserve(vertices.size(), "the hull vertex ids");
+      check(cudaMemcpyAsync(vertex_ids_.get(), vertices.data(), vertices.size() * sizeof(PointIndex),
+                            cudaMemcpyHostToDevice, stream_),
+            "uploading the hull vertex ids");
+      bytes_to_ += vertices.size() * sizeof(PointIndex);
+      mark_kernel<<<blocks_for(vertices.size()), kBlock, 0, stream_>>>(vertex_ids_.get(), vertices.size(),
+                                                                       out, kPointStateVertex);
+      check(cudaGetLastError(), "launching mark_kernel");
+    }
+    check(cudaStreamSynchronize(stream_), "writing the point states (kernel fault)");
+    return true;
+  }
+
   void point_faces(std::vector<std::int32_t>& out) override {
     select_device();
     out.assign(n_points_, -1);
@@ -658,6 +703,7 @@ class CudaBackend final : public Backend {
   std::size_t n_points_ = 0, n_active_ = 0, face_count_ = 0;
   DeviceBuffer<Point3> points_;
   DeviceBuffer<PointIndex> active_, active_alt_;
+  DeviceBuffer<PointIndex> vertex_ids_;  // write_point_states_on_device
   DeviceBuffer<std::int32_t> face_of_;
   DeviceBuffer<unsigned char> tables_dev_, extremes_dev_, cub_temp_;
   DeviceBuffer<std::int64_t> scalar_dev_;

@@ -227,7 +227,10 @@ void AppWindow::panel_main() {
   RenderSettings& s = session_->settings();
 
   // The path that per-point state takes to the GL buffer (issue 5, item 3), said in the UI and the log.
-  ImGui::Text("Per-point state: %s", session_->upload_path());
+  ImGui::Text("Per-point state: %s", session_->upload_path().c_str());
+  if (session_->scene())
+    ImGui::Text("Per-point bytes read back: %s",
+                format_bytes(session_->scene()->point_readback_bytes()).c_str());
   ImGui::TextWrapped("Backend: %s", backend_note_.c_str());
   ImGui::Text("%.0f fps", static_cast<double>(ImGui::GetIO().Framerate));
 
@@ -468,6 +471,7 @@ int AppWindow::run() {
   glfwSetDropCallback(window_, drop_callback);
 
   session_ = std::make_unique<Session>();
+  session_->allow_interop(!o_.no_interop);
   backend_ = backend_factory(o_.backend, &backend_note_);
   log("window: " + gl_description());
   if (!o_.source.empty()) {

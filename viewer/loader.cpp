@@ -2,9 +2,11 @@
 
 #include <filesystem>
 
+#include "cuda_backend.hpp"
 #include "cudahull/cpu_backend.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/generators.hpp"
+#include "device_info.hpp"
 
 namespace cudahull::viewer {
 
@@ -22,11 +24,18 @@ std::shared_ptr<const std::vector<Point3>> load_points(const PointSource& source
 }
 
 Scene::BackendFactory backend_factory(const std::string& requested, std::string* note) {
-  if (requested == "cuda")
-    throw DeviceError(
-        "--backend cuda: the viewer's CUDA path (CUDA-GL interop) is not built yet; use --backend auto or "
-        "cpu");
-  *note = requested == "cpu" ? "cpu (as requested)" : "cpu (auto: the viewer's CUDA path is not built yet)";
+  if (requested != "cpu") {
+    const CudaDeviceInfo info = query_cuda_device();
+    if (info.usable) {
+      *note =
+          "cuda, " + info.name + (requested == "auto" ? " (auto: a usable CUDA device)" : " (as requested)");
+      return [] { return make_cuda_backend(); };
+    }
+    if (requested == "cuda") throw DeviceError("--backend cuda: no usable CUDA device: " + info.reason);
+    *note = "cpu (auto: no usable CUDA device: " + info.reason + ")";
+  } else {
+    *note = "cpu (as requested)";
+  }
   return [] { return make_cpu_backend(); };
 }
 

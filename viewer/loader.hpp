@@ -30,8 +30,8 @@ struct PointSource {
 std::shared_ptr<const std::vector<Point3>> load_points(const PointSource& source,
                                                        const ProgressFn& progress = {});
 
-// --backend: "cpu", or "auto" (the CPU until the viewer's CUDA path lands; issue 5, item 3).  Throws
-// DeviceError for "cuda", which the viewer does not have yet.  `note` says what was chosen and why.
+// --backend: "cpu", "cuda", or "auto" (CUDA when a usable device is present, else the CPU).  Throws
+// DeviceError for "cuda" without a usable device.  `note` says what was chosen and why.
 Scene::BackendFactory backend_factory(const std::string& requested, std::string* note);
 
 // Loads on a worker thread.  The destructor waits for it.

@@ -1,6 +1,7 @@
 // cudahull-viewer: steps the CudaHull algorithm one iteration at a time and shows it (issue 5), in a
 // window or headless.  See `cudahull-viewer --help`.
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <new>
@@ -27,6 +28,7 @@ int run_headless(const ViewerOptions& o) {
   log_line(o, "headless: " + context->description() + ": " + gl_description());
   {
     Session session;
+    session.allow_interop(!o.no_interop);
     session.set_scene(std::make_unique<Scene>(points, factory, o.source.label()), true);
     log_line(o, o.source.label() + ": " + std::to_string(points->size()) + " points; backend " +
                     backend_note + "; per-point state: " + session.upload_path());
@@ -35,10 +37,22 @@ int run_headless(const ViewerOptions& o) {
     while (plan.next(session, line))
       log_line(o, line);
     const Scene& scene = *session.scene();
-    log_line(o, "at position " + std::to_string(scene.position()) + (scene.done() ? " (done)" : ""));
+    log_line(o, "at position " + std::to_string(scene.position()) + (scene.done() ? " (done)" : "") +
+                    "; per-point bytes read back from the backend: " +
+                    std::to_string(scene.point_readback_bytes()));
     if (o.bench_frames > 0) {
       // For docs/benchmarks.md (issue 5: fps at 1M, 10M, 20M points): one JSON line on stdout.
       const double ms = session.time_frames(o.bench_frames, o.width, o.height);
+      // Step latency: one iteration plus the redraw that shows it (state write or upload included), for up
+      // to 3 steps from here.
+      double step_ms = 0;
+      int timed_steps = 0;
+      for (; timed_steps < 3 && !session.scene()->done(); ++timed_steps) {
+        const auto t0 = std::chrono::steady_clock::now();
+        session.scene()->step(1);
+        session.time_frames(0, o.width, o.height);
+        step_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      }
       nlohmann::json j{{"points", scene.points().size()},
                        {"position", scene.position()},
                        {"width", o.width},
@@ -47,7 +61,10 @@ int run_headless(const ViewerOptions& o) {
                        {"ms_per_frame", ms},
                        {"fps", ms > 0 ? 1000.0 / ms : 0.0},
                        {"renderer", gl_description()},
-                       {"upload_path", session.upload_path()}};
+                       {"upload_path", session.upload_path()},
+                       {"point_readback_bytes", scene.point_readback_bytes()},
+                       {"step_ms", timed_steps > 0 ? step_ms / timed_steps : 0.0},
+                       {"timed_steps", timed_steps}};
       std::printf("%s\n", j.dump().c_str());
     }
   }  // GL objects go before the context
@@ -100,8 +117,9 @@ int main(int argc, char** argv) {
   app.add_option("INPUT", o.source.path, "Points: .ply .obj .off .xyz .txt");
   auto* gen_opt = app.add_option("--gen", gen, dist_help)->expected(2)->type_name("DIST N");
   app.add_option("--seed", o.source.seed, "Seed for --gen")->capture_default_str();
-  app.add_option("--backend", o.backend,
-                 "auto (the CPU for now) or cpu; cuda: not in the viewer yet (exit 4)")
+  app.add_option(
+         "--backend", o.backend,
+         "auto (CUDA when a usable device is present, else the CPU), cuda (exit 4 without a device) or cpu")
       ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
       ->capture_default_str();
   app.add_flag("--headless", o.headless, "Render offscreen with no window (EGL)");
@@ -120,6 +138,8 @@ int main(int argc, char** argv) {
   app.add_option("--bench-frames", o.bench_frames,
                  "Headless: after everything else, time N frames and print one JSON line (fps) on stdout")
       ->check(CLI::Range(1, 100000));
+  app.add_flag("--no-interop", o.no_interop,
+               "Upload per-point state from the CPU even where CUDA-GL interop works (for comparisons)");
   app.add_flag("-q,--quiet", o.quiet, "No log lines on stderr");
 
   try {

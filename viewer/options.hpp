@@ -24,6 +24,7 @@ struct ViewerOptions {
   std::optional<long long> frames;    // windowed: close this many frames after the plan is done
   int bench_frames = 0;               // headless: time this many frames after the plan, JSON on stdout
   bool quiet = false;
+  bool no_interop = false;  // upload per-point state from the CPU even where CUDA-GL interop would work
 };
 
 int run_window(const ViewerOptions& options);

@@ -12,12 +12,15 @@
 #include <memory>
 #include <vector>
 
+#include "cudahull/backend.hpp"
 #include "cudahull/types.hpp"
 
 namespace cudahull::viewer {
 
 inline constexpr std::int32_t kPointInternal = -1;
 inline constexpr std::int32_t kPointVertex = -2;
+static_assert(kPointInternal == kPointStateInternal && kPointVertex == kPointStateVertex,
+              "the backend writes the same codes through interop");
 
 // What happened to a face in the last iteration (Algorithm 1), for the colour-by-state mode.
 enum class FaceState : std::uint8_t {
@@ -39,9 +42,10 @@ inline std::uint32_t pack_face_info(FaceState state, std::uint32_t age) {
 }
 
 enum DirtyBits : std::uint32_t {
-  kDirtyPositions = 1u << 0,   // a new point set (reallocates the point buffers)
-  kDirtyPointState = 1u << 1,  // point_state changed (same size)
-  kDirtyHull = 1u << 2,        // hull corners or hull vertex ids changed
+  kDirtyPositions = 1u << 0,    // a new point set (reallocates the point buffers)
+  kDirtyPointState = 1u << 1,   // point_state changed (same size)
+  kDirtyHull = 1u << 2,         // hull corners or hull vertex ids changed
+  kDirtyDeviceState = 1u << 3,  // point state to be written on the device (CUDA-GL interop); not upload()'s
   kDirtyAll = kDirtyPositions | kDirtyPointState | kDirtyHull,
 };
 

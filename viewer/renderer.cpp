@@ -154,7 +154,8 @@ Renderer::~Renderer() {
 }
 
 void Renderer::upload(RenderData& data) {
-  if (data.dirty == 0) return;  // last_point_upload_bytes() keeps describing the last real upload
+  // kDirtyDeviceState is the session's (CUDA-GL interop), not an upload: it stays set.
+  if ((data.dirty & ~kDirtyDeviceState) == 0) return;  // last_point_upload_bytes() keeps the last real one
   last_point_bytes_ = 0;
   if (data.dirty & kDirtyPositions) {
     point_count_ = data.positions ? data.positions->size() : 0;
@@ -186,7 +187,7 @@ void Renderer::upload(RenderData& data) {
                            data.hull_vertex_ids.data());
   }
   total_point_bytes_ += last_point_bytes_;
-  data.dirty = 0;
+  data.dirty &= kDirtyDeviceState;
 }
 
 void Renderer::draw(const ViewParams& view, const RenderSettings& s) const {

@@ -135,14 +135,6 @@ void Scene::refresh_render_data() {
   render_stale_ = false;
   const std::size_t n = points_->size();
 
-  // Per-point state.  Before the first step no point has a face yet: all are shown as external.
-  if (position_ == 0) {
-    render_.point_state.assign(n, 0);
-  } else {
-    render_.point_state = engine_->point_faces();
-    if (render_.point_state.size() != n) render_.point_state.assign(n, kPointInternal);
-  }
-
   std::vector<FaceKey> faces;
   current_faces(faces);
   render_.hull_vertex_ids.clear();
@@ -151,8 +143,23 @@ void Scene::refresh_render_data() {
   } else if (position_ > 0) {
     render_.hull_vertex_ids = engine_->mesh().vertices();
   }
-  for (PointIndex v : render_.hull_vertex_ids)
-    render_.point_state[v] = kPointVertex;
+
+  // Per-point state: written on the device by the backend (CUDA-GL interop: write_device_point_states()),
+  // or read back and uploaded.  Before the first step no point has a face yet: all are shown as external.
+  std::uint32_t state_bit = kDirtyPointState;
+  if (position_ == 0) {
+    render_.point_state.assign(n, 0);
+  } else if (device_point_states_ && engine_->dimension() == 3) {
+    render_.point_state.clear();
+    state_bit = kDirtyDeviceState;
+  } else {
+    const std::uint64_t before = engine_->backend().bytes_from_backend();
+    render_.point_state = engine_->point_faces();
+    point_readback_bytes_ += engine_->backend().bytes_from_backend() - before;
+    if (render_.point_state.size() != n) render_.point_state.assign(n, kPointInternal);
+    for (PointIndex v : render_.hull_vertex_ids)
+      render_.point_state[v] = kPointVertex;
+  }
 
   // What the last iteration did to each face (Algorithm 1): made by a swap, by a removal, or otherwise new
   // (a refinement, Fig. 3a; at iteration 0 the tetrahedron).
@@ -187,7 +194,14 @@ void Scene::refresh_render_data() {
       }
     }
   }
-  render_.dirty |= kDirtyPointState | kDirtyHull;
+  render_.dirty |= state_bit | kDirtyHull;
+}
+
+bool Scene::write_device_point_states(void* device, std::size_t bytes) {
+  const std::size_t n = points_->size();
+  if (bytes < n * sizeof(std::int32_t)) return false;
+  return engine_->write_point_states_on_device(static_cast<std::int32_t*>(device), n,
+                                               render_.hull_vertex_ids);
 }
 
 }  // namespace cudahull::viewer

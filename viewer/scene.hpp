@@ -8,7 +8,8 @@
 // reached, without the O(faces) vectors, for the plots (cf. Fig. 9).
 //
 // render_data() is derived lazily, once per position shown, not once per step of a replay or a run.
-// Per-point state comes from Engine::point_faces() (the "CPU upload" path): O(points) per refresh.
+// Per-point state comes from Engine::point_faces() (the "CPU upload" path, O(points) per refresh), or, with
+// device point states on, the backend writes it into the GL buffer (CUDA-GL interop, no readback).
 #pragma once
 
 #include <array>
@@ -54,6 +55,21 @@ class Scene {
   const IterationRecord* current_record() const { return position_ > 0 ? &engine_->last_record() : nullptr; }
   const Engine& engine() const { return *engine_; }
 
+  // CUDA-GL interop (issue 5): when on, render_data() leaves point_state empty and sets kDirtyDeviceState,
+  // and the session maps the GL buffer and calls write_device_point_states().  Only for a backend with
+  // device point states (the CUDA backend).
+  bool backend_has_device_point_states() const { return engine_->backend().has_device_point_states(); }
+  void set_device_point_states(bool on) {
+    device_point_states_ = on;
+    render_stale_ = true;
+  }
+  bool device_point_states() const { return device_point_states_; }
+  // Writes every point's state into `device` (the mapped GL buffer, `bytes` long); false if it cannot
+  // (then the caller falls back to uploading).
+  bool write_device_point_states(void* device, std::size_t bytes);
+  // Per-point bytes the fallback path read back from the backend so far (0 on the interop path).
+  std::uint64_t point_readback_bytes() const { return point_readback_bytes_; }
+
   RenderData& render_data();
   // Bounds of the point set (all zero when empty).
   void bounds(float lo[3], float hi[3]) const;
@@ -83,6 +99,8 @@ class Scene {
   BirthMap born_;  // the iteration each face of the current polyhedron was made in (for "by age")
   RenderData render_;
   bool render_stale_ = true;
+  bool device_point_states_ = false;
+  std::uint64_t point_readback_bytes_ = 0;
 };
 
 }  // namespace cudahull::viewer

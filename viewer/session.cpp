@@ -11,8 +11,10 @@ namespace cudahull::viewer {
 Session::Session() = default;
 
 void Session::set_scene(std::unique_ptr<Scene> scene, bool fit_camera) {
+  interop_.reset();  // registered for the old point count; the new scene reallocates the buffer
   scene_ = std::move(scene);
   selected_face_ = -1;
+  choose_upload_path();
   if (scene_ && (fit_camera || !camera_fitted_)) fit_view();
 }
 
@@ -24,8 +26,43 @@ void Session::fit_view() {
   camera_fitted_ = true;
 }
 
+void Session::choose_upload_path() {
+  if (!scene_) {
+    upload_path_ = "CPU upload (no scene)";
+    return;
+  }
+  std::string why;
+  if (!scene_->backend_has_device_point_states()) {
+    why = "the CPU backend";
+  } else if (!interop_allowed_) {
+    why = "interop turned off";
+  } else {
+    why = cuda_gl_unavailable_reason();
+  }
+  scene_->set_device_point_states(why.empty());
+  upload_path_ = why.empty() ? "CUDA-GL interop" : "CPU upload (" + why + ")";
+}
+
+void Session::write_device_states(RenderData& data) {
+  data.dirty &= ~kDirtyDeviceState;
+  bool written = false;
+  if (!interop_) interop_ = std::make_unique<CudaGlBuffer>(renderer_.point_state_buffer());
+  interop_->write(
+      [&](void* device, std::size_t bytes) { written = scene_->write_device_point_states(device, bytes); });
+  if (!written) {  // e.g. a degenerate input with no 3-d mesh: this scene uploads from the CPU instead
+    scene_->set_device_point_states(false);
+    upload_path_ = "CPU upload (the backend could not write this state)";
+    renderer_.upload(scene_->render_data());
+  }
+}
+
 void Session::draw(int width, int height, float pixel_scale) {
-  if (scene_) renderer_.upload(scene_->render_data());
+  if (scene_) {
+    RenderData& data = scene_->render_data();
+    if (data.dirty & kDirtyPositions) interop_.reset();  // upload() reallocates the state buffer
+    renderer_.upload(data);
+    if (data.dirty & kDirtyDeviceState) write_device_states(data);
+  }
   ViewParams view;
   view.width = std::max(width, 1);
   view.height = std::max(height, 1);

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "camera.hpp"
+#include "cuda_gl_buffer.hpp"
 #include "renderer.hpp"
 #include "scene.hpp"
 #include "script.hpp"
@@ -29,8 +30,12 @@ class Session {
   long long selected_face() const { return selected_face_; }
   void select_face(long long face) { selected_face_ = face; }
 
-  // How per-point state reaches the GL buffer.  Only the CPU path exists so far (issue 5, item 3).
-  const char* upload_path() const { return "CPU upload"; }
+  // How per-point state reaches the GL buffer: "CUDA-GL interop" (the CUDA backend writes it on the
+  // device, no readback) or "CPU upload (why)".  Decided by set_scene(); allow_interop(false) forces the
+  // upload (for comparisons).
+  const std::string& upload_path() const { return upload_path_; }
+  bool interop_active() const { return scene_ && scene_->device_point_states(); }
+  void allow_interop(bool allowed) { interop_allowed_ = allowed; }
 
   // Uploads what changed and draws into the bound framebuffer.
   void draw(int width, int height, float pixel_scale);
@@ -55,6 +60,11 @@ class Session {
   RenderSettings settings_;
   long long selected_face_ = -1;
   std::unique_ptr<OffscreenTarget> offscreen_;
+  bool interop_allowed_ = true;
+  std::string upload_path_ = "CPU upload (no scene)";
+  std::unique_ptr<CudaGlBuffer> interop_;  // the registered state buffer, while interop is active
+  void choose_upload_path();
+  void write_device_states(RenderData& data);
 };
 
 }  // namespace cudahull::viewer

@@ -401,6 +401,12 @@ void Engine::run(const std::function<void(const IterationRecord&)>& on_step) {
   }
 }
 
+bool Engine::write_point_states_on_device(std::int32_t* device_out, std::size_t count,
+                                          const std::vector<PointIndex>& vertices) {
+  if (!started_ || dimension_ != 3 || count != points_.size()) return false;
+  return backend_->write_point_states_on_device(device_out, count, vertices);
+}
+
 std::vector<std::int32_t> Engine::point_faces() const {
   std::vector<std::int32_t> out;
   if (started_ && dimension_ == 3) backend_->point_faces(out);

@@ -54,6 +54,9 @@ struct FaceExtreme {
   PointIndex furthest = 0xffffffffu;
 };
 
+inline constexpr std::int32_t kPointStateInternal = -1;
+inline constexpr std::int32_t kPointStateVertex = -2;
+
 class Backend {
  public:
   virtual ~Backend() = default;
@@ -78,6 +81,16 @@ class Backend {
   // Debugger support: each point's face in the current mesh, or -1 when it is internal (or a vertex).
   // For a GPU backend this copies O(points) data; the engine calls it only when asked.
   virtual void point_faces(std::vector<std::int32_t>& out) = 0;
+
+  // CUDA-GL interop (issue 5): a backend whose points live in GPU memory writes each point's state straight
+  // into `device_out` (`count` int32s in its device's memory, e.g. a mapped OpenGL buffer), so that no
+  // per-point data comes to the host.  State: the point's face (>= 0) while external, kPointStateInternal
+  // once discarded, kPointStateVertex for `vertices`.  Returns false when the backend cannot (the CPU).
+  virtual bool has_device_point_states() const { return false; }
+  virtual bool write_point_states_on_device(std::int32_t* /*device_out*/, std::size_t /*count*/,
+                                            const std::vector<PointIndex>& /*vertices*/) {
+    return false;
+  }
 
   // Bytes moved between host and backend so far (0 for the CPU backend, which shares memory).
   virtual std::uint64_t bytes_to_backend() const { return 0; }

@@ -99,6 +99,10 @@ class Engine {
   FaceCell face_cell(FaceId f) const;
   // Per point: its face in the current mesh, or -1 (internal or a vertex).  O(points); for the debugger.
   std::vector<std::int32_t> point_faces() const;
+  // The same, written by the backend into its own device memory (Backend::write_point_states_on_device),
+  // with `vertices` marked; false when the backend cannot or there is no 3-d mesh yet.
+  bool write_point_states_on_device(std::int32_t* device_out, std::size_t count,
+                                    const std::vector<PointIndex>& vertices);
   const std::vector<FaceExtreme>& face_extremes() const { return extremes_; }
   const std::vector<DecisionEntry>& last_decisions() const { return last_decisions_; }
   const std::vector<RefinementEntry>& last_refinement() const { return last_refinement_; }

@@ -7,3 +7,11 @@
 #else
 #define CUDAHULL_HD
 #endif
+
+// For the rarely taken exact stages of the predicates: kept out of line so that their large frames do not
+// inflate the register count (and so cut the occupancy) of every kernel that calls a predicate.
+#if defined(__CUDACC__)
+#define CUDAHULL_COLD __noinline__
+#else
+#define CUDAHULL_COLD __attribute__((noinline, cold))
+#endif

@@ -324,8 +324,8 @@ constexpr double kO3dErrBoundA = (7.0 + 56.0 * kEpsilon) * kEpsilon;
 
 // Exact sign of Shewchuk's orient3d determinant det[a-d, b-d, c-d] (positive when d is BELOW the
 // counter-clockwise triangle abc; our orient3d negates it).
-CUDAHULL_HD inline int orient3d_exact_shewchuk(const Vec3d& a, const Vec3d& b, const Vec3d& c,
-                                               const Vec3d& d) {
+CUDAHULL_HD CUDAHULL_COLD inline int orient3d_exact_shewchuk(const Vec3d& a, const Vec3d& b, const Vec3d& c,
+                                                             const Vec3d& d) {
   double adx, adx0, bdx, bdx0, cdx, cdx0, ady, ady0, bdy, bdy0, cdy, cdy0, adz, adz0, bdz, bdz0, cdz, cdz0;
   two_diff(a.x, d.x, adx, adx0);
   two_diff(b.x, d.x, bdx, bdx0);
@@ -376,7 +376,8 @@ CUDAHULL_HD inline int orient3d_exact_shewchuk(const Vec3d& a, const Vec3d& b, c
 }
 
 // Exact sign of det[a-c, b-c] (Shewchuk's orient2d, same sign as ours).
-CUDAHULL_HD inline int orient2d_exact(double ax, double ay, double bx, double by, double cx, double cy) {
+CUDAHULL_HD CUDAHULL_COLD inline int orient2d_exact(double ax, double ay, double bx, double by, double cx,
+                                                    double cy) {
   Pair acx = exact_diff(ax, cx), bcx = exact_diff(bx, cx);
   Pair acy = exact_diff(ay, cy), bcy = exact_diff(by, cy);
   double uv[8], wz[8];
