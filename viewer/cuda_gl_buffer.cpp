@@ -11,7 +11,8 @@ namespace cudahull::viewer {
 
 namespace {
 void check(cudaError_t e, const char* what) {
-  if (e != cudaSuccess) throw DeviceError(std::string("CUDA-GL interop: ") + what + ": " + cudaGetErrorString(e));
+  if (e != cudaSuccess)
+    throw DeviceError(std::string("CUDA-GL interop: ") + what + ": " + cudaGetErrorString(e));
 }
 }  // namespace
 
