@@ -234,6 +234,45 @@ TEST(ViewerHeadless, HidingTheHullAndMovingTheCameraChangeThePicture) {
   EXPECT_LT(central_fraction(hidden, hull_colored), 0.02);
 }
 
+bool background(const std::array<float, 3>& p) {
+  const glm::vec3 b = RenderSettings{}.background;
+  return std::abs(p[0] - b.r) + std::abs(p[1] - b.g) + std::abs(p[2] - b.b) < 0.03f;
+}
+
+// Large clouds are drawn as compute splats (shaders/points_splat.comp.glsl); forced here on a small one,
+// they must cover where GL points are drawn, in the same state colours, and sit at the right depth.
+TEST(ViewerHeadless, SplatsDrawTheCloudGlPointsDraw) {
+  TempDir dir;
+  const std::string script = dir.write(
+      "splats.txt", "step 3\nhide hull\nhide wireframe\nhide vertices\nset point-mode points\nscreenshot " +
+                        (dir / "points.png") + "\nset point-mode splats\nscreenshot " + (dir / "splats.png") +
+                        "\nhide external\nshow hull\nset hull-opacity 1\nscreenshot " + (dir / "hull.png") +
+                        "\n");
+  const ViewerRun r = run_viewer({"--gen", "ball", "20000", "--seed", "3", "--headless", "--width", "256",
+                                  "--height", "192", "--script", script});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const Image points = read_png(dir / "points.png"), splats = read_png(dir / "splats.png"),
+              hull = read_png(dir / "hull.png");
+  ASSERT_EQ(points.rgb.size(), splats.rgb.size());
+  std::size_t drawn = 0, covered = 0, splat_pixels = 0;
+  for (std::size_t i = 0; i < points.rgb.size(); ++i) {
+    splat_pixels += background(splats.rgb[i]) ? 0 : 1;
+    if (background(points.rgb[i])) continue;
+    ++drawn;
+    covered += background(splats.rgb[i]) ? 0 : 1;
+  }
+  ASSERT_GT(drawn, 1000u);
+  EXPECT_GT(static_cast<double>(covered) / drawn, 0.9);  // squares cover the round points
+  EXPECT_LT(splat_pixels, 3 * drawn);
+  auto internal = [](const auto& p) { return shade_of(p, kInternalColor); };
+  auto external = [](const auto& p) { return shade_of(p, kExternalColor); };
+  EXPECT_GT(central_fraction(splats, internal), 0.01);
+  EXPECT_GT(central_fraction(splats, external), 0.01);
+  // An opaque hull hides the internal points behind its faces: the splats wrote their depth (at depth 0
+  // they would cover it).
+  EXPECT_GT(central_fraction(hull, hull_colored), 0.3);
+}
+
 TEST(ViewerHeadless, BadScriptLineExits2NamingTheLine) {
   TempDir dir;
   const std::string script =

@@ -304,6 +304,16 @@ void AppWindow::panel_main() {
     ImGui::SameLine();
     ImGui::RadioButton("face##p", &pc, 1);
     s.point_colors = static_cast<PointColors>(pc);
+    int pm = static_cast<int>(s.point_mode);
+    ImGui::Text("draw:");
+    ImGui::SameLine();
+    ImGui::RadioButton("auto##m", &pm, 0);
+    ImGui::SameLine();
+    ImGui::RadioButton("GL points##m", &pm, 1);
+    ImGui::SameLine();
+    ImGui::RadioButton("splats##m", &pm, 2);
+    s.point_mode = static_cast<PointMode>(pm);
+    ImGui::TextDisabled("(now %s)", session_->renderer().uses_splats(s) ? "compute splats" : "GL points");
     int fc = static_cast<int>(s.face_colors);
     ImGui::Text("faces:");
     ImGui::SameLine();

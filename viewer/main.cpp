@@ -53,18 +53,20 @@ int run_headless(const ViewerOptions& o) {
         session.time_frames(0, o.width, o.height);
         step_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       }
-      nlohmann::json j{{"points", scene.points().size()},
-                       {"position", scene.position()},
-                       {"width", o.width},
-                       {"height", o.height},
-                       {"frames", o.bench_frames},
-                       {"ms_per_frame", ms},
-                       {"fps", ms > 0 ? 1000.0 / ms : 0.0},
-                       {"renderer", gl_description()},
-                       {"upload_path", session.upload_path()},
-                       {"point_readback_bytes", scene.point_readback_bytes()},
-                       {"step_ms", timed_steps > 0 ? step_ms / timed_steps : 0.0},
-                       {"timed_steps", timed_steps}};
+      nlohmann::json j{
+          {"points", scene.points().size()},
+          {"position", scene.position()},
+          {"width", o.width},
+          {"height", o.height},
+          {"frames", o.bench_frames},
+          {"ms_per_frame", ms},
+          {"fps", ms > 0 ? 1000.0 / ms : 0.0},
+          {"renderer", gl_description()},
+          {"upload_path", session.upload_path()},
+          {"point_draw", session.renderer().uses_splats(session.settings()) ? "splats" : "GL points"},
+          {"point_readback_bytes", scene.point_readback_bytes()},
+          {"step_ms", timed_steps > 0 ? step_ms / timed_steps : 0.0},
+          {"timed_steps", timed_steps}};
       std::printf("%s\n", j.dump().c_str());
     }
   }  // GL objects go before the context

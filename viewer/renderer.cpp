@@ -53,6 +53,23 @@ unsigned link(const char* vertex, const char* fragment, const char* name) {
   return program;
 }
 
+unsigned link_compute(const char* source, const char* name) {
+  const GLuint cs = compile(GL_COMPUTE_SHADER, source, name);
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, cs);
+  glLinkProgram(program);
+  glDeleteShader(cs);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {};
+    glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    glDeleteProgram(program);
+    throw DeviceError(std::string("OpenGL: program ") + name + " does not link: " + log);
+  }
+  return program;
+}
+
 GLint loc(unsigned program, const char* name) {
   return glGetUniformLocation(program, name);
 }
@@ -103,6 +120,13 @@ void finish_gl() {
 Renderer::Renderer() {
   points_program_ = link(shaders::points_vert, shaders::points_frag, "points");
   hull_program_ = link(shaders::hull_vert, shaders::hull_frag, "hull");
+  splat_program_ = link_compute(shaders::points_splat_comp, "points_splat");
+  resolve_program_ = link(shaders::splat_resolve_vert, shaders::splat_resolve_frag, "splat_resolve");
+  glCreateVertexArrays(1, &resolve_vao_);
+  GLuint splat_buffers[2];
+  glCreateBuffers(2, splat_buffers);
+  splat_depth_buffer_ = splat_buffers[0];
+  splat_color_buffer_ = splat_buffers[1];
 
   GLuint buffers[4];
   glCreateBuffers(4, buffers);
@@ -145,8 +169,12 @@ Renderer::Renderer() {
 }
 
 Renderer::~Renderer() {
-  const GLuint buffers[4] = {position_buffer_, state_buffer_, vertex_id_buffer_, hull_buffer_};
-  glDeleteBuffers(4, buffers);
+  const GLuint buffers[6] = {position_buffer_, state_buffer_,       vertex_id_buffer_,
+                             hull_buffer_,     splat_depth_buffer_, splat_color_buffer_};
+  glDeleteBuffers(6, buffers);
+  glDeleteVertexArrays(1, &resolve_vao_);
+  glDeleteProgram(splat_program_);
+  glDeleteProgram(resolve_program_);
   const GLuint vaos[3] = {points_vao_, vertices_vao_, hull_vao_};
   glDeleteVertexArrays(3, vaos);
   glDeleteProgram(points_program_);
@@ -190,6 +218,54 @@ void Renderer::upload(RenderData& data) {
   data.dirty &= kDirtyDeviceState;
 }
 
+bool Renderer::uses_splats(const RenderSettings& s) const {
+  if (s.point_mode == PointMode::kSplats) return true;
+  return s.point_mode == PointMode::kAuto && point_count_ >= kSplatAutoPoints && s.point_opacity >= 1.0f;
+}
+
+void Renderer::draw_splats(const ViewParams& view, const glm::mat4& view_proj,
+                           const RenderSettings& s) const {
+  const std::size_t pixels = static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height);
+  if (pixels > splat_capacity_) {
+    for (GLuint buffer : {splat_depth_buffer_, splat_color_buffer_})
+      glNamedBufferData(buffer, static_cast<GLsizeiptr>(pixels * 4), nullptr, GL_DYNAMIC_COPY);
+    splat_capacity_ = pixels;
+  }
+  const GLuint far = 0xffffffffu;
+  glClearNamedBufferSubData(splat_depth_buffer_, GL_R32UI, 0, static_cast<GLsizeiptr>(pixels * 4),
+                            GL_RED_INTEGER, GL_UNSIGNED_INT, &far);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, position_buffer_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, state_buffer_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, splat_depth_buffer_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, splat_color_buffer_);
+
+  glUseProgram(splat_program_);
+  glUniformMatrix4fv(loc(splat_program_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+  glUniform1ui(loc(splat_program_, "u_count"), static_cast<GLuint>(point_count_));
+  glUniform2i(loc(splat_program_, "u_size"), view.width, view.height);
+  glUniform1f(loc(splat_program_, "u_point_size"), std::max(1.0f, s.point_size * view.pixel_scale));
+  glUniform1i(loc(splat_program_, "u_color_mode"), s.point_colors == PointColors::kFace ? 1 : 0);
+  glUniform1i(loc(splat_program_, "u_show_internal"), s.shown(Layer::kInternal));
+  glUniform1i(loc(splat_program_, "u_show_external"), s.shown(Layer::kExternal));
+  glUniform3fv(loc(splat_program_, "u_internal_color"), 1, glm::value_ptr(kInternalColor));
+  glUniform3fv(loc(splat_program_, "u_external_color"), 1, glm::value_ptr(kExternalColor));
+  const std::size_t groups = (point_count_ + 255) / 256;
+  const GLuint row = 65535;  // the least GL_MAX_COMPUTE_WORK_GROUP_COUNT any GL 4.3 driver allows
+  const GLuint groups_x = static_cast<GLuint>(std::min<std::size_t>(groups, row));
+  const GLuint groups_y = static_cast<GLuint>((groups + row - 1) / row);
+  for (int pass = 0; pass < 2; ++pass) {
+    glUniform1i(loc(splat_program_, "u_pass"), pass);
+    glDispatchCompute(groups_x, groups_y, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+
+  glUseProgram(resolve_program_);
+  glUniform2i(loc(resolve_program_, "u_size"), view.width, view.height);
+  glDepthMask(GL_TRUE);
+  glBindVertexArray(resolve_vao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
 void Renderer::draw(const ViewParams& view, const RenderSettings& s) const {
   glViewport(0, 0, view.width, view.height);
   glClearColor(s.background.r, s.background.g, s.background.b, 1.0f);
@@ -210,7 +286,9 @@ void Renderer::draw(const ViewParams& view, const RenderSettings& s) const {
   // Points first: the translucent hull then blends over the ones inside it.
   const bool any_points = s.shown(Layer::kInternal) || s.shown(Layer::kExternal);
   const bool vertices = s.shown(Layer::kVertices) && hull_vertex_count_ > 0;
-  if ((any_points && point_count_ > 0) || vertices) {
+  const bool splats = any_points && point_count_ > 0 && uses_splats(s);
+  if (splats) draw_splats(view, view_proj, s);
+  if ((any_points && point_count_ > 0 && !splats) || vertices) {
     glUseProgram(points_program_);
     glUniformMatrix4fv(loc(points_program_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
     glUniform1f(loc(points_program_, "u_point_size"), std::max(1.0f, s.point_size * view.pixel_scale));
@@ -222,7 +300,7 @@ void Renderer::draw(const ViewParams& view, const RenderSettings& s) const {
     glUniform3fv(loc(points_program_, "u_vertex_color"), 1, glm::value_ptr(kVertexColor));
     glUniform1f(loc(points_program_, "u_opacity"), s.point_opacity);
     glDepthMask(s.point_opacity >= 1.0f ? GL_TRUE : GL_FALSE);
-    if (any_points && point_count_ > 0) {
+    if (any_points && point_count_ > 0 && !splats) {
       glUniform1i(loc(points_program_, "u_pass"), 0);
       glBindVertexArray(points_vao_);
       glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(point_count_));

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -37,6 +38,11 @@ bool layer_reserved(Layer layer);  // named but drawn only from issue 6 on
 
 enum class PointColors { kState, kFace };
 enum class FaceColors { kState, kAge };
+// How the cloud is drawn: GL points (round, blended with the point opacity), or compute splats (square,
+// opaque; shaders/points_splat.comp.glsl), which keep 20M points interactive.  kAuto splats from
+// kSplatAutoPoints points on when the points are opaque.
+enum class PointMode { kAuto, kPoints, kSplats };
+inline constexpr std::size_t kSplatAutoPoints = 2000000;
 
 struct RenderSettings {
   std::array<bool, kLayerCount> layers{true, true, true, true, true, false, false};
@@ -45,6 +51,7 @@ struct RenderSettings {
   float hull_opacity = 0.6f;   // 0..1; below 1 the points inside show through
   float wire_width = 1.2f;     // logical pixels
   PointColors point_colors = PointColors::kState;
+  PointMode point_mode = PointMode::kAuto;
   FaceColors face_colors = FaceColors::kState;
   float age_span = 5.0f;  // iterations over which "by age" fades from new to old
   glm::vec3 background{0.11f, 0.115f, 0.13f};
@@ -81,12 +88,20 @@ class Renderer {
   void draw(const ViewParams& view, const RenderSettings& settings) const;
 
   unsigned point_state_buffer() const { return state_buffer_; }
+  // Whether draw() splats the cloud with these settings (the rest of the time it draws GL points).
+  bool uses_splats(const RenderSettings& settings) const;
   // Bytes of per-point data copied from host memory into GL buffers by the last upload() and in total.
   std::uint64_t last_point_upload_bytes() const { return last_point_bytes_; }
   std::uint64_t total_point_upload_bytes() const { return total_point_bytes_; }
 
  private:
-  unsigned points_program_ = 0, hull_program_ = 0;
+  void draw_splats(const ViewParams& view, const glm::mat4& view_proj, const RenderSettings& s) const;
+
+  unsigned points_program_ = 0, hull_program_ = 0, splat_program_ = 0, resolve_program_ = 0;
+  unsigned resolve_vao_ = 0;
+  // The splats' per-pixel depth and colour, grown to the largest framebuffer drawn (draw() is const).
+  mutable unsigned splat_depth_buffer_ = 0, splat_color_buffer_ = 0;
+  mutable std::size_t splat_capacity_ = 0;
   unsigned points_vao_ = 0, vertices_vao_ = 0, hull_vao_ = 0;
   unsigned position_buffer_ = 0, state_buffer_ = 0, vertex_id_buffer_ = 0, hull_buffer_ = 0;
   std::size_t point_count_ = 0, hull_corner_count_ = 0, hull_vertex_count_ = 0;

@@ -33,8 +33,8 @@ bool parse_number(const std::string& s, double& out) {
   return in && (in >> std::ws).eof();
 }
 
-const char* kSettings[] = {"point-size", "point-opacity", "hull-opacity",
-                           "wire-width", "point-colors",  "face-colors"};
+const char* kSettings[] = {"point-size",   "point-opacity", "hull-opacity", "wire-width",
+                           "point-colors", "face-colors",   "point-mode"};
 
 }  // namespace
 
@@ -102,6 +102,9 @@ std::vector<ScriptCommand> parse_script(std::istream& in, const std::string& nam
       double x = 0;
       if (c.text == "point-colors") {
         if (c.value != "state" && c.value != "face") fail("point-colors is 'state' or 'face'");
+      } else if (c.text == "point-mode") {
+        if (c.value != "auto" && c.value != "points" && c.value != "splats")
+          fail("point-mode is 'auto', 'points' or 'splats'");
       } else if (c.text == "face-colors") {
         if (c.value != "state" && c.value != "age") fail("face-colors is 'state' or 'age'");
       } else if (c.text == "point-size" || c.text == "wire-width") {

@@ -143,6 +143,10 @@ std::string Session::execute(const ScriptCommand& c, int width, int height) {
       if (c.text == "wire-width") settings_.wire_width = static_cast<float>(x);
       if (c.text == "point-colors")
         settings_.point_colors = c.value == "face" ? PointColors::kFace : PointColors::kState;
+      if (c.text == "point-mode")
+        settings_.point_mode = c.value == "points"   ? PointMode::kPoints
+                               : c.value == "splats" ? PointMode::kSplats
+                                                     : PointMode::kAuto;
       if (c.text == "face-colors")
         settings_.face_colors = c.value == "age" ? FaceColors::kAge : FaceColors::kState;
       return "";
