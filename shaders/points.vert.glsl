@@ -15,6 +15,8 @@ uniform bool u_show_external;
 uniform vec3 u_internal_color;
 uniform vec3 u_external_color;
 uniform vec3 u_vertex_color;
+uniform int u_selected_face;  // -1: none; else its cell's points are drawn in u_selected_color (Fig. 2)
+uniform vec3 u_selected_color;
 
 flat out vec3 v_color;
 flat out int v_visible;
@@ -53,6 +55,11 @@ void main() {
   } else {
     v_color = u_color_mode == 1 ? face_color(a_state) : u_external_color;
     v_visible = u_show_external ? 1 : 0;
+    if (a_state == u_selected_face) {
+      v_color = u_selected_color;
+      v_visible = 1;
+      gl_PointSize = u_point_size + 2.0;
+    }
   }
   // Outside the clip volume: hidden points cost no fragments.
   if (v_visible == 0) gl_Position = vec4(2.0, 2.0, 2.0, 1.0);

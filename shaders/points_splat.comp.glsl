@@ -22,6 +22,8 @@ uniform bool u_show_internal;
 uniform bool u_show_external;
 uniform vec3 u_internal_color;
 uniform vec3 u_external_color;
+uniform int u_selected_face;  // as in points.vert.glsl
+uniform vec3 u_selected_color;
 
 vec3 hsv_to_rgb(float h, float s, float v) {
   vec3 k = clamp(abs(mod(h * 6.0 + vec3(0.0, 4.0, 2.0), 6.0) - 3.0) - 1.0, 0.0, 1.0);
@@ -45,7 +47,8 @@ void main() {
   int state = states[i];
   if (state == -2) return;
   bool internal = state < 0;
-  if (internal ? !u_show_internal : !u_show_external) return;
+  bool selected = state == u_selected_face;
+  if (internal ? !u_show_internal : !(u_show_external || selected)) return;
   vec4 clip = u_view_proj * vec4(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2], 1.0);
   if (clip.w <= 0.0) return;
   vec3 ndc = clip.xyz / clip.w;
@@ -59,8 +62,9 @@ void main() {
   hi = min(hi, lo + 7);  // at most 8 x 8 pixels
   uint rgba = 0u;
   if (u_pass == 1) {
-    vec3 c = internal ? (u_color_mode == 1 ? vec3(0.32) : u_internal_color)
-                      : (u_color_mode == 1 ? face_color(state) : u_external_color);
+    vec3 c = internal   ? (u_color_mode == 1 ? vec3(0.32) : u_internal_color)
+             : selected ? u_selected_color
+                        : (u_color_mode == 1 ? face_color(state) : u_external_color);
     rgba = packUnorm4x8(vec4(c, 1.0));
   }
   for (int y = lo.y; y <= hi.y; ++y) {

@@ -273,6 +273,32 @@ TEST(ViewerHeadless, SplatsDrawTheCloudGlPointsDraw) {
   EXPECT_GT(central_fraction(hull, hull_colored), 0.3);
 }
 
+// Issue 6, Fig. 2: selecting a face draws its three separating planes, highlights its cell's points and
+// marks its extreme point; the normals layer draws every edge's normal.  Each changes the picture, and
+// hiding them gives the plain picture back.
+TEST(ViewerHeadless, SelectedFaceCellAndEdgeNormalsChangeThePicture) {
+  TempDir dir;
+  const std::string script =
+      dir.write("cells.txt",
+                "step 2\nhide hull\nscreenshot " + (dir / "plain.png") + "\nselect-face 0\nscreenshot " +
+                    (dir / "cell.png") + "\nhide cells\nscreenshot " + (dir / "hidden.png") +
+                    "\nshow normals\nscreenshot " + (dir / "normals.png") +
+                    "\nselect-face 999999\nshow cells\n" + "screenshot " + (dir / "out_of_range.png") + "\n");
+  const ViewerRun r = run_viewer({"--gen", "ball", "3000", "--seed", "5", "--headless", "--width", "256",
+                                  "--height", "192", "--script", script});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const Image plain = read_png(dir / "plain.png"), cell = read_png(dir / "cell.png"),
+              hidden = read_png(dir / "hidden.png"), normals = read_png(dir / "normals.png"),
+              out_of_range = read_png(dir / "out_of_range.png");
+  EXPECT_GT(differing_fraction(plain, cell), 0.01);
+  // The cell's external points turn to the selection colour.
+  auto selected = [](const auto& p) { return shade_of(p, kSelectedColor); };
+  EXPECT_GT(central_fraction(cell, selected), central_fraction(plain, selected) + 0.001);
+  EXPECT_LT(differing_fraction(plain, hidden), 0.001);
+  EXPECT_GT(differing_fraction(hidden, normals), 0.003);
+  EXPECT_LT(differing_fraction(normals, out_of_range), 0.001);  // an unknown face id draws no cell
+}
+
 TEST(ViewerHeadless, BadScriptLineExits2NamingTheLine) {
   TempDir dir;
   const std::string script =

@@ -58,6 +58,8 @@ constexpr Shortcut kShortcuts[] = {
     {"Left drag", "orbit"},
     {"Right / middle drag, Shift + left drag", "pan"},
     {"Wheel", "zoom"},
+    {"Double-click", "select the face under the mouse: its cell, points and extreme point (Fig. 2)"},
+    {"N", "toggle the edge normals of all faces"},
     {"F1, ?", "this help"},
     {"Ctrl-Q", "quit"},
 };
@@ -186,6 +188,13 @@ void AppWindow::handle_input() {
       }
     }
     if (io.MouseWheel != 0) camera.zoom(io.MouseWheel);
+    if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
+      int fb_w = 1, fb_h = 1;
+      glfwGetFramebufferSize(window_, &fb_w, &fb_h);
+      const double sx = static_cast<double>(fb_w) / std::max(win_w, 1),
+                   sy = static_cast<double>(fb_h) / std::max(win_h, 1);
+      session_->select_face(session_->face_at(io.MousePos.x * sx, io.MousePos.y * sy, fb_w, fb_h));
+    }
   }
   if (io.WantCaptureKeyboard) return;
   auto pressed = [](int key) { return ImGui::IsKeyPressed(key, false); };
@@ -197,6 +206,7 @@ void AppWindow::handle_input() {
     return;
   }
   if (pressed(GLFW_KEY_F1) || (pressed(GLFW_KEY_SLASH) && io.KeyShift)) show_help_ = !show_help_;
+  if (pressed(GLFW_KEY_N)) s.show(Layer::kNormals, !s.shown(Layer::kNormals));
   if (pressed(GLFW_KEY_ESCAPE)) show_help_ = false;
   if (pressed(GLFW_KEY_F)) session_->fit_view();
   if (pressed(GLFW_KEY_HOME)) camera.reset();
@@ -339,6 +349,25 @@ void AppWindow::panel_main() {
       ImGui::SameLine();
       ImGui::Text("%s", pnames[i]);
       if (i < 2) ImGui::SameLine();
+    }
+    // Fig. 2: a face's cell.  Double-click a face, or type its id.
+    int face = static_cast<int>(session_->selected_face());
+    ImGui::SetNextItemWidth(120);
+    if (ImGui::InputInt("selected face", &face)) session_->select_face(std::max(face, -1));
+    ImGui::SameLine();
+    if (ImGui::Button("Clear")) session_->select_face(-1);
+    if (scene && session_->selected_face() >= 0 && scene->position() > 0 &&
+        session_->selected_face() < static_cast<long long>(scene->engine().face_extremes().size())) {
+      const auto f = static_cast<FaceId>(session_->selected_face());
+      const FaceExtreme& x = scene->engine().face_extremes()[f];
+      const MeshFace& mf = scene->engine().mesh().face(f);
+      ImGui::Text("vertices %u %u %u; %u external points", mf.v[0], mf.v[1], mf.v[2], x.count);
+      if (x.count > 0) ImGui::Text("extreme point %u (the next apex)", x.furthest);
+      const FaceCell cell = scene->engine().face_cell(f);
+      for (int i = 0; i < 3; ++i) {
+        const SeparatingPlane& p = cell.edge_plane[i];
+        ImGui::Text("plane %d: (%.3f, %.3f, %.3f) . x + %.4g", i, p.nx, p.ny, p.nz, p.d);
+      }
     }
     if (ImGui::Button("Fit view")) session_->fit_view();
     ImGui::SameLine();

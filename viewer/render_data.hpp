@@ -41,6 +41,16 @@ inline std::uint32_t pack_face_info(FaceState state, std::uint32_t age) {
   return static_cast<std::uint32_t>(state) | (std::min<std::uint32_t>(age, 0xffffffu) << 8);
 }
 
+// A vertex of the debugger's overlay (issue 6): translucent triangles and lines, each vertex coloured.
+struct OverlayVertex {
+  float x = 0, y = 0, z = 0;
+  std::uint32_t rgba = 0;  // R in the low byte
+};
+inline std::uint32_t pack_rgba(float r, float g, float b, float a) {
+  auto byte = [](float v) { return static_cast<std::uint32_t>(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f); };
+  return byte(r) | byte(g) << 8 | byte(b) << 16 | byte(a) << 24;
+}
+
 enum DirtyBits : std::uint32_t {
   kDirtyPositions = 1u << 0,    // a new point set (reallocates the point buffers)
   kDirtyPointState = 1u << 1,   // point_state changed (same size)

@@ -16,7 +16,7 @@ namespace cudahull::viewer {
 namespace {
 
 constexpr const char* kLayerNames[kLayerCount] = {"hull",     "wireframe", "internal", "external",
-                                                  "vertices", "cells",     "swaps"};
+                                                  "vertices", "cells",     "swaps",    "normals"};
 
 unsigned compile(GLenum type, const char* source, const char* name) {
   const GLuint shader = glCreateShader(type);
@@ -102,7 +102,7 @@ std::string layer_names() {
 }
 
 bool layer_reserved(Layer layer) {
-  return layer == Layer::kCells || layer == Layer::kSwaps;
+  return layer == Layer::kSwaps;
 }
 
 std::string gl_description() {
@@ -123,6 +123,16 @@ Renderer::Renderer() {
   splat_program_ = link_compute(shaders::points_splat_comp, "points_splat");
   resolve_program_ = link(shaders::splat_resolve_vert, shaders::splat_resolve_frag, "splat_resolve");
   glCreateVertexArrays(1, &resolve_vao_);
+  overlay_program_ = link(shaders::overlay_vert, shaders::overlay_frag, "overlay");
+  glCreateVertexArrays(1, &overlay_vao_);
+  glCreateBuffers(1, &overlay_buffer_);
+  glVertexArrayVertexBuffer(overlay_vao_, 0, overlay_buffer_, 0, sizeof(OverlayVertex));
+  glVertexArrayAttribFormat(overlay_vao_, 0, 3, GL_FLOAT, GL_FALSE, offsetof(OverlayVertex, x));
+  glVertexArrayAttribBinding(overlay_vao_, 0, 0);
+  glEnableVertexArrayAttrib(overlay_vao_, 0);
+  glVertexArrayAttribFormat(overlay_vao_, 1, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(OverlayVertex, rgba));
+  glVertexArrayAttribBinding(overlay_vao_, 1, 0);
+  glEnableVertexArrayAttrib(overlay_vao_, 1);
   GLuint splat_buffers[2];
   glCreateBuffers(2, splat_buffers);
   splat_depth_buffer_ = splat_buffers[0];
@@ -173,6 +183,9 @@ Renderer::~Renderer() {
                              hull_buffer_,     splat_depth_buffer_, splat_color_buffer_};
   glDeleteBuffers(6, buffers);
   glDeleteVertexArrays(1, &resolve_vao_);
+  glDeleteVertexArrays(1, &overlay_vao_);
+  glDeleteBuffers(1, &overlay_buffer_);
+  glDeleteProgram(overlay_program_);
   glDeleteProgram(splat_program_);
   glDeleteProgram(resolve_program_);
   const GLuint vaos[3] = {points_vao_, vertices_vao_, hull_vao_};
@@ -218,6 +231,21 @@ void Renderer::upload(RenderData& data) {
   data.dirty &= kDirtyDeviceState;
 }
 
+void Renderer::set_overlay(const std::vector<OverlayVertex>& triangles,
+                           const std::vector<OverlayVertex>& lines) {
+  overlay_triangle_vertices_ = triangles.size();
+  overlay_line_vertices_ = lines.size();
+  const std::size_t bytes = (triangles.size() + lines.size()) * sizeof(OverlayVertex);
+  if (bytes == 0) return;
+  ensure_capacity(overlay_buffer_, overlay_capacity_, bytes);
+  if (!triangles.empty())
+    glNamedBufferSubData(overlay_buffer_, 0,
+                         static_cast<GLsizeiptr>(triangles.size() * sizeof(OverlayVertex)), triangles.data());
+  if (!lines.empty())
+    glNamedBufferSubData(overlay_buffer_, static_cast<GLintptr>(triangles.size() * sizeof(OverlayVertex)),
+                         static_cast<GLsizeiptr>(lines.size() * sizeof(OverlayVertex)), lines.data());
+}
+
 bool Renderer::uses_splats(const RenderSettings& s) const {
   if (s.point_mode == PointMode::kSplats) return true;
   return s.point_mode == PointMode::kAuto && point_count_ >= kSplatAutoPoints && s.point_opacity >= 1.0f;
@@ -249,6 +277,9 @@ void Renderer::draw_splats(const ViewParams& view, const glm::mat4& view_proj,
   glUniform1i(loc(splat_program_, "u_show_external"), s.shown(Layer::kExternal));
   glUniform3fv(loc(splat_program_, "u_internal_color"), 1, glm::value_ptr(kInternalColor));
   glUniform3fv(loc(splat_program_, "u_external_color"), 1, glm::value_ptr(kExternalColor));
+  glUniform1i(loc(splat_program_, "u_selected_face"),
+              s.shown(Layer::kCells) ? static_cast<int>(view.selected_face) : -1);
+  glUniform3fv(loc(splat_program_, "u_selected_color"), 1, glm::value_ptr(kSelectedColor));
   const std::size_t groups = (point_count_ + 255) / 256;
   const GLuint row = 65535;  // the least GL_MAX_COMPUTE_WORK_GROUP_COUNT any GL 4.3 driver allows
   const GLuint groups_x = static_cast<GLuint>(std::min<std::size_t>(groups, row));
@@ -298,6 +329,9 @@ void Renderer::draw(const ViewParams& view, const RenderSettings& s) const {
     glUniform3fv(loc(points_program_, "u_internal_color"), 1, glm::value_ptr(kInternalColor));
     glUniform3fv(loc(points_program_, "u_external_color"), 1, glm::value_ptr(kExternalColor));
     glUniform3fv(loc(points_program_, "u_vertex_color"), 1, glm::value_ptr(kVertexColor));
+    glUniform1i(loc(points_program_, "u_selected_face"),
+                s.shown(Layer::kCells) ? static_cast<int>(view.selected_face) : -1);
+    glUniform3fv(loc(points_program_, "u_selected_color"), 1, glm::value_ptr(kSelectedColor));
     glUniform1f(loc(points_program_, "u_opacity"), s.point_opacity);
     glDepthMask(s.point_opacity >= 1.0f ? GL_TRUE : GL_FALSE);
     if (any_points && point_count_ > 0 && !splats) {
@@ -339,6 +373,19 @@ void Renderer::draw(const ViewParams& view, const RenderSettings& s) const {
     glBindVertexArray(hull_vao_);
     glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(hull_corner_count_));
     glDisable(GL_CULL_FACE);
+  }
+  if (overlay_triangle_vertices_ + overlay_line_vertices_ > 0) {
+    // Translucent quads without depth writes, so that what is behind them still shows; lines on top of
+    // them.
+    glUseProgram(overlay_program_);
+    glUniformMatrix4fv(loc(overlay_program_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+    glBindVertexArray(overlay_vao_);
+    glDepthMask(GL_FALSE);
+    if (overlay_triangle_vertices_ > 0)
+      glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(overlay_triangle_vertices_));
+    if (overlay_line_vertices_ > 0)
+      glDrawArrays(GL_LINES, static_cast<GLint>(overlay_triangle_vertices_),
+                   static_cast<GLsizei>(overlay_line_vertices_));
   }
   glDepthMask(GL_TRUE);
   glBindVertexArray(0);

@@ -29,8 +29,10 @@
 
 namespace cudahull::viewer {
 
-enum class Layer { kHull, kWireframe, kInternal, kExternal, kVertices, kCells, kSwaps };
-inline constexpr int kLayerCount = 7;
+// kCells: the selected face's separating planes, cell points and extreme point (Fig. 2); kNormals: every
+// edge's normal (the average of its faces' normals, which the separating plane contains) as an arrow.
+enum class Layer { kHull, kWireframe, kInternal, kExternal, kVertices, kCells, kSwaps, kNormals };
+inline constexpr int kLayerCount = 8;
 const char* layer_name(Layer layer);
 std::optional<Layer> layer_from_name(std::string_view name);
 std::string layer_names();         // "hull, wireframe, ..." for messages
@@ -45,7 +47,7 @@ enum class PointMode { kAuto, kPoints, kSplats };
 inline constexpr std::size_t kSplatAutoPoints = 2000000;
 
 struct RenderSettings {
-  std::array<bool, kLayerCount> layers{true, true, true, true, true, false, false};
+  std::array<bool, kLayerCount> layers{true, true, true, true, true, true, false, false};
   float point_size = 3.0f;     // logical pixels (times pixel_scale)
   float point_opacity = 1.0f;  // 0..1
   float hull_opacity = 0.6f;   // 0..1; below 1 the points inside show through
@@ -64,6 +66,7 @@ struct RenderSettings {
 inline constexpr glm::vec3 kInternalColor{0.85f, 0.16f, 0.12f};
 inline constexpr glm::vec3 kExternalColor{0.62f, 0.40f, 0.20f};
 inline constexpr glm::vec3 kVertexColor{1.0f, 0.92f, 0.35f};
+inline constexpr glm::vec3 kSelectedColor{0.20f, 0.90f, 0.95f};  // the selected face's cell points
 inline constexpr std::array<glm::vec3, kFaceStateCount> kFaceStateColors{
     glm::vec3{0.33f, 0.55f, 0.88f},  // unchanged
     glm::vec3{0.96f, 0.62f, 0.16f},  // refined this step
@@ -73,8 +76,9 @@ inline constexpr std::array<glm::vec3, kFaceStateCount> kFaceStateColors{
 
 struct ViewParams {
   glm::mat4 view{1.0f}, projection{1.0f};
-  int width = 1, height = 1;  // framebuffer pixels
-  float pixel_scale = 1.0f;   // framebuffer pixels per logical pixel (high-DPI)
+  int width = 1, height = 1;     // framebuffer pixels
+  float pixel_scale = 1.0f;      // framebuffer pixels per logical pixel (high-DPI)
+  long long selected_face = -1;  // its cell's points are highlighted while the cells layer is shown
 };
 
 class Renderer {
@@ -85,6 +89,8 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   void upload(RenderData& data);
+  // The debugger's overlay, drawn after the hull: translucent triangles, then lines.
+  void set_overlay(const std::vector<OverlayVertex>& triangles, const std::vector<OverlayVertex>& lines);
   void draw(const ViewParams& view, const RenderSettings& settings) const;
 
   unsigned point_state_buffer() const { return state_buffer_; }
@@ -99,6 +105,8 @@ class Renderer {
 
   unsigned points_program_ = 0, hull_program_ = 0, splat_program_ = 0, resolve_program_ = 0;
   unsigned resolve_vao_ = 0;
+  unsigned overlay_program_ = 0, overlay_vao_ = 0, overlay_buffer_ = 0;
+  std::size_t overlay_capacity_ = 0, overlay_triangle_vertices_ = 0, overlay_line_vertices_ = 0;
   // The splats' per-pixel depth and colour, grown to the largest framebuffer drawn (draw() is const).
   mutable unsigned splat_depth_buffer_ = 0, splat_color_buffer_ = 0;
   mutable std::size_t splat_capacity_ = 0;

@@ -56,7 +56,35 @@ void Session::write_device_states(RenderData& data) {
   }
 }
 
+void Session::update_overlay() {
+  OverlayKey key;
+  key.scene = scene_.get();
+  key.position = scene_ ? scene_->position() : -1;
+  key.selected = selected_face_;
+  key.cells = settings_.shown(Layer::kCells);
+  key.normals = settings_.shown(Layer::kNormals);
+  if (key == overlay_key_) return;
+  overlay_key_ = key;
+  overlay_.triangles.clear();
+  overlay_.lines.clear();
+  if (scene_ && scene_->position() > 0)
+    build_overlay(scene_->engine(), selected_face_, key.cells, key.normals, overlay_);
+  renderer_.set_overlay(overlay_.triangles, overlay_.lines);
+}
+
+long long Session::face_at(double x, double y, int width, int height) const {
+  if (!scene_ || scene_->position() == 0 || width <= 0 || height <= 0) return -1;
+  const glm::mat4 inverse = glm::inverse(
+      camera_.projection(static_cast<float>(width) / static_cast<float>(height)) * camera_.view());
+  const double nx = 2.0 * x / width - 1.0, ny = 1.0 - 2.0 * y / height;
+  const glm::vec4 near = inverse * glm::vec4(nx, ny, -1.0, 1.0), far = inverse * glm::vec4(nx, ny, 1.0, 1.0);
+  const glm::dvec3 a = glm::dvec3(near) / static_cast<double>(near.w);
+  const glm::dvec3 b = glm::dvec3(far) / static_cast<double>(far.w);
+  return pick_face(scene_->engine(), a, b - a);
+}
+
 void Session::draw(int width, int height, float pixel_scale) {
+  update_overlay();
   if (scene_) {
     RenderData& data = scene_->render_data();
     if (data.dirty & kDirtyPositions) interop_.reset();  // upload() reallocates the state buffer
@@ -69,6 +97,7 @@ void Session::draw(int width, int height, float pixel_scale) {
   view.pixel_scale = pixel_scale;
   view.view = camera_.view();
   view.projection = camera_.projection(static_cast<float>(view.width) / static_cast<float>(view.height));
+  view.selected_face = selected_face_;
   renderer_.draw(view, settings_);
 }
 
@@ -120,6 +149,8 @@ std::string Session::execute(const ScriptCommand& c, int width, int height) {
       settings_.show(layer, c.kind == Kind::kShow);
       if (layer_reserved(layer))
         return c.where + ": note: layer '" + c.text + "' draws nothing yet (issue 6)";
+      if (layer == Layer::kCells && c.kind == Kind::kShow && selected_face_ < 0)
+        return c.where + ": note: the cells layer shows the selected face's cell: select-face ID first";
       return "";
     }
     case Kind::kCamera:

@@ -11,6 +11,7 @@
 
 #include "camera.hpp"
 #include "cuda_gl_buffer.hpp"
+#include "overlay.hpp"
 #include "renderer.hpp"
 #include "scene.hpp"
 #include "script.hpp"
@@ -29,6 +30,9 @@ class Session {
   const Renderer& renderer() const { return renderer_; }
   long long selected_face() const { return selected_face_; }
   void select_face(long long face) { selected_face_ = face; }
+  // The face of the current polyhedron under framebuffer pixel (x, y) (origin top left) of a width x height
+  // view, or -1: a ray cast from the camera (issue 6, picking a face to inspect its cell).
+  long long face_at(double x, double y, int width, int height) const;
 
   // How per-point state reaches the GL buffer: "CUDA-GL interop" (the CUDA backend writes it on the
   // device, no readback) or "CPU upload (why)".  Decided by set_scene(); allow_interop(false) forces the
@@ -63,6 +67,16 @@ class Session {
   bool interop_allowed_ = true;
   std::string upload_path_ = "CPU upload (no scene)";
   std::unique_ptr<CudaGlBuffer> interop_;  // the registered state buffer, while interop is active
+  // The overlay as last built, and what it was built for (rebuilt when any of these change).
+  struct OverlayKey {
+    const Scene* scene = nullptr;
+    int position = -1;
+    long long selected = -1;
+    bool cells = false, normals = false;
+    bool operator==(const OverlayKey&) const = default;
+  } overlay_key_;
+  Overlay overlay_;
+  void update_overlay();
   void choose_upload_path();
   void write_device_states(RenderData& data);
 };
