@@ -58,7 +58,8 @@ void build_overlay(const Engine& engine, long long selected, bool cells, bool no
       longest = std::max(longest, glm::length(at(engine, face.v[(i + 1) % 3]) - at(engine, face.v[i])));
     const double height = 0.75 * longest;
     // One colour per separating plane, as the three cell walls of Fig. 2.
-    const std::uint32_t wall[3] = {pack_rgba(0.2f, 0.85f, 0.95f, 0.28f), pack_rgba(0.95f, 0.35f, 0.85f, 0.28f),
+    const std::uint32_t wall[3] = {pack_rgba(0.2f, 0.85f, 0.95f, 0.28f),
+                                   pack_rgba(0.95f, 0.35f, 0.85f, 0.28f),
                                    pack_rgba(0.95f, 0.85f, 0.2f, 0.28f)};
     const std::uint32_t outline = pack_rgba(1.0f, 1.0f, 1.0f, 1.0f);
     for (int i = 0; i < 3; ++i) {
@@ -94,7 +95,8 @@ void build_overlay(const Engine& engine, long long selected, bool cells, bool no
         const double length = 0.3 * glm::length(b - a);
         const glm::dvec3 mid = 0.5 * (a + b), n = edge_normal(engine, f, i), tip = mid + length * n;
         const glm::dvec3 side = glm::normalize(b - a) * (0.25 * length);
-        for (const glm::dvec3& p : {mid, tip, tip, tip - 0.35 * length * n + side, tip, tip - 0.35 * length * n - side})
+        for (const glm::dvec3& p :
+             {mid, tip, tip, tip - 0.35 * length * n + side, tip, tip - 0.35 * length * n - side})
           push(out.lines, p, shaft);
       }
     }
@@ -110,7 +112,8 @@ long long pick_face(const Engine& engine, const glm::dvec3& origin, const glm::d
     if (!mesh.alive(f)) continue;
     const MeshFace& face = mesh.face(f);
     // Moeller-Trumbore.
-    const glm::dvec3 a = at(engine, face.v[0]), e1 = at(engine, face.v[1]) - a, e2 = at(engine, face.v[2]) - a;
+    const glm::dvec3 a = at(engine, face.v[0]), e1 = at(engine, face.v[1]) - a,
+                     e2 = at(engine, face.v[2]) - a;
     const glm::dvec3 p = glm::cross(direction, e2);
     const double det = glm::dot(e1, p);
     if (std::fabs(det) < 1e-300) continue;

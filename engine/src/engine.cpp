@@ -698,7 +698,9 @@ void Engine::finish(IterationRecord& record) {
   // tetrahedron of c and input points, so nothing outside is left.
   // The edges that are not strictly convex, each once (from its lower face id), in id order.  Parallel:
   // on a sphere of 1M points this scan covers 3M edges.
-  auto faulty_edges = [&] {
+  // With `from_geometry` (geometry_ matches the mesh) corners are read from geometry_, where they lie next
+  // to each other, instead of from the input points: fewer cache misses on a 2M-face mesh.
+  auto faulty_edges = [&](bool from_geometry) {
     const FaceId capacity = static_cast<FaceId>(mesh_.face_capacity());
     const unsigned workers = hardware_workers();
     std::vector<std::vector<Edge>> found(workers);
@@ -708,12 +710,16 @@ void Engine::finish(IterationRecord& record) {
           for (FaceId f = static_cast<FaceId>(begin); f < end; ++f) {
             if (!mesh_.alive(f)) continue;
             const MeshFace& face = mesh_.face(f);
+            Vec3d corner[3];
+            for (int k = 0; k < 3; ++k)
+              corner[k] = from_geometry ? to_vec3d(geometry_[f].v[k]) : P(face.v[k]);
             for (int i = 0; i < 3; ++i) {
               const FaceId g = face.n[i];
               if (g < f) continue;
               const int j = mesh_.edge_index(g, face.v[(i + 1) % 3], face.v[i]);
-              const PointIndex y = mesh_.face(g).v[(j + 2) % 3];
-              if (orient3d(P(face.v[0]), P(face.v[1]), P(face.v[2]), P(y)) >= 0) found[w].push_back({f, i});
+              const Vec3d y =
+                  from_geometry ? to_vec3d(geometry_[g].v[(j + 2) % 3]) : P(mesh_.face(g).v[(j + 2) % 3]);
+              if (orient3d(corner[0], corner[1], corner[2], y) >= 0) found[w].push_back({f, i});
             }
           }
         },
@@ -725,7 +731,7 @@ void Engine::finish(IterationRecord& record) {
   };
   // Faults: faulty edges plus faces that c is not strictly below (geometry_ matches the compacted mesh).
   auto count_faults = [&] {
-    std::size_t count = faulty_edges().size();
+    std::size_t count = faulty_edges(true).size();
     for (const FaceGeometry& g : geometry_)
       count += g.tet[3] >= 0 ? 1 : 0;
     return count;
@@ -737,7 +743,7 @@ void Engine::finish(IterationRecord& record) {
     // follows the changes to the neighbouring edges and vertices.
     Impl impl(*this, record);
     for (int round = 0; round < 8; ++round) {
-      const std::vector<Edge> faulty = faulty_edges();
+      const std::vector<Edge> faulty = faulty_edges(false);
       if (faulty.empty()) break;
       for (const Edge& edge : faulty) {
         impl.queue.push_back(edge);
@@ -773,17 +779,23 @@ void Engine::finish(IterationRecord& record) {
     result_.dimension = 3;
     result_.vertex_ids = mesh_.vertices();
     PointMap<std::uint32_t> local;  // point index -> 1 + its position in vertex_ids
+    local.reserve(result_.vertex_ids.size());
     result_.vertices.reserve(result_.vertex_ids.size());
     for (std::uint32_t k = 0; k < result_.vertex_ids.size(); ++k) {
       local[result_.vertex_ids[k]] = k + 1;
       result_.vertices.push_back(points_[result_.vertex_ids[k]]);
     }
-    result_.triangles.reserve(faces);
-    for (FaceId f = 0; f < faces; ++f) {
-      const MeshFace& face = mesh_.face(f);
-      result_.triangles.push_back(
-          {local.get(face.v[0]) - 1, local.get(face.v[1]) - 1, local.get(face.v[2]) - 1});
-    }
+    result_.triangles.resize(faces);
+    parallel_chunks(
+        faces, hardware_workers(),
+        [&](std::size_t begin, std::size_t end, unsigned) {
+          for (std::size_t f = begin; f < end; ++f) {
+            const MeshFace& face = mesh_.face(static_cast<FaceId>(f));
+            result_.triangles[f] = {local.get(face.v[0]) - 1, local.get(face.v[1]) - 1,
+                                    local.get(face.v[2]) - 1};
+          }
+        },
+        65536);
   } else {
     // The paper's local procedure stopped short (coplanar or cospherical input): finish exactly from the
     // candidates, which contain every extreme point.

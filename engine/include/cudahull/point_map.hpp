@@ -41,6 +41,13 @@ class PointMap {
     }
   }
   void clear() { rehash(64); }
+  // Room for `count` keys without growing.
+  void reserve(std::size_t count) {
+    std::size_t capacity = keys_.size();
+    while (capacity < 2 * count + 2)
+      capacity *= 2;
+    if (capacity != keys_.size()) rehash(capacity);
+  }
   // Calls visit(key, value&) for every stored key, in no particular order.
   template <class Visit>
   void for_each(Visit&& visit) {
