@@ -21,6 +21,7 @@
 #include <stb/stb_image.h>
 
 #include "camera.hpp"
+#include "overlay.hpp"
 #include "png.hpp"
 #include "renderer.hpp"
 #include "script.hpp"
@@ -297,6 +298,83 @@ TEST(ViewerHeadless, SelectedFaceCellAndEdgeNormalsChangeThePicture) {
   EXPECT_LT(differing_fraction(plain, hidden), 0.001);
   EXPECT_GT(differing_fraction(hidden, normals), 0.003);
   EXPECT_LT(differing_fraction(normals, out_of_range), 0.001);  // an unknown face id draws no cell
+}
+
+std::vector<std::string> lines_of(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);)
+    lines.push_back(line);
+  return lines;
+}
+
+bool rgba_near(const std::array<float, 3>& p, std::uint32_t rgba) {
+  const float r = (rgba & 0xff) / 255.0f, g = ((rgba >> 8) & 0xff) / 255.0f,
+              b = ((rgba >> 16) & 0xff) / 255.0f;
+  return std::abs(p[0] - r) + std::abs(p[1] - g) + std::abs(p[2] - b) < 0.12f;
+}
+
+// Issue 6, Figs. 3-5 and 7: next-rejected stops at a step that rejected a swap; the swaps layer draws that
+// step's swaps (green new edges) and the rejected foldover (orange old edge, magenta beneath-triangle); the
+// refinement layer changes the picture; the exported decision table is the trace's decision array for the
+// step, entry by entry; the exported mesh has the step's faces.
+TEST(ViewerHeadless, SwapsRefinementAndExportsMatchTheTrace) {
+  TempDir dir;
+  const std::string script =
+      dir.write("debug.txt",
+                "next-rejected\nhide internal\nhide external\nhide hull\nhide wireframe\nhide vertices\n"
+                "screenshot " +
+                    (dir / "plain.png") + "\nshow swaps\nscreenshot " + (dir / "swaps.png") +
+                    "\nhide swaps\nshow refinement\nscreenshot " + (dir / "refinement.png") +
+                    "\nexport-trace " + (dir / "trace.jsonl") + "\nexport-decisions " +
+                    (dir / "decisions.csv") + "\nexport-mesh " + (dir / "mesh.obj") + "\n");
+  const ViewerRun r = run_viewer({"--gen", "ball", "3000", "--seed", "5", "--headless", "--width", "320",
+                                  "--height", "240", "--script", script});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+
+  const std::vector<std::string> trace = lines_of(dir / "trace.jsonl");
+  ASSERT_FALSE(trace.empty());
+  const nlohmann::json step = nlohmann::json::parse(trace.back());
+  EXPECT_GT(step["swaps_rejected"].get<int>(), 0) << "next-rejected stopped at a step without a rejection";
+  for (std::size_t k = 0; k + 1 < trace.size(); ++k)
+    EXPECT_EQ(nlohmann::json::parse(trace[k])["swaps_rejected"].get<int>(), 0)
+        << "an earlier rejection at " << k;
+
+  const std::vector<std::string> csv = lines_of(dir / "decisions.csv");
+  const nlohmann::json& decisions = step["decisions"];
+  ASSERT_EQ(csv.size(), decisions.size() + 1);  // header
+  for (std::size_t k = 0; k < decisions.size(); ++k) {
+    const nlohmann::json& d = decisions[k];
+    std::istringstream row(csv[k + 1]);
+    std::vector<std::string> cells;
+    for (std::string cell; std::getline(row, cell, ',');)
+      cells.push_back(cell);
+    ASSERT_GE(cells.size(), 7u) << csv[k + 1];
+    EXPECT_EQ(cells[0], std::to_string(k));
+    EXPECT_EQ(cells[1], d["kind"].get<std::string>());
+    if (d["kind"] == "swap") {
+      EXPECT_DOUBLE_EQ(std::stod(cells[2]), d["plane"][0].get<double>()) << k;
+      EXPECT_DOUBLE_EQ(std::stod(cells[5]), d["plane"][3].get<double>()) << k;
+    }
+  }
+
+  std::size_t faces = 0;
+  for (const std::string& line : lines_of(dir / "mesh.obj"))
+    faces += line.rfind("f ", 0) == 0 ? 1 : 0;
+  EXPECT_EQ(faces, step["faces_after"].get<std::size_t>());
+
+  const Image plain = read_png(dir / "plain.png"), swaps = read_png(dir / "swaps.png"),
+              refinement = read_png(dir / "refinement.png");
+  auto count = [](const Image& img, std::uint32_t rgba) {
+    std::size_t n = 0;
+    for (const auto& p : img.rgb)
+      n += rgba_near(p, rgba) ? 1 : 0;
+    return n;
+  };
+  EXPECT_GT(count(swaps, kRegularSwapRgba), 20u);
+  EXPECT_GT(count(swaps, kFoldoverRgba) + count(swaps, kBeneathRgba), 5u);
+  EXPECT_EQ(count(plain, kRegularSwapRgba) + count(plain, kBeneathRgba), 0u);
+  EXPECT_GT(differing_fraction(plain, refinement), 0.01);
 }
 
 TEST(ViewerHeadless, BadScriptLineExits2NamingTheLine) {

@@ -30,6 +30,7 @@
 
 #include "cudahull/errors.hpp"
 #include "cudahull/generators.hpp"
+#include "export.hpp"
 #include "options.hpp"
 #include "run_plan.hpp"
 #include "session.hpp"
@@ -60,6 +61,10 @@ constexpr Shortcut kShortcuts[] = {
     {"Wheel", "zoom"},
     {"Double-click", "select the face under the mouse: its cell, points and extreme point (Fig. 2)"},
     {"N", "toggle the edge normals of all faces"},
+    {"W", "toggle the last step's swaps (with their sequence numbers) and removals"},
+    {"G", "toggle the last step's refinements (parent faces, apexes)"},
+    {"J", "jump to the next step with a rejected swap"},
+    {"D", "show / hide the debugger panel"},
     {"F1, ?", "this help"},
     {"Ctrl-Q", "quit"},
 };
@@ -89,6 +94,9 @@ class AppWindow {
   void panel_main();
   void panel_record();
   void panel_plots();
+  void panel_debugger();
+  void swap_labels();
+  void frame_points(std::initializer_list<PointIndex> points);
   void help_overlay();
   void log(const std::string& line);
   void copy_view();
@@ -114,6 +122,8 @@ class AppWindow {
   float ui_scale_ = 1.0f;
   float pixel_scale_ = 1.0f;
   std::vector<std::string> pending_drops_;
+  bool show_debugger_ = true;
+  char export_path_[1024] = "cudahull_export";
   friend void drop_callback(GLFWwindow*, int, const char**);
 };
 
@@ -207,6 +217,10 @@ void AppWindow::handle_input() {
   }
   if (pressed(GLFW_KEY_F1) || (pressed(GLFW_KEY_SLASH) && io.KeyShift)) show_help_ = !show_help_;
   if (pressed(GLFW_KEY_N)) s.show(Layer::kNormals, !s.shown(Layer::kNormals));
+  if (pressed(GLFW_KEY_W)) s.show(Layer::kSwaps, !s.shown(Layer::kSwaps));
+  if (pressed(GLFW_KEY_G)) s.show(Layer::kRefinement, !s.shown(Layer::kRefinement));
+  if (pressed(GLFW_KEY_J) && !session_->next_rejected()) status_ = "no later step rejects a swap";
+  if (pressed(GLFW_KEY_D)) show_debugger_ = !show_debugger_;
   if (pressed(GLFW_KEY_ESCAPE)) show_help_ = false;
   if (pressed(GLFW_KEY_F)) session_->fit_view();
   if (pressed(GLFW_KEY_HOME)) camera.reset();
@@ -298,9 +312,7 @@ void AppWindow::panel_main() {
     for (int i = 0; i < kLayerCount; ++i) {
       const Layer layer = static_cast<Layer>(i);
       bool on = s.shown(layer);
-      ImGui::BeginDisabled(layer_reserved(layer));
       if (ImGui::Checkbox(layer_name(layer), &on)) s.show(layer, on);
-      ImGui::EndDisabled();
       if (i % 4 != 3 && i + 1 < kLayerCount) ImGui::SameLine();
     }
     ImGui::SliderFloat("point size", &s.point_size, 1.0f, 16.0f, "%.1f");
@@ -428,6 +440,204 @@ void AppWindow::panel_record() {
   ImGui::End();
 }
 
+// Points the camera at the given input points (the debugger's "Frame" buttons).
+void AppWindow::frame_points(std::initializer_list<PointIndex> points) {
+  Scene* scene = session_->scene();
+  if (!scene) return;
+  glm::vec3 lo(FLT_MAX), hi(-FLT_MAX);
+  for (PointIndex i : points) {
+    const Point3& p = scene->points()[i];
+    lo = glm::min(lo, glm::vec3(p.x, p.y, p.z));
+    hi = glm::max(hi, glm::vec3(p.x, p.y, p.z));
+  }
+  session_->camera().frame(0.5f * (lo + hi), std::max(0.75f * glm::length(hi - lo), 1e-6f));
+}
+
+// Sequence numbers of the swaps (Figs. 3b, 4) next to their edges, while the swaps layer is shown.
+void AppWindow::swap_labels() {
+  Scene* scene = session_->scene();
+  const IterationRecord* r = scene ? scene->current_record() : nullptr;
+  if (!r || !session_->settings().shown(Layer::kSwaps) || r->swaps.size() > 400) return;
+  int win_w = 1, win_h = 1;
+  glfwGetWindowSize(window_, &win_w, &win_h);
+  const glm::mat4 view_proj = session_->camera().projection(static_cast<float>(win_w) / std::max(win_h, 1)) *
+                              session_->camera().view();
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  for (const SwapRecord& s : r->swaps) {
+    const bool done = s.kind == SwapKind::kRegular || s.kind == SwapKind::kComplementary;
+    const Point3& a = scene->points()[done ? s.new_edge[0] : s.old_edge[0]];
+    const Point3& b = scene->points()[done ? s.new_edge[1] : s.old_edge[1]];
+    const glm::vec4 clip =
+        view_proj * glm::vec4(0.5f * (a.x + b.x), 0.5f * (a.y + b.y), 0.5f * (a.z + b.z), 1.0f);
+    if (clip.w <= 0) continue;
+    const ImVec2 at((clip.x / clip.w * 0.5f + 0.5f) * win_w, (0.5f - clip.y / clip.w * 0.5f) * win_h);
+    const ImU32 color = done ? IM_COL32(230, 255, 230, 255) : IM_COL32(255, 170, 80, 255);
+    draw->AddText(at, color, ("#" + std::to_string(s.sequence)).c_str());
+  }
+}
+
+// Issue 6: the last step's swaps (with the rejected ones and their reasons, Fig. 5), its decision array
+// (Fig. 7), and the exports.
+void AppWindow::panel_debugger() {
+  Scene* scene = session_->scene();
+  if (!scene || !show_debugger_) return;
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(10 * ui_scale_, display.y - 360 * ui_scale_), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(520 * ui_scale_, 340 * ui_scale_), ImGuiCond_FirstUseEver);
+  if (!ImGui::Begin("Debugger", &show_debugger_)) {
+    ImGui::End();
+    return;
+  }
+  if (ImGui::Button("Next step with a rejected swap")) {
+    if (!session_->next_rejected()) status_ = "no later step rejects a swap";
+  }
+  const IterationRecord* r = scene->current_record();
+  if (r == nullptr) {
+    ImGui::TextDisabled("step once to see the swaps and the decision array");
+    ImGui::End();
+    return;
+  }
+  RenderSettings& s = session_->settings();
+  if (ImGui::BeginTabBar("debugger")) {
+    if (ImGui::BeginTabItem("Swaps")) {
+      bool on = s.shown(Layer::kSwaps);
+      if (ImGui::Checkbox("draw them (swaps layer)", &on)) s.show(Layer::kSwaps, on);
+      ImGui::SameLine();
+      on = s.shown(Layer::kRefinement);
+      if (ImGui::Checkbox("refinement layer", &on)) s.show(Layer::kRefinement, on);
+      static bool rejected_only = false;
+      ImGui::Checkbox("rejected only", &rejected_only);
+      if (ImGui::BeginTable("swaps", 5, ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg, ImVec2(0, 0))) {
+        ImGui::TableSetupColumn("#");
+        ImGui::TableSetupColumn("kind");
+        ImGui::TableSetupColumn("old -> new edge");
+        ImGui::TableSetupColumn("why / now");
+        ImGui::TableSetupColumn("");
+        ImGui::TableHeadersRow();
+        const Mesh& mesh = scene->engine().mesh();
+        for (const SwapRecord& w : r->swaps) {
+          const bool done = w.kind == SwapKind::kRegular || w.kind == SwapKind::kComplementary;
+          if (rejected_only && done) continue;
+          ImGui::TableNextRow();
+          ImGui::TableNextColumn();
+          ImGui::Text("%d", w.sequence);
+          ImGui::TableNextColumn();
+          ImGui::TextUnformatted(swap_kind_name(w.kind));
+          ImGui::TableNextColumn();
+          ImGui::Text("%u-%u -> %u-%u", w.old_edge[0], w.old_edge[1], w.new_edge[0], w.new_edge[1]);
+          ImGui::TableNextColumn();
+          if (done) {
+            ImGui::Text("entry %d", w.decision_index);
+          } else {
+            // Resolved when a later swap or removal of the step took the old edge away.
+            const bool gone = !mesh.has_vertex(w.old_edge[0]) || !mesh.adjacent(w.old_edge[0], w.old_edge[1]);
+            if (w.beneath_vertex != kNoPoint) {
+              ImGui::Text("%u beneath (%u,%u,%u); %s", w.beneath_vertex, w.beneath_triangle[0],
+                          w.beneath_triangle[1], w.beneath_triangle[2],
+                          gone ? "resolved later" : "edge still there");
+            } else {
+              ImGui::Text("%s", gone ? "resolved later" : "edge still there");
+            }
+          }
+          ImGui::TableNextColumn();
+          ImGui::PushID(w.sequence);
+          if (ImGui::SmallButton("Frame")) {
+            if (w.beneath_vertex != kNoPoint) {
+              frame_points({w.old_edge[0], w.old_edge[1], w.new_edge[0], w.new_edge[1], w.beneath_vertex});
+            } else {
+              frame_points({w.old_edge[0], w.old_edge[1], w.new_edge[0], w.new_edge[1]});
+            }
+            s.show(Layer::kSwaps, true);
+          }
+          ImGui::PopID();
+        }
+        ImGui::EndTable();
+      }
+      ImGui::EndTabItem();
+    }
+    if (ImGui::BeginTabItem("Decision array")) {
+      ImGui::TextDisabled(
+          "Fig. 7: a point of a swapped face goes 'above' or 'below' the plane; codes >= 0 are faces");
+      if (ImGui::BeginTable("decisions", 5, ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg)) {
+        ImGui::TableSetupColumn("index");
+        ImGui::TableSetupColumn("separating plane");
+        ImGui::TableSetupColumn("above");
+        ImGui::TableSetupColumn("below");
+        ImGui::TableSetupColumn("");
+        ImGui::TableHeadersRow();
+        auto code = [](std::int32_t c) {
+          return c == kRouteInternal ? std::string("internal")
+                 : c < 0             ? "entry " + std::to_string(-c - 1)
+                                     : "face " + std::to_string(c);
+        };
+        ImGuiListClipper clipper;
+        clipper.Begin(static_cast<int>(r->decisions.size()));
+        while (clipper.Step()) {
+          for (int k = clipper.DisplayStart; k < clipper.DisplayEnd; ++k) {
+            const DecisionEntry& d = r->decisions[k];
+            ImGui::TableNextRow();
+            ImGui::TableNextColumn();
+            ImGui::Text("%d", k);
+            ImGui::TableNextColumn();
+            if (d.kind == kDecisionSwap) {
+              ImGui::Text("(%.3f, %.3f, %.3f) . x + %.4g", d.plane.nx, d.plane.ny, d.plane.nz, d.plane.d);
+            } else {
+              ImGui::TextUnformatted("removal");
+            }
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(code(d.above).c_str());
+            ImGui::TableNextColumn();
+            ImGui::TextUnformatted(d.kind == kDecisionSwap ? code(d.below).c_str() : "");
+            ImGui::TableNextColumn();
+            ImGui::PushID(k);
+            if (ImGui::SmallButton("Frame")) {
+              for (const SwapRecord& w : r->swaps) {
+                if (w.decision_index == k)
+                  frame_points({w.new_edge[0], w.new_edge[1], w.old_edge[0], w.old_edge[1]});
+              }
+              for (const RemovalRecord& m : r->removals) {
+                if (m.decision_index == k) frame_points({m.vertex, m.ring[0], m.ring[1], m.ring[2]});
+              }
+            }
+            ImGui::PopID();
+          }
+        }
+        ImGui::EndTable();
+      }
+      ImGui::EndTabItem();
+    }
+    if (ImGui::BeginTabItem("Export")) {
+      ImGui::InputText("base path", export_path_, sizeof export_path_);
+      const std::string base = export_path_;
+      auto attempt = [&](const char* what, const std::function<void()>& write) {
+        try {
+          write();
+          status_ = std::string("wrote ") + what;
+        } catch (const std::exception& e) {
+          status_ = e.what();
+        }
+      };
+      if (ImGui::Button("Mesh (.obj)")) attempt("the mesh", [&] { export_mesh(*scene, base + ".obj"); });
+      ImGui::SameLine();
+      if (ImGui::Button("Trace (.jsonl)"))
+        attempt("the trace", [&] { export_trace(*scene, base + ".jsonl"); });
+      ImGui::SameLine();
+      if (ImGui::Button("Decisions (.csv)"))
+        attempt("the decisions", [&] { export_decisions(*scene, base + ".csv"); });
+      ImGui::SameLine();
+      if (ImGui::Button("Screenshot (.png)")) {
+        int fb_w = 1, fb_h = 1;
+        glfwGetFramebufferSize(window_, &fb_w, &fb_h);
+        attempt("the screenshot", [&] { session_->screenshot(base + ".png", fb_w, fb_h); });
+      }
+      if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
+      ImGui::EndTabItem();
+    }
+    ImGui::EndTabBar();
+  }
+  ImGui::End();
+}
+
 void AppWindow::panel_plots() {
   Scene* scene = session_->scene();
   const ImVec2 display = ImGui::GetIO().DisplaySize;
@@ -502,6 +712,8 @@ void AppWindow::draw_ui() {
   panel_main();
   panel_record();
   panel_plots();
+  panel_debugger();
+  swap_labels();
   help_overlay();
 }
 

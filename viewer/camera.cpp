@@ -33,6 +33,11 @@ void Camera::fit(const glm::vec3& lo, const glm::vec3& hi) {
   home_distance_ = distance_;
 }
 
+void Camera::frame(const glm::vec3& center, float radius) {
+  target_ = center;
+  distance_ = 1.15f * std::max(radius, 1e-6f) / std::sin(glm::radians(0.5f * fov_));
+}
+
 Camera Camera::home_view() const {
   Camera c = *this;
   c.target_ = home_target_;

@@ -17,6 +17,8 @@ class Camera {
   // Frames the box [lo, hi] and remembers that view for reset().
   void fit(const glm::vec3& lo, const glm::vec3& hi);
   void reset() { *this = home_view(); }
+  // Looks at a sphere of `radius` around `center` (the debugger's "frame this case"), keeping the angles.
+  void frame(const glm::vec3& center, float radius);
 
   // Mouse motion in logical pixels over a viewport `height` logical pixels tall.
   void orbit(float dx, float dy, float height);

@@ -41,16 +41,92 @@ bool has_mesh(const Engine& engine) {
   return engine.dimension() == 3 && engine.mesh().live_faces() > 0;
 }
 
+void cross(std::vector<OverlayVertex>& out, const glm::dvec3& p, double r, std::uint32_t rgba) {
+  for (const glm::dvec3& d : {glm::dvec3(r, 0, 0), glm::dvec3(0, r, 0), glm::dvec3(0, 0, r)}) {
+    push(out, p - d, rgba);
+    push(out, p + d, rgba);
+  }
+}
+
+void segment(std::vector<OverlayVertex>& out, const glm::dvec3& a, const glm::dvec3& b, std::uint32_t rgba) {
+  push(out, a, rgba);
+  push(out, b, rgba);
+}
+
+void triangle_outline(std::vector<OverlayVertex>& out, const glm::dvec3& a, const glm::dvec3& b,
+                      const glm::dvec3& c, std::uint32_t rgba) {
+  segment(out, a, b, rgba);
+  segment(out, b, c, rgba);
+  segment(out, c, a, rgba);
+}
+
+// A marker size for the whole step: a fraction of the points' extent.
+double marker_size(const Engine& engine) {
+  glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
+  const std::vector<PointIndex> vertices = engine.mesh().vertices();
+  for (PointIndex v : vertices) {
+    lo = glm::min(lo, at(engine, v));
+    hi = glm::max(hi, at(engine, v));
+  }
+  const glm::dvec3 extent = hi - lo;
+  return 0.012 * std::max({extent.x, extent.y, extent.z, 1e-30});
+}
+
+void refinement_overlay(const Engine& engine, double r, Overlay& out) {
+  const IterationRecord& record = engine.last_record();
+  const std::uint32_t parent = pack_rgba(1.0f, 1.0f, 1.0f, 0.9f), spoke = pack_rgba(1.0f, 0.62f, 0.16f, 1.0f);
+  for (std::size_t k = 0; k < record.refined_apexes.size(); ++k) {
+    const glm::dvec3 apex = at(engine, record.refined_apexes[k]);
+    cross(out.lines, apex, r, spoke);
+    if (k >= record.refined_faces.size()) continue;  // the tetrahedron of section 3.1 has no parents
+    const auto& f = record.refined_faces[k];
+    const glm::dvec3 a = at(engine, f[0]), b = at(engine, f[1]), c = at(engine, f[2]);
+    triangle_outline(out.lines, a, b, c, parent);
+    for (const glm::dvec3& corner : {a, b, c})
+      segment(out.lines, apex, corner, spoke);
+  }
+}
+
+void swaps_overlay(const Engine& engine, double r, Overlay& out) {
+  const IterationRecord& record = engine.last_record();
+  for (const SwapRecord& s : record.swaps) {
+    const glm::dvec3 u = at(engine, s.old_edge[0]), v = at(engine, s.old_edge[1]);
+    const glm::dvec3 x = at(engine, s.new_edge[0]), y = at(engine, s.new_edge[1]);
+    if (s.kind == SwapKind::kRegular || s.kind == SwapKind::kComplementary) {
+      segment(out.lines, u, v, kOldEdgeRgba);
+      segment(out.lines, x, y, s.kind == SwapKind::kRegular ? kRegularSwapRgba : kComplementarySwapRgba);
+      continue;
+    }
+    segment(out.lines, u, v, kFoldoverRgba);
+    segment(out.lines, x, y, pack_rgba(0.6f, 0.6f, 0.6f, 0.8f));
+    if (s.beneath_vertex != kNoPoint) {
+      cross(out.lines, at(engine, s.beneath_vertex), r, kBeneathRgba);
+      triangle_outline(out.lines, at(engine, s.beneath_triangle[0]), at(engine, s.beneath_triangle[1]),
+                       at(engine, s.beneath_triangle[2]), kBeneathRgba);
+    }
+  }
+  for (const RemovalRecord& m : record.removals) {
+    const std::uint32_t rgba = m.rejected ? pack_rgba(0.6f, 0.6f, 0.6f, 0.8f) : kRemovalRgba;
+    cross(out.lines, at(engine, m.vertex), r, rgba);
+    triangle_outline(out.lines, at(engine, m.ring[0]), at(engine, m.ring[1]), at(engine, m.ring[2]), rgba);
+  }
+}
+
 }  // namespace
 
-void build_overlay(const Engine& engine, long long selected, bool cells, bool normals, Overlay& out) {
+void build_overlay(const Engine& engine, long long selected, const OverlayLayers& layers, Overlay& out) {
   out.triangles.clear();
   out.lines.clear();
   if (!has_mesh(engine)) return;
   const Mesh& mesh = engine.mesh();
   const auto faces = static_cast<long long>(mesh.face_capacity());
+  if (layers.refinement || layers.swaps) {
+    const double r = marker_size(engine);
+    if (layers.refinement) refinement_overlay(engine, r, out);
+    if (layers.swaps) swaps_overlay(engine, r, out);
+  }
 
-  if (cells && selected >= 0 && selected < faces) {
+  if (layers.cells && selected >= 0 && selected < faces) {
     const auto f = static_cast<FaceId>(selected);
     const MeshFace& face = mesh.face(f);
     double longest = 0;
@@ -75,16 +151,11 @@ void build_overlay(const Engine& engine, long long selected, bool cells, bool no
     const std::vector<FaceExtreme>& extremes = engine.face_extremes();
     if (f < extremes.size() && extremes[f].count > 0) {
       const glm::dvec3 p = at(engine, extremes[f].furthest);
-      const double r = 0.08 * longest;
-      const std::uint32_t marker = pack_rgba(1.0f, 1.0f, 1.0f, 1.0f);
-      for (const glm::dvec3& d : {glm::dvec3(r, 0, 0), glm::dvec3(0, r, 0), glm::dvec3(0, 0, r)}) {
-        push(out.lines, p - d, marker);
-        push(out.lines, p + d, marker);
-      }
+      cross(out.lines, p, 0.08 * longest, pack_rgba(1.0f, 1.0f, 1.0f, 1.0f));
     }
   }
 
-  if (normals) {
+  if (layers.normals) {
     const std::uint32_t shaft = pack_rgba(0.55f, 0.85f, 1.0f, 1.0f);
     for (FaceId f = 0; f < mesh.face_capacity(); ++f) {
       if (!mesh.alive(f)) continue;

@@ -15,8 +15,8 @@ namespace cudahull::viewer {
 
 namespace {
 
-constexpr const char* kLayerNames[kLayerCount] = {"hull",     "wireframe", "internal", "external",
-                                                  "vertices", "cells",     "swaps",    "normals"};
+constexpr const char* kLayerNames[kLayerCount] = {"hull",  "wireframe", "internal", "external",  "vertices",
+                                                  "cells", "swaps",     "normals",  "refinement"};
 
 unsigned compile(GLenum type, const char* source, const char* name) {
   const GLuint shader = glCreateShader(type);
@@ -99,10 +99,6 @@ std::string layer_names() {
   for (int i = 0; i < kLayerCount; ++i)
     out += (i ? ", " : "") + std::string(kLayerNames[i]);
   return out;
-}
-
-bool layer_reserved(Layer layer) {
-  return layer == Layer::kSwaps;
 }
 
 std::string gl_description() {

@@ -29,14 +29,25 @@
 
 namespace cudahull::viewer {
 
-// kCells: the selected face's separating planes, cell points and extreme point (Fig. 2); kNormals: every
-// edge's normal (the average of its faces' normals, which the separating plane contains) as an arrow.
-enum class Layer { kHull, kWireframe, kInternal, kExternal, kVertices, kCells, kSwaps, kNormals };
-inline constexpr int kLayerCount = 8;
+// kCells: the selected face's separating planes, cell points and extreme point (Fig. 2); kSwaps: the last
+// step's swaps, rejected swaps and removals (Figs. 3b, 4, 5); kNormals: every edge's normal (the average of
+// its faces' normals, which the separating plane contains) as an arrow; kRefinement: the last step's
+// refined faces, their apexes and the edges to them (Fig. 3a).
+enum class Layer {
+  kHull,
+  kWireframe,
+  kInternal,
+  kExternal,
+  kVertices,
+  kCells,
+  kSwaps,
+  kNormals,
+  kRefinement
+};
+inline constexpr int kLayerCount = 9;
 const char* layer_name(Layer layer);
 std::optional<Layer> layer_from_name(std::string_view name);
-std::string layer_names();         // "hull, wireframe, ..." for messages
-bool layer_reserved(Layer layer);  // named but drawn only from issue 6 on
+std::string layer_names();  // "hull, wireframe, ..." for messages
 
 enum class PointColors { kState, kFace };
 enum class FaceColors { kState, kAge };
@@ -47,7 +58,7 @@ enum class PointMode { kAuto, kPoints, kSplats };
 inline constexpr std::size_t kSplatAutoPoints = 2000000;
 
 struct RenderSettings {
-  std::array<bool, kLayerCount> layers{true, true, true, true, true, true, false, false};
+  std::array<bool, kLayerCount> layers{true, true, true, true, true, true, false, false, false};
   float point_size = 3.0f;     // logical pixels (times pixel_scale)
   float point_opacity = 1.0f;  // 0..1
   float hull_opacity = 0.6f;   // 0..1; below 1 the points inside show through

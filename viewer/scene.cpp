@@ -36,6 +36,14 @@ Scene::Scene(std::shared_ptr<const std::vector<Point3>> points, BackendFactory m
   render_.dirty = kDirtyAll;
 }
 
+std::vector<IterationRecord> Scene::replay_records() const {
+  std::vector<IterationRecord> records;
+  Engine replay(*points_, make_backend_());
+  for (int k = 0; k < position_ && !replay.done(); ++k)
+    records.push_back(replay.step());
+  return records;
+}
+
 void Scene::restart() {
   engine_ = std::make_unique<Engine>(*points_, make_backend_());
   position_ = 0;
@@ -49,6 +57,7 @@ void Scene::step_once() {
   record.swaps.clear();
   record.removals.clear();
   record.refined_apexes.clear();
+  record.refined_faces.clear();
   record.decisions.clear();
   record.swaps.shrink_to_fit();
   record.decisions.shrink_to_fit();

@@ -70,6 +70,10 @@ class Scene {
   // Per-point bytes the fallback path read back from the backend so far (0 on the interop path).
   std::uint64_t point_readback_bytes() const { return point_readback_bytes_; }
 
+  // The full records (swaps, decisions, ...) of every step from the start to the current position, by a
+  // deterministic replay on a fresh engine (the history keeps only the counters): for the trace export.
+  std::vector<IterationRecord> replay_records() const;
+
   RenderData& render_data();
   // Bounds of the point set (all zero when empty).
   void bounds(float lo[3], float hi[3]) const;

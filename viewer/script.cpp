@@ -92,6 +92,15 @@ std::vector<ScriptCommand> parse_script(std::istream& in, const std::string& nam
       c.kind = ScriptCommand::Kind::kScreenshot;
       if (rest.empty()) fail("'screenshot' needs a PNG path");
       c.text = rest;
+    } else if (verb == "next-rejected") {
+      c.kind = ScriptCommand::Kind::kNextRejected;
+      if (!rest.empty()) fail("'next-rejected' takes no argument");
+    } else if (verb == "export-mesh" || verb == "export-trace" || verb == "export-decisions") {
+      c.kind = verb == "export-mesh"    ? ScriptCommand::Kind::kExportMesh
+               : verb == "export-trace" ? ScriptCommand::Kind::kExportTrace
+                                        : ScriptCommand::Kind::kExportDecisions;
+      if (rest.empty()) fail("'" + verb + "' needs a path");
+      c.text = rest;
     } else if (verb == "set") {
       c.kind = ScriptCommand::Kind::kSet;
       std::istringstream words(rest);
@@ -119,7 +128,8 @@ std::vector<ScriptCommand> parse_script(std::istream& in, const std::string& nam
       }
     } else {
       fail("unknown command '" + verb +
-           "' (step, run, rewind, select-face, show, hide, camera, screenshot, set)");
+           "' (step, run, rewind, select-face, show, hide, camera, screenshot, set, next-rejected, "
+           "export-mesh, export-trace, export-decisions)");
     }
     commands.push_back(std::move(c));
   }

@@ -4,13 +4,17 @@
 //   step [N]             N iterations (default 1)
 //   run                  to the end
 //   rewind N             to timeline position N (steps from the start; 0 is the bare point set)
-//   select-face ID       remember a face of the current polyhedron (drawn from issue 6 on)
-//   show LAYER           hull, wireframe, internal, external, vertices (cells, swaps: reserved)
+//   select-face ID       select a face of the current polyhedron (the cells layer draws its cell)
+//   show LAYER           hull, wireframe, internal, external, vertices, cells, swaps, normals, refinement
 //   hide LAYER
+//   next-rejected        to the next position whose step rejected a swap (stays put if none)
+//   export-mesh PATH     the current polyhedron (.obj, .off or .ply)
+//   export-trace PATH    every step so far as JSON lines (`cudahull hull --trace`)
+//   export-decisions PATH  the current step's decision array as CSV
 //   camera JSON          the view, as Ctrl-C copies it (camera.hpp)
 //   screenshot PATH      a PNG of the scene (not the panels); %d in PATH becomes the position
 //   set NAME VALUE       point-size, point-opacity, hull-opacity, wire-width (numbers),
-//                        point-colors state|face, face-colors state|age
+//                        point-colors state|face, face-colors state|age, point-mode auto|points|splats
 //
 // parse_script() checks the whole file before anything runs, so a bad line fails early with a one-line
 // ScriptError naming the file and the line ("demo.txt:7: ...").
@@ -30,7 +34,21 @@ class ScriptError : public std::runtime_error {
 };
 
 struct ScriptCommand {
-  enum class Kind { kStep, kRun, kRewind, kSelectFace, kShow, kHide, kCamera, kScreenshot, kSet };
+  enum class Kind {
+    kStep,
+    kRun,
+    kRewind,
+    kSelectFace,
+    kShow,
+    kHide,
+    kCamera,
+    kScreenshot,
+    kSet,
+    kNextRejected,
+    kExportMesh,
+    kExportTrace,
+    kExportDecisions,
+  };
   Kind kind = Kind::kStep;
   long long number = 0;  // step, rewind, select-face
   std::string text;      // layer, path, or the setting's name

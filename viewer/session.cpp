@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "cudahull/errors.hpp"
+#include "export.hpp"
 #include "png.hpp"
 
 namespace cudahull::viewer {
@@ -63,13 +64,34 @@ void Session::update_overlay() {
   key.selected = selected_face_;
   key.cells = settings_.shown(Layer::kCells);
   key.normals = settings_.shown(Layer::kNormals);
+  key.refinement = settings_.shown(Layer::kRefinement);
+  key.swaps = settings_.shown(Layer::kSwaps);
   if (key == overlay_key_) return;
   overlay_key_ = key;
   overlay_.triangles.clear();
   overlay_.lines.clear();
   if (scene_ && scene_->position() > 0)
-    build_overlay(scene_->engine(), selected_face_, key.cells, key.normals, overlay_);
+    build_overlay(scene_->engine(), selected_face_, {key.cells, key.normals, key.refinement, key.swaps},
+                  overlay_);
   renderer_.set_overlay(overlay_.triangles, overlay_.lines);
+}
+
+bool Session::next_rejected() {
+  if (!scene_) return false;
+  const int start = scene_->position();
+  for (int p = start + 1;; ++p) {
+    if (p > scene_->known_end()) {
+      if (scene_->final_known()) break;
+      scene_->rewind(p);  // forward: steps on
+      if (scene_->known_end() < p) break;
+    }
+    if (scene_->history()[p - 1].swaps_rejected > 0) {
+      if (scene_->position() != p) scene_->rewind(p);
+      return true;
+    }
+  }
+  if (scene_->position() != start) scene_->rewind(start);
+  return false;
 }
 
 long long Session::face_at(double x, double y, int width, int height) const {
@@ -147,8 +169,6 @@ std::string Session::execute(const ScriptCommand& c, int width, int height) {
     case Kind::kHide: {
       const Layer layer = *layer_from_name(c.text);
       settings_.show(layer, c.kind == Kind::kShow);
-      if (layer_reserved(layer))
-        return c.where + ": note: layer '" + c.text + "' draws nothing yet (issue 6)";
       if (layer == Layer::kCells && c.kind == Kind::kShow && selected_face_ < 0)
         return c.where + ": note: the cells layer shows the selected face's cell: select-face ID first";
       return "";
@@ -166,6 +186,20 @@ std::string Session::execute(const ScriptCommand& c, int width, int height) {
       } catch (const OutputError& e) {
         throw OutputError(c.where + ": " + e.what());
       }
+    case Kind::kNextRejected:
+      return next_rejected() ? "" : c.where + ": note: no later step rejects a swap";
+    case Kind::kExportMesh:
+    case Kind::kExportTrace:
+    case Kind::kExportDecisions:
+      if (!scene_) return "";
+      try {
+        if (c.kind == Kind::kExportMesh) export_mesh(*scene_, c.text);
+        if (c.kind == Kind::kExportTrace) export_trace(*scene_, c.text);
+        if (c.kind == Kind::kExportDecisions) export_decisions(*scene_, c.text);
+      } catch (const std::exception& e) {
+        throw OutputError(c.where + ": " + e.what());
+      }
+      return "wrote " + c.text;
     case Kind::kSet: {
       const double x = std::strtod(c.value.c_str(), nullptr);
       if (c.text == "point-size") settings_.point_size = static_cast<float>(x);

@@ -33,6 +33,9 @@ class Session {
   // The face of the current polyhedron under framebuffer pixel (x, y) (origin top left) of a width x height
   // view, or -1: a ray cast from the camera (issue 6, picking a face to inspect its cell).
   long long face_at(double x, double y, int width, int height) const;
+  // Steps or replays to the next position after the current one whose step rejected a swap (Fig. 5);
+  // false, staying put, when the run ends without one.
+  bool next_rejected();
 
   // How per-point state reaches the GL buffer: "CUDA-GL interop" (the CUDA backend writes it on the
   // device, no readback) or "CPU upload (why)".  Decided by set_scene(); allow_interop(false) forces the
@@ -72,7 +75,7 @@ class Session {
     const Scene* scene = nullptr;
     int position = -1;
     long long selected = -1;
-    bool cells = false, normals = false;
+    bool cells = false, normals = false, refinement = false, swaps = false;
     bool operator==(const OverlayKey&) const = default;
   } overlay_key_;
   Overlay overlay_;

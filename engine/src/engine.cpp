@@ -628,6 +628,7 @@ IterationRecord Engine::iterate() {
     entry.face = f;
     entry.apex = apex;
     record.refined_apexes.push_back(apex);
+    record.refined_faces.push_back(old.v);
     used_vertices_.push_back(apex);
     for (FaceId c : kids)
       regular_candidates.push_back({c, 0});

@@ -39,6 +39,7 @@ nlohmann::json iteration_to_json(const IterationRecord& r) {
   j["bytes_from_backend"] = r.bytes_from_backend;
   if (!r.note.empty()) j["note"] = r.note;
   j["apexes"] = r.refined_apexes;
+  j["refined_faces"] = r.refined_faces;
   auto& swaps = j["swaps"] = nlohmann::json::array();
   for (const SwapRecord& s : r.swaps) {
     nlohmann::json e{{"seq", s.sequence},

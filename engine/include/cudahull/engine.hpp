@@ -10,6 +10,7 @@
 // exact hull of the vertices it used.  IterationRecord::repairs counts those fixes (0 in general position).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -62,9 +63,10 @@ struct IterationRecord {
   std::uint64_t bytes_to_backend = 0, bytes_from_backend = 0;
   std::vector<SwapRecord> swaps;
   std::vector<RemovalRecord> removals;
-  std::vector<PointIndex> refined_apexes;  // the extreme points used, one per refined face
-  std::vector<DecisionEntry> decisions;    // the decision array (Fig. 7) sent this iteration
-  std::string note;                        // e.g. "degenerate input: dimension 2"
+  std::vector<PointIndex> refined_apexes;                // the extreme points used, one per refined face
+  std::vector<std::array<PointIndex, 3>> refined_faces;  // each refined face's corners, as refined_apexes
+  std::vector<DecisionEntry> decisions;                  // the decision array (Fig. 7) sent this iteration
+  std::string note;                                      // e.g. "degenerate input: dimension 2"
 };
 
 // Each face's cell (section 3): its plane and its three separating planes (through edge i, containing the

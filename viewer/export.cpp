@@ -1,0 +1,78 @@
+#include "export.hpp"
+
+#include <cstdio>
+#include <unordered_map>
+#include <ostream>
+
+#include "cudahull/errors.hpp"
+#include "cudahull/mesh_io.hpp"
+#include "cudahull/trace.hpp"
+
+namespace cudahull::viewer {
+
+namespace {
+
+std::string route(std::int32_t code) {
+  if (code == kRouteInternal) return "internal";
+  if (code < 0) return "entry " + std::to_string(-code - 1);
+  return std::to_string(code);
+}
+
+std::string number(double x) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", x);
+  return text;
+}
+
+}  // namespace
+
+void export_mesh(const Scene& scene, const std::string& path) {
+  const Engine& engine = scene.engine();
+  if (scene.position() == 0) throw OutputError(path + ": nothing to export before the first step");
+  if (engine.done()) {
+    write_mesh(path, engine.result());
+    return;
+  }
+  HullMesh hull;
+  hull.dimension = 3;
+  hull.vertex_ids = engine.mesh().vertices();
+  std::unordered_map<PointIndex, std::uint32_t> local;
+  for (std::uint32_t k = 0; k < hull.vertex_ids.size(); ++k) {
+    local[hull.vertex_ids[k]] = k;
+    hull.vertices.push_back(engine.points()[hull.vertex_ids[k]]);
+  }
+  const Mesh& mesh = engine.mesh();
+  for (FaceId f = 0; f < mesh.face_capacity(); ++f) {
+    if (!mesh.alive(f)) continue;
+    const MeshFace& face = mesh.face(f);
+    hull.triangles.push_back({local[face.v[0]], local[face.v[1]], local[face.v[2]]});
+  }
+  write_mesh(path, hull);
+}
+
+void export_trace(const Scene& scene, const std::string& path) {
+  const std::vector<IterationRecord> records = scene.replay_records();
+  write_file_atomically(path, [&](std::ostream& out) {
+    for (const IterationRecord& r : records)
+      out << iteration_to_json(r).dump() << '\n';
+  });
+}
+
+void export_decisions(const Scene& scene, const std::string& path) {
+  const IterationRecord* record = scene.current_record();
+  if (record == nullptr) throw OutputError(path + ": no step yet, so no decision array");
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "index,kind,nx,ny,nz,d,above,below\n";
+    for (std::size_t k = 0; k < record->decisions.size(); ++k) {
+      const DecisionEntry& d = record->decisions[k];
+      if (d.kind == kDecisionSwap) {
+        out << k << ",swap," << number(d.plane.nx) << ',' << number(d.plane.ny) << ',' << number(d.plane.nz)
+            << ',' << number(d.plane.d) << ',' << route(d.above) << ',' << route(d.below) << '\n';
+      } else {
+        out << k << ",removal,,,,," << route(d.above) << ',' << route(d.above) << '\n';
+      }
+    }
+  });
+}
+
+}  // namespace cudahull::viewer
