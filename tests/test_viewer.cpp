@@ -69,10 +69,11 @@ struct ViewerRun {
   std::string err;
 };
 
-ViewerRun run_viewer(const std::vector<std::string>& args) {
+// Runs the viewer, in folder `cwd` when given.
+ViewerRun run_viewer(const std::vector<std::string>& args, const std::string& cwd = "") {
   TempDir dir;
   const std::string err_path = dir / "stderr.txt";
-  std::string cmd = quote(kViewer);
+  std::string cmd = (cwd.empty() ? "" : "cd " + quote(cwd) + " && ") + quote(kViewer);
   for (const auto& a : args)
     cmd += " " + quote(a);
   cmd += " 2>" + quote(err_path) + " >/dev/null </dev/null";
@@ -375,6 +376,61 @@ TEST(ViewerHeadless, SwapsRefinementAndExportsMatchTheTrace) {
   EXPECT_GT(count(swaps, kFoldoverRgba) + count(swaps, kBeneathRgba), 5u);
   EXPECT_EQ(count(plain, kRegularSwapRgba) + count(plain, kBeneathRgba), 0u);
   EXPECT_GT(differing_fraction(plain, refinement), 0.01);
+}
+
+// Issue 6, item 7: every demo in demos/ renders headless, and each really contains its case (from the
+// trace it exports): a regular swap (Fig. 3), a rejected foldover with its vertex beneath (Fig. 5), a
+// removal after complementary swaps (Fig. 4), and the bunny's whole run (Fig. 10).
+TEST(ViewerHeadless, DemosRenderAndShowTheirCases) {
+  TempDir dir;
+  fs::create_directory_symlink(CUDAHULL_ASSETS_DIR, dir / "assets");
+  auto run_demo = [&](const std::string& name) {
+    const std::string path = std::string(CUDAHULL_DEMOS_DIR) + "/" + name + ".txt";
+    std::ifstream in(path);
+    std::string first;
+    std::getline(in, first);
+    const std::string prefix = "# cudahull-viewer ";
+    EXPECT_EQ(first.rfind(prefix, 0), 0u) << path << " does not start with its input";
+    std::vector<std::string> args;
+    std::istringstream words(first.substr(prefix.size()));
+    for (std::string w; words >> w;)
+      args.push_back(w);
+    for (std::string a : {"--headless", "--width", "320", "--height", "240", "--script"})
+      args.push_back(a);
+    args.push_back(path);
+    const ViewerRun r = run_viewer(args, dir / "");
+    EXPECT_EQ(r.exit_code, 0) << name << ": " << describe(r);
+    const std::vector<std::string> trace =
+        lines_of(dir / ("out/demos/" + name.substr(0, name.find('_')) + ".jsonl"));
+    return trace.empty() ? nlohmann::json() : nlohmann::json::parse(trace.back());
+  };
+  auto has_swap = [](const nlohmann::json& step, const std::string& kind) {
+    for (const auto& w : step["swaps"])
+      if (w["kind"] == kind && (kind != "rejected_foldover" || w.contains("beneath_vertex"))) return true;
+    return false;
+  };
+
+  const nlohmann::json swap = run_demo("swap_fig3");
+  EXPECT_TRUE(has_swap(swap, "regular"));
+  EXPECT_GT(differing_fraction(read_png(dir / "out/demos/swap_1_refinement.png"),
+                               read_png(dir / "out/demos/swap_3_swaps.png")),
+            0.01);
+
+  EXPECT_TRUE(has_swap(run_demo("foldover_fig5"), "rejected_foldover"));
+  EXPECT_GT(variance(read_png(dir / "out/demos/foldover.png")), 1e-3);
+
+  const nlohmann::json removal = run_demo("removal_fig4");
+  EXPECT_TRUE(has_swap(removal, "complementary"));
+  bool removed = false;
+  for (const auto& m : removal["removals"])
+    removed = removed || !m["rejected"].get<bool>();
+  EXPECT_TRUE(removed);
+  EXPECT_GT(variance(read_png(dir / "out/demos/removal.png")), 1e-3);
+
+  const nlohmann::json bunny = run_demo("bunny_fig10");
+  EXPECT_EQ(bunny["external_after"].get<std::size_t>(), 0u) << "the bunny demo runs to the end";
+  for (const char* png : {"bunny_00.png", "bunny_01.png", "bunny_05.png"})
+    EXPECT_GT(variance(read_png(dir / ("out/demos/" + std::string(png)))), 1e-4) << png;
 }
 
 TEST(ViewerHeadless, BadScriptLineExits2NamingTheLine) {

@@ -96,7 +96,6 @@ class AppWindow {
   void panel_plots();
   void panel_debugger();
   void swap_labels();
-  void frame_points(std::initializer_list<PointIndex> points);
   void help_overlay();
   void log(const std::string& line);
   void copy_view();
@@ -440,19 +439,6 @@ void AppWindow::panel_record() {
   ImGui::End();
 }
 
-// Points the camera at the given input points (the debugger's "Frame" buttons).
-void AppWindow::frame_points(std::initializer_list<PointIndex> points) {
-  Scene* scene = session_->scene();
-  if (!scene) return;
-  glm::vec3 lo(FLT_MAX), hi(-FLT_MAX);
-  for (PointIndex i : points) {
-    const Point3& p = scene->points()[i];
-    lo = glm::min(lo, glm::vec3(p.x, p.y, p.z));
-    hi = glm::max(hi, glm::vec3(p.x, p.y, p.z));
-  }
-  session_->camera().frame(0.5f * (lo + hi), std::max(0.75f * glm::length(hi - lo), 1e-6f));
-}
-
 // Sequence numbers of the swaps (Figs. 3b, 4) next to their edges, while the swaps layer is shown.
 void AppWindow::swap_labels() {
   Scene* scene = session_->scene();
@@ -543,9 +529,10 @@ void AppWindow::panel_debugger() {
           ImGui::PushID(w.sequence);
           if (ImGui::SmallButton("Frame")) {
             if (w.beneath_vertex != kNoPoint) {
-              frame_points({w.old_edge[0], w.old_edge[1], w.new_edge[0], w.new_edge[1], w.beneath_vertex});
+              session_->frame_points(
+                  {w.old_edge[0], w.old_edge[1], w.new_edge[0], w.new_edge[1], w.beneath_vertex});
             } else {
-              frame_points({w.old_edge[0], w.old_edge[1], w.new_edge[0], w.new_edge[1]});
+              session_->frame_points({w.old_edge[0], w.old_edge[1], w.new_edge[0], w.new_edge[1]});
             }
             s.show(Layer::kSwaps, true);
           }
@@ -593,10 +580,11 @@ void AppWindow::panel_debugger() {
             if (ImGui::SmallButton("Frame")) {
               for (const SwapRecord& w : r->swaps) {
                 if (w.decision_index == k)
-                  frame_points({w.new_edge[0], w.new_edge[1], w.old_edge[0], w.old_edge[1]});
+                  session_->frame_points({w.new_edge[0], w.new_edge[1], w.old_edge[0], w.old_edge[1]});
               }
               for (const RemovalRecord& m : r->removals) {
-                if (m.decision_index == k) frame_points({m.vertex, m.ring[0], m.ring[1], m.ring[2]});
+                if (m.decision_index == k)
+                  session_->frame_points({m.vertex, m.ring[0], m.ring[1], m.ring[2]});
               }
             }
             ImGui::PopID();

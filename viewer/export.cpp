@@ -1,8 +1,8 @@
 #include "export.hpp"
 
 #include <cstdio>
-#include <unordered_map>
 #include <ostream>
+#include <unordered_map>
 
 #include "cudahull/errors.hpp"
 #include "cudahull/mesh_io.hpp"

@@ -95,6 +95,20 @@ std::vector<ScriptCommand> parse_script(std::istream& in, const std::string& nam
     } else if (verb == "next-rejected") {
       c.kind = ScriptCommand::Kind::kNextRejected;
       if (!rest.empty()) fail("'next-rejected' takes no argument");
+    } else if (verb == "next-removal") {
+      c.kind = ScriptCommand::Kind::kNextRemoval;
+      if (!rest.empty()) fail("'next-removal' takes no argument");
+    } else if (verb == "frame") {
+      c.kind = ScriptCommand::Kind::kFrame;
+      std::istringstream words(rest);
+      std::string extra;
+      words >> c.text;
+      if (c.text == "swap") {
+        if (!(words >> c.number) || c.number < 0) fail("'frame swap' needs a swap's sequence number");
+      } else if (c.text != "rejected" && c.text != "removal") {
+        fail("'frame' needs rejected, removal or swap SEQ, not '" + rest + "'");
+      }
+      if (words >> extra) fail("'frame' takes rejected, removal or swap SEQ");
     } else if (verb == "export-mesh" || verb == "export-trace" || verb == "export-decisions") {
       c.kind = verb == "export-mesh"    ? ScriptCommand::Kind::kExportMesh
                : verb == "export-trace" ? ScriptCommand::Kind::kExportTrace
@@ -129,6 +143,7 @@ std::vector<ScriptCommand> parse_script(std::istream& in, const std::string& nam
     } else {
       fail("unknown command '" + verb +
            "' (step, run, rewind, select-face, show, hide, camera, screenshot, set, next-rejected, "
+           "next-removal, frame, "
            "export-mesh, export-trace, export-decisions)");
     }
     commands.push_back(std::move(c));

@@ -8,6 +8,8 @@
 //   show LAYER           hull, wireframe, internal, external, vertices, cells, swaps, normals, refinement
 //   hide LAYER
 //   next-rejected        to the next position whose step rejected a swap (stays put if none)
+//   next-removal         to the next position whose step removed a vertex after complementary swaps
+//   frame CASE           point the camera at a case of the step: rejected, removal, or swap SEQ
 //   export-mesh PATH     the current polyhedron (.obj, .off or .ply)
 //   export-trace PATH    every step so far as JSON lines (`cudahull hull --trace`)
 //   export-decisions PATH  the current step's decision array as CSV
@@ -45,6 +47,8 @@ struct ScriptCommand {
     kScreenshot,
     kSet,
     kNextRejected,
+    kNextRemoval,
+    kFrame,
     kExportMesh,
     kExportTrace,
     kExportDecisions,

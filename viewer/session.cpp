@@ -1,7 +1,9 @@
 #include "session.hpp"
 
+#include <cfloat>
 #include <chrono>
 #include <cstdlib>
+#include <filesystem>
 
 #include "cudahull/errors.hpp"
 #include "export.hpp"
@@ -76,7 +78,7 @@ void Session::update_overlay() {
   renderer_.set_overlay(overlay_.triangles, overlay_.lines);
 }
 
-bool Session::next_rejected() {
+bool Session::next_step_where(const std::function<bool(const IterationRecord&)>& wanted) {
   if (!scene_) return false;
   const int start = scene_->position();
   for (int p = start + 1;; ++p) {
@@ -85,12 +87,54 @@ bool Session::next_rejected() {
       scene_->rewind(p);  // forward: steps on
       if (scene_->known_end() < p) break;
     }
-    if (scene_->history()[p - 1].swaps_rejected > 0) {
+    if (wanted(scene_->history()[p - 1])) {
       if (scene_->position() != p) scene_->rewind(p);
       return true;
     }
   }
   if (scene_->position() != start) scene_->rewind(start);
+  return false;
+}
+
+bool Session::next_rejected() {
+  return next_step_where([](const IterationRecord& r) { return r.swaps_rejected > 0; });
+}
+
+bool Session::next_removal() {
+  return next_step_where(
+      [](const IterationRecord& r) { return r.vertices_removed > 0 && r.swaps_complementary > 0; });
+}
+
+void Session::frame_points(const std::vector<PointIndex>& points) {
+  if (!scene_ || points.empty()) return;
+  glm::vec3 lo(FLT_MAX), hi(-FLT_MAX);
+  for (PointIndex i : points) {
+    const Point3& p = scene_->points()[i];
+    lo = glm::min(lo, glm::vec3(p.x, p.y, p.z));
+    hi = glm::max(hi, glm::vec3(p.x, p.y, p.z));
+  }
+  camera_.frame(0.5f * (lo + hi), std::max(0.75f * glm::length(hi - lo), 1e-6f));
+}
+
+bool Session::frame_case(const std::string& what, long long sequence) {
+  const IterationRecord* r = scene_ ? scene_->current_record() : nullptr;
+  if (r == nullptr) return false;
+  for (const SwapRecord& w : r->swaps) {
+    const bool rejected = w.beneath_vertex != kNoPoint;
+    if ((what == "rejected" && rejected) || (what == "swap" && w.sequence == sequence)) {
+      std::vector<PointIndex> points{w.old_edge[0], w.old_edge[1], w.new_edge[0], w.new_edge[1]};
+      if (rejected) points.push_back(w.beneath_vertex);
+      frame_points(points);
+      return true;
+    }
+  }
+  if (what == "removal") {
+    for (const RemovalRecord& m : r->removals) {
+      if (m.rejected) continue;
+      frame_points({m.vertex, m.ring[0], m.ring[1], m.ring[2]});
+      return true;
+    }
+  }
   return false;
 }
 
@@ -150,8 +194,20 @@ double Session::time_frames(int frames, int width, int height) {
   return frames > 0 ? ms / frames : 0.0;
 }
 
+namespace {
+// Scripts may write into folders that do not exist yet (demos write out/demos/...).
+void make_parent_folder(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  std::error_code ignored;  // a failure shows up as the write's own error
+  if (!parent.empty()) std::filesystem::create_directories(parent, ignored);
+}
+}  // namespace
+
 std::string Session::execute(const ScriptCommand& c, int width, int height) {
   using Kind = ScriptCommand::Kind;
+  if (c.kind == Kind::kScreenshot || c.kind == Kind::kExportMesh || c.kind == Kind::kExportTrace ||
+      c.kind == Kind::kExportDecisions)
+    make_parent_folder(c.text);
   switch (c.kind) {
     case Kind::kStep:
       if (scene_) scene_->step(static_cast<int>(c.number));
@@ -188,6 +244,11 @@ std::string Session::execute(const ScriptCommand& c, int width, int height) {
       }
     case Kind::kNextRejected:
       return next_rejected() ? "" : c.where + ": note: no later step rejects a swap";
+    case Kind::kNextRemoval:
+      return next_removal() ? ""
+                            : c.where + ": note: no later step removes a vertex after complementary swaps";
+    case Kind::kFrame:
+      return frame_case(c.text, c.number) ? "" : c.where + ": note: this step has no such case to frame";
     case Kind::kExportMesh:
     case Kind::kExportTrace:
     case Kind::kExportDecisions:

@@ -6,6 +6,7 @@
 // the camera the first time only (so a view pasted or scripted before a reload survives it) unless asked.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -36,6 +37,13 @@ class Session {
   // Steps or replays to the next position after the current one whose step rejected a swap (Fig. 5);
   // false, staying put, when the run ends without one.
   bool next_rejected();
+  // The same for the next step that removed a vertex after complementary swaps (Fig. 4).
+  bool next_removal();
+  // Points the camera at these input points (a debugger case).
+  void frame_points(const std::vector<PointIndex>& points);
+  // Frames a case of the current step: "rejected" (its first rejected foldover: the edge and the vertex
+  // beneath), "removal" (its first degree-3 removal), or "swap" with `sequence`.  False if there is none.
+  bool frame_case(const std::string& what, long long sequence = -1);
 
   // How per-point state reaches the GL buffer: "CUDA-GL interop" (the CUDA backend writes it on the
   // device, no readback) or "CPU upload (why)".  Decided by set_scene(); allow_interop(false) forces the
@@ -80,6 +88,7 @@ class Session {
   } overlay_key_;
   Overlay overlay_;
   void update_overlay();
+  bool next_step_where(const std::function<bool(const IterationRecord&)>& wanted);
   void choose_upload_path();
   void write_device_states(RenderData& data);
 };
