@@ -384,6 +384,7 @@ TEST(ViewerHeadless, SwapsRefinementAndExportsMatchTheTrace) {
 TEST(ViewerHeadless, DemosRenderAndShowTheirCases) {
   TempDir dir;
   fs::create_directory_symlink(CUDAHULL_ASSETS_DIR, dir / "assets");
+  fs::create_directories(dir / "out/demos");  // as scripts/demos does: a screenshot never makes folders
   auto run_demo = [&](const std::string& name) {
     const std::string path = std::string(CUDAHULL_DEMOS_DIR) + "/" + name + ".txt";
     std::ifstream in(path);

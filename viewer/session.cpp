@@ -194,20 +194,8 @@ double Session::time_frames(int frames, int width, int height) {
   return frames > 0 ? ms / frames : 0.0;
 }
 
-namespace {
-// Scripts may write into folders that do not exist yet (demos write out/demos/...).
-void make_parent_folder(const std::string& path) {
-  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-  std::error_code ignored;  // a failure shows up as the write's own error
-  if (!parent.empty()) std::filesystem::create_directories(parent, ignored);
-}
-}  // namespace
-
 std::string Session::execute(const ScriptCommand& c, int width, int height) {
   using Kind = ScriptCommand::Kind;
-  if (c.kind == Kind::kScreenshot || c.kind == Kind::kExportMesh || c.kind == Kind::kExportTrace ||
-      c.kind == Kind::kExportDecisions)
-    make_parent_folder(c.text);
   switch (c.kind) {
     case Kind::kStep:
       if (scene_) scene_->step(static_cast<int>(c.number));
