@@ -434,6 +434,30 @@ TEST(ViewerHeadless, DemosRenderAndShowTheirCases) {
     EXPECT_GT(variance(read_png(dir / ("out/demos/" + std::string(png)))), 1e-4) << png;
 }
 
+// Issue 6, item 4: "explain point" retraces a point's route through the step's refinement[] and decision[]
+// (Fig. 7) to a face or "internal"; for every point it must end where the backend put the point.
+TEST(ViewerHeadless, ExplainPointEndsWhereTheBackendPutThePoint) {
+  TempDir dir;
+  std::string script = "step 3\n";
+  for (int i = 0; i < 60; ++i)
+    script += "explain-point " + std::to_string(i) + "\n";
+  script += "rewind 1\nexplain-point 7\nscreenshot " + (dir / "x.png") + "\n";
+  const ViewerRun r = run_viewer({"--gen", "ball", "3000", "--seed", "5", "--headless", "--width", "64",
+                                  "--height", "48", "--script", dir.write("explain.txt", script)});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  std::size_t agree = 0, routed = 0;
+  for (std::size_t at = r.err.find("the backend agrees"); at != std::string::npos;
+       at = r.err.find("the backend agrees", at + 1))
+    ++agree;
+  for (std::size_t at = r.err.find("refinement["); at != std::string::npos;
+       at = r.err.find("refinement[", at + 1))
+    ++routed;
+  EXPECT_THAT(r.err, ::testing::Not(HasSubstr("instead"))) << r.err;
+  EXPECT_GT(agree, 10u) << r.err;  // points still external before step 3 were explained...
+  EXPECT_GT(routed, 5u) << r.err;  // ... several through a refinement entry
+  EXPECT_THAT(r.err, HasSubstr("first distribution (section 3.1)"));
+}
+
 TEST(ViewerHeadless, BadScriptLineExits2NamingTheLine) {
   TempDir dir;
   const std::string script =

@@ -122,6 +122,8 @@ class AppWindow {
   float pixel_scale_ = 1.0f;
   std::vector<std::string> pending_drops_;
   bool show_debugger_ = true;
+  int explain_index_ = 0;
+  std::vector<std::string> explanation_;
   char export_path_[1024] = "cudahull_export";
   friend void drop_callback(GLFWwindow*, int, const char**);
 };
@@ -592,6 +594,17 @@ void AppWindow::panel_debugger() {
         }
         ImGui::EndTable();
       }
+      ImGui::EndTabItem();
+    }
+    if (ImGui::BeginTabItem("Explain point")) {
+      // A point's path through this step's refinement[] and decision[] (Fig. 7) to its new face.
+      ImGui::SetNextItemWidth(160);
+      ImGui::InputInt("point index", &explain_index_);
+      ImGui::SameLine();
+      if (ImGui::Button("Explain") && explain_index_ >= 0)
+        explanation_ = scene->explain_point(static_cast<PointIndex>(explain_index_));
+      for (const std::string& line : explanation_)
+        ImGui::TextWrapped("%s", line.c_str());
       ImGui::EndTabItem();
     }
     if (ImGui::BeginTabItem("Export")) {

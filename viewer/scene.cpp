@@ -44,6 +44,33 @@ std::vector<IterationRecord> Scene::replay_records() const {
   return records;
 }
 
+std::vector<std::string> Scene::explain_point(PointIndex point) const {
+  if (point >= points_->size())
+    return {"no point " + std::to_string(point) + " (there are " + std::to_string(points_->size()) + ")"};
+  if (position_ == 0) return {"position 0: no step yet"};
+  Engine replay(*points_, make_backend_());
+  for (int k = 0; k + 1 < position_ && !replay.done(); ++k)
+    replay.step();
+  std::int32_t before = 0;
+  if (position_ >= 2) {
+    const std::vector<std::int32_t> faces = replay.point_faces();
+    before = point < faces.size() ? faces[point] : -1;
+  }
+  replay.step();
+  std::vector<std::string> lines = replay.explain_route(point, before);
+  const std::vector<std::int32_t> after = replay.point_faces();
+  const bool verdict = !lines.empty() && (lines.back() == "internal" || lines.back() == "vertex" ||
+                                          lines.back().rfind("face ", 0) == 0);
+  if (verdict && point < after.size()) {
+    const std::string backend = after[point] >= 0 ? "face " + std::to_string(after[point]) : "internal";
+    const std::string& ours = lines.back();
+    const bool same = ours == backend || (ours == "vertex" && after[point] < 0);
+    lines.push_back(same ? "the backend agrees (" + backend + ")"
+                         : "the backend says " + backend + " instead");
+  }
+  return lines;
+}
+
 void Scene::restart() {
   engine_ = std::make_unique<Engine>(*points_, make_backend_());
   position_ = 0;

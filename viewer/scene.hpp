@@ -73,6 +73,10 @@ class Scene {
   // The full records (swaps, decisions, ...) of every step from the start to the current position, by a
   // deterministic replay on a fresh engine (the history keeps only the counters): for the trace export.
   std::vector<IterationRecord> replay_records() const;
+  // The debugger's "explain point" for the step that led here: the point's face before the step, its path
+  // through refinement[] and decision[] to a face or "internal" (Engine::explain_route), and whether that
+  // matches where the backend put it.  By replay, like rewinding.
+  std::vector<std::string> explain_point(PointIndex point) const;
 
   RenderData& render_data();
   // Bounds of the point set (all zero when empty).

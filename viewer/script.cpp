@@ -98,6 +98,9 @@ std::vector<ScriptCommand> parse_script(std::istream& in, const std::string& nam
     } else if (verb == "next-removal") {
       c.kind = ScriptCommand::Kind::kNextRemoval;
       if (!rest.empty()) fail("'next-removal' takes no argument");
+    } else if (verb == "explain-point") {
+      c.kind = ScriptCommand::Kind::kExplainPoint;
+      one_integer(0, "a point index");
     } else if (verb == "frame") {
       c.kind = ScriptCommand::Kind::kFrame;
       std::istringstream words(rest);

@@ -10,6 +10,7 @@
 //   next-rejected        to the next position whose step rejected a swap (stays put if none)
 //   next-removal         to the next position whose step removed a vertex after complementary swaps
 //   frame CASE           point the camera at a case of the step: rejected, removal, or swap SEQ
+//   explain-point I      log how the step routed input point I through refinement[] and decision[]
 //   export-mesh PATH     the current polyhedron (.obj, .off or .ply)
 //   export-trace PATH    every step so far as JSON lines (`cudahull hull --trace`)
 //   export-decisions PATH  the current step's decision array as CSV
@@ -49,6 +50,7 @@ struct ScriptCommand {
     kNextRejected,
     kNextRemoval,
     kFrame,
+    kExplainPoint,
     kExportMesh,
     kExportTrace,
     kExportDecisions,

@@ -235,6 +235,13 @@ std::string Session::execute(const ScriptCommand& c, int width, int height) {
     case Kind::kNextRemoval:
       return next_removal() ? ""
                             : c.where + ": note: no later step removes a vertex after complementary swaps";
+    case Kind::kExplainPoint: {
+      if (!scene_) return "";
+      std::string text = "explain point " + std::to_string(c.number) + ":";
+      for (const std::string& line : scene_->explain_point(static_cast<PointIndex>(c.number)))
+        text += "\n  " + line;
+      return text;
+    }
     case Kind::kFrame:
       return frame_case(c.text, c.number) ? "" : c.where + ": note: this step has no such case to frame";
     case Kind::kExportMesh:

@@ -105,6 +105,12 @@ class Engine {
   // with `vertices` marked; false when the backend cannot or there is no 3-d mesh yet.
   bool write_point_states_on_device(std::int32_t* device_out, std::size_t count,
                                     const std::vector<PointIndex>& vertices);
+  // The debugger's "explain point" (issue 6): how the last step's tables (Fig. 7: refinement[], decision[])
+  // routed input point `point`, which belonged to face `old_face` of the mesh before that step (any value
+  // for the first step, whose distribution goes by the tetrahedron's cells), one line per hop, and the
+  // exact verdict that ended it.  The last line is then "face F", "internal" or "vertex"; a point that had
+  // no face before the step gets one line saying so.
+  std::vector<std::string> explain_route(PointIndex point, std::int32_t old_face) const;
   const std::vector<FaceExtreme>& face_extremes() const { return extremes_; }
   const std::vector<DecisionEntry>& last_decisions() const { return last_decisions_; }
   const std::vector<RefinementEntry>& last_refinement() const { return last_refinement_; }
