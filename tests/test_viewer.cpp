@@ -7,12 +7,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -456,6 +458,55 @@ TEST(ViewerHeadless, ExplainPointEndsWhereTheBackendPutThePoint) {
   EXPECT_GT(agree, 10u) << r.err;  // points still external before step 3 were explained...
   EXPECT_GT(routed, 5u) << r.err;  // ... several through a refinement entry
   EXPECT_THAT(r.err, HasSubstr("first distribution (section 3.1)"));
+}
+
+// The triangles of an OBJ as a set of vertex-coordinate triples, each rotated to start at its least
+// vertex (orientation kept), so that two files with the same faces in another order compare equal.
+std::set<std::array<std::string, 3>> obj_faces(const std::string& path) {
+  std::vector<std::string> vertices;
+  std::set<std::array<std::string, 3>> faces;
+  for (const std::string& line : lines_of(path)) {
+    if (line.rfind("v ", 0) == 0) vertices.push_back(line.substr(2));
+    if (line.rfind("f ", 0) != 0) continue;
+    std::istringstream in(line.substr(2));
+    std::array<std::string, 3> f;
+    for (auto& corner : f) {
+      std::size_t index = 0;
+      in >> index;
+      corner = index >= 1 && index <= vertices.size() ? vertices[index - 1] : "?";
+    }
+    while (!(f[0] <= f[1] && f[0] <= f[2]))
+      std::rotate(f.begin(), f.begin() + 1, f.end());
+    faces.insert(f);
+  }
+  return faces;
+}
+
+// Issue 6, item 3: the sub-step mode plays a step phase by phase on the mesh before it.  Replaying the
+// engine's recorded refinements, swaps and removals in their order must end in the engine's own mesh; the
+// first phase is the mesh before the step.
+TEST(ViewerHeadless, SubStepsReplayTheStepToTheEnginesMesh) {
+  TempDir dir;
+  std::string script = "next-removal\nexport-mesh " + (dir / "result.obj") + "\n";
+  for (int phase = 0; phase < 40; ++phase)
+    script += "substep " + std::to_string(phase) + "\nexport-mesh " +
+              (dir / ("phase_" + std::to_string(phase) + ".obj")) + "\n";
+  script += "rewind 0\nnext-removal\nstep 0\nsubstep off\nscreenshot " + (dir / "x.png") + "\n";
+  const ViewerRun r = run_viewer({"--gen", "ball", "20", "--seed", "3", "--headless", "--width", "64",
+                                  "--height", "48", "--script", dir.write("substeps.txt", script)});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_THAT(r.err, HasSubstr("refinement: "));
+  EXPECT_THAT(r.err, HasSubstr("(Fig. 4)"));  // a removal phase
+  // The phases go up to "redistribution" (the step's result); the one before it is the last edit.
+  const std::size_t marker = r.err.find(": redistribution");
+  ASSERT_NE(marker, std::string::npos) << r.err;
+  const std::size_t of = r.err.rfind(" of ", marker);
+  const int last = std::stoi(r.err.substr(of + 4));
+  ASSERT_GE(last, 3);
+  const auto result = obj_faces(dir / "result.obj");
+  EXPECT_EQ(obj_faces(dir / ("phase_" + std::to_string(last - 1) + ".obj")), result);
+  EXPECT_NE(obj_faces(dir / "phase_0.obj"), result);
+  EXPECT_NE(obj_faces(dir / "phase_1.obj"), obj_faces(dir / "phase_0.obj"));
 }
 
 TEST(ViewerHeadless, BadScriptLineExits2NamingTheLine) {

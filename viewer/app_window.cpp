@@ -122,6 +122,7 @@ class AppWindow {
   float pixel_scale_ = 1.0f;
   std::vector<std::string> pending_drops_;
   bool show_debugger_ = true;
+  bool substeps_on_ = false;
   int explain_index_ = 0;
   std::vector<std::string> explanation_;
   char export_path_[1024] = "cudahull_export";
@@ -307,6 +308,18 @@ void AppWindow::panel_main() {
                          scene->final_known() ? "%d (end known)" : "%d"))
       scene->rewind(position);
     ImGui::Text("position %d%s", scene->position(), scene->done() ? ": done, the exact hull" : "");
+    // Sub-steps (teaching): the step's phases one by one, built by replay when first asked for.
+    if (ImGui::Checkbox("sub-steps", &substeps_on_)) scene->set_substep(substeps_on_ ? 0 : -1);
+    if (substeps_on_) {
+      const int count = scene->substep_count();
+      if (count == 0) {
+        ImGui::TextDisabled("no sub-steps at position 0 or 1");
+      } else {
+        int phase = scene->substep() < 0 ? count - 1 : scene->substep();
+        if (ImGui::SliderInt("phase", &phase, 0, count - 1)) scene->set_substep(phase);
+        ImGui::TextWrapped("%s", scene->substep_label(phase).c_str());
+      }
+    }
   }
 
   if (ImGui::CollapsingHeader("Display", ImGuiTreeNodeFlags_DefaultOpen)) {

@@ -1,5 +1,6 @@
 #include "export.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <ostream>
 #include <unordered_map>
@@ -29,24 +30,25 @@ std::string number(double x) {
 void export_mesh(const Scene& scene, const std::string& path) {
   const Engine& engine = scene.engine();
   if (scene.position() == 0) throw OutputError(path + ": nothing to export before the first step");
-  if (engine.done()) {
+  if (engine.done() && scene.substep() < 0) {
     write_mesh(path, engine.result());
     return;
   }
+  // The polyhedron shown: the step's mesh, or the sub-step's.
+  const auto faces = scene.displayed_faces();
   HullMesh hull;
   hull.dimension = 3;
-  hull.vertex_ids = engine.mesh().vertices();
+  for (const auto& f : faces)
+    hull.vertex_ids.insert(hull.vertex_ids.end(), f.begin(), f.end());
+  std::sort(hull.vertex_ids.begin(), hull.vertex_ids.end());
+  hull.vertex_ids.erase(std::unique(hull.vertex_ids.begin(), hull.vertex_ids.end()), hull.vertex_ids.end());
   std::unordered_map<PointIndex, std::uint32_t> local;
   for (std::uint32_t k = 0; k < hull.vertex_ids.size(); ++k) {
     local[hull.vertex_ids[k]] = k;
     hull.vertices.push_back(engine.points()[hull.vertex_ids[k]]);
   }
-  const Mesh& mesh = engine.mesh();
-  for (FaceId f = 0; f < mesh.face_capacity(); ++f) {
-    if (!mesh.alive(f)) continue;
-    const MeshFace& face = mesh.face(f);
-    hull.triangles.push_back({local[face.v[0]], local[face.v[1]], local[face.v[2]]});
-  }
+  for (const auto& f : faces)
+    hull.triangles.push_back({local[f[0]], local[f[1]], local[f[2]]});
   write_mesh(path, hull);
 }
 

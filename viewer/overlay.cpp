@@ -87,9 +87,10 @@ void refinement_overlay(const Engine& engine, double r, Overlay& out) {
   }
 }
 
-void swaps_overlay(const Engine& engine, double r, Overlay& out) {
+void swaps_overlay(const Engine& engine, double r, int limit, Overlay& out) {
   const IterationRecord& record = engine.last_record();
   for (const SwapRecord& s : record.swaps) {
+    if (s.sequence > limit) continue;
     const glm::dvec3 u = at(engine, s.old_edge[0]), v = at(engine, s.old_edge[1]);
     const glm::dvec3 x = at(engine, s.new_edge[0]), y = at(engine, s.new_edge[1]);
     if (s.kind == SwapKind::kRegular || s.kind == SwapKind::kComplementary) {
@@ -106,6 +107,7 @@ void swaps_overlay(const Engine& engine, double r, Overlay& out) {
     }
   }
   for (const RemovalRecord& m : record.removals) {
+    if (m.sequence > limit) continue;
     const std::uint32_t rgba = m.rejected ? pack_rgba(0.6f, 0.6f, 0.6f, 0.8f) : kRemovalRgba;
     cross(out.lines, at(engine, m.vertex), r, rgba);
     triangle_outline(out.lines, at(engine, m.ring[0]), at(engine, m.ring[1]), at(engine, m.ring[2]), rgba);
@@ -123,7 +125,7 @@ void build_overlay(const Engine& engine, long long selected, const OverlayLayers
   if (layers.refinement || layers.swaps) {
     const double r = marker_size(engine);
     if (layers.refinement) refinement_overlay(engine, r, out);
-    if (layers.swaps) swaps_overlay(engine, r, out);
+    if (layers.swaps) swaps_overlay(engine, r, layers.sequence_limit, out);
   }
 
   if (layers.cells && selected >= 0 && selected < faces) {

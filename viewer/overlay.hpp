@@ -28,6 +28,7 @@ struct Overlay {
 // (magenta); each degree-3 removal as the removed vertex marked and its new face outlined (purple).
 struct OverlayLayers {
   bool cells = false, normals = false, refinement = false, swaps = false;
+  int sequence_limit = 1 << 30;  // swaps: only those up to this sequence number (sub-steps)
 };
 void build_overlay(const Engine& engine, long long selected, const OverlayLayers& layers, Overlay& out);
 

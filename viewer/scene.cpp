@@ -75,10 +75,13 @@ void Scene::restart() {
   engine_ = std::make_unique<Engine>(*points_, make_backend_());
   position_ = 0;
   born_.clear();
+  substep_ = -1;
+  substeps_position_ = -1;
   render_stale_ = true;
 }
 
 void Scene::step_once() {
+  substep_ = -1;
   IterationRecord record = engine_->step();
   ++position_;
   record.swaps.clear();
@@ -128,9 +131,130 @@ void Scene::rewind(int position) {
   step(position - position_);
 }
 
+void Scene::build_substeps() {
+  if (substeps_position_ == position_) return;
+  substeps_position_ = position_;
+  substeps_.clear();
+  substep_point_state_.clear();
+  if (position_ < 2 || engine_->dimension() != 3) return;
+  // The mesh and the points as they were before the step.
+  Engine before(*points_, make_backend_());
+  for (int k = 0; k + 1 < position_ && !before.done(); ++k)
+    before.step();
+  if (before.done()) return;
+  substep_point_state_ = before.point_faces();
+  substep_point_state_.resize(points_->size(), kPointInternal);
+  for (PointIndex v : before.mesh().vertices())
+    substep_point_state_[v] = kPointVertex;
+
+  Mesh mesh = before.mesh();
+  std::vector<FaceState> state(mesh.face_capacity(), FaceState::kUnchanged);
+  auto snapshot = [&](std::string label, int limit) {
+    SubStep phase;
+    phase.label = std::move(label);
+    phase.sequence_limit = limit;
+    for (FaceId f = 0; f < mesh.face_capacity(); ++f) {
+      if (!mesh.alive(f)) continue;
+      const auto& v = mesh.face(f).v;
+      phase.faces.push_back(rotated(v[0], v[1], v[2]));
+      phase.states.push_back(f < state.size() ? state[f] : FaceState::kUnchanged);
+    }
+    substeps_.push_back(std::move(phase));
+  };
+  auto mark_new = [&](FaceState s) { state.resize(mesh.face_capacity(), s); };
+  snapshot("before the step", -1);
+  const IterationRecord& record = engine_->last_record();
+  for (const RefinementEntry& r : engine_->last_refinement()) {
+    mesh.split(r.face, r.apex);
+    mark_new(FaceState::kRefined);
+  }
+  snapshot("refinement: " + std::to_string(engine_->last_refinement().size()) + " faces split (Fig. 3a)", -1);
+
+  // The accepted swaps and removals in the order the engine made them.
+  struct Edit {
+    int sequence;
+    const SwapRecord* swap;
+    const RemovalRecord* removal;
+  };
+  std::vector<Edit> edits;
+  for (const SwapRecord& w : record.swaps) {
+    if (w.kind == SwapKind::kRegular || w.kind == SwapKind::kComplementary)
+      edits.push_back({w.sequence, &w, nullptr});
+  }
+  for (const RemovalRecord& m : record.removals) {
+    if (!m.rejected) edits.push_back({m.sequence, nullptr, &m});
+  }
+  std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.sequence < b.sequence; });
+  std::vector<PointIndex> ring;
+  std::vector<FaceId> ring_faces;
+  for (const Edit& e : edits) {
+    if (e.swap) {
+      const PointIndex u = e.swap->old_edge[0], v = e.swap->old_edge[1];
+      mesh.ring(u, ring, ring_faces);
+      bool done = false;
+      for (FaceId f : ring_faces) {
+        const int i = mesh.edge_index(f, u, v);
+        if (i < 0) continue;
+        mesh.swap(f, i);
+        done = true;
+        break;
+      }
+      if (!done) break;  // the record does not replay: stop at what is known to be right
+      mark_new(FaceState::kSwapped);
+      snapshot("swap #" + std::to_string(e.sequence) + " (" + swap_kind_name(e.swap->kind) +
+                   "): " + std::to_string(u) + "-" + std::to_string(v) + " -> " +
+                   std::to_string(e.swap->new_edge[0]) + "-" + std::to_string(e.swap->new_edge[1]),
+               e.sequence);
+    } else {
+      if (!mesh.has_vertex(e.removal->vertex) || mesh.degree(e.removal->vertex, 4) != 3) break;
+      mesh.remove_degree3(e.removal->vertex);
+      mark_new(FaceState::kRemoval);
+      snapshot("removal #" + std::to_string(e.sequence) + ": vertex " + std::to_string(e.removal->vertex) +
+                   " (Fig. 4)",
+               e.sequence);
+    }
+  }
+  SubStep last;
+  last.label = "redistribution: the points go to their new faces (Algorithm 2)";
+  last.sequence_limit = -1;
+  substeps_.push_back(std::move(last));
+}
+
+int Scene::substep_count() {
+  build_substeps();
+  return static_cast<int>(substeps_.size());
+}
+
+void Scene::set_substep(int phase) {
+  const int count = substep_count();
+  substep_ = (count == 0 || phase < 0 || phase >= count - 1) ? -1 : phase;
+  render_stale_ = true;
+}
+
+std::string Scene::substep_label(int phase) {
+  const int count = substep_count();
+  if (phase < 0 || phase >= count) return "";
+  return substeps_[phase].label;
+}
+
+int Scene::substep_sequence_limit() const {
+  if (substep_ < 0 || substeps_position_ != position_) return 1 << 30;
+  return substeps_[substep_].sequence_limit;
+}
+
+std::vector<std::array<PointIndex, 3>> Scene::displayed_faces() const {
+  std::vector<FaceKey> faces;
+  current_faces(faces);
+  return faces;
+}
+
 void Scene::current_faces(std::vector<FaceKey>& faces) const {
   faces.clear();
   if (position_ == 0) return;
+  if (substep_ >= 0 && substeps_position_ == position_) {
+    faces = substeps_[substep_].faces;
+    return;
+  }
   if (engine_->done()) {
     const HullMesh& hull = engine_->result();
     for (const Triangle& t : hull.triangles)
@@ -174,7 +298,14 @@ void Scene::refresh_render_data() {
   std::vector<FaceKey> faces;
   current_faces(faces);
   render_.hull_vertex_ids.clear();
-  if (engine_->done()) {
+  const bool in_substep = substep_ >= 0 && substeps_position_ == position_;
+  if (in_substep) {
+    for (const FaceKey& f : faces)
+      render_.hull_vertex_ids.insert(render_.hull_vertex_ids.end(), f.begin(), f.end());
+    std::sort(render_.hull_vertex_ids.begin(), render_.hull_vertex_ids.end());
+    render_.hull_vertex_ids.erase(std::unique(render_.hull_vertex_ids.begin(), render_.hull_vertex_ids.end()),
+                                  render_.hull_vertex_ids.end());
+  } else if (engine_->done()) {
     render_.hull_vertex_ids = engine_->result().vertex_ids;
   } else if (position_ > 0) {
     render_.hull_vertex_ids = engine_->mesh().vertices();
@@ -185,6 +316,8 @@ void Scene::refresh_render_data() {
   std::uint32_t state_bit = kDirtyPointState;
   if (position_ == 0) {
     render_.point_state.assign(n, 0);
+  } else if (in_substep) {
+    render_.point_state = substep_point_state_;  // before the redistribution, the points are as they were
   } else if (device_point_states_ && engine_->dimension() == 3) {
     render_.point_state.clear();
     state_bit = kDirtyDeviceState;
@@ -212,6 +345,17 @@ void Scene::refresh_render_data() {
       if (!r.rejected) removal_faces.insert(sorted({r.ring[0], r.ring[1], r.ring[2]}));
     }
     render_.hull.reserve(faces.size() * 3);
+    if (in_substep) {
+      const SubStep& phase = substeps_[substep_];
+      for (std::size_t k = 0; k < faces.size(); ++k) {
+        const std::uint32_t info = pack_face_info(phase.states[k], 0);
+        for (PointIndex v : faces[k]) {
+          const Point3& p = (*points_)[v];
+          render_.hull.push_back({p.x, p.y, p.z, info});
+        }
+      }
+      faces.clear();  // drawn
+    }
     for (const FaceKey& f : faces) {
       const auto it = born_.find(f);
       const int born = it == born_.end() ? record.iteration : it->second;

@@ -78,6 +78,21 @@ class Scene {
   // matches where the backend put it.  By replay, like rewinding.
   std::vector<std::string> explain_point(PointIndex point) const;
 
+  // Sub-steps (issue 6, teaching): the step that led here, played phase by phase on a copy of the mesh
+  // before it: 0 the mesh before, 1 after refinement (Fig. 3a), then one phase per swap or removal in the
+  // order the engine made them (Figs. 3b, 4), and last the redistribution (the step's result, where the
+  // points change).  substep_count() is 0 where there is nothing to split (position 0 or 1).  Replays
+  // from the start, like rewinding.
+  int substep_count();
+  int substep() const { return substep_; }  // -1: off (the step's result)
+  void set_substep(int phase);              // clamped; the last phase is the same as off
+  std::string substep_label(int phase);
+  // The swaps and removals with sequence numbers up to this have been played (for the overlay); all of
+  // them when sub-steps are off.
+  int substep_sequence_limit() const;
+  // The polyhedron shown (the sub-step's or the step's), as outward triangles of input indices.
+  std::vector<std::array<PointIndex, 3>> displayed_faces() const;
+
   RenderData& render_data();
   // Bounds of the point set (all zero when empty).
   void bounds(float lo[3], float hi[3]) const;
@@ -105,6 +120,18 @@ class Scene {
   bool final_known_ = false;
   std::vector<IterationRecord> history_;
   BirthMap born_;  // the iteration each face of the current polyhedron was made in (for "by age")
+  struct SubStep {
+    std::string label;
+    std::vector<FaceKey> faces;
+    std::vector<FaceState> states;  // per face
+    int sequence_limit = -1;
+  };
+  void build_substeps();
+  std::vector<SubStep> substeps_;  // for position substeps_position_
+  int substeps_position_ = -1;
+  std::vector<std::int32_t> substep_point_state_;  // the points before the step
+  int substep_ = -1;
+
   RenderData render_;
   bool render_stale_ = true;
   bool device_point_states_ = false;

@@ -98,6 +98,13 @@ std::vector<ScriptCommand> parse_script(std::istream& in, const std::string& nam
     } else if (verb == "next-removal") {
       c.kind = ScriptCommand::Kind::kNextRemoval;
       if (!rest.empty()) fail("'next-removal' takes no argument");
+    } else if (verb == "substep") {
+      c.kind = ScriptCommand::Kind::kSubstep;
+      if (rest == "off") {
+        c.number = -1;
+      } else {
+        one_integer(0, "a phase number >= 0, or off");
+      }
     } else if (verb == "explain-point") {
       c.kind = ScriptCommand::Kind::kExplainPoint;
       one_integer(0, "a point index");

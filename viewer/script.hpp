@@ -11,6 +11,8 @@
 //   next-removal         to the next position whose step removed a vertex after complementary swaps
 //   frame CASE           point the camera at a case of the step: rejected, removal, or swap SEQ
 //   explain-point I      log how the step routed input point I through refinement[] and decision[]
+//   substep K|off        show phase K of the step (0 before it, 1 refinement, then each swap or removal,
+//                        last the redistribution); off shows the step's result
 //   export-mesh PATH     the current polyhedron (.obj, .off or .ply)
 //   export-trace PATH    every step so far as JSON lines (`cudahull hull --trace`)
 //   export-decisions PATH  the current step's decision array as CSV
@@ -51,6 +53,7 @@ struct ScriptCommand {
     kNextRemoval,
     kFrame,
     kExplainPoint,
+    kSubstep,
     kExportMesh,
     kExportTrace,
     kExportDecisions,

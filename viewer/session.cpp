@@ -68,6 +68,7 @@ void Session::update_overlay() {
   key.normals = settings_.shown(Layer::kNormals);
   key.refinement = settings_.shown(Layer::kRefinement);
   key.swaps = settings_.shown(Layer::kSwaps);
+  key.sequence_limit = scene_ ? scene_->substep_sequence_limit() : 0;
   if (key == overlay_key_) return;
   overlay_key_ = key;
   overlay_.triangles.clear();
@@ -235,6 +236,17 @@ std::string Session::execute(const ScriptCommand& c, int width, int height) {
     case Kind::kNextRemoval:
       return next_removal() ? ""
                             : c.where + ": note: no later step removes a vertex after complementary swaps";
+    case Kind::kSubstep: {
+      if (!scene_) return "";
+      const int count = scene_->substep_count();
+      if (count == 0 && c.number >= 0)
+        return c.where + ": note: this step has no sub-steps (position 0 or 1)";
+      scene_->set_substep(static_cast<int>(c.number));
+      if (c.number < 0) return "";
+      const int phase = std::min<int>(static_cast<int>(c.number), count - 1);
+      return "sub-step " + std::to_string(phase) + " of " + std::to_string(count - 1) + ": " +
+             scene_->substep_label(phase);
+    }
     case Kind::kExplainPoint: {
       if (!scene_) return "";
       std::string text = "explain point " + std::to_string(c.number) + ":";

@@ -84,6 +84,7 @@ class Session {
     int position = -1;
     long long selected = -1;
     bool cells = false, normals = false, refinement = false, swaps = false;
+    int sequence_limit = 0;
     bool operator==(const OverlayKey&) const = default;
   } overlay_key_;
   Overlay overlay_;

@@ -287,6 +287,7 @@ struct Engine::Impl {
     if (valid && (outer[0] == outer[1] || outer[1] == outer[2] || outer[0] == outer[2])) valid = false;
     if (!valid) {
       removal.rejected = true;
+      removal.sequence = sequence++;
       record.removals.push_back(removal);
       ++record.removals_rejected;
       return false;
@@ -299,6 +300,7 @@ struct Engine::Impl {
     for (FaceId f : old_faces)
       note_killed(f, index);
     removal.decision_index = index;
+    removal.sequence = sequence++;
     record.removals.push_back(removal);
     ++record.vertices_removed;
     e.vertex_flags_[v] |= kRemovedOnce;
@@ -838,6 +840,8 @@ void Engine::finish(IterationRecord& record) {
     // steps (swaps, complementary swaps, removals) from each faulty edge until nothing changes; settle()
     // follows the changes to the neighbouring edges and vertices.
     Impl impl(*this, record);
+    // The repairs go on the step's record after its own edits: their sequence numbers continue.
+    impl.sequence = static_cast<int>(record.swaps.size() + record.removals.size());
     for (int round = 0; round < 8; ++round) {
       const std::vector<Edge> faulty = faulty_edges(false);
       if (faulty.empty()) break;

@@ -64,8 +64,10 @@ nlohmann::json iteration_to_json(const IterationRecord& r) {
   }
   auto& removals = j["removals"] = nlohmann::json::array();
   for (const RemovalRecord& m : r.removals) {
-    nlohmann::json e{
-        {"vertex", m.vertex}, {"new_face", {m.ring[0], m.ring[1], m.ring[2]}}, {"rejected", m.rejected}};
+    nlohmann::json e{{"seq", m.sequence},
+                     {"vertex", m.vertex},
+                     {"new_face", {m.ring[0], m.ring[1], m.ring[2]}},
+                     {"rejected", m.rejected}};
     if (m.decision_index >= 0) e["decision"] = m.decision_index;
     removals.push_back(std::move(e));
   }

@@ -44,6 +44,7 @@ struct SwapRecord {
 };
 
 struct RemovalRecord {
+  int sequence = 0;  // order within the iteration, shared with the swaps
   PointIndex vertex = 0;
   PointIndex ring[3] = {0, 0, 0};  // the new face
   std::int32_t decision_index = -1;
