@@ -376,6 +376,8 @@ TEST(ViewerHeadless, SwapsRefinementAndExportsMatchTheTrace) {
   };
   EXPECT_GT(count(swaps, kRegularSwapRgba), 20u);
   EXPECT_GT(count(swaps, kFoldoverRgba) + count(swaps, kBeneathRgba), 5u);
+  // The sequence numbers beside the swaps (seven-segment digits, near white).
+  EXPECT_GT(count(swaps, pack_rgba(0.9f, 1.0f, 0.9f, 1.0f)), 10u);
   EXPECT_EQ(count(plain, kRegularSwapRgba) + count(plain, kBeneathRgba), 0u);
   EXPECT_GT(differing_fraction(plain, refinement), 0.01);
 }

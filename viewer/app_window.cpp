@@ -95,7 +95,6 @@ class AppWindow {
   void panel_record();
   void panel_plots();
   void panel_debugger();
-  void swap_labels();
   void help_overlay();
   void log(const std::string& line);
   void copy_view();
@@ -454,29 +453,6 @@ void AppWindow::panel_record() {
   ImGui::End();
 }
 
-// Sequence numbers of the swaps (Figs. 3b, 4) next to their edges, while the swaps layer is shown.
-void AppWindow::swap_labels() {
-  Scene* scene = session_->scene();
-  const IterationRecord* r = scene ? scene->current_record() : nullptr;
-  if (!r || !session_->settings().shown(Layer::kSwaps) || r->swaps.size() > 400) return;
-  int win_w = 1, win_h = 1;
-  glfwGetWindowSize(window_, &win_w, &win_h);
-  const glm::mat4 view_proj = session_->camera().projection(static_cast<float>(win_w) / std::max(win_h, 1)) *
-                              session_->camera().view();
-  ImDrawList* draw = ImGui::GetBackgroundDrawList();
-  for (const SwapRecord& s : r->swaps) {
-    const bool done = s.kind == SwapKind::kRegular || s.kind == SwapKind::kComplementary;
-    const Point3& a = scene->points()[done ? s.new_edge[0] : s.old_edge[0]];
-    const Point3& b = scene->points()[done ? s.new_edge[1] : s.old_edge[1]];
-    const glm::vec4 clip =
-        view_proj * glm::vec4(0.5f * (a.x + b.x), 0.5f * (a.y + b.y), 0.5f * (a.z + b.z), 1.0f);
-    if (clip.w <= 0) continue;
-    const ImVec2 at((clip.x / clip.w * 0.5f + 0.5f) * win_w, (0.5f - clip.y / clip.w * 0.5f) * win_h);
-    const ImU32 color = done ? IM_COL32(230, 255, 230, 255) : IM_COL32(255, 170, 80, 255);
-    draw->AddText(at, color, ("#" + std::to_string(s.sequence)).c_str());
-  }
-}
-
 // Issue 6: the last step's swaps (with the rejected ones and their reasons, Fig. 5), its decision array
 // (Fig. 7), and the exports.
 void AppWindow::panel_debugger() {
@@ -727,7 +703,6 @@ void AppWindow::draw_ui() {
   panel_record();
   panel_plots();
   panel_debugger();
-  swap_labels();
   help_overlay();
 }
 

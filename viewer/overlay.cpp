@@ -93,7 +93,11 @@ void swaps_overlay(const Engine& engine, double r, int limit, Overlay& out) {
     if (s.sequence > limit) continue;
     const glm::dvec3 u = at(engine, s.old_edge[0]), v = at(engine, s.old_edge[1]);
     const glm::dvec3 x = at(engine, s.new_edge[0]), y = at(engine, s.new_edge[1]);
-    if (s.kind == SwapKind::kRegular || s.kind == SwapKind::kComplementary) {
+    const bool made = s.kind == SwapKind::kRegular || s.kind == SwapKind::kComplementary;
+    const glm::dvec3 mid = made ? 0.5 * (x + y) : 0.5 * (u + v);
+    out.labels.push_back({static_cast<float>(mid.x), static_cast<float>(mid.y), static_cast<float>(mid.z),
+                          made ? pack_rgba(0.9f, 1.0f, 0.9f, 1.0f) : kFoldoverRgba, s.sequence});
+    if (made) {
       segment(out.lines, u, v, kOldEdgeRgba);
       segment(out.lines, x, y, s.kind == SwapKind::kRegular ? kRegularSwapRgba : kComplementarySwapRgba);
       continue;
@@ -110,6 +114,9 @@ void swaps_overlay(const Engine& engine, double r, int limit, Overlay& out) {
     if (m.sequence > limit) continue;
     const std::uint32_t rgba = m.rejected ? pack_rgba(0.6f, 0.6f, 0.6f, 0.8f) : kRemovalRgba;
     cross(out.lines, at(engine, m.vertex), r, rgba);
+    const glm::dvec3 p = at(engine, m.vertex);
+    out.labels.push_back(
+        {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z), rgba, m.sequence});
     triangle_outline(out.lines, at(engine, m.ring[0]), at(engine, m.ring[1]), at(engine, m.ring[2]), rgba);
   }
 }
@@ -119,6 +126,7 @@ void swaps_overlay(const Engine& engine, double r, int limit, Overlay& out) {
 void build_overlay(const Engine& engine, long long selected, const OverlayLayers& layers, Overlay& out) {
   out.triangles.clear();
   out.lines.clear();
+  out.labels.clear();
   if (!has_mesh(engine)) return;
   const Mesh& mesh = engine.mesh();
   const auto faces = static_cast<long long>(mesh.face_capacity());

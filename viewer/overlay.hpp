@@ -13,6 +13,7 @@ namespace cudahull::viewer {
 struct Overlay {
   std::vector<OverlayVertex> triangles;  // translucent
   std::vector<OverlayVertex> lines;
+  std::vector<OverlayLabel> labels;  // the swaps' and removals' sequence numbers
 };
 
 // cells: face `selected`'s three separating planes (Fig. 2: each through an edge, containing the average of

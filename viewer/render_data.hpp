@@ -46,6 +46,12 @@ struct OverlayVertex {
   float x = 0, y = 0, z = 0;
   std::uint32_t rgba = 0;  // R in the low byte
 };
+// A number drawn next to a point of the scene (the swaps' sequence numbers), in screen space.
+struct OverlayLabel {
+  float x = 0, y = 0, z = 0;
+  std::uint32_t rgba = 0;
+  int number = 0;
+};
 inline std::uint32_t pack_rgba(float r, float g, float b, float a) {
   auto byte = [](float v) { return static_cast<std::uint32_t>(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f); };
   return byte(r) | byte(g) << 8 | byte(b) << 16 | byte(a) << 24;

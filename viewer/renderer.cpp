@@ -122,6 +122,15 @@ Renderer::Renderer() {
   overlay_program_ = link(shaders::overlay_vert, shaders::overlay_frag, "overlay");
   glCreateVertexArrays(1, &overlay_vao_);
   glCreateBuffers(1, &overlay_buffer_);
+  glCreateVertexArrays(1, &label_vao_);
+  glCreateBuffers(1, &label_buffer_);
+  glVertexArrayVertexBuffer(label_vao_, 0, label_buffer_, 0, sizeof(OverlayVertex));
+  glVertexArrayAttribFormat(label_vao_, 0, 3, GL_FLOAT, GL_FALSE, offsetof(OverlayVertex, x));
+  glVertexArrayAttribBinding(label_vao_, 0, 0);
+  glEnableVertexArrayAttrib(label_vao_, 0);
+  glVertexArrayAttribFormat(label_vao_, 1, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(OverlayVertex, rgba));
+  glVertexArrayAttribBinding(label_vao_, 1, 0);
+  glEnableVertexArrayAttrib(label_vao_, 1);
   glVertexArrayVertexBuffer(overlay_vao_, 0, overlay_buffer_, 0, sizeof(OverlayVertex));
   glVertexArrayAttribFormat(overlay_vao_, 0, 3, GL_FLOAT, GL_FALSE, offsetof(OverlayVertex, x));
   glVertexArrayAttribBinding(overlay_vao_, 0, 0);
@@ -181,6 +190,8 @@ Renderer::~Renderer() {
   glDeleteVertexArrays(1, &resolve_vao_);
   glDeleteVertexArrays(1, &overlay_vao_);
   glDeleteBuffers(1, &overlay_buffer_);
+  glDeleteVertexArrays(1, &label_vao_);
+  glDeleteBuffers(1, &label_buffer_);
   glDeleteProgram(overlay_program_);
   glDeleteProgram(splat_program_);
   glDeleteProgram(resolve_program_);
@@ -228,7 +239,8 @@ void Renderer::upload(RenderData& data) {
 }
 
 void Renderer::set_overlay(const std::vector<OverlayVertex>& triangles,
-                           const std::vector<OverlayVertex>& lines) {
+                           const std::vector<OverlayVertex>& lines, const std::vector<OverlayLabel>& labels) {
+  labels_ = labels;
   overlay_triangle_vertices_ = triangles.size();
   overlay_line_vertices_ = lines.size();
   const std::size_t bytes = (triangles.size() + lines.size()) * sizeof(OverlayVertex);
@@ -240,6 +252,48 @@ void Renderer::set_overlay(const std::vector<OverlayVertex>& triangles,
   if (!lines.empty())
     glNamedBufferSubData(overlay_buffer_, static_cast<GLintptr>(triangles.size() * sizeof(OverlayVertex)),
                          static_cast<GLsizeiptr>(lines.size() * sizeof(OverlayVertex)), lines.data());
+}
+
+namespace {
+// Seven-segment digits: segments a (top) b c d (bottom) e f g (middle), as in a pocket calculator.
+constexpr std::uint8_t kDigitSegments[10] = {0x3f, 0x06, 0x5b, 0x4f, 0x66, 0x6d, 0x7d, 0x07, 0x7f, 0x6f};
+// Each segment in a 1 x 2 cell, (x0, y0, x1, y1), y up.
+constexpr float kSegmentEnds[7][4] = {{0, 2, 1, 2}, {1, 2, 1, 1}, {1, 1, 1, 0}, {0, 0, 1, 0},
+                                      {0, 0, 0, 1}, {0, 1, 0, 2}, {0, 1, 1, 1}};
+}  // namespace
+
+void Renderer::draw_labels(const ViewParams& view, const glm::mat4& view_proj) const {
+  std::vector<OverlayVertex> lines;
+  const float unit = 5.0f * view.pixel_scale;  // a digit is 5 x 10 pixels at scale 1
+  for (const OverlayLabel& label : labels_) {
+    const glm::vec4 clip = view_proj * glm::vec4(label.x, label.y, label.z, 1.0f);
+    if (clip.w <= 0) continue;
+    // Pixel coordinates of the anchor, then the digits to its upper right.
+    float x = (clip.x / clip.w * 0.5f + 0.5f) * view.width + 3 * view.pixel_scale;
+    const float y = (clip.y / clip.w * 0.5f + 0.5f) * view.height + 3 * view.pixel_scale;
+    for (char ch : std::to_string(label.number)) {
+      const std::uint8_t mask = kDigitSegments[ch - '0'];
+      for (int seg = 0; seg < 7; ++seg) {
+        if (!(mask & (1u << seg))) continue;
+        const float* e = kSegmentEnds[seg];
+        for (int end = 0; end < 2; ++end) {
+          const float px = x + e[2 * end] * unit, py = y + e[2 * end + 1] * unit;
+          lines.push_back({2 * px / view.width - 1, 2 * py / view.height - 1, 0.0f, label.rgba});
+        }
+      }
+      x += 1.75f * unit;
+    }
+  }
+  if (lines.empty()) return;
+  ensure_capacity(label_buffer_, label_capacity_, lines.size() * sizeof(OverlayVertex));
+  glNamedBufferSubData(label_buffer_, 0, static_cast<GLsizeiptr>(lines.size() * sizeof(OverlayVertex)),
+                       lines.data());
+  const glm::mat4 identity(1.0f);
+  glUniformMatrix4fv(loc(overlay_program_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(identity));
+  glDisable(GL_DEPTH_TEST);
+  glBindVertexArray(label_vao_);
+  glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(lines.size()));
+  glEnable(GL_DEPTH_TEST);
 }
 
 bool Renderer::uses_splats(const RenderSettings& s) const {
@@ -382,6 +436,10 @@ void Renderer::draw(const ViewParams& view, const RenderSettings& s) const {
     if (overlay_line_vertices_ > 0)
       glDrawArrays(GL_LINES, static_cast<GLint>(overlay_triangle_vertices_),
                    static_cast<GLsizei>(overlay_line_vertices_));
+  }
+  if (!labels_.empty()) {
+    glUseProgram(overlay_program_);
+    draw_labels(view, view_proj);
   }
   glDepthMask(GL_TRUE);
   glBindVertexArray(0);

@@ -101,7 +101,10 @@ class Renderer {
 
   void upload(RenderData& data);
   // The debugger's overlay, drawn after the hull: translucent triangles, then lines.
-  void set_overlay(const std::vector<OverlayVertex>& triangles, const std::vector<OverlayVertex>& lines);
+  // Labels are numbers drawn in screen space beside their points (seven-segment digits, so they show in
+  // headless screenshots too).
+  void set_overlay(const std::vector<OverlayVertex>& triangles, const std::vector<OverlayVertex>& lines,
+                   const std::vector<OverlayLabel>& labels = {});
   void draw(const ViewParams& view, const RenderSettings& settings) const;
 
   unsigned point_state_buffer() const { return state_buffer_; }
@@ -118,6 +121,10 @@ class Renderer {
   unsigned resolve_vao_ = 0;
   unsigned overlay_program_ = 0, overlay_vao_ = 0, overlay_buffer_ = 0;
   std::size_t overlay_capacity_ = 0, overlay_triangle_vertices_ = 0, overlay_line_vertices_ = 0;
+  std::vector<OverlayLabel> labels_;
+  void draw_labels(const ViewParams& view, const glm::mat4& view_proj) const;
+  unsigned label_buffer_ = 0, label_vao_ = 0;
+  mutable std::size_t label_capacity_ = 0;
   // The splats' per-pixel depth and colour, grown to the largest framebuffer drawn (draw() is const).
   mutable unsigned splat_depth_buffer_ = 0, splat_color_buffer_ = 0;
   mutable std::size_t splat_capacity_ = 0;

@@ -76,7 +76,7 @@ void Session::update_overlay() {
   if (scene_ && scene_->position() > 0)
     build_overlay(scene_->engine(), selected_face_, {key.cells, key.normals, key.refinement, key.swaps},
                   overlay_);
-  renderer_.set_overlay(overlay_.triangles, overlay_.lines);
+  renderer_.set_overlay(overlay_.triangles, overlay_.lines, overlay_.labels);
 }
 
 bool Session::next_step_where(const std::function<bool(const IterationRecord&)>& wanted) {
