@@ -493,9 +493,15 @@ TEST(ViewerHeadless, SubStepsReplayTheStepToTheEnginesMesh) {
   for (int phase = 0; phase < 40; ++phase)
     script += "substep " + std::to_string(phase) + "\nexport-mesh " +
               (dir / ("phase_" + std::to_string(phase) + ".obj")) + "\n";
-  script += "rewind 0\nnext-removal\nstep 0\nsubstep off\nscreenshot " + (dir / "x.png") + "\n";
-  const ViewerRun r = run_viewer({"--gen", "ball", "20", "--seed", "3", "--headless", "--width", "64",
-                                  "--height", "48", "--script", dir.write("substeps.txt", script)});
+  // With the swaps layer, a phase shows only the swaps made so far (their sequence numbers, near white):
+  // none at the refinement phase.
+  script +=
+      "hide hull\nhide wireframe\nhide internal\nhide external\nhide vertices\nshow swaps\nframe "
+      "removal\nsubstep "
+      "1\nscreenshot " +
+      (dir / "refinement.png") + "\nsubstep off\nscreenshot " + (dir / "result.png") + "\n";
+  const ViewerRun r = run_viewer({"--gen", "ball", "20", "--seed", "3", "--headless", "--width", "320",
+                                  "--height", "240", "--script", dir.write("substeps.txt", script)});
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   EXPECT_THAT(r.err, HasSubstr("refinement: "));
   EXPECT_THAT(r.err, HasSubstr("(Fig. 4)"));  // a removal phase
@@ -509,6 +515,14 @@ TEST(ViewerHeadless, SubStepsReplayTheStepToTheEnginesMesh) {
   EXPECT_EQ(obj_faces(dir / ("phase_" + std::to_string(last - 1) + ".obj")), result);
   EXPECT_NE(obj_faces(dir / "phase_0.obj"), result);
   EXPECT_NE(obj_faces(dir / "phase_1.obj"), obj_faces(dir / "phase_0.obj"));
+  auto swap_pixels = [](const Image& img) {
+    std::size_t n = 0;
+    for (const auto& p : img.rgb)
+      n += rgba_near(p, pack_rgba(0.9f, 1.0f, 0.9f, 1.0f)) ? 1 : 0;
+    return n;
+  };
+  EXPECT_EQ(swap_pixels(read_png(dir / "refinement.png")), 0u);
+  EXPECT_GT(swap_pixels(read_png(dir / "result.png")), 0u);
 }
 
 TEST(ViewerHeadless, BadScriptLineExits2NamingTheLine) {

@@ -59,6 +59,7 @@ std::vector<std::string> Scene::explain_point(PointIndex point) const {
   replay.step();
   std::vector<std::string> lines = replay.explain_route(point, before);
   const std::vector<std::int32_t> after = replay.point_faces();
+  point_readback_bytes_ += replay.backend().bytes_from_backend();  // the replay's, to be honest about it
   const bool verdict = !lines.empty() && (lines.back() == "internal" || lines.back() == "vertex" ||
                                           lines.back().rfind("face ", 0) == 0);
   if (verdict && point < after.size()) {
@@ -143,6 +144,7 @@ void Scene::build_substeps() {
     before.step();
   if (before.done()) return;
   substep_point_state_ = before.point_faces();
+  point_readback_bytes_ += before.backend().bytes_from_backend();  // the replay's, to be honest about it
   substep_point_state_.resize(points_->size(), kPointInternal);
   for (PointIndex v : before.mesh().vertices())
     substep_point_state_[v] = kPointVertex;

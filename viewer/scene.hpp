@@ -67,7 +67,8 @@ class Scene {
   // Writes every point's state into `device` (the mapped GL buffer, `bytes` long); false if it cannot
   // (then the caller falls back to uploading).
   bool write_device_point_states(void* device, std::size_t bytes);
-  // Per-point bytes the fallback path read back from the backend so far (0 on the interop path).
+  // Per-point bytes read back from backends so far: the upload path's, and the replays of the sub-steps and
+  // of explain_point (0 on the interop path while just stepping).
   std::uint64_t point_readback_bytes() const { return point_readback_bytes_; }
 
   // The full records (swaps, decisions, ...) of every step from the start to the current position, by a
@@ -135,7 +136,7 @@ class Scene {
   RenderData render_;
   bool render_stale_ = true;
   bool device_point_states_ = false;
-  std::uint64_t point_readback_bytes_ = 0;
+  mutable std::uint64_t point_readback_bytes_ = 0;  // also the debugger's replays (explain_point is const)
 };
 
 }  // namespace cudahull::viewer

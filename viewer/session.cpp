@@ -74,8 +74,8 @@ void Session::update_overlay() {
   overlay_.triangles.clear();
   overlay_.lines.clear();
   if (scene_ && scene_->position() > 0)
-    build_overlay(scene_->engine(), selected_face_, {key.cells, key.normals, key.refinement, key.swaps},
-                  overlay_);
+    build_overlay(scene_->engine(), selected_face_,
+                  {key.cells, key.normals, key.refinement, key.swaps, key.sequence_limit}, overlay_);
   renderer_.set_overlay(overlay_.triangles, overlay_.lines, overlay_.labels);
 }
 
