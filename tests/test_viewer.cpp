@@ -389,6 +389,7 @@ TEST(ViewerHeadless, DemosRenderAndShowTheirCases) {
   TempDir dir;
   fs::create_directory_symlink(CUDAHULL_ASSETS_DIR, dir / "assets");
   fs::create_directories(dir / "out/demos");  // as scripts/demos does: a screenshot never makes folders
+  std::string last_log;
   auto run_demo = [&](const std::string& name) {
     const std::string path = std::string(CUDAHULL_DEMOS_DIR) + "/" + name + ".txt";
     std::ifstream in(path);
@@ -405,6 +406,7 @@ TEST(ViewerHeadless, DemosRenderAndShowTheirCases) {
     args.push_back(path);
     const ViewerRun r = run_viewer(args, dir / "");
     EXPECT_EQ(r.exit_code, 0) << name << ": " << describe(r);
+    last_log = r.err;
     const std::vector<std::string> trace =
         lines_of(dir / ("out/demos/" + name.substr(0, name.find('_')) + ".jsonl"));
     return trace.empty() ? nlohmann::json() : nlohmann::json::parse(trace.back());
@@ -422,6 +424,9 @@ TEST(ViewerHeadless, DemosRenderAndShowTheirCases) {
             0.01);
 
   EXPECT_TRUE(has_swap(run_demo("foldover_fig5"), "rejected_foldover"));
+  // `frame rejected` names the case and says whether a later edit of the step resolved it.
+  EXPECT_THAT(last_log, HasSubstr("lies beneath"));
+  EXPECT_THAT(last_log, ::testing::AnyOf(HasSubstr("resolved later"), HasSubstr("not resolved")));
   EXPECT_GT(variance(read_png(dir / "out/demos/foldover.png")), 1e-3);
 
   const nlohmann::json removal = run_demo("removal_fig4");

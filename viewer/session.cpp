@@ -117,26 +117,40 @@ void Session::frame_points(const std::vector<PointIndex>& points) {
   camera_.frame(0.5f * (lo + hi), std::max(0.75f * glm::length(hi - lo), 1e-6f));
 }
 
-bool Session::frame_case(const std::string& what, long long sequence) {
+std::string Session::frame_case(const std::string& what, long long sequence) {
   const IterationRecord* r = scene_ ? scene_->current_record() : nullptr;
-  if (r == nullptr) return false;
+  if (r == nullptr) return "";
+  const Mesh& mesh = scene_->engine().mesh();
   for (const SwapRecord& w : r->swaps) {
     const bool rejected = w.beneath_vertex != kNoPoint;
     if ((what == "rejected" && rejected) || (what == "swap" && w.sequence == sequence)) {
       std::vector<PointIndex> points{w.old_edge[0], w.old_edge[1], w.new_edge[0], w.new_edge[1]};
       if (rejected) points.push_back(w.beneath_vertex);
       frame_points(points);
-      return true;
+      std::string line = "swap #" + std::to_string(w.sequence) + " (" + swap_kind_name(w.kind) +
+                         "): " + std::to_string(w.old_edge[0]) + "-" + std::to_string(w.old_edge[1]) +
+                         " -> " + std::to_string(w.new_edge[0]) + "-" + std::to_string(w.new_edge[1]);
+      if (rejected) {
+        const bool gone = !mesh.has_vertex(w.old_edge[0]) || !mesh.adjacent(w.old_edge[0], w.old_edge[1]);
+        line += "; vertex " + std::to_string(w.beneath_vertex) + " lies beneath (" +
+                std::to_string(w.beneath_triangle[0]) + ", " + std::to_string(w.beneath_triangle[1]) + ", " +
+                std::to_string(w.beneath_triangle[2]) + "); " +
+                (gone ? "resolved later in the step (the edge is gone)"
+                      : "not resolved: the edge is still there");
+      }
+      return line;
     }
   }
   if (what == "removal") {
     for (const RemovalRecord& m : r->removals) {
       if (m.rejected) continue;
       frame_points({m.vertex, m.ring[0], m.ring[1], m.ring[2]});
-      return true;
+      return "removal #" + std::to_string(m.sequence) + ": vertex " + std::to_string(m.vertex) +
+             " -> face (" + std::to_string(m.ring[0]) + ", " + std::to_string(m.ring[1]) + ", " +
+             std::to_string(m.ring[2]) + ")";
     }
   }
-  return false;
+  return "";
 }
 
 long long Session::face_at(double x, double y, int width, int height) const {
@@ -254,8 +268,10 @@ std::string Session::execute(const ScriptCommand& c, int width, int height) {
         text += "\n  " + line;
       return text;
     }
-    case Kind::kFrame:
-      return frame_case(c.text, c.number) ? "" : c.where + ": note: this step has no such case to frame";
+    case Kind::kFrame: {
+      const std::string line = frame_case(c.text, c.number);
+      return line.empty() ? c.where + ": note: this step has no such case to frame" : "framed " + line;
+    }
     case Kind::kExportMesh:
     case Kind::kExportTrace:
     case Kind::kExportDecisions:

@@ -42,8 +42,10 @@ class Session {
   // Points the camera at these input points (a debugger case).
   void frame_points(const std::vector<PointIndex>& points);
   // Frames a case of the current step: "rejected" (its first rejected foldover: the edge and the vertex
-  // beneath), "removal" (its first degree-3 removal), or "swap" with `sequence`.  False if there is none.
-  bool frame_case(const std::string& what, long long sequence = -1);
+  // beneath), "removal" (its first degree-3 removal), or "swap" with `sequence`.  Returns a line that
+  // describes the case (for a rejected swap: the vertex beneath, the triangle, and whether a later edit of
+  // the step took the edge away), or "" if there is none.
+  std::string frame_case(const std::string& what, long long sequence = -1);
 
   // How per-point state reaches the GL buffer: "CUDA-GL interop" (the CUDA backend writes it on the
   // device, no readback) or "CPU upload (why)".  Decided by set_scene(); allow_interop(false) forces the
