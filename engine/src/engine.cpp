@@ -105,6 +105,9 @@ struct Engine::Impl {
   std::vector<PointIndex> ring;    // scratch
   std::vector<FaceId> ring_faces;  // scratch
   int sequence = 0;
+  // Edits left before settle() gives up (a guard against cycling on degenerate input; the exact finish
+  // repairs what is left).  Every swap counts, those of take_out() included.
+  std::size_t budget = 0;
 
   explicit Impl(Engine& engine, IterationRecord& r) : e(engine), record(r) {}
 
@@ -197,7 +200,9 @@ struct Engine::Impl {
     const MeshFace& face = e.mesh_.face(f);
     const PointIndex u = face.v[i], v = face.v[(i + 1) % 3], x = face.v[(i + 2) % 3];
     const FaceId g = face.n[i];
+    if (g == kNoFace || g >= e.mesh_.face_capacity() || !e.mesh_.alive(g)) return false;
     const int j = e.mesh_.edge_index(g, v, u);
+    if (j < 0) return false;
     const PointIndex y = e.mesh_.face(g).v[(j + 2) % 3];
     if (!around_doomed) {
       if (orient3d(P(u), P(v), P(x), P(y)) <= 0) return false;  // convex or flat: nothing to do
@@ -315,10 +320,17 @@ struct Engine::Impl {
   // Complementary swaps around a doomed vertex until its degree is 3, then its removal (Fig. 4).  Each swap
   // takes one edge of the vertex's star whose quadrilateral is convex seen from c; concave edges first.
   bool take_out(PointIndex w) {
+    std::size_t last_degree = SIZE_MAX;
     for (;;) {
       if (!e.mesh_.has_vertex(w)) return true;
       e.mesh_.ring(w, ring, ring_faces);
       if (ring.size() == 3) return try_remove(w, true);
+      // Every swap here takes an edge out of w's star, so the degree must fall each round.  On degenerate
+      // input (the property test's 1e6-offset cluster) a swap can leave it as it was; stop rather than cycle
+      // (the exact finish deals with what remains).
+      if (ring.size() >= last_degree || budget == 0) return false;
+      last_degree = ring.size();
+      --budget;
       // One viewpoint for the whole star: far below w along the mean normal of its faces.
       Vec3d mean{0, 0, 0};
       double size = 0;
@@ -337,6 +349,7 @@ struct Engine::Impl {
           if (pass == 0 && !concave) continue;
           const FaceId f = ring_faces[k];
           const int i = e.mesh_.edge_index(f, w, ring[k]);
+          if (i < 0) continue;  // a ring that does not close cleanly (degenerate input): not this edge
           SwapRecord probe;
           if (swap_validity(w, ring[k], ring[next], ring[prev], probe, &view) != SwapKind::kRegular) continue;
           swapped = try_swap(f, i, SwapKind::kComplementary, &view);
@@ -347,9 +360,10 @@ struct Engine::Impl {
   }
 
   // Regular swaps are done; now complementary swaps and removals until nothing changes.  Concave swaps add
-  // volume and take-outs lower the vertex count, so this terminates; the budget only guards against a bug.
+  // volume and take-outs lower the vertex count, so this terminates in exact arithmetic; the budget guards
+  // against cycling on degenerate input (the property test found one: a cluster 1e6 from the origin).
   void settle() {
-    std::size_t budget = 20 * e.mesh_.face_capacity() + 1000;
+    budget = 20 * e.mesh_.face_capacity() + 1000;
     bool changed = true;
     while (changed && budget > 0) {
       changed = false;
@@ -375,7 +389,7 @@ struct Engine::Impl {
         if (e.mesh_.has_vertex(v) && e.mesh_.degree(v, 4) == 3 && try_remove(v, false)) changed = true;
       }
       if (!queue.empty()) changed = true;
-      --budget;
+      if (budget > 0) --budget;  // an unsigned count: at 0 a plain decrement wrapped round and never ended
     }
   }
 
