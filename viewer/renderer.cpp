@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <glm/gtc/type_ptr.hpp>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -33,15 +34,14 @@ unsigned compile(GLenum type, const char* source, const char* name) {
   return shader;
 }
 
-unsigned link(const char* vertex, const char* fragment, const char* name) {
-  const GLuint vs = compile(GL_VERTEX_SHADER, vertex, name);
-  const GLuint fs = compile(GL_FRAGMENT_SHADER, fragment, name);
+// Links the compiled shaders into a program and deletes them; throws DeviceError with the driver's log.
+unsigned link_shaders(std::initializer_list<GLuint> shaders, const char* name) {
   const GLuint program = glCreateProgram();
-  glAttachShader(program, vs);
-  glAttachShader(program, fs);
+  for (GLuint shader : shaders)
+    glAttachShader(program, shader);
   glLinkProgram(program);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
+  for (GLuint shader : shaders)
+    glDeleteShader(shader);
   GLint ok = 0;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (!ok) {
@@ -53,21 +53,24 @@ unsigned link(const char* vertex, const char* fragment, const char* name) {
   return program;
 }
 
+unsigned link(const char* vertex, const char* fragment, const char* name) {
+  return link_shaders({compile(GL_VERTEX_SHADER, vertex, name), compile(GL_FRAGMENT_SHADER, fragment, name)},
+                      name);
+}
+
 unsigned link_compute(const char* source, const char* name) {
-  const GLuint cs = compile(GL_COMPUTE_SHADER, source, name);
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, cs);
-  glLinkProgram(program);
-  glDeleteShader(cs);
-  GLint ok = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetProgramInfoLog(program, sizeof log, nullptr, log);
-    glDeleteProgram(program);
-    throw DeviceError(std::string("OpenGL: program ") + name + " does not link: " + log);
-  }
-  return program;
+  return link_shaders({compile(GL_COMPUTE_SHADER, source, name)}, name);
+}
+
+// Position + RGBA8 colour per vertex (OverlayVertex), from `buffer`: the overlay and the labels.
+void bind_overlay_layout(GLuint vao, GLuint buffer) {
+  glVertexArrayVertexBuffer(vao, 0, buffer, 0, sizeof(OverlayVertex));
+  glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(OverlayVertex, x));
+  glVertexArrayAttribBinding(vao, 0, 0);
+  glEnableVertexArrayAttrib(vao, 0);
+  glVertexArrayAttribFormat(vao, 1, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(OverlayVertex, rgba));
+  glVertexArrayAttribBinding(vao, 1, 0);
+  glEnableVertexArrayAttrib(vao, 1);
 }
 
 GLint loc(unsigned program, const char* name) {
@@ -122,22 +125,10 @@ Renderer::Renderer() {
   overlay_program_ = link(shaders::overlay_vert, shaders::overlay_frag, "overlay");
   glCreateVertexArrays(1, &overlay_vao_);
   glCreateBuffers(1, &overlay_buffer_);
+  bind_overlay_layout(overlay_vao_, overlay_buffer_);
   glCreateVertexArrays(1, &label_vao_);
   glCreateBuffers(1, &label_buffer_);
-  glVertexArrayVertexBuffer(label_vao_, 0, label_buffer_, 0, sizeof(OverlayVertex));
-  glVertexArrayAttribFormat(label_vao_, 0, 3, GL_FLOAT, GL_FALSE, offsetof(OverlayVertex, x));
-  glVertexArrayAttribBinding(label_vao_, 0, 0);
-  glEnableVertexArrayAttrib(label_vao_, 0);
-  glVertexArrayAttribFormat(label_vao_, 1, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(OverlayVertex, rgba));
-  glVertexArrayAttribBinding(label_vao_, 1, 0);
-  glEnableVertexArrayAttrib(label_vao_, 1);
-  glVertexArrayVertexBuffer(overlay_vao_, 0, overlay_buffer_, 0, sizeof(OverlayVertex));
-  glVertexArrayAttribFormat(overlay_vao_, 0, 3, GL_FLOAT, GL_FALSE, offsetof(OverlayVertex, x));
-  glVertexArrayAttribBinding(overlay_vao_, 0, 0);
-  glEnableVertexArrayAttrib(overlay_vao_, 0);
-  glVertexArrayAttribFormat(overlay_vao_, 1, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(OverlayVertex, rgba));
-  glVertexArrayAttribBinding(overlay_vao_, 1, 0);
-  glEnableVertexArrayAttrib(overlay_vao_, 1);
+  bind_overlay_layout(label_vao_, label_buffer_);
   GLuint splat_buffers[2];
   glCreateBuffers(2, splat_buffers);
   splat_depth_buffer_ = splat_buffers[0];
