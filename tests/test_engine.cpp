@@ -2,6 +2,7 @@
 // extreme-point finder, and the extreme counts published with the shared models.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -287,6 +288,86 @@ TEST(EngineSteps, ThreadCountDoesNotChangeTheHull) {
   EXPECT_EQ(one.hull.vertex_ids, four.hull.vertex_ids);
   EXPECT_EQ(one.hull.triangles, four.hull.triangles);
   ASSERT_EQ(one.records.size(), four.records.size());
+}
+
+// Batched swap rounds (engine.cpp, batched_swaps()) make many swaps at once; their sequence numbers must
+// still be an order in which one swap at a time gives the same mesh (the viewer's sub-steps replay them so).
+// The same points, batched and not, give the same hull; the batched run needs no repair either.
+std::vector<std::array<PointIndex, 3>> face_set(const Mesh& mesh) {
+  std::vector<std::array<PointIndex, 3>> faces;
+  for (FaceId f = 0; f < mesh.face_capacity(); ++f) {
+    if (!mesh.alive(f)) continue;
+    std::array<PointIndex, 3> v = mesh.face(f).v;
+    std::rotate(v.begin(), std::min_element(v.begin(), v.end()), v.end());
+    faces.push_back(v);
+  }
+  std::sort(faces.begin(), faces.end());
+  return faces;
+}
+
+TEST(EngineSteps, BatchedSwapsReplayOneAtATimeInSequenceOrder) {
+  const auto points = generate_points(Distribution::kSphere, 30000, 29);
+  EngineOptions options;
+  options.batched_swaps_from = 64;
+  Engine engine(points, make_cpu_backend(2), options);
+  std::size_t batched_iterations = 0, repairs = 0;
+  while (!engine.done()) {
+    Mesh replay = engine.mesh();
+    const IterationRecord r = engine.step();
+    repairs += r.repairs;
+    if (r.iteration == 0 || engine.done())
+      continue;  // the tetrahedron; the last step may be finished exactly
+    for (const RefinementEntry& e : engine.last_refinement())
+      replay.split(e.face, e.apex);
+    std::map<int, std::pair<const SwapRecord*, const RemovalRecord*>> edits;
+    for (const SwapRecord& w : r.swaps) {
+      if (w.kind == SwapKind::kRegular || w.kind == SwapKind::kComplementary)
+        edits[w.sequence] = {&w, nullptr};
+    }
+    for (const RemovalRecord& m : r.removals) {
+      if (!m.rejected) edits[m.sequence] = {nullptr, &m};
+    }
+    std::vector<PointIndex> ring;
+    std::vector<FaceId> ring_faces;
+    for (const auto& [sequence, edit] : edits) {
+      if (edit.second) {
+        ASSERT_TRUE(replay.has_vertex(edit.second->vertex));
+        replay.remove_degree3(edit.second->vertex);
+        continue;
+      }
+      const PointIndex u = edit.first->old_edge[0], v = edit.first->old_edge[1];
+      replay.ring(u, ring, ring_faces);
+      bool swapped = false;
+      for (FaceId f : ring_faces) {
+        const int i = replay.edge_index(f, u, v);
+        if (i < 0) continue;
+        const auto made = replay.swap(f, i);
+        const MeshFace& n1 = replay.face(made[0]);
+        // The swap made the recorded edge x - y.
+        EXPECT_EQ(n1.v[0], edit.first->new_edge[0]) << "swap #" << sequence;
+        EXPECT_EQ(n1.v[2], edit.first->new_edge[1]) << "swap #" << sequence;
+        swapped = true;
+        break;
+      }
+      ASSERT_TRUE(swapped) << "iteration " << r.iteration << ": swap #" << sequence << " (" << u << "-" << v
+                           << ") does not replay";
+    }
+    EXPECT_EQ(face_set(replay), face_set(engine.mesh())) << "iteration " << r.iteration;
+    if (r.swaps_regular + r.swaps_complementary >= 64) ++batched_iterations;
+  }
+  EXPECT_GE(batched_iterations, 5u);
+  EXPECT_EQ(repairs, 0u);
+  const QhullResult q = run_qhull(points, "Qt");
+  EXPECT_EQ(engine.result().vertex_ids, q.vertex_ids);
+  expect_exact(points, engine.result());
+
+  // One at a time: the same hull, face for face (no four of these points are coplanar).
+  EngineOptions single;
+  single.batched_swaps_from = SIZE_MAX;
+  Engine unbatched(points, make_cpu_backend(2), single);
+  unbatched.run();
+  EXPECT_EQ(unbatched.result().vertex_ids, engine.result().vertex_ids);
+  EXPECT_EQ(face_set(unbatched.mesh()), face_set(engine.mesh()));
 }
 
 }  // namespace

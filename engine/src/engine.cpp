@@ -1,9 +1,12 @@
 #include "cudahull/engine.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <deque>
+#include <memory>
 #include <set>
 #include <stdexcept>
 #include <unordered_set>
@@ -82,6 +85,52 @@ constexpr std::uint8_t kTouched = 4;      // queued as a removal candidate
 constexpr int kStallLimit = 8;            // iterations without fewer external points before finishing
 
 }  // namespace
+
+// Buffers of the batched swap rounds, kept from one iteration to the next (fresh arrays of this size would
+// cost page faults every time).
+namespace {
+// A swap tried without changing the mesh (Engine::Impl::trial_swap) and the batched rounds' view of it.
+enum class SwapTrial : std::uint8_t { kNothing, kValid, kRejected };
+struct SwapCandidate {
+  Edge edge;
+  SwapKind kind;
+};
+struct BatchTrial {
+  SwapTrial trial = SwapTrial::kNothing;
+  SwapKind verdict = SwapKind::kRegular;
+  bool beneath_inside = false;
+  bool winner = false;
+  FaceId other_face = kNoFace;  // g, the face across the edge
+  SwapRecord swap;
+};
+}  // namespace
+
+struct Engine::EditScratch {
+  std::vector<BatchTrial> trials;            // per candidate
+  std::vector<std::pair<FaceId, int>> made;  // the round's winners: face and edge
+  // Claims, (round << 32 | candidate): per face id, and per hashed new edge.
+  std::unique_ptr<std::atomic<std::uint64_t>[]> face_claims, edge_claims;
+  std::size_t face_claim_count = 0, edge_claim_bits = 0;
+  std::uint64_t claim_round = 0;
+
+  void grow_claims(std::size_t faces, std::size_t edges) {
+    if (faces > face_claim_count) {
+      face_claim_count = std::max(faces, 2 * face_claim_count);
+      face_claims.reset(new std::atomic<std::uint64_t>[face_claim_count]());
+    }
+    std::size_t bits = 12;
+    while ((std::size_t{1} << bits) < 2 * edges)
+      ++bits;
+    if (bits > edge_claim_bits) {
+      edge_claims.reset(new std::atomic<std::uint64_t>[std::size_t{1} << bits]());
+      edge_claim_bits = bits;
+    }
+  }
+  std::atomic<std::uint64_t>& edge_claim(PointIndex a, PointIndex b) {
+    const std::uint64_t key = static_cast<std::uint64_t>(std::min(a, b)) << 32 | std::max(a, b);
+    return edge_claims[(key * 0x9E3779B97F4A7C15ull) >> (64 - edge_claim_bits)];
+  }
+};
 
 struct Engine::Impl {
   // One iteration's mesh edits (Algorithm 1) and their decision entries, in work ids (face ids before
@@ -194,54 +243,63 @@ struct Engine::Impl {
     return SwapKind::kRejectedFoldover;
   }
 
-  // Fig. 3b: swap edge i of face f.  Only concave edges, unless `around_doomed` (a complementary swap that
-  // lowers the degree of a vertex being taken out).  Returns true if swapped.
-  bool try_swap(FaceId f, int i, SwapKind kind, const Vec3d* around_doomed = nullptr) {
+  // What try_swap() would do with edge i of face f, changing nothing (so the batched rounds can ask on many
+  // threads at once).  Fills `swap` (edges; for a foldover the vertex beneath) and, for a rejection,
+  // `verdict` and whether the vertex beneath is proven inside the hull.
+  using Trial = SwapTrial;
+  Trial trial_swap(FaceId f, int i, const Vec3d* around_doomed, SwapRecord& swap, SwapKind& verdict,
+                   bool& beneath_inside) const {
     const MeshFace& face = e.mesh_.face(f);
     const PointIndex u = face.v[i], v = face.v[(i + 1) % 3], x = face.v[(i + 2) % 3];
     const FaceId g = face.n[i];
-    if (g == kNoFace || g >= e.mesh_.face_capacity() || !e.mesh_.alive(g)) return false;
+    if (g == kNoFace || g >= e.mesh_.face_capacity() || !e.mesh_.alive(g)) return Trial::kNothing;
     const int j = e.mesh_.edge_index(g, v, u);
-    if (j < 0) return false;
+    if (j < 0) return Trial::kNothing;
     const PointIndex y = e.mesh_.face(g).v[(j + 2) % 3];
     if (!around_doomed) {
-      if (orient3d(P(u), P(v), P(x), P(y)) <= 0) return false;  // convex or flat: nothing to do
+      if (orient3d(P(u), P(v), P(x), P(y)) <= 0) return Trial::kNothing;  // convex or flat: nothing to do
       // Never give a vertex that is being taken out a new edge; its removal re-queues this edge.
-      if (is_doomed(x) || is_doomed(y)) return false;
+      if (is_doomed(x) || is_doomed(y)) return Trial::kNothing;
     }
-    SwapRecord swap;
     swap.old_edge[0] = u;
     swap.old_edge[1] = v;
     swap.new_edge[0] = x;
     swap.new_edge[1] = y;
-    const SwapKind verdict = swap_validity(u, v, x, y, swap, around_doomed);
-    if (verdict != SwapKind::kRegular) {
-      if (around_doomed) return false;
-      // The vertex beneath is inside the hull when it is inside the tetrahedron of c and that triangle:
-      // take it out with complementary swaps and a removal (Fig. 4).
-      if (swap.beneath_vertex != kNoPoint && !is_doomed(swap.beneath_vertex) &&
-          proven_inside(P(swap.beneath_triangle[0]), P(swap.beneath_triangle[1]), P(swap.beneath_triangle[2]),
-                        P(swap.beneath_vertex))) {
-        e.vertex_flags_[swap.beneath_vertex] |= kDoomed;
-        doomed.push_back(swap.beneath_vertex);
-      }
-      // Record each rejected edge once per iteration, however often a neighbour change re-queues it.
-      if (rejected_edges.insert({std::min(u, v), std::max(u, v)}).second) {
-        swap.kind = verdict;
-        swap.sequence = sequence++;
-        record.swaps.push_back(swap);
-        ++record.swaps_rejected;
-      }
-      return false;
-    }
+    verdict = swap_validity(u, v, x, y, swap, around_doomed);
+    if (verdict == SwapKind::kRegular) return Trial::kValid;
+    if (around_doomed) return Trial::kNothing;
+    // The vertex beneath is inside the hull when it is inside the tetrahedron of c and that triangle.
+    beneath_inside = swap.beneath_vertex != kNoPoint &&
+                     proven_inside(P(swap.beneath_triangle[0]), P(swap.beneath_triangle[1]),
+                                   P(swap.beneath_triangle[2]), P(swap.beneath_vertex));
+    return Trial::kRejected;
+  }
 
-    const auto [n1, n2] = e.mesh_.swap(f, i);
+  void note_rejected(SwapRecord& swap, SwapKind verdict, bool beneath_inside) {
+    // A vertex beneath that is inside the hull is taken out with complementary swaps and a removal (Fig. 4).
+    if (beneath_inside && !is_doomed(swap.beneath_vertex)) {
+      e.vertex_flags_[swap.beneath_vertex] |= kDoomed;
+      doomed.push_back(swap.beneath_vertex);
+    }
+    // Record each rejected edge once per iteration, however often a neighbour change re-queues it.
+    const PointIndex u = swap.old_edge[0], v = swap.old_edge[1];
+    if (rejected_edges.insert({std::min(u, v), std::max(u, v)}).second) {
+      swap.kind = verdict;
+      swap.sequence = sequence++;
+      record.swaps.push_back(swap);
+      ++record.swaps_rejected;
+    }
+  }
+
+  // The bookkeeping of a swap made (faces f, g became n1, n2): its decision entry, record, the four edges
+  // around it queued, its vertices touched.
+  void note_swapped(FaceId f, FaceId g, FaceId n1, FaceId n2, SwapRecord& swap, SwapKind kind) {
     // Points of f and g go to n1 (the u side) or n2 (the v side) by the new edge's separating plane, which
     // separating_planes() computes after the edits.
     DecisionEntry entry;
     entry.kind = kDecisionSwap;
     const std::int32_t index = add_entry(entry, n1, n2);
-    swap_planes.push_back({index, n1, n2, u});
+    swap_planes.push_back({index, n1, n2, swap.old_edge[0]});
     note_killed(f, index);
     note_killed(g, index);
     swap.kind = kind;
@@ -251,9 +309,130 @@ struct Engine::Impl {
     (kind == SwapKind::kRegular ? record.swaps_regular : record.swaps_complementary)++;
     for (const Edge& edge : {Edge{n1, 0}, Edge{n1, 1}, Edge{n2, 0}, Edge{n2, 1}})
       queue.push_back(edge);
-    for (PointIndex p : {u, v, x, y})
+    for (PointIndex p : {swap.old_edge[0], swap.old_edge[1], swap.new_edge[0], swap.new_edge[1]})
       touch(p);
+  }
+
+  // Fig. 3b: swap edge i of face f.  Only concave edges, unless `around_doomed` (a complementary swap that
+  // lowers the degree of a vertex being taken out).  Returns true if swapped.
+  bool try_swap(FaceId f, int i, SwapKind kind, const Vec3d* around_doomed = nullptr) {
+    SwapRecord swap;
+    SwapKind verdict = SwapKind::kRegular;
+    bool beneath_inside = false;
+    const Trial trial = trial_swap(f, i, around_doomed, swap, verdict, beneath_inside);
+    if (trial == Trial::kRejected) note_rejected(swap, verdict, beneath_inside);
+    if (trial != Trial::kValid) return false;
+    const FaceId g = e.mesh_.face(f).n[i];
+    const auto [n1, n2] = e.mesh_.swap(f, i);
+    note_swapped(f, g, n1, n2, swap, kind);
     return true;
+  }
+
+  // Batched swaps, for iterations with thousands of candidate edges (a sphere of 1M points makes 1.5M
+  // swaps): rounds of (1) every candidate tried at once on all cores, the mesh unchanged; (2) among the
+  // valid swaps, a set whose four vertices are pairwise disjoint, the lowest candidate index winning each
+  // vertex, so the result does not depend on the number of threads; (3) those swaps made at once; (4) the
+  // bookkeeping in candidate order, as try_swap() would have done it.  Disjoint swaps commute: none changes
+  // another's faces, concavity or new edge, so each is exactly what try_swap() would do at its turn.
+  // Candidates that lost their vertices go to the next round with the edges the winners queued, until
+  // fewer than `batch_from` remain; those are left on the queue for settle().
+  using Candidate = SwapCandidate;
+
+  void batched_swaps(std::vector<Candidate> candidates, std::size_t batch_from) {
+    const unsigned workers = hardware_workers();
+    if (!e.scratch_) e.scratch_ = std::make_unique<EditScratch>();
+    EditScratch& scratch = *e.scratch_;
+    std::vector<BatchTrial>& trials = scratch.trials;
+    std::vector<Candidate> next;
+    while (candidates.size() >= batch_from && budget > 0) {
+      const std::size_t count = candidates.size();
+      trials.assign(count, BatchTrial{});
+      parallel_chunks(
+          count, workers,
+          [&](std::size_t begin, std::size_t end, unsigned) {
+            for (std::size_t k = begin; k < end; ++k) {
+              const Edge& edge = candidates[k].edge;
+              if (!e.mesh_.alive(edge.face)) continue;
+              BatchTrial& t = trials[k];
+              t.trial = trial_swap(edge.face, edge.index, nullptr, t.swap, t.verdict, t.beneath_inside);
+              t.other_face = e.mesh_.face(edge.face).n[edge.index];
+            }
+          },
+          256);
+      // Claims, tagged by round so that the tables need no clearing and stay from one iteration to the next:
+      // a swap wins when it is the lowest candidate among those that would kill either of its two faces and
+      // among those that would make its new edge (hashed; a collision only delays a swap to the next round).
+      scratch.grow_claims(e.mesh_.face_capacity(), 4 * count);
+      const std::uint64_t round = ++scratch.claim_round;
+      auto claim = [round](std::atomic<std::uint64_t>& slot, std::uint64_t k) {
+        const std::uint64_t mine = round << 32 | k;
+        std::uint64_t held = slot.load(std::memory_order_relaxed);
+        while ((held >> 32 != round || held > mine) &&
+               !slot.compare_exchange_weak(held, mine, std::memory_order_relaxed)) {
+        }
+      };
+      parallel_chunks(
+          count, workers,
+          [&](std::size_t begin, std::size_t end, unsigned) {
+            for (std::size_t k = begin; k < end; ++k) {
+              const BatchTrial& t = trials[k];
+              if (t.trial != Trial::kValid) continue;
+              claim(scratch.face_claims[candidates[k].edge.face], k);
+              claim(scratch.face_claims[t.other_face], k);
+              claim(scratch.edge_claim(t.swap.new_edge[0], t.swap.new_edge[1]), k);
+            }
+          },
+          256);
+      parallel_chunks(
+          count, workers,
+          [&](std::size_t begin, std::size_t end, unsigned) {
+            for (std::size_t k = begin; k < end; ++k) {
+              BatchTrial& t = trials[k];
+              if (t.trial != Trial::kValid) continue;
+              const std::uint64_t mine = round << 32 | k;
+              t.winner =
+                  scratch.face_claims[candidates[k].edge.face].load(std::memory_order_relaxed) == mine &&
+                  scratch.face_claims[t.other_face].load(std::memory_order_relaxed) == mine &&
+                  scratch.edge_claim(t.swap.new_edge[0], t.swap.new_edge[1])
+                          .load(std::memory_order_relaxed) == mine;
+            }
+          },
+          256);
+      std::vector<std::pair<FaceId, int>>& made = scratch.made;
+      made.clear();
+      for (std::size_t k = 0; k < count; ++k) {
+        if (trials[k].winner) made.push_back({candidates[k].edge.face, candidates[k].edge.index});
+      }
+      const std::size_t winners = made.size();
+      if (winners == 0) break;
+      const FaceId base = e.mesh_.swap_batch(made, workers);
+      budget = budget > winners ? budget - winners : 0;
+      next.clear();
+      FaceId n1 = base;
+      for (std::size_t k = 0; k < count; ++k) {
+        BatchTrial& t = trials[k];
+        if (t.winner) {
+          note_swapped(candidates[k].edge.face, t.other_face, n1, n1 + 1, t.swap, candidates[k].kind);
+          n1 += 2;
+        } else if (t.trial == Trial::kRejected) {
+          note_rejected(t.swap, t.verdict, t.beneath_inside);
+        } else if (t.trial == Trial::kValid) {
+          next.push_back(candidates[k]);  // lost a vertex to an earlier candidate: try again
+        }
+      }
+      for (const Edge& edge : queue)
+        next.push_back({edge, SwapKind::kComplementary});
+      queue.clear();
+      candidates.swap(next);
+    }
+    // What is left goes on as one at a time: regular candidates now, as in the unbatched order.
+    for (const Candidate& c : candidates) {
+      if (c.kind != SwapKind::kRegular) {
+        queue.push_back(c.edge);
+      } else if (e.mesh_.alive(c.edge.face)) {
+        try_swap(c.edge.face, c.edge.index, SwapKind::kRegular);
+      }
+    }
   }
 
   // Fig. 4: a vertex of degree 3 becomes one triangle: when it is concave or flat (not above the plane of
@@ -362,11 +541,23 @@ struct Engine::Impl {
   // Regular swaps are done; now complementary swaps and removals until nothing changes.  Concave swaps add
   // volume and take-outs lower the vertex count, so this terminates in exact arithmetic; the budget guards
   // against cycling on degenerate input (the property test found one: a cluster 1e6 from the origin).
+  void reset_budget() { budget = 20 * e.mesh_.face_capacity() + 1000; }
+
   void settle() {
-    budget = 20 * e.mesh_.face_capacity() + 1000;
+    reset_budget();
     bool changed = true;
     while (changed && budget > 0) {
       changed = false;
+      if (queue.size() >= e.options_.batched_swaps_from) {
+        std::vector<Candidate> candidates;
+        candidates.reserve(queue.size());
+        for (const Edge& edge : queue)
+          candidates.push_back({edge, SwapKind::kComplementary});
+        queue.clear();
+        const std::size_t before = record.swaps_complementary;
+        batched_swaps(std::move(candidates), e.options_.batched_swaps_from);
+        if (record.swaps_complementary != before) changed = true;
+      }
       while (!queue.empty() && budget > 0) {
         const Edge edge = queue.front();
         queue.pop_front();
@@ -438,6 +629,8 @@ struct Engine::Impl {
 Engine::Engine(std::vector<Point3> points, std::unique_ptr<Backend> backend, EngineOptions options)
     : points_(std::move(points)), backend_(std::move(backend)), options_(options) {
   if (!backend_) throw std::invalid_argument("Engine needs a backend");
+  if (const char* from = std::getenv("CUDAHULL_BATCHED_SWAPS_FROM"))
+    options_.batched_swaps_from = std::strtoull(from, nullptr, 10);
   if (points_.size() >= 0xffffffffu) throw std::invalid_argument("too many points (at most 2^32 - 2)");
 }
 
@@ -749,8 +942,17 @@ IterationRecord Engine::iterate() {
   record.faces_refined = record.refined_apexes.size();
 
   // Regular swaps of the refined faces' old edges, then complementary swaps and removals (Figs. 3b, 4).
-  for (const Edge& edge : regular_candidates) {
-    if (mesh_.alive(edge.face)) impl.try_swap(edge.face, edge.index, SwapKind::kRegular);
+  if (regular_candidates.size() >= options_.batched_swaps_from) {
+    std::vector<Impl::Candidate> candidates;
+    candidates.reserve(regular_candidates.size());
+    for (const Edge& edge : regular_candidates)
+      candidates.push_back({edge, SwapKind::kRegular});
+    impl.reset_budget();
+    impl.batched_swaps(std::move(candidates), options_.batched_swaps_from);
+  } else {
+    for (const Edge& edge : regular_candidates) {
+      if (mesh_.alive(edge.face)) impl.try_swap(edge.face, edge.index, SwapKind::kRegular);
+    }
   }
   impl.settle();
   impl.separating_planes(refinement, children);

@@ -1,7 +1,10 @@
 #include "cudahull/mesh.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <stdexcept>
+
+#include "cudahull/parallel.hpp"
 
 namespace cudahull {
 
@@ -116,6 +119,89 @@ std::array<FaceId, 2> Mesh::swap(FaceId f, int i) {
   relink(across_yv, v, y, n2);
   relink(across_vx, x, v, n2);
   return {n1, n2};
+}
+
+FaceId Mesh::swap_batch(const std::vector<std::pair<FaceId, int>>& swaps, unsigned workers) {
+  // Each swap as swap() sees it: faces f = (u, v, x) and g = (v, u, y), and the four faces around them.
+  struct Quad {
+    PointIndex u, v, x, y;
+    FaceId across_vx, across_xu, across_uy, across_yv;
+  };
+  const std::size_t count = swaps.size();
+  std::vector<Quad> quads(count);
+  parallel_chunks(
+      count, workers,
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t k = begin; k < end; ++k) {
+          const auto [f, i] = swaps[k];
+          const MeshFace& ff = faces_[f];
+          const FaceId g = ff.n[i];
+          const int j = edge_index(g, ff.v[next(i)], ff.v[i]);
+          if (j < 0) throw std::logic_error("mesh adjacency is inconsistent");
+          const MeshFace& gg = faces_[g];
+          quads[k] = {ff.v[i],       ff.v[next(i)], ff.v[prev(i)], gg.v[prev(j)],
+                      ff.n[next(i)], ff.n[prev(i)], gg.n[next(j)], gg.n[prev(j)]};
+        }
+      },
+      1024);
+  // Make the new faces, linked to the old outer faces for now, and kill the old ones.
+  const FaceId first = static_cast<FaceId>(faces_.size());
+  faces_.resize(faces_.size() + 2 * count);
+  alive_.resize(alive_.size() + 2 * count, 1);
+  if (dead_into_.size() < first) dead_into_.resize(first);
+  parallel_chunks(
+      count, workers,
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t k = begin; k < end; ++k) {
+          const Quad& q = quads[k];
+          const FaceId f = swaps[k].first, g = faces_[f].n[swaps[k].second];
+          const FaceId n1 = first + 2 * static_cast<FaceId>(k), n2 = n1 + 1;
+          faces_[n1].v = {q.x, q.u, q.y};
+          faces_[n1].n = {q.across_xu, q.across_uy, n2};
+          faces_[n2].v = {q.y, q.v, q.x};
+          faces_[n2].n = {q.across_yv, q.across_vx, n1};
+          alive_[f] = 0;
+          alive_[g] = 0;
+          dead_into_[f] = n1;
+          dead_into_[g] = n1;
+          // As add_face() in order would leave it: the last new face that holds the vertex (swaps that share
+          // a vertex race here, and the highest id wins whatever the thread timing).
+          auto raise = [&](PointIndex p, FaceId face) {
+            std::atomic_ref<FaceId> slot(*vertex_face_.find(p));
+            FaceId held = slot.load(std::memory_order_relaxed);
+            while (held < face + 1 &&
+                   !slot.compare_exchange_weak(held, face + 1, std::memory_order_relaxed)) {
+            }
+          };
+          raise(q.u, n1);
+          raise(q.v, n2);
+          raise(q.x, n2);
+          raise(q.y, n2);
+        }
+      },
+      1024);
+  // An outer face that another swap of the batch killed was replaced by one of that swap's two faces: the
+  // one with the reversed edge.  A live outer face points back at the new face (one writer per edge).
+  parallel_chunks(
+      2 * count, workers,
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t k = begin; k < end; ++k) {
+          const FaceId face = first + static_cast<FaceId>(k);
+          MeshFace& made = faces_[face];
+          for (int e = 0; e < 2; ++e) {
+            const PointIndex a = made.v[e], b = made.v[next(e)];
+            FaceId& across = made.n[e];
+            if (alive_[across]) {
+              faces_[across].n[edge_index(across, b, a)] = face;
+            } else {
+              const FaceId other = dead_into_[across];
+              across = edge_index(other, b, a) >= 0 ? other : other + 1;
+            }
+          }
+        }
+      },
+      1024);
+  return first;
 }
 
 // Calls visit(face, k) for each face around v, counter-clockwise from outside (v == face.v[k]), until it

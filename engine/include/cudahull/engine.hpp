@@ -79,6 +79,11 @@ struct FaceCell {
 
 struct EngineOptions {
   bool keep_decisions = true;  // copy the decision array into each IterationRecord
+  // Swap candidates from this many on are tried in batched rounds on all cores (engine.cpp,
+  // batched_swaps()); fewer go one at a time.  Either way the hull is the same; the order of the edits, and
+  // so the intermediate meshes, can differ.  SIZE_MAX: never batch.  The environment variable
+  // CUDAHULL_BATCHED_SWAPS_FROM overrides it (for A/B benchmarks).
+  std::size_t batched_swaps_from = 4096;
 };
 
 class Engine {
@@ -125,6 +130,7 @@ class Engine {
 
  private:
   struct Impl;
+  struct EditScratch;
   IterationRecord initialize();
   IterationRecord iterate();
   void finish(IterationRecord& record);
@@ -150,8 +156,9 @@ class Engine {
   int stalled_ = 0;                        // iterations without progress
   HullMesh result_;
   IterationRecord last_record_;
-  std::vector<FaceGeometry> geometry_;  // the current mesh's faces as last sent to the backend
-  IterationTables tables_;              // reused every iteration (its buffers keep their capacity)
+  std::vector<FaceGeometry> geometry_;    // the current mesh's faces as last sent to the backend
+  IterationTables tables_;                // reused every iteration (its buffers keep their capacity)
+  std::unique_ptr<EditScratch> scratch_;  // the batched swap rounds' buffers, also reused
 };
 
 }  // namespace cudahull

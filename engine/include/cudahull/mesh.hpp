@@ -59,6 +59,13 @@ class Mesh {
   void ring(PointIndex v, std::vector<PointIndex>& ring_vertices, std::vector<FaceId>& ring_faces) const;
   bool adjacent(PointIndex a, PointIndex b) const;  // is a - b an edge?
 
+  // Batched swaps (the engine's parallel rounds): swap edge swaps[k].second of face swaps[k].first for
+  // every k at once, on `workers` threads.  The swaps must kill pairwise different faces and make pairwise
+  // different new edges (then the result is what swap() in any order gives); each new face's neighbours
+  // are linked through the faces the other swaps made.  Swap k's faces N1, N2 get ids first + 2k and
+  // first + 2k + 1, where `first` is the returned id.
+  FaceId swap_batch(const std::vector<std::pair<FaceId, int>>& swaps, unsigned workers);
+
   // Renumbers live faces 0..F-1 in id order; returns old id -> new id (kNoFace for dead faces), valid until
   // the next compact().
   const std::vector<FaceId>& compact();
@@ -73,7 +80,8 @@ class Mesh {
 
   std::vector<MeshFace> faces_;
   std::vector<std::uint8_t> alive_;
-  std::vector<FaceId> remap_;  // compact()'s answer
+  std::vector<FaceId> remap_;      // compact()'s answer
+  std::vector<FaceId> dead_into_;  // swap_batch(): a face it killed -> the first new face of its swap
   std::size_t live_count_ = 0;
   // Per input point: 1 + some live face that holds it, or 0 when it is not a vertex.
   PointMap<FaceId> vertex_face_;

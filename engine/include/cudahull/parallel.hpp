@@ -1,4 +1,5 @@
-// A minimal fork-join loop for the host: the CPU backend's point passes and the engine's per-face passes.
+// A minimal fork-join loop for the host: the CPU backend's point passes and the engine's per-face passes
+// and batched mesh edits.
 #pragma once
 
 #include <algorithm>
@@ -12,14 +13,31 @@ inline unsigned hardware_workers() {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
+namespace detail {
+using ChunkCall = void (*)(void* body, std::size_t begin, std::size_t end, unsigned worker);
+// Runs call(body, begin, end, w) for w in [0, workers) on the process's persistent worker threads (the
+// caller takes chunk 0).  Returns false, having run nothing, when the pool cannot take the job: it is busy
+// with another caller's job, the caller is one of its workers, or `workers` exceeds its size.  A batched
+// edit round is a few microseconds of work per core, so starting fresh threads for it would cost more.
+bool run_on_worker_pool(std::size_t n, unsigned workers, ChunkCall call, void* body);
+}  // namespace detail
+
 // Runs body(begin, end, worker) over [0, n) split into one contiguous chunk per worker; small ranges (under
-// `grain`) run on the calling thread, where a thread start would cost more than the work.
+// `grain`) run on the calling thread, where handing them out would cost more than the work.  Exceptions
+// from any chunk reach the caller.
 template <class Body>
 void parallel_chunks(std::size_t n, unsigned workers, Body&& body, std::size_t grain = 4096) {
   if (workers <= 1 || n < grain) {
     body(std::size_t{0}, n, 0u);
     return;
   }
+  using BodyType = std::remove_reference_t<Body>;
+  const detail::ChunkCall call = [](void* b, std::size_t begin, std::size_t end, unsigned w) {
+    (*static_cast<BodyType*>(b))(begin, end, w);
+  };
+  if (detail::run_on_worker_pool(n, workers, call, const_cast<void*>(static_cast<const void*>(&body))))
+    return;
+  // The pool is taken (e.g. the viewer's engine thread and the CPU backend at once): plain threads.
   std::vector<std::thread> threads;
   const std::size_t chunk = (n + workers - 1) / workers;
   for (unsigned w = 1; w < workers; ++w) {

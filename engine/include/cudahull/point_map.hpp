@@ -40,6 +40,14 @@ class PointMap {
       }
     }
   }
+  // The value stored for `key` if it is present, else null.  Several threads may look up and write the
+  // values of different present keys at once, as long as none inserts.
+  V* find(PointIndex key) {
+    for (std::size_t i = slot(key);; i = (i + 1) & mask_) {
+      if (keys_[i] == key) return &values_[i];
+      if (keys_[i] == kEmpty) return nullptr;
+    }
+  }
   void clear() { rehash(64); }
   // Room for `count` keys without growing.
   void reserve(std::size_t count) {
