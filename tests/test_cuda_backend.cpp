@@ -18,6 +18,8 @@
 #include <random>
 #include <string>
 
+#include <cuda_runtime_api.h>
+
 #include "cuda_backend.hpp"
 #include "cudahull/cpu_backend.hpp"
 #include "cudahull/engine.hpp"
@@ -311,6 +313,44 @@ TEST_F(Cuda, TrafficPerIterationIsOFaces) {
     }
   });
   EXPECT_GT(iterations, 3);
+}
+
+// --- Limits (issue 7, item 4) --------------------------------------------------------------------------
+
+// More points than the device can hold are a DeviceError naming the allocation (the command line's exit 4),
+// not a crash or a wrong answer; once the memory is back, the same points work.  The device is filled first
+// (all but about 100 MiB), so the test needs no input larger than the GPU.
+TEST_F(Cuda, OutOfDeviceMemoryIsADeviceErrorThenRecovers) {
+  const auto points = generate_points(Distribution::kCube, 10000000, 5);  // 240 MB on the device
+  std::vector<void*> hog;
+  auto free_bytes = [] {
+    std::size_t free = 0, total = 0;
+    cudaMemGetInfo(&free, &total);
+    return free;
+  };
+  for (std::size_t chunk = std::size_t{1} << 30; chunk >= (std::size_t{1} << 24); chunk /= 2) {
+    void* p = nullptr;
+    while (free_bytes() > chunk + (std::size_t{100} << 20) && cudaMalloc(&p, chunk) == cudaSuccess)
+      hog.push_back(p);
+    cudaGetLastError();
+  }
+  ASSERT_LT(free_bytes(), std::size_t{200} << 20) << "could not fill the device";
+  std::string message;
+  try {
+    Engine engine(points, make_cuda_backend());
+    engine.run();
+  } catch (const DeviceError& e) {
+    message = e.what();
+  }
+  for (void* p : hog)
+    cudaFree(p);
+  EXPECT_NE(message.find("out of device memory"), std::string::npos) << "no DeviceError; got: " << message;
+
+  Engine engine(points, make_cuda_backend());
+  engine.run();
+  Engine cpu(points, make_cpu_backend());
+  cpu.run();
+  EXPECT_EQ(engine.result().vertex_ids, cpu.result().vertex_ids);
 }
 
 }  // namespace

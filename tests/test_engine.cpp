@@ -305,6 +305,43 @@ std::vector<std::array<PointIndex, 3>> face_set(const Mesh& mesh) {
   return faces;
 }
 
+// Mesh::split_batch() promises exactly what split() one face at a time gives: ids, links and each vertex's
+// starting face (which orders its ring, and so the engine's later choices).
+TEST(MeshBatches, SplitBatchEqualsSplitInOrder) {
+  const auto points = generate_points(Distribution::kBall, 5000, 31);
+  Engine engine(points, make_cpu_backend(1));
+  for (int k = 0; k < 4; ++k)
+    engine.step();
+  Mesh one_by_one = engine.mesh(), batched = engine.mesh();
+  std::vector<FaceId> faces;
+  std::vector<PointIndex> apexes;
+  for (FaceId f = 0; f < one_by_one.face_capacity(); f += 2) {
+    faces.push_back(f);
+    apexes.push_back(static_cast<PointIndex>(points.size() + f));  // combinatorial: no coordinates needed
+  }
+  ASSERT_GT(faces.size(), 50u);
+  for (std::size_t k = 0; k < faces.size(); ++k)
+    one_by_one.split(faces[k], apexes[k]);
+  batched.split_batch(faces, apexes, 4);
+  ASSERT_EQ(batched.face_capacity(), one_by_one.face_capacity());
+  EXPECT_EQ(batched.live_faces(), one_by_one.live_faces());
+  EXPECT_EQ(batched.vertex_count(), one_by_one.vertex_count());
+  for (FaceId f = 0; f < one_by_one.face_capacity(); ++f) {
+    ASSERT_EQ(batched.alive(f), one_by_one.alive(f)) << "face " << f;
+    if (!one_by_one.alive(f)) continue;
+    EXPECT_EQ(batched.face(f).v, one_by_one.face(f).v) << "face " << f;
+    EXPECT_EQ(batched.face(f).n, one_by_one.face(f).n) << "face " << f;
+  }
+  std::vector<PointIndex> ring_a, ring_b;
+  std::vector<FaceId> faces_a, faces_b;
+  for (PointIndex v : one_by_one.vertices()) {
+    one_by_one.ring(v, ring_a, faces_a);
+    batched.ring(v, ring_b, faces_b);
+    EXPECT_EQ(ring_a, ring_b) << "vertex " << v;
+    EXPECT_EQ(faces_a, faces_b) << "vertex " << v;
+  }
+}
+
 TEST(EngineSteps, BatchedSwapsReplayOneAtATimeInSequenceOrder) {
   const auto points = generate_points(Distribution::kSphere, 30000, 29);
   EngineOptions options;

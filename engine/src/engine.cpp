@@ -574,10 +574,30 @@ struct Engine::Impl {
       }
       std::vector<PointIndex> candidates = std::move(touched);
       touched.clear();
-      for (PointIndex v : candidates)
-        e.vertex_flags_[v] &= static_cast<std::uint8_t>(~kTouched);
-      for (PointIndex v : candidates) {
-        if (e.mesh_.has_vertex(v) && e.mesh_.degree(v, 4) == 3 && try_remove(v, false)) changed = true;
+      if (candidates.size() >= e.options_.batched_swaps_from) {
+        // Many candidates (a batched iteration): find those of degree 3 on all cores first.  One whose
+        // degree falls to 3 by an earlier removal here was touched by it, so the next pass sees it.
+        std::vector<std::uint8_t> degree3(candidates.size());
+        parallel_chunks(
+            candidates.size(), hardware_workers(),
+            [&](std::size_t begin, std::size_t end, unsigned) {
+              for (std::size_t k = begin; k < end; ++k) {
+                const PointIndex v = candidates[k];
+                *e.vertex_flags_.find(v) &= static_cast<std::uint8_t>(~kTouched);  // touch() inserted it
+                degree3[k] = e.mesh_.has_vertex(v) && e.mesh_.degree(v, 4) == 3;
+              }
+            },
+            1024);
+        for (std::size_t k = 0; k < candidates.size(); ++k) {
+          const PointIndex v = candidates[k];
+          if (degree3[k] && e.mesh_.degree(v, 4) == 3 && try_remove(v, false)) changed = true;
+        }
+      } else {
+        for (PointIndex v : candidates)
+          e.vertex_flags_[v] &= static_cast<std::uint8_t>(~kTouched);
+        for (PointIndex v : candidates) {
+          if (e.mesh_.has_vertex(v) && e.mesh_.degree(v, 4) == 3 && try_remove(v, false)) changed = true;
+        }
       }
       if (!queue.empty()) changed = true;
       if (budget > 0) --budget;  // an unsigned count: at 0 a plain decrement wrapped round and never ended
@@ -772,12 +792,17 @@ void Engine::face_geometry(std::vector<FaceGeometry>& faces, const std::vector<F
   std::vector<std::uint8_t> known(count, 0);
   if (remap != nullptr) {
     const std::size_t old_count = std::min(geometry_.size(), remap->size());
-    for (FaceId o = 0; o < old_count; ++o) {
-      const FaceId f = (*remap)[o];
-      if (f == kNoFace) continue;
-      faces[f] = geometry_[o];
-      known[f] = 1;
-    }
+    parallel_chunks(
+        old_count, hardware_workers(),
+        [&](std::size_t begin, std::size_t end, unsigned) {
+          for (std::size_t o = begin; o < end; ++o) {
+            const FaceId f = (*remap)[o];
+            if (f == kNoFace) continue;
+            faces[f] = geometry_[o];
+            known[f] = 1;
+          }
+        },
+        16384);
   }
   parallel_chunks(
       count, hardware_workers(),
@@ -922,22 +947,27 @@ IterationRecord Engine::iterate() {
   std::vector<RefinementEntry> refinement;      // one per refined face (Fig. 7's refinement[])
   std::vector<std::array<FaceId, 3>> children;  // work ids, one triple per refinement entry
   std::vector<Edge> regular_candidates;
+  std::vector<FaceId> refined;
   for (FaceId f = 0; f < old_faces; ++f) {
     if (extremes_[f].count == 0) continue;
-    const PointIndex apex = extremes_[f].furthest;
-    const MeshFace old = mesh_.face(f);
-    const std::array<FaceId, 3> kids = mesh_.split(f, apex);
-    children.push_back(kids);
+    refined.push_back(f);
     RefinementEntry& entry = refinement.emplace_back();
     entry.face = f;
-    entry.apex = apex;
-    record.refined_apexes.push_back(apex);
-    record.refined_faces.push_back(old.v);
-    used_vertices_.push_back(apex);
-    for (FaceId c : kids)
-      regular_candidates.push_back({c, 0});
-    for (PointIndex v : old.v)
+    entry.apex = extremes_[f].furthest;
+    record.refined_apexes.push_back(entry.apex);
+    record.refined_faces.push_back(mesh_.face(f).v);
+    used_vertices_.push_back(entry.apex);
+    for (PointIndex v : mesh_.face(f).v)
       impl.touch(v);
+  }
+  const FaceId first_child = mesh_.split_batch(refined, record.refined_apexes, hardware_workers());
+  children.resize(refined.size());
+  regular_candidates.reserve(3 * refined.size());
+  for (std::size_t k = 0; k < refined.size(); ++k) {
+    for (FaceId i = 0; i < 3; ++i) {
+      children[k][i] = first_child + 3 * static_cast<FaceId>(k) + i;
+      regular_candidates.push_back({children[k][i], 0});
+    }
   }
   record.faces_refined = record.refined_apexes.size();
 
@@ -964,22 +994,38 @@ IterationRecord Engine::iterate() {
   tables.interior = interior_;
   tables.refinement = std::move(refinement);
   tables.old_face_split.assign(old_faces, -1);
-  tables.old_face_route.assign(old_faces, 0);
-  for (std::size_t k = 0; k < tables.refinement.size(); ++k) {
-    RefinementEntry& r = tables.refinement[k];
-    tables.old_face_split[r.face] = static_cast<std::int32_t>(k);
-    for (int i = 0; i < 3; ++i)
-      r.child[i] = impl.route_code(children[k][i], remap);
-  }
-  for (FaceId f = 0; f < old_faces; ++f) {
-    if (tables.old_face_split[f] < 0) tables.old_face_route[f] = impl.route_code(f, remap);
-  }
+  tables.old_face_route.resize(old_faces);
+  const unsigned workers = hardware_workers();
+  parallel_chunks(
+      tables.refinement.size(), workers,
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t k = begin; k < end; ++k) {
+          RefinementEntry& r = tables.refinement[k];
+          tables.old_face_split[r.face] = static_cast<std::int32_t>(k);
+          for (int i = 0; i < 3; ++i)
+            r.child[i] = impl.route_code(children[k][i], remap);
+        }
+      },
+      16384);
+  parallel_chunks(
+      old_faces, workers,
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t f = begin; f < end; ++f)
+          tables.old_face_route[f] =
+              tables.old_face_split[f] < 0 ? impl.route_code(static_cast<FaceId>(f), remap) : 0;
+      },
+      16384);
   tables.retired = record.refined_apexes;
   tables.decision = impl.entries;
-  for (std::size_t k = 0; k < tables.decision.size(); ++k) {
-    tables.decision[k].above = impl.route_code(impl.entry_targets[k][0], remap);
-    tables.decision[k].below = impl.route_code(impl.entry_targets[k][1], remap);
-  }
+  parallel_chunks(
+      tables.decision.size(), workers,
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t k = begin; k < end; ++k) {
+          tables.decision[k].above = impl.route_code(impl.entry_targets[k][0], remap);
+          tables.decision[k].below = impl.route_code(impl.entry_targets[k][1], remap);
+        }
+      },
+      16384);
   face_geometry(tables.faces, &remap);
   record.decision_entries = tables.decision.size();
   record.host_ms = ms_since(t0);

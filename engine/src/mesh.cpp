@@ -121,6 +121,64 @@ std::array<FaceId, 2> Mesh::swap(FaceId f, int i) {
   return {n1, n2};
 }
 
+FaceId Mesh::split_batch(const std::vector<FaceId>& faces, const std::vector<PointIndex>& apexes,
+                         unsigned workers) {
+  const std::size_t count = faces.size();
+  const FaceId first = static_cast<FaceId>(faces_.size());
+  split_of_.assign(faces_.size(), -1);
+  for (std::size_t k = 0; k < count; ++k)
+    split_of_[faces[k]] = static_cast<std::int32_t>(k);
+  // The apexes are new keys of the vertex map: insert them here, before the threads look keys up.  Each
+  // ends on its last child, as add_face() leaves it.
+  for (std::size_t k = 0; k < count; ++k) {
+    FaceId& slot = vertex_face_[apexes[k]];
+    if (slot == 0) ++vertex_count_;
+    slot = first + 3 * static_cast<FaceId>(k) + 2 + 1;
+  }
+  faces_.resize(faces_.size() + 3 * count);
+  alive_.resize(alive_.size() + 3 * count, 1);
+  live_count_ += 2 * count;
+  parallel_chunks(
+      count, workers,
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t k = begin; k < end; ++k) {
+          // Refined faces are only read here; an unrefined neighbour's slot for the shared edge has one
+          // writer, the child that takes that edge.
+          const FaceId f = faces[k];
+          const MeshFace& old = faces_[f];
+          const FaceId child = first + 3 * static_cast<FaceId>(k);
+          for (int i = 0; i < 3; ++i) {
+            const PointIndex a = old.v[i], b = old.v[next(i)];
+            const FaceId g = old.n[i];
+            FaceId across = g;
+            const int j = edge_index(g, b, a);
+            if (j < 0) throw std::logic_error("mesh adjacency is inconsistent");
+            if (split_of_[g] >= 0) {
+              across = first + 3 * static_cast<FaceId>(split_of_[g]) + static_cast<FaceId>(j);
+            } else {
+              faces_[g].n[j] = child + static_cast<FaceId>(i);
+            }
+            MeshFace& made = faces_[child + static_cast<FaceId>(i)];
+            made.v = {a, b, apexes[k]};
+            made.n = {across, child + static_cast<FaceId>(next(i)), child + static_cast<FaceId>(prev(i))};
+          }
+          // Old corner i ends on the last child that holds it: child 2 for corners 0 and 2, child 1 for 1.
+          const FaceId last_child[3] = {child + 2, child + 1, child + 2};
+          for (int i = 0; i < 3; ++i) {
+            std::atomic_ref<FaceId> slot(*vertex_face_.find(old.v[i]));
+            FaceId held = slot.load(std::memory_order_relaxed);
+            while (held < last_child[i] + 1 &&
+                   !slot.compare_exchange_weak(held, last_child[i] + 1, std::memory_order_relaxed)) {
+            }
+          }
+        }
+      },
+      1024);
+  for (FaceId f : faces)
+    alive_[f] = 0;
+  return first;
+}
+
 FaceId Mesh::swap_batch(const std::vector<std::pair<FaceId, int>>& swaps, unsigned workers) {
   // Each swap as swap() sees it: faces f = (u, v, x) and g = (v, u, y), and the four faces around them.
   struct Quad {
@@ -270,29 +328,63 @@ FaceId Mesh::remove_degree3(PointIndex v) {
 }
 
 const std::vector<FaceId>& Mesh::compact() {
-  // In place (a new id is never above the old one), into buffers that keep their capacity: fresh arrays of
-  // millions of faces would cost page faults every iteration.
-  remap_.assign(faces_.size(), kNoFace);
-  FaceId next_id = 0;
-  for (FaceId f = 0; f < faces_.size(); ++f) {
-    if (alive_[f]) remap_[f] = next_id++;
-  }
-  for (FaceId f = 0; f < faces_.size(); ++f) {
-    if (!alive_[f]) continue;
-    MeshFace& kept = faces_[remap_[f]];
-    kept = faces_[f];
-    for (FaceId& nb : kept.n)
-      nb = remap_[nb];
-  }
-  faces_.resize(next_id);
-  alive_.assign(next_id, 1);
-  live_count_ = next_id;
-  const std::vector<FaceId>& remap = remap_;
+  // Into a second buffer that keeps its capacity (fresh arrays of millions of faces would cost page faults
+  // every iteration), on all cores: new ids by a prefix count per chunk, then the copy.
+  const std::size_t capacity = faces_.size();
+  const unsigned workers = hardware_workers();
+  const std::size_t chunk = (capacity + workers - 1) / workers;
+  std::vector<FaceId> chunk_base(workers + 1, 0);
+  remap_.resize(capacity);
+  parallel_chunks(
+      workers, workers,
+      [&](std::size_t wb, std::size_t we, unsigned) {
+        for (std::size_t w = wb; w < we; ++w) {
+          FaceId live = 0;
+          for (std::size_t f = w * chunk; f < std::min(capacity, (w + 1) * chunk); ++f)
+            live += alive_[f];
+          chunk_base[w + 1] = live;
+        }
+      },
+      capacity < 65536 ? workers + 1 : 1);
+  for (unsigned w = 0; w < workers; ++w)
+    chunk_base[w + 1] += chunk_base[w];
+  const FaceId live = chunk_base[workers];
+  compacted_.resize(live);
+  parallel_chunks(
+      workers, workers,
+      [&](std::size_t wb, std::size_t we, unsigned) {
+        for (std::size_t w = wb; w < we; ++w) {
+          FaceId next_id = chunk_base[w];
+          for (std::size_t f = w * chunk; f < std::min(capacity, (w + 1) * chunk); ++f)
+            remap_[f] = alive_[f] ? next_id++ : kNoFace;
+        }
+      },
+      capacity < 65536 ? workers + 1 : 1);
+  parallel_chunks(
+      capacity, workers,
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t f = begin; f < end; ++f) {
+          if (!alive_[f]) continue;
+          MeshFace& kept = compacted_[remap_[f]];
+          kept = faces_[f];
+          for (FaceId& nb : kept.n)
+            nb = remap_[nb];
+        }
+      },
+      65536);
+  faces_.swap(compacted_);
+  alive_.assign(live, 1);
+  live_count_ = live;
   // Each vertex's face is live (add_face sets it for every corner of every new face, and only a removed
   // vertex loses all its faces), so renumbering it is enough.
-  vertex_face_.for_each([&](PointIndex, FaceId& slot) {
-    if (slot != 0) slot = remap[slot - 1] + 1;
-  });
+  parallel_chunks(
+      vertex_face_.slot_count(), workers,
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        vertex_face_.for_each_in(begin, end, [&](PointIndex, FaceId& slot) {
+          if (slot != 0) slot = remap_[slot - 1] + 1;
+        });
+      },
+      65536);
   return remap_;
 }
 

@@ -47,6 +47,12 @@ class Mesh {
   // Edge 0 of each child is the child's edge of the old face.
   std::array<FaceId, 3> split(FaceId f, PointIndex p);
 
+  // split() of faces[k] at apexes[k] for every k, on `workers` threads, with the same ids, links and
+  // vertex faces as calling split() in that order (children of faces[k] are first + 3k .. first + 3k + 2,
+  // where `first` is the returned id).  The faces must be different live faces, the apexes new vertices.
+  FaceId split_batch(const std::vector<FaceId>& faces, const std::vector<PointIndex>& apexes,
+                     unsigned workers);
+
   // Edge swap (Fig. 3b): the edge v[i] -> v[i+1] of f (u -> v, opposite x) and its twin in g (opposite y)
   // are replaced by the edge x - y: returns N1 = (x, u, y) and N2 = (y, v, x).  Caller checks validity.
   std::array<FaceId, 2> swap(FaceId f, int i);
@@ -80,8 +86,10 @@ class Mesh {
 
   std::vector<MeshFace> faces_;
   std::vector<std::uint8_t> alive_;
-  std::vector<FaceId> remap_;      // compact()'s answer
-  std::vector<FaceId> dead_into_;  // swap_batch(): a face it killed -> the first new face of its swap
+  std::vector<FaceId> remap_;           // compact()'s answer
+  std::vector<MeshFace> compacted_;     // compact()'s second buffer
+  std::vector<FaceId> dead_into_;       // swap_batch(): a face it killed -> the first new face of its swap
+  std::vector<std::int32_t> split_of_;  // split_batch(): a face -> its index in the batch, or -1
   std::size_t live_count_ = 0;
   // Per input point: 1 + some live face that holds it, or 0 when it is not a vertex.
   PointMap<FaceId> vertex_face_;

@@ -63,6 +63,14 @@ class PointMap {
       if (keys_[i] != kEmpty) visit(keys_[i], values_[i]);
     }
   }
+  // The same over slots [begin, end) of slot_count(): disjoint ranges may run on different threads.
+  std::size_t slot_count() const { return keys_.size(); }
+  template <class Visit>
+  void for_each_in(std::size_t begin, std::size_t end, Visit&& visit) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (keys_[i] != kEmpty) visit(keys_[i], values_[i]);
+    }
+  }
   template <class Visit>
   void for_each(Visit&& visit) const {
     for (std::size_t i = 0; i < keys_.size(); ++i) {
