@@ -84,6 +84,12 @@ void write_text(const std::string& path, const std::string& text) {
   write_file_atomically(path, [&](std::ostream& out) { out << text; });
 }
 
+// The faces -o writes: the triangles, the one polygon of a planar hull, none for a segment or a point.
+std::size_t face_count(const HullMesh& hull) {
+  if (hull.dimension == 3) return hull.triangles.size();
+  return hull.dimension == 2 && hull.polygon.size() >= 3 ? 1 : 0;
+}
+
 const char* dimension_name(int d) {
   switch (d) {
     case -1:
@@ -200,26 +206,25 @@ int run_hull(const HullOptions& o) {
   if (!o.trace.empty()) write_text(o.trace, trace.str());
 
   if (!o.stats.empty()) {
-    nlohmann::json j{
-        {"input", o.input},
-        {"points", point_count},
-        {"dimension", hull.dimension},
-        {"hull_vertices", hull.vertex_ids.size()},
-        {"hull_faces", hull.dimension == 3 ? hull.triangles.size() : (hull.dimension == 2 ? 1 : 0)},
-        {"iterations", iterations},
-        {"swaps", swaps},
-        {"swaps_rejected", rejected},
-        {"vertices_removed", removed},
-        {"repairs", repairs},
-        {"backend", backend_name},
-        {"device", device},
-        {"read_ms", read_ms},
-        {"total_ms", run_ms},
-        {"host_ms", host_ms},
-        {"backend_ms", backend_ms},
-        {"bytes_to_backend", bytes_to},
-        {"bytes_from_backend", bytes_from},
-        {"verified", verified}};
+    nlohmann::json j{{"input", o.input},
+                     {"points", point_count},
+                     {"dimension", hull.dimension},
+                     {"hull_vertices", hull.vertex_ids.size()},
+                     {"hull_faces", face_count(hull)},
+                     {"iterations", iterations},
+                     {"swaps", swaps},
+                     {"swaps_rejected", rejected},
+                     {"vertices_removed", removed},
+                     {"repairs", repairs},
+                     {"backend", backend_name},
+                     {"device", device},
+                     {"read_ms", read_ms},
+                     {"total_ms", run_ms},
+                     {"host_ms", host_ms},
+                     {"backend_ms", backend_ms},
+                     {"bytes_to_backend", bytes_to},
+                     {"bytes_from_backend", bytes_from},
+                     {"verified", verified}};
     if (o.verify) j["verify_ms"] = verify_ms;
     if (o.stats == "-") {
       std::cout << j.dump(2) << "\n";
@@ -229,8 +234,8 @@ int run_hull(const HullOptions& o) {
   }
   if (!o.quiet) {
     std::fprintf(stderr, "hull: %zu points -> %zu vertices, %zu faces (%s) in %d iterations, %.1f ms%s\n",
-                 point_count, hull.vertex_ids.size(), hull.dimension == 3 ? hull.triangles.size() : 0,
-                 dimension_name(hull.dimension), iterations, run_ms, verified ? "; verified exact" : "");
+                 point_count, hull.vertex_ids.size(), face_count(hull), dimension_name(hull.dimension),
+                 iterations, run_ms, verified ? "; verified exact" : "");
   }
   return kExitOk;
 }
