@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <deque>
 #include <memory>
@@ -78,6 +79,13 @@ struct Edge {
   int index;
 };
 
+// CUDAHULL_PHASE_TIMES=1 prints each iteration's host phases to stderr: where the host time goes, as in the
+// paper's Fig. 9 (docs/benchmarks.md).
+bool phase_times_wanted() {
+  static const bool wanted = std::getenv("CUDAHULL_PHASE_TIMES") != nullptr;
+  return wanted;
+}
+
 // Per-point flags of the mesh edits.
 constexpr std::uint8_t kDoomed = 1;       // a vertex proven inside the hull, being taken out
 constexpr std::uint8_t kRemovedOnce = 2;  // removed as concave before: a fold made it look concave
@@ -108,27 +116,40 @@ struct BatchTrial {
 struct Engine::EditScratch {
   std::vector<BatchTrial> trials;            // per candidate
   std::vector<std::pair<FaceId, int>> made;  // the round's winners: face and edge
-  // Claims, (round << 32 | candidate): per face id, and per hashed new edge.
-  std::unique_ptr<std::atomic<std::uint64_t>[]> face_claims, edge_claims;
+  std::vector<std::size_t> winner_at, winner_of;
+  // Claims, (round << 32 | candidate): per face id, and per hashed new edge (used through atomic_ref).
+  std::unique_ptr<std::uint64_t[]> face_claims, edge_claims;
   std::size_t face_claim_count = 0, edge_claim_bits = 0;
   std::uint64_t claim_round = 0;
 
+  // Grown tables are zeroed on all cores: a serial clear of 100 MB would cost more than a round.
+  static void zero(std::uint64_t* table, std::size_t count) {
+    parallel_chunks(count, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
+      std::fill(table + begin, table + end, std::uint64_t{0});
+    });
+  }
   void grow_claims(std::size_t faces, std::size_t edges) {
     if (faces > face_claim_count) {
-      face_claim_count = std::max(faces, 2 * face_claim_count);
-      face_claims.reset(new std::atomic<std::uint64_t>[face_claim_count]());
+      face_claim_count = std::max(faces, face_claim_count + face_claim_count / 2);
+      face_claims.reset(new std::uint64_t[face_claim_count]);
+      zero(face_claims.get(), face_claim_count);
     }
     std::size_t bits = 12;
     while ((std::size_t{1} << bits) < 2 * edges)
       ++bits;
     if (bits > edge_claim_bits) {
-      edge_claims.reset(new std::atomic<std::uint64_t>[std::size_t{1} << bits]());
+      edge_claims.reset(new std::uint64_t[std::size_t{1} << bits]);
+      zero(edge_claims.get(), std::size_t{1} << bits);
       edge_claim_bits = bits;
     }
   }
-  std::atomic<std::uint64_t>& edge_claim(PointIndex a, PointIndex b) {
+  std::atomic_ref<std::uint64_t> face_claim(FaceId f) {
+    return std::atomic_ref<std::uint64_t>(face_claims[f]);
+  }
+  std::atomic_ref<std::uint64_t> edge_claim(PointIndex a, PointIndex b) {
     const std::uint64_t key = static_cast<std::uint64_t>(std::min(a, b)) << 32 | std::max(a, b);
-    return edge_claims[(key * 0x9E3779B97F4A7C15ull) >> (64 - edge_claim_bits)];
+    return std::atomic_ref<std::uint64_t>(
+        edge_claims[(key * 0x9E3779B97F4A7C15ull) >> (64 - edge_claim_bits)]);
   }
 };
 
@@ -142,7 +163,10 @@ struct Engine::Impl {
   std::vector<std::int32_t> killed_by_entry;         // work id -> decision entry, or -1
   std::deque<Edge> queue;
   std::vector<PointIndex> touched;  // vertices whose neighbourhood changed: removal candidates
-  std::vector<PointIndex> doomed;   // vertices proven not extreme, to be taken out (Fig. 4)
+  // Batched edits append to `touched` on all cores without the kTouched flag, repeats and all; settle()
+  // then sorts and dedupes it (an order that does not depend on the number of threads).
+  bool touched_unsorted = false;
+  std::vector<PointIndex> doomed;  // vertices proven not extreme, to be taken out (Fig. 4)
   std::set<std::pair<PointIndex, PointIndex>> rejected_edges;
   // Swap entries whose separating plane is still to compute: the new faces (x, u, y) and (y, v, x) and u.
   struct PendingPlane {
@@ -344,27 +368,34 @@ struct Engine::Impl {
     EditScratch& scratch = *e.scratch_;
     std::vector<BatchTrial>& trials = scratch.trials;
     std::vector<Candidate> next;
+    double t_eval = 0, t_claim = 0, t_apply = 0, t_book = 0;  // CUDAHULL_PHASE_TIMES
+    int rounds = 0;
     while (candidates.size() >= batch_from && budget > 0) {
+      auto q0 = Clock::now();
+      ++rounds;
       const std::size_t count = candidates.size();
-      trials.assign(count, BatchTrial{});
+      trials.resize(count);
       parallel_chunks(
           count, workers,
           [&](std::size_t begin, std::size_t end, unsigned) {
             for (std::size_t k = begin; k < end; ++k) {
               const Edge& edge = candidates[k].edge;
-              if (!e.mesh_.alive(edge.face)) continue;
               BatchTrial& t = trials[k];
+              t = BatchTrial{};
+              if (!e.mesh_.alive(edge.face)) continue;
               t.trial = trial_swap(edge.face, edge.index, nullptr, t.swap, t.verdict, t.beneath_inside);
               t.other_face = e.mesh_.face(edge.face).n[edge.index];
             }
           },
           256);
+      t_eval += ms_since(q0);
+      q0 = Clock::now();
       // Claims, tagged by round so that the tables need no clearing and stay from one iteration to the next:
       // a swap wins when it is the lowest candidate among those that would kill either of its two faces and
       // among those that would make its new edge (hashed; a collision only delays a swap to the next round).
       scratch.grow_claims(e.mesh_.face_capacity(), 4 * count);
       const std::uint64_t round = ++scratch.claim_round;
-      auto claim = [round](std::atomic<std::uint64_t>& slot, std::uint64_t k) {
+      auto claim = [round](std::atomic_ref<std::uint64_t> slot, std::uint64_t k) {
         const std::uint64_t mine = round << 32 | k;
         std::uint64_t held = slot.load(std::memory_order_relaxed);
         while ((held >> 32 != round || held > mine) &&
@@ -377,8 +408,8 @@ struct Engine::Impl {
             for (std::size_t k = begin; k < end; ++k) {
               const BatchTrial& t = trials[k];
               if (t.trial != Trial::kValid) continue;
-              claim(scratch.face_claims[candidates[k].edge.face], k);
-              claim(scratch.face_claims[t.other_face], k);
+              claim(scratch.face_claim(candidates[k].edge.face), k);
+              claim(scratch.face_claim(t.other_face), k);
               claim(scratch.edge_claim(t.swap.new_edge[0], t.swap.new_edge[1]), k);
             }
           },
@@ -391,8 +422,8 @@ struct Engine::Impl {
               if (t.trial != Trial::kValid) continue;
               const std::uint64_t mine = round << 32 | k;
               t.winner =
-                  scratch.face_claims[candidates[k].edge.face].load(std::memory_order_relaxed) == mine &&
-                  scratch.face_claims[t.other_face].load(std::memory_order_relaxed) == mine &&
+                  scratch.face_claim(candidates[k].edge.face).load(std::memory_order_relaxed) == mine &&
+                  scratch.face_claim(t.other_face).load(std::memory_order_relaxed) == mine &&
                   scratch.edge_claim(t.swap.new_edge[0], t.swap.new_edge[1])
                           .load(std::memory_order_relaxed) == mine;
             }
@@ -405,26 +436,91 @@ struct Engine::Impl {
       }
       const std::size_t winners = made.size();
       if (winners == 0) break;
+      t_claim += ms_since(q0);
+      q0 = Clock::now();
       const FaceId base = e.mesh_.swap_batch(made, workers);
+      t_apply += ms_since(q0);
+      q0 = Clock::now();
       budget = budget > winners ? budget - winners : 0;
+      // The bookkeeping, as note_swapped() one at a time would do it: a serial pass for the order (sequence
+      // numbers, rejections, the candidates to retry), then the winners' entries and records on all cores.
       next.clear();
-      FaceId n1 = base;
+      std::vector<std::size_t>& winner_at = scratch.winner_at;  // winner -> its record in record.swaps
+      winner_at.clear();
+      if (record.swaps.capacity() < record.swaps.size() + count)
+        record.swaps.reserve(std::max(2 * record.swaps.capacity(), record.swaps.size() + count));
       for (std::size_t k = 0; k < count; ++k) {
         BatchTrial& t = trials[k];
         if (t.winner) {
-          note_swapped(candidates[k].edge.face, t.other_face, n1, n1 + 1, t.swap, candidates[k].kind);
-          n1 += 2;
+          winner_at.push_back(record.swaps.size());
+          t.swap.sequence = sequence++;
+          t.swap.kind = candidates[k].kind;
+          record.swaps.emplace_back();
+          (t.swap.kind == SwapKind::kRegular ? record.swaps_regular : record.swaps_complementary)++;
         } else if (t.trial == Trial::kRejected) {
           note_rejected(t.swap, t.verdict, t.beneath_inside);
         } else if (t.trial == Trial::kValid) {
-          next.push_back(candidates[k]);  // lost a vertex to an earlier candidate: try again
+          next.push_back(candidates[k]);  // lost a face or its new edge to an earlier candidate: try again
         }
       }
-      for (const Edge& edge : queue)
-        next.push_back({edge, SwapKind::kComplementary});
-      queue.clear();
+      const std::size_t carried = next.size(), first_entry = entries.size(), first_plane = swap_planes.size();
+      next.resize(carried + 4 * winners);
+      entries.resize(first_entry + winners);
+      entry_targets.resize(first_entry + winners);
+      swap_planes.resize(first_plane + winners);
+      if (killed_by_entry.size() < e.mesh_.face_capacity())
+        killed_by_entry.resize(e.mesh_.face_capacity(), -1);
+      std::vector<std::size_t>& winner_of = scratch.winner_of;  // candidate -> winner number
+      winner_of.resize(count);
+      for (std::size_t k = 0, w = 0; k < count; ++k) {
+        if (trials[k].winner) winner_of[k] = w++;
+      }
+      parallel_chunks(
+          count, workers,
+          [&](std::size_t begin, std::size_t end, unsigned) {
+            for (std::size_t k = begin; k < end; ++k) {
+              BatchTrial& t = trials[k];
+              if (!t.winner) continue;
+              const std::size_t w = winner_of[k];
+              const FaceId n1 = base + 2 * static_cast<FaceId>(w), n2 = n1 + 1;
+              const std::int32_t index = static_cast<std::int32_t>(first_entry + w);
+              entries[index] = DecisionEntry{};
+              entries[index].kind = kDecisionSwap;
+              entry_targets[index] = {n1, n2};
+              swap_planes[first_plane + w] = {index, n1, n2, t.swap.old_edge[0]};
+              killed_by_entry[candidates[k].edge.face] = index;
+              killed_by_entry[t.other_face] = index;
+              t.swap.decision_index = index;
+              record.swaps[winner_at[w]] = t.swap;
+              Candidate* around = next.data() + carried + 4 * w;
+              around[0] = {{n1, 0}, SwapKind::kComplementary};
+              around[1] = {{n1, 1}, SwapKind::kComplementary};
+              around[2] = {{n2, 0}, SwapKind::kComplementary};
+              around[3] = {{n2, 1}, SwapKind::kComplementary};
+            }
+          },
+          4096);
+      // touch() on every vertex of every swap, as settle() will dedupe them.
+      const std::size_t first_touch = touched.size();
+      touched.resize(first_touch + 4 * winners);
+      parallel_chunks(
+          count, workers,
+          [&](std::size_t begin, std::size_t end, unsigned) {
+            for (std::size_t k = begin; k < end; ++k) {
+              if (!trials[k].winner) continue;
+              const SwapRecord& w = trials[k].swap;
+              PointIndex* out = touched.data() + first_touch + 4 * winner_of[k];
+              out[0] = w.old_edge[0], out[1] = w.old_edge[1], out[2] = w.new_edge[0], out[3] = w.new_edge[1];
+            }
+          },
+          4096);
+      touched_unsorted = true;
       candidates.swap(next);
+      t_book += ms_since(q0);
     }
+    if (phase_times_wanted() && rounds > 0)
+      std::fprintf(stderr, "  batched swaps: %d rounds, try %.1f claim %.1f swap %.1f bookkeeping %.1f ms\n",
+                   rounds, t_eval, t_claim, t_apply, t_book);
     // What is left goes on as one at a time: regular candidates now, as in the unbatched order.
     for (const Candidate& c : candidates) {
       if (c.kind != SwapKind::kRegular) {
@@ -574,6 +670,11 @@ struct Engine::Impl {
       }
       std::vector<PointIndex> candidates = std::move(touched);
       touched.clear();
+      if (touched_unsorted) {
+        parallel_sort(candidates);
+        candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+        touched_unsorted = false;
+      }
       if (candidates.size() >= e.options_.batched_swaps_from) {
         // Many candidates (a batched iteration): find those of degree 3 on all cores first.  One whose
         // degree falls to 3 by an earlier removal here was touched by it, so the next pass sees it.
@@ -583,7 +684,8 @@ struct Engine::Impl {
             [&](std::size_t begin, std::size_t end, unsigned) {
               for (std::size_t k = begin; k < end; ++k) {
                 const PointIndex v = candidates[k];
-                *e.vertex_flags_.find(v) &= static_cast<std::uint8_t>(~kTouched);  // touch() inserted it
+                if (std::uint8_t* flags = e.vertex_flags_.find(v))
+                  *flags &= static_cast<std::uint8_t>(~kTouched);
                 degree3[k] = e.mesh_.has_vertex(v) && e.mesh_.degree(v, 4) == 3;
               }
             },
@@ -948,19 +1050,45 @@ IterationRecord Engine::iterate() {
   std::vector<std::array<FaceId, 3>> children;  // work ids, one triple per refinement entry
   std::vector<Edge> regular_candidates;
   std::vector<FaceId> refined;
+  // Room for every vertex the edits may flag (each refinement adds one), so touch() never rehashes.
+  vertex_flags_.reserve(mesh_.vertex_count() + old_faces);
   for (FaceId f = 0; f < old_faces; ++f) {
-    if (extremes_[f].count == 0) continue;
-    refined.push_back(f);
-    RefinementEntry& entry = refinement.emplace_back();
-    entry.face = f;
-    entry.apex = extremes_[f].furthest;
-    record.refined_apexes.push_back(entry.apex);
-    record.refined_faces.push_back(mesh_.face(f).v);
-    used_vertices_.push_back(entry.apex);
-    for (PointIndex v : mesh_.face(f).v)
-      impl.touch(v);
+    if (extremes_[f].count != 0) refined.push_back(f);
   }
+  const std::size_t refined_count = refined.size();
+  refinement.resize(refined_count);
+  record.refined_apexes.resize(refined_count);
+  record.refined_faces.resize(refined_count);
+  const std::size_t first_used = used_vertices_.size();
+  used_vertices_.resize(first_used + refined_count);
+  const bool batched = refined_count >= options_.batched_swaps_from;
+  if (batched) impl.touched.resize(3 * refined_count);
+  parallel_chunks(
+      refined_count, hardware_workers(),
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t k = begin; k < end; ++k) {
+          const FaceId f = refined[k];
+          RefinementEntry& entry = refinement[k];
+          entry.face = f;
+          entry.apex = extremes_[f].furthest;
+          record.refined_apexes[k] = entry.apex;
+          record.refined_faces[k] = mesh_.face(f).v;
+          used_vertices_[first_used + k] = entry.apex;
+          if (batched) std::copy_n(mesh_.face(f).v.begin(), 3, impl.touched.begin() + 3 * k);
+        }
+      },
+      16384);
+  if (batched) {
+    impl.touched_unsorted = true;  // settle() sorts and dedupes them
+  } else {
+    for (FaceId f : refined) {
+      for (PointIndex v : mesh_.face(f).v)
+        impl.touch(v);
+    }
+  }
+  const double tp0 = ms_since(t0);
   const FaceId first_child = mesh_.split_batch(refined, record.refined_apexes, hardware_workers());
+  const double tp1 = ms_since(t0);
   children.resize(refined.size());
   regular_candidates.reserve(3 * refined.size());
   for (std::size_t k = 0; k < refined.size(); ++k) {
@@ -984,8 +1112,11 @@ IterationRecord Engine::iterate() {
       if (mesh_.alive(edge.face)) impl.try_swap(edge.face, edge.index, SwapKind::kRegular);
     }
   }
+  const double tp2 = ms_since(t0);
   impl.settle();
+  const double tp3 = ms_since(t0);
   impl.separating_planes(refinement, children);
+  const double tp4 = ms_since(t0);
 
   // Renumber the faces and turn work ids into route codes (Fig. 7).
   const std::vector<FaceId>& remap = mesh_.compact();
@@ -1026,9 +1157,16 @@ IterationRecord Engine::iterate() {
         }
       },
       16384);
+  const double tp5 = ms_since(t0);
   face_geometry(tables.faces, &remap);
   record.decision_entries = tables.decision.size();
   record.host_ms = ms_since(t0);
+  if (phase_times_wanted())
+    std::fprintf(stderr,
+                 "iteration %d host ms: collect %.1f split %.1f regular+batched %.1f settle %.1f planes %.1f "
+                 "tables %.1f geometry %.1f\n",
+                 record.iteration, tp0, tp1 - tp0, tp2 - tp1, tp3 - tp2, tp4 - tp3, tp5 - tp4,
+                 record.host_ms - tp5);
 
   // Algorithm 2 on the backend: distribute, compact, extremes.
   const auto tb = Clock::now();
@@ -1097,6 +1235,7 @@ void Engine::finish(IterationRecord& record) {
     return count;
   };
   std::size_t faults = count_faults();
+  const double tf_check = ms_since(t0);
   if (faults > 0) {
     // No point is outside any more, but rejected swaps have left concave edges: apply the paper's local
     // steps (swaps, complementary swaps, removals) from each faulty edge until nothing changes; settle()
@@ -1122,13 +1261,15 @@ void Engine::finish(IterationRecord& record) {
     faults = count_faults();
   }
   const FaceId faces = static_cast<FaceId>(mesh_.face_capacity());
-  std::sort(used_vertices_.begin(), used_vertices_.end());
-  used_vertices_.erase(std::unique(used_vertices_.begin(), used_vertices_.end()), used_vertices_.end());
   if (faults == 0) {
-    // The mesh is convex with c inside: locate each dropped vertex by a walk through the radial cones.
+    // The mesh is convex with c inside: locate each dropped vertex (a point leaves the mesh only by a
+    // removal, Fig. 4) by a walk through the radial cones.
+    std::vector<PointIndex> dropped = removed_vertices_;
+    std::sort(dropped.begin(), dropped.end());
+    dropped.erase(std::unique(dropped.begin(), dropped.end()), dropped.end());
     const std::vector<FaceGeometry>& geometry = geometry_;
     const int walk = 64 + 4 * static_cast<int>(std::sqrt(static_cast<double>(geometry.size())));
-    for (PointIndex r : used_vertices_) {
+    for (PointIndex r : dropped) {
       if (mesh_.has_vertex(r)) continue;
       const std::int32_t found = locate_point(points_[r], 0, geometry.data(),
                                               static_cast<std::int32_t>(geometry.size()), interior_, walk);
@@ -1136,25 +1277,36 @@ void Engine::finish(IterationRecord& record) {
     }
   }
   faults += external_;  // after a stall: points still outside the mesh
+  const double tf_dropped = ms_since(t0);
   if (faults == 0) {
     result_ = HullMesh{};
     result_.dimension = 3;
     result_.vertex_ids = mesh_.vertices();
-    PointMap<std::uint32_t> local;  // point index -> 1 + its position in vertex_ids
-    local.reserve(result_.vertex_ids.size());
-    result_.vertices.reserve(result_.vertex_ids.size());
-    for (std::uint32_t k = 0; k < result_.vertex_ids.size(); ++k) {
-      local[result_.vertex_ids[k]] = k + 1;
-      result_.vertices.push_back(points_[result_.vertex_ids[k]]);
-    }
+    const std::vector<PointIndex>& ids = result_.vertex_ids;
+    result_.vertices.resize(ids.size());
     result_.triangles.resize(faces);
+    // Corners renumbered on all cores: through a per-point table when most points are vertices (a
+    // sphere), else by binary search in the sorted ids (a million-vertex map built on one core cost more).
+    std::vector<std::uint32_t> dense;
+    if (8 * ids.size() >= points_.size()) {
+      dense.resize(points_.size());
+      parallel_chunks(ids.size(), hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t k = begin; k < end; ++k)
+          dense[ids[k]] = static_cast<std::uint32_t>(k);
+      });
+    }
+    auto local = [&](PointIndex v) {
+      if (!dense.empty()) return dense[v];
+      return static_cast<std::uint32_t>(std::lower_bound(ids.begin(), ids.end(), v) - ids.begin());
+    };
     parallel_chunks(
-        faces, hardware_workers(),
+        std::max<std::size_t>(faces, ids.size()), hardware_workers(),
         [&](std::size_t begin, std::size_t end, unsigned) {
-          for (std::size_t f = begin; f < end; ++f) {
+          for (std::size_t k = begin; k < std::min<std::size_t>(end, ids.size()); ++k)
+            result_.vertices[k] = points_[ids[k]];
+          for (std::size_t f = begin; f < std::min<std::size_t>(end, faces); ++f) {
             const MeshFace& face = mesh_.face(static_cast<FaceId>(f));
-            result_.triangles[f] = {local.get(face.v[0]) - 1, local.get(face.v[1]) - 1,
-                                    local.get(face.v[2]) - 1};
+            result_.triangles[f] = {local(face.v[0]), local(face.v[1]), local(face.v[2])};
           }
         },
         65536);
@@ -1162,6 +1314,8 @@ void Engine::finish(IterationRecord& record) {
     // The paper's local procedure stopped short (coplanar or cospherical input): finish exactly from the
     // candidates, which contain every extreme point.
     // Points still external (only after a stall) are candidates too.
+    std::sort(used_vertices_.begin(), used_vertices_.end());
+    used_vertices_.erase(std::unique(used_vertices_.begin(), used_vertices_.end()), used_vertices_.end());
     std::vector<PointIndex> candidates = used_vertices_;
     if (external_ > 0) {
       const std::vector<std::int32_t> faces_of_points = point_faces();
@@ -1177,6 +1331,9 @@ void Engine::finish(IterationRecord& record) {
                   " candidate vertices (" + std::to_string(faults) + " non-convex edges or outside vertices)";
   }
   record.host_ms += ms_since(t0);
+  if (phase_times_wanted())
+    std::fprintf(stderr, "finish host ms %.1f: check %.1f dropped %.1f result %.1f\n", ms_since(t0), tf_check,
+                 tf_dropped - tf_check, ms_since(t0) - tf_dropped);
   done_ = true;
 }
 

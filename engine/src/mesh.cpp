@@ -67,7 +67,7 @@ std::vector<PointIndex> Mesh::vertices() const {
   vertex_face_.for_each([&](PointIndex v, FaceId slot) {
     if (slot != 0) out.push_back(v);
   });
-  std::sort(out.begin(), out.end());
+  parallel_sort(out);
   return out;
 }
 
@@ -130,6 +130,7 @@ FaceId Mesh::split_batch(const std::vector<FaceId>& faces, const std::vector<Poi
     split_of_[faces[k]] = static_cast<std::int32_t>(k);
   // The apexes are new keys of the vertex map: insert them here, before the threads look keys up.  Each
   // ends on its last child, as add_face() leaves it.
+  vertex_face_.reserve(vertex_count_ + count);
   for (std::size_t k = 0; k < count; ++k) {
     FaceId& slot = vertex_face_[apexes[k]];
     if (slot == 0) ++vertex_count_;

@@ -35,7 +35,8 @@ struct IterationTables {
     old_face_route.clear();
     refinement.clear();
     decision.clear();
-    faces.clear();
+    // `faces` is kept: Engine::face_geometry() overwrites every face, and emptying it would make the
+    // resize construct millions of faces again on one core every iteration.
     initial_cells.clear();
     retired.clear();
   }

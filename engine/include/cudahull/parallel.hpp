@@ -49,4 +49,44 @@ void parallel_chunks(std::size_t n, unsigned workers, Body&& body, std::size_t g
     t.join();
 }
 
+// std::sort on all cores: each worker sorts one chunk, then pairs of sorted runs merge, log2(workers)
+// rounds.  For the result's million-vertex lists; small ones sort on the calling thread.
+template <class T>
+void parallel_sort(std::vector<T>& values) {
+  const std::size_t n = values.size();
+  const unsigned workers = hardware_workers();
+  if (n < 65536 || workers == 1) {
+    std::sort(values.begin(), values.end());
+    return;
+  }
+  const std::size_t chunk = (n + workers - 1) / workers;
+  std::vector<std::size_t> bounds(workers + 1);
+  for (unsigned w = 0; w <= workers; ++w)
+    bounds[w] = std::min(n, w * chunk);
+  parallel_chunks(
+      workers, workers,
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t w = begin; w < end; ++w)
+          std::sort(values.begin() + bounds[w], values.begin() + bounds[w + 1]);
+      },
+      1);
+  std::vector<T> merged(n);
+  for (std::size_t width = 1; width < workers; width *= 2) {
+    const std::size_t pairs = (workers + 2 * width - 1) / (2 * width);
+    parallel_chunks(
+        pairs, static_cast<unsigned>(pairs),
+        [&](std::size_t begin, std::size_t end, unsigned) {
+          for (std::size_t p = begin; p < end; ++p) {
+            const std::size_t i = p * 2 * width;
+            const std::size_t lo = bounds[i], mid = bounds[std::min<std::size_t>(i + width, workers)],
+                              hi = bounds[std::min<std::size_t>(i + 2 * width, workers)];
+            std::merge(values.begin() + lo, values.begin() + mid, values.begin() + mid, values.begin() + hi,
+                       merged.begin() + lo);
+          }
+        },
+        1);
+    values.swap(merged);
+  }
+}
+
 }  // namespace cudahull
