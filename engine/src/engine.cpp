@@ -189,7 +189,9 @@ struct Engine::Impl {
     const MeshFace& face = e.mesh_.face(f);
     return normalized(cross(sub(P(face.v[1]), P(face.v[0])), sub(P(face.v[2]), P(face.v[0]))));
   }
-  bool is_doomed(PointIndex v) const { return (e.vertex_flags_.get(v) & kDoomed) != 0; }
+  // Most iterations doom no vertex: then no lookup (two per tried swap) is needed.
+  std::size_t doomed_now = 0;
+  bool is_doomed(PointIndex v) const { return doomed_now != 0 && (e.vertex_flags_.get(v) & kDoomed) != 0; }
   // Queues v once as a removal candidate.
   void touch(PointIndex v) {
     std::uint8_t& flags = e.vertex_flags_[v];
@@ -303,6 +305,7 @@ struct Engine::Impl {
     // A vertex beneath that is inside the hull is taken out with complementary swaps and a removal (Fig. 4).
     if (beneath_inside && !is_doomed(swap.beneath_vertex)) {
       e.vertex_flags_[swap.beneath_vertex] |= kDoomed;
+      ++doomed_now;
       doomed.push_back(swap.beneath_vertex);
     }
     // Record each rejected edge once per iteration, however often a neighbour change re-queues it.
@@ -667,6 +670,7 @@ struct Engine::Impl {
       for (PointIndex w : out) {
         if (take_out(w)) changed = true;
         e.vertex_flags_[w] &= static_cast<std::uint8_t>(~kDoomed);
+        --doomed_now;
       }
       std::vector<PointIndex> candidates = std::move(touched);
       touched.clear();
@@ -911,16 +915,29 @@ void Engine::face_geometry(std::vector<FaceGeometry>& faces, const std::vector<F
       [&](std::size_t begin, std::size_t end, unsigned) {
         for (std::size_t f = begin; f < end; ++f) {
           const MeshFace& face = mesh_.face(static_cast<FaceId>(f));
-          FaceGeometry& g = faces[f];
           for (int k = 0; k < 3; ++k)
-            g.neighbor[k] = static_cast<std::int32_t>(face.n[k]);
-          if (known[f]) continue;
-          for (int k = 0; k < 3; ++k)
-            g.v[k] = points_[face.v[k]];
-          face_tetrahedron_signs(interior_, g.v, g.tet);
+            faces[f].neighbor[k] = static_cast<std::int32_t>(face.n[k]);
         }
       },
       16384);
+  // The new faces sit together at the end (compaction keeps the id order), so they are listed first and
+  // shared out evenly: split by position, one core would get them all.
+  std::vector<FaceId> fresh;
+  for (std::size_t f = 0; f < count; ++f) {
+    if (!known[f]) fresh.push_back(static_cast<FaceId>(f));
+  }
+  parallel_chunks(
+      fresh.size(), hardware_workers(),
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t k = begin; k < end; ++k) {
+          const MeshFace& face = mesh_.face(fresh[k]);
+          FaceGeometry& g = faces[fresh[k]];
+          for (int i = 0; i < 3; ++i)
+            g.v[i] = points_[face.v[i]];
+          face_tetrahedron_signs(interior_, g.v, g.tet);
+        }
+      },
+      2048);
 }
 
 FaceCell Engine::face_cell(FaceId f) const {
