@@ -1,10 +1,13 @@
 // The persistent worker threads behind parallel_chunks().  Started on first use, one fewer than the
-// hardware threads (the caller works too), and never stopped: they sleep on a condition variable between
-// jobs, after a short spin so that back-to-back rounds of a batched edit do not pay a wake-up each.
+// hardware threads (the caller works too), and never stopped.  Each sleeps on its own semaphore, so a job
+// for k workers wakes exactly k - 1 threads (a shared condition variable woke all of them for every job,
+// which cost more than the job in the engine's many small per-iteration passes).  They do not spin for
+// the next job: spinning workers slowed the serial edits between jobs.
 #include <atomic>
-#include <condition_variable>
 #include <exception>
+#include <memory>
 #include <mutex>
+#include <semaphore>
 
 #include "cudahull/parallel.hpp"
 
@@ -17,6 +20,9 @@ thread_local bool on_pool_worker = false;
 class WorkerPool {
  public:
   explicit WorkerPool(unsigned size) : size_(size) {
+    wake_.reserve(size_ + 1);
+    for (unsigned w = 0; w <= size_; ++w)
+      wake_.push_back(std::make_unique<std::binary_semaphore>(0));
     for (unsigned w = 1; w <= size_; ++w)
       std::thread([this, w] { work(w); }).detach();
   }
@@ -25,25 +31,21 @@ class WorkerPool {
     if (on_pool_worker || workers > size_ + 1) return false;
     std::unique_lock caller(run_mutex_, std::try_to_lock);
     if (!caller.owns_lock()) return false;
-    {
-      std::lock_guard lock(mutex_);
-      n_ = n;
-      workers_ = workers;
-      call_ = call;
-      body_ = body;
-      error_ = nullptr;
-      pending_ = workers - 1;
-      generation_.fetch_add(1, std::memory_order_release);
-    }
-    wake_.notify_all();
+    n_ = n;
+    workers_ = workers;
+    call_ = call;
+    body_ = body;
+    error_ = nullptr;
+    pending_.store(workers - 1, std::memory_order_relaxed);
+    for (unsigned w = 1; w < workers; ++w)
+      wake_[w]->release();  // publishes the job fields above to worker w
     std::exception_ptr mine;
     try {
       call(body, 0, std::min(n, chunk(n, workers)), 0);
     } catch (...) {
       mine = std::current_exception();
     }
-    std::unique_lock lock(mutex_);
-    done_.wait(lock, [&] { return pending_ == 0; });
+    if (workers > 1) done_.acquire();
     if (mine) std::rethrow_exception(mine);
     if (error_) std::rethrow_exception(error_);
     return true;
@@ -54,43 +56,31 @@ class WorkerPool {
 
   void work(unsigned w) {
     on_pool_worker = true;
-    std::uint64_t seen = 0;
     for (;;) {
-      // Spin a little (about 20 us) for the next job before sleeping.
-      for (int spin = 0; spin < 4000 && generation_.load(std::memory_order_acquire) == seen; ++spin)
-        std::this_thread::yield();
-      std::unique_lock lock(mutex_);
-      wake_.wait(lock, [&] { return generation_.load(std::memory_order_acquire) != seen; });
-      seen = generation_.load(std::memory_order_acquire);
-      if (w >= workers_) continue;  // this job uses fewer workers
-      const std::size_t n = n_, size = chunk(n_, workers_);
-      const ChunkCall call = call_;
-      void* body = body_;
-      lock.unlock();
-      const std::size_t begin = std::min(n, w * size), end = std::min(n, begin + size);
-      std::exception_ptr error;
+      wake_[w]->acquire();
+      const std::size_t size = chunk(n_, workers_);
+      const std::size_t begin = std::min(n_, w * size), end = std::min(n_, begin + size);
       try {
-        call(body, begin, end, w);
+        call_(body_, begin, end, w);
       } catch (...) {
-        error = std::current_exception();
+        std::lock_guard lock(error_mutex_);
+        if (!error_) error_ = std::current_exception();
       }
-      lock.lock();
-      if (error && !error_) error_ = error;
-      if (--pending_ == 0) done_.notify_one();
+      if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) done_.release();
     }
   }
 
   const unsigned size_;
-  std::mutex run_mutex_;  // one job at a time
-  std::mutex mutex_;
-  std::condition_variable wake_, done_;
-  std::atomic<std::uint64_t> generation_{0};
+  std::mutex run_mutex_;                                      // one job at a time
+  std::vector<std::unique_ptr<std::binary_semaphore>> wake_;  // per worker (index 0 unused: the caller)
+  std::binary_semaphore done_{0};                             // the last worker to finish releases it
+  std::atomic<unsigned> pending_{0};
   std::size_t n_ = 0;
   unsigned workers_ = 0;
   ChunkCall call_ = nullptr;
   void* body_ = nullptr;
+  std::mutex error_mutex_;
   std::exception_ptr error_;
-  unsigned pending_ = 0;
 };
 
 }  // namespace

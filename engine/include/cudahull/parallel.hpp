@@ -22,12 +22,18 @@ using ChunkCall = void (*)(void* body, std::size_t begin, std::size_t end, unsig
 bool run_on_worker_pool(std::size_t n, unsigned workers, ChunkCall call, void* body);
 }  // namespace detail
 
-// Runs body(begin, end, worker) over [0, n) split into one contiguous chunk per worker; small ranges (under
-// `grain`) run on the calling thread, where handing them out would cost more than the work.  Exceptions
-// from any chunk reach the caller.
+// Runs body(begin, end, worker) over [0, n) split into one contiguous chunk per worker, with at most
+// n / grain workers (so small ranges run on the calling thread, where handing them out would cost more
+// than the work); `worker` is below the `workers` asked for.  Exceptions from any chunk reach the caller.
 template <class Body>
 void parallel_chunks(std::size_t n, unsigned workers, Body&& body, std::size_t grain = 4096) {
   if (workers <= 1 || n < grain) {
+    body(std::size_t{0}, n, 0u);
+    return;
+  }
+  // At least `grain` items a worker: waking a thread for less costs more than it saves.
+  workers = static_cast<unsigned>(std::min<std::size_t>(workers, n / grain));
+  if (workers <= 1) {
     body(std::size_t{0}, n, 0u);
     return;
   }
