@@ -18,6 +18,7 @@
 
 #include "cuda_backend.hpp"
 #include "cudahull/errors.hpp"
+#include "cudahull/parallel.hpp"
 #include "cudahull/routing.hpp"
 
 namespace cudahull {
@@ -507,7 +508,8 @@ class CudaBackend final : public Backend {
     staging_.reserve(total, "the table staging area");
     tables_dev_.reserve(total, "the iteration tables", true);
     for (int s = 0; s < kSections; ++s) {
-      if (sizes[s] != 0) std::memcpy(staging_.get() + offsets[s], sources[s], sizes[s]);
+      if (sizes[s] != 0)
+        parallel_memcpy(staging_.get() + offsets[s], sources[s], sizes[s]);  // ~110 MB at 2M faces
     }
     if (total != 0) {
       check(cudaMemcpyAsync(tables_dev_.get(), staging_.get(), total, cudaMemcpyHostToDevice, stream_),
@@ -591,10 +593,15 @@ class CudaBackend final : public Backend {
     bytes_from_ += bytes;
     const auto* best = reinterpret_cast<const unsigned long long*>(extremes_host_.get());
     const auto* count = reinterpret_cast<const std::uint32_t*>(extremes_host_.get() + 8 * face_count_);
-    for (std::size_t f = 0; f < face_count_; ++f) {
-      out[f].count = count[f];
-      if (count[f]) out[f].furthest = unpack_extreme_index(best[f]);
-    }
+    parallel_chunks(
+        face_count_, hardware_workers(),
+        [&](std::size_t begin, std::size_t end, unsigned) {
+          for (std::size_t f = begin; f < end; ++f) {
+            out[f].count = count[f];
+            if (count[f]) out[f].furthest = unpack_extreme_index(best[f]);
+          }
+        },
+        65536);
   }
 
   bool has_device_point_states() const override { return true; }

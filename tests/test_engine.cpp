@@ -12,6 +12,7 @@
 #include "cudahull/engine.hpp"
 #include "cudahull/generators.hpp"
 #include "cudahull/hull_checker.hpp"
+#include "cudahull/parallel.hpp"
 #include "cudahull/point_io.hpp"
 #include "qhull_reference.hpp"
 #include "support/oracles.hpp"
@@ -303,6 +304,43 @@ std::vector<std::array<PointIndex, 3>> face_set(const Mesh& mesh) {
   }
   std::sort(faces.begin(), faces.end());
   return faces;
+}
+
+// The host's parallel helpers: every byte copied and every order sorted, for sizes around their chunking
+// (a trailing empty chunk once made parallel_memcpy copy a negative length).
+TEST(Parallel, MemcpyCopiesEveryByteForAnySize) {
+  std::mt19937 rng(5);
+  const std::size_t block = 1000;
+  for (std::size_t bytes : {std::size_t{0}, std::size_t{1}, block - 1, block, block + 1, 4 * block,
+                            4 * block + 7, 17 * block + 123, 64 * block, 100 * block + 999}) {
+    // 64 guard bytes after each buffer, different in source and destination: nothing past `bytes` moves.
+    std::vector<unsigned char> src(bytes + 64, 0xAA), dst(bytes + 64);
+    for (std::size_t k = 0; k < bytes; ++k)
+      src[k] = static_cast<unsigned char>(rng());
+    for (unsigned workers : {1u, 2u, 16u}) {  // 16 on any machine: more workers than blocks leaves some empty
+      std::fill(dst.begin(), dst.end(), 0x55);
+      parallel_memcpy(dst.data(), src.data(), bytes, block, workers);
+      EXPECT_TRUE(std::equal(src.begin(), src.begin() + static_cast<std::ptrdiff_t>(bytes), dst.begin()))
+          << bytes << " bytes, " << workers << " workers";
+      EXPECT_TRUE(std::all_of(dst.begin() + static_cast<std::ptrdiff_t>(bytes), dst.end(),
+                              [](unsigned char c) { return c == 0x55; }))
+          << "wrote past the end: " << bytes << " bytes, " << workers << " workers";
+    }
+  }
+}
+
+TEST(Parallel, SortMatchesStdSort) {
+  std::mt19937 rng(6);
+  for (std::size_t n : {std::size_t{0}, std::size_t{5}, std::size_t{65535}, std::size_t{65536 * 3 + 17},
+                        std::size_t{1000003}}) {
+    std::vector<std::uint32_t> values(n);
+    for (auto& v : values)
+      v = static_cast<std::uint32_t>(rng() % (n + 1));  // repeats included
+    std::vector<std::uint32_t> expected = values;
+    std::sort(expected.begin(), expected.end());
+    parallel_sort(values);
+    EXPECT_EQ(values, expected) << n << " values";
+  }
 }
 
 // Mesh::split_batch() promises exactly what split() one face at a time gives: ids, links and each vertex's

@@ -1286,12 +1286,20 @@ void Engine::finish(IterationRecord& record) {
     dropped.erase(std::unique(dropped.begin(), dropped.end()), dropped.end());
     const std::vector<FaceGeometry>& geometry = geometry_;
     const int walk = 64 + 4 * static_cast<int>(std::sqrt(static_cast<double>(geometry.size())));
-    for (PointIndex r : dropped) {
-      if (mesh_.has_vertex(r)) continue;
-      const std::int32_t found = locate_point(points_[r], 0, geometry.data(),
-                                              static_cast<std::int32_t>(geometry.size()), interior_, walk);
-      if (found != kRouteInternal) ++faults;
-    }
+    std::atomic<std::size_t> outside{0};
+    parallel_chunks(
+        dropped.size(), hardware_workers(),
+        [&](std::size_t begin, std::size_t end, unsigned) {
+          for (std::size_t k = begin; k < end; ++k) {
+            const PointIndex r = dropped[k];
+            if (mesh_.has_vertex(r)) continue;
+            const std::int32_t found = locate_point(
+                points_[r], 0, geometry.data(), static_cast<std::int32_t>(geometry.size()), interior_, walk);
+            if (found != kRouteInternal) outside.fetch_add(1, std::memory_order_relaxed);
+          }
+        },
+        64);
+    faults += outside.load();
   }
   faults += external_;  // after a stall: points still outside the mesh
   const double tf_dropped = ms_since(t0);
