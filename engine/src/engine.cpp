@@ -1271,6 +1271,9 @@ void Engine::finish(IterationRecord& record) {
       const std::size_t before = record.swaps.size() + record.removals.size();
       impl.rejected_edges.clear();
       impl.settle();
+      // settle() stops with edges still queued when its guard budget runs out; compaction renumbers the
+      // faces, so those edges would name other faces, or none (the next round starts from the faulty edges).
+      impl.queue.clear();
       mesh_.compact();
       if (record.swaps.size() + record.removals.size() == before) break;
     }
