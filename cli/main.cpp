@@ -15,8 +15,7 @@ const char* kExitCodes =
     "device failure; 5 --verify found the hull wrong.";
 
 int fail(int code, const std::string& message) {
-  std::fprintf(stderr, "cudahull: error: %s\n", message.c_str());
-  return code;
+  return cudahull::report_error("cudahull", code, message);
 }
 
 }  // namespace

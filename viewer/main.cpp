@@ -96,8 +96,7 @@ const char* kFooter =
     "input; 4 no OpenGL 4.5 (no display, no EGL) or device failure.";
 
 int fail(int code, const std::string& message) {
-  std::fprintf(stderr, "cudahull-viewer: error: %s\n", message.c_str());
-  return code;
+  return cudahull::report_error("cudahull-viewer", code, message);
 }
 
 }  // namespace

@@ -963,7 +963,7 @@ IterationRecord Engine::initialize() {
   IterationRecord record;
   record.iteration = iteration_++;
   const std::size_t n = points_.size();
-  auto finish_lower = [&](int dim, const char* why) {
+  auto finish_lower = [&](int dim, const std::string& why) {
     dimension_ = dim;
     result_ = exact_hull(points_);
     record.note = why;
@@ -985,8 +985,10 @@ IterationRecord Engine::initialize() {
   // point can still be exactly collinear or coplanar; then any exact witness will do, and none at all means
   // the input is lower-dimensional.
   if (points_[p0].x == points_[p1].x) {
-    // Every x is equal: the points lie in a plane.  exact_hull finds the dimension and the answer.
-    return finish_lower(affine_dimension(points_), "degenerate input: all points share one x");
+    // Every x is equal: the points lie in a plane, on a line, or are one point; exact_hull finds the answer.
+    const int dimension = affine_dimension(points_);
+    return finish_lower(
+        dimension, "degenerate input: all points share one x (dimension " + std::to_string(dimension) + ")");
   }
   auto tb2 = Clock::now();
   PointIndex p2 = backend_->furthest_from_line(p0, p1);
@@ -1198,8 +1200,6 @@ IterationRecord Engine::iterate() {
   record.bytes_to_backend = backend_->bytes_to_backend() - to_before;
   record.bytes_from_backend = backend_->bytes_from_backend() - from_before;
   if (options_.keep_decisions) record.decisions = tables.decision;
-  last_decisions_ = tables.decision;
-  last_refinement_ = tables.refinement;
   stalled_ = external_ < record.external_before ? 0 : stalled_ + 1;
   if (external_ == 0 || stalled_ >= kStallLimit) finish(record);
   return record;

@@ -118,8 +118,9 @@ class Engine {
   // no face before the step gets one line saying so.
   std::vector<std::string> explain_route(PointIndex point, std::int32_t old_face) const;
   const std::vector<FaceExtreme>& face_extremes() const { return extremes_; }
-  const std::vector<DecisionEntry>& last_decisions() const { return last_decisions_; }
-  const std::vector<RefinementEntry>& last_refinement() const { return last_refinement_; }
+  // The last step's tables (Fig. 7), as sent to the backend; they stay until the next step.
+  const std::vector<DecisionEntry>& last_decisions() const { return tables_.decision; }
+  const std::vector<RefinementEntry>& last_refinement() const { return tables_.refinement; }
   const std::vector<PointIndex>& removed_vertices() const { return removed_vertices_; }
   // The record of the last step(): its swaps with their kinds (rejected ones with the vertex beneath),
   // removals, refined apexes and decision array.
@@ -148,8 +149,6 @@ class Engine {
   Vec3d interior_;
   std::size_t external_ = 0;
   std::vector<FaceExtreme> extremes_;
-  std::vector<DecisionEntry> last_decisions_;
-  std::vector<RefinementEntry> last_refinement_;
   std::vector<PointIndex> removed_vertices_;
   std::vector<PointIndex> used_vertices_;  // every point that was ever a mesh vertex
   PointMap<std::uint8_t> vertex_flags_;    // per vertex: kDoomed, kRemovedOnce (engine.cpp)

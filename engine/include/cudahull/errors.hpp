@@ -1,6 +1,7 @@
 // Error types, and the exit codes the command line maps them to (documented in README, "Exit codes").
 #pragma once
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -32,5 +33,11 @@ class OutputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// The one line a command-line program prints before exiting with `code`: "PROGRAM: error: MESSAGE".
+inline int report_error(const char* program, int code, const std::string& message) {
+  std::fprintf(stderr, "%s: error: %s\n", program, message.c_str());
+  return code;
+}
 
 }  // namespace cudahull
