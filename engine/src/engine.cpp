@@ -94,8 +94,6 @@ constexpr int kStallLimit = 8;            // iterations without fewer external p
 
 }  // namespace
 
-// Buffers of the batched swap rounds, kept from one iteration to the next (fresh arrays of this size would
-// cost page faults every time).
 namespace {
 // A swap tried without changing the mesh (Engine::Impl::trial_swap) and the batched rounds' view of it.
 enum class SwapTrial : std::uint8_t { kNothing, kValid, kRejected };
@@ -113,6 +111,8 @@ struct BatchTrial {
 };
 }  // namespace
 
+// Buffers of the batched swap rounds, kept from one iteration to the next (fresh arrays of this size would
+// cost page faults every time).
 struct Engine::EditScratch {
   std::vector<BatchTrial> trials;            // per candidate
   std::vector<std::pair<FaceId, int>> made;  // the round's winners: face and edge
@@ -318,25 +318,46 @@ struct Engine::Impl {
     }
   }
 
+  // A swap's four vertices (u, v, x, y), and the four outer edges of its new faces n1, n2: what it touches
+  // and queues.
+  static std::array<PointIndex, 4> vertices_of(const SwapRecord& swap) {
+    return {swap.old_edge[0], swap.old_edge[1], swap.new_edge[0], swap.new_edge[1]};
+  }
+  static std::array<Edge, 4> edges_around(FaceId n1, FaceId n2) {
+    return {{{n1, 0}, {n1, 1}, {n2, 0}, {n2, 1}}};
+  }
+
+  // A swap's decision entry, in slots the caller made: entry `index` and pending plane `plane`.  Points of
+  // f and g go to n1 (the u side) or n2 (the v side) by the new edge's separating plane, which
+  // separating_planes() computes after the edits.  Writes only those slots, so batched swaps fill theirs on
+  // all cores.
+  void write_swap_entry(std::int32_t index, std::size_t plane, FaceId f, FaceId g, FaceId n1, FaceId n2,
+                        SwapRecord& swap) {
+    entries[index] = DecisionEntry{};
+    entries[index].kind = kDecisionSwap;
+    entry_targets[index] = {n1, n2};
+    swap_planes[plane] = {index, n1, n2, swap.old_edge[0]};
+    killed_by_entry[f] = index;
+    killed_by_entry[g] = index;
+    swap.decision_index = index;
+  }
+
   // The bookkeeping of a swap made (faces f, g became n1, n2): its decision entry, record, the four edges
   // around it queued, its vertices touched.
   void note_swapped(FaceId f, FaceId g, FaceId n1, FaceId n2, SwapRecord& swap, SwapKind kind) {
-    // Points of f and g go to n1 (the u side) or n2 (the v side) by the new edge's separating plane, which
-    // separating_planes() computes after the edits.
-    DecisionEntry entry;
-    entry.kind = kDecisionSwap;
-    const std::int32_t index = add_entry(entry, n1, n2);
-    swap_planes.push_back({index, n1, n2, swap.old_edge[0]});
-    note_killed(f, index);
-    note_killed(g, index);
+    const auto index = static_cast<std::int32_t>(entries.size());
+    entries.emplace_back();
+    entry_targets.emplace_back();
+    swap_planes.emplace_back();
+    if (killed_by_entry.size() <= std::max(f, g)) killed_by_entry.resize(std::max(f, g) + 1, -1);
+    write_swap_entry(index, swap_planes.size() - 1, f, g, n1, n2, swap);
     swap.kind = kind;
     swap.sequence = sequence++;
-    swap.decision_index = index;
     record.swaps.push_back(swap);
     (kind == SwapKind::kRegular ? record.swaps_regular : record.swaps_complementary)++;
-    for (const Edge& edge : {Edge{n1, 0}, Edge{n1, 1}, Edge{n2, 0}, Edge{n2, 1}})
+    for (const Edge& edge : edges_around(n1, n2))
       queue.push_back(edge);
-    for (PointIndex p : {swap.old_edge[0], swap.old_edge[1], swap.new_edge[0], swap.new_edge[1]})
+    for (PointIndex p : vertices_of(swap))
       touch(p);
   }
 
@@ -357,12 +378,13 @@ struct Engine::Impl {
 
   // Batched swaps, for iterations with thousands of candidate edges (a sphere of 1M points makes 1.5M
   // swaps): rounds of (1) every candidate tried at once on all cores, the mesh unchanged; (2) among the
-  // valid swaps, a set whose four vertices are pairwise disjoint, the lowest candidate index winning each
-  // vertex, so the result does not depend on the number of threads; (3) those swaps made at once; (4) the
-  // bookkeeping in candidate order, as try_swap() would have done it.  Disjoint swaps commute: none changes
-  // another's faces, concavity or new edge, so each is exactly what try_swap() would do at its turn.
-  // Candidates that lost their vertices go to the next round with the edges the winners queued, until
-  // fewer than `batch_from` remain; those are left on the queue for settle().
+  // valid swaps, those that are the lowest candidate among all that would kill either of their two faces
+  // or make their new edge, so the result does not depend on the number of threads; (3) those swaps made
+  // at once (Mesh::swap_batch); (4) the bookkeeping in candidate order, as try_swap() would have done it.
+  // Such swaps commute: none kills another's faces or makes another's new edge, and concavity and validity
+  // depend only on a swap's own four points, so each is exactly what try_swap() would do at its turn.
+  // Candidates that lost go to the next round with the edges the winners queued, until fewer than
+  // `batch_from` remain; the rest go one at a time (regular ones now, the others on settle()'s queue).
   using Candidate = SwapCandidate;
 
   void batched_swaps(std::vector<Candidate> candidates, std::size_t batch_from) {
@@ -449,12 +471,15 @@ struct Engine::Impl {
       // numbers, rejections, the candidates to retry), then the winners' entries and records on all cores.
       next.clear();
       std::vector<std::size_t>& winner_at = scratch.winner_at;  // winner -> its record in record.swaps
+      std::vector<std::size_t>& winner_of = scratch.winner_of;  // candidate -> winner number
       winner_at.clear();
+      winner_of.resize(count);
       if (record.swaps.capacity() < record.swaps.size() + count)
         record.swaps.reserve(std::max(2 * record.swaps.capacity(), record.swaps.size() + count));
       for (std::size_t k = 0; k < count; ++k) {
         BatchTrial& t = trials[k];
         if (t.winner) {
+          winner_of[k] = winner_at.size();
           winner_at.push_back(record.swaps.size());
           t.swap.sequence = sequence++;
           t.swap.kind = candidates[k].kind;
@@ -473,11 +498,6 @@ struct Engine::Impl {
       swap_planes.resize(first_plane + winners);
       if (killed_by_entry.size() < e.mesh_.face_capacity())
         killed_by_entry.resize(e.mesh_.face_capacity(), -1);
-      std::vector<std::size_t>& winner_of = scratch.winner_of;  // candidate -> winner number
-      winner_of.resize(count);
-      for (std::size_t k = 0, w = 0; k < count; ++k) {
-        if (trials[k].winner) winner_of[k] = w++;
-      }
       parallel_chunks(
           count, workers,
           [&](std::size_t begin, std::size_t end, unsigned) {
@@ -486,20 +506,12 @@ struct Engine::Impl {
               if (!t.winner) continue;
               const std::size_t w = winner_of[k];
               const FaceId n1 = base + 2 * static_cast<FaceId>(w), n2 = n1 + 1;
-              const std::int32_t index = static_cast<std::int32_t>(first_entry + w);
-              entries[index] = DecisionEntry{};
-              entries[index].kind = kDecisionSwap;
-              entry_targets[index] = {n1, n2};
-              swap_planes[first_plane + w] = {index, n1, n2, t.swap.old_edge[0]};
-              killed_by_entry[candidates[k].edge.face] = index;
-              killed_by_entry[t.other_face] = index;
-              t.swap.decision_index = index;
+              write_swap_entry(static_cast<std::int32_t>(first_entry + w), first_plane + w,
+                               candidates[k].edge.face, t.other_face, n1, n2, t.swap);
               record.swaps[winner_at[w]] = t.swap;
               Candidate* around = next.data() + carried + 4 * w;
-              around[0] = {{n1, 0}, SwapKind::kComplementary};
-              around[1] = {{n1, 1}, SwapKind::kComplementary};
-              around[2] = {{n2, 0}, SwapKind::kComplementary};
-              around[3] = {{n2, 1}, SwapKind::kComplementary};
+              for (const Edge& edge : edges_around(n1, n2))
+                *around++ = {edge, SwapKind::kComplementary};
             }
           },
           4096);
@@ -511,9 +523,8 @@ struct Engine::Impl {
           [&](std::size_t begin, std::size_t end, unsigned) {
             for (std::size_t k = begin; k < end; ++k) {
               if (!trials[k].winner) continue;
-              const SwapRecord& w = trials[k].swap;
-              PointIndex* out = touched.data() + first_touch + 4 * winner_of[k];
-              out[0] = w.old_edge[0], out[1] = w.old_edge[1], out[2] = w.new_edge[0], out[3] = w.new_edge[1];
+              const std::array<PointIndex, 4> vertices = vertices_of(trials[k].swap);
+              std::copy(vertices.begin(), vertices.end(), touched.begin() + first_touch + 4 * winner_of[k]);
             }
           },
           4096);
@@ -1119,18 +1130,13 @@ IterationRecord Engine::iterate() {
   record.faces_refined = record.refined_apexes.size();
 
   // Regular swaps of the refined faces' old edges, then complementary swaps and removals (Figs. 3b, 4).
-  if (regular_candidates.size() >= options_.batched_swaps_from) {
-    std::vector<Impl::Candidate> candidates;
-    candidates.reserve(regular_candidates.size());
-    for (const Edge& edge : regular_candidates)
-      candidates.push_back({edge, SwapKind::kRegular});
-    impl.reset_budget();
-    impl.batched_swaps(std::move(candidates), options_.batched_swaps_from);
-  } else {
-    for (const Edge& edge : regular_candidates) {
-      if (mesh_.alive(edge.face)) impl.try_swap(edge.face, edge.index, SwapKind::kRegular);
-    }
-  }
+  // (Fewer than batched_swaps_from candidates go one at a time, in order, inside batched_swaps().)
+  std::vector<Impl::Candidate> candidates;
+  candidates.reserve(regular_candidates.size());
+  for (const Edge& edge : regular_candidates)
+    candidates.push_back({edge, SwapKind::kRegular});
+  impl.reset_budget();
+  impl.batched_swaps(std::move(candidates), options_.batched_swaps_from);
   const double tp2 = ms_since(t0);
   impl.settle();
   const double tp3 = ms_since(t0);

@@ -99,25 +99,38 @@ std::array<FaceId, 3> Mesh::split(FaceId f, PointIndex p) {
   return {c0, c1, c2};
 }
 
-std::array<FaceId, 2> Mesh::swap(FaceId f, int i) {
-  const MeshFace ff = faces_[f];
-  const PointIndex u = ff.v[i], v = ff.v[next(i)], x = ff.v[prev(i)];
-  const FaceId g = ff.n[i];
-  const MeshFace gg = faces_[g];
-  const int j = edge_index(g, v, u);
+Mesh::SwapQuad Mesh::swap_quad(FaceId f, int i) const {
+  const MeshFace& ff = faces_[f];
+  SwapQuad q;
+  q.f = f;
+  q.g = ff.n[i];
+  q.u = ff.v[i], q.v = ff.v[next(i)], q.x = ff.v[prev(i)];
+  const int j = edge_index(q.g, q.v, q.u);
   if (j < 0) throw std::logic_error("mesh adjacency is inconsistent");
-  const PointIndex y = gg.v[prev(j)];
-  const FaceId across_vx = ff.n[next(i)], across_xu = ff.n[prev(i)];
-  const FaceId across_uy = gg.n[next(j)], across_yv = gg.n[prev(j)];
-  kill(f);
-  kill(g);
-  FaceId n1 = add_face(x, u, y), n2 = add_face(y, v, x);
-  faces_[n1].n = {across_xu, across_uy, n2};
-  faces_[n2].n = {across_yv, across_vx, n1};
-  relink(across_xu, u, x, n1);
-  relink(across_uy, y, u, n1);
-  relink(across_yv, v, y, n2);
-  relink(across_vx, x, v, n2);
+  const MeshFace& gg = faces_[q.g];
+  q.y = gg.v[prev(j)];
+  q.across_vx = ff.n[next(i)], q.across_xu = ff.n[prev(i)];
+  q.across_uy = gg.n[next(j)], q.across_yv = gg.n[prev(j)];
+  return q;
+}
+
+void Mesh::make_swapped_faces(const SwapQuad& q, FaceId n1, FaceId n2) {
+  faces_[n1].v = {q.x, q.u, q.y};
+  faces_[n1].n = {q.across_xu, q.across_uy, n2};
+  faces_[n2].v = {q.y, q.v, q.x};
+  faces_[n2].n = {q.across_yv, q.across_vx, n1};
+}
+
+std::array<FaceId, 2> Mesh::swap(FaceId f, int i) {
+  const SwapQuad q = swap_quad(f, i);
+  kill(q.f);
+  kill(q.g);
+  const FaceId n1 = add_face(q.x, q.u, q.y), n2 = add_face(q.y, q.v, q.x);
+  make_swapped_faces(q, n1, n2);
+  relink(q.across_xu, q.u, q.x, n1);
+  relink(q.across_uy, q.y, q.u, n1);
+  relink(q.across_yv, q.v, q.y, n2);
+  relink(q.across_vx, q.x, q.v, n2);
   return {n1, n2};
 }
 
@@ -181,26 +194,14 @@ FaceId Mesh::split_batch(const std::vector<FaceId>& faces, const std::vector<Poi
 }
 
 FaceId Mesh::swap_batch(const std::vector<std::pair<FaceId, int>>& swaps, unsigned workers) {
-  // Each swap as swap() sees it: faces f = (u, v, x) and g = (v, u, y), and the four faces around them.
-  struct Quad {
-    PointIndex u, v, x, y;
-    FaceId across_vx, across_xu, across_uy, across_yv;
-  };
+  // Each swap as swap() sees it, read before any is made.
   const std::size_t count = swaps.size();
-  std::vector<Quad> quads(count);
+  std::vector<SwapQuad> quads(count);
   parallel_chunks(
       count, workers,
       [&](std::size_t begin, std::size_t end, unsigned) {
-        for (std::size_t k = begin; k < end; ++k) {
-          const auto [f, i] = swaps[k];
-          const MeshFace& ff = faces_[f];
-          const FaceId g = ff.n[i];
-          const int j = edge_index(g, ff.v[next(i)], ff.v[i]);
-          if (j < 0) throw std::logic_error("mesh adjacency is inconsistent");
-          const MeshFace& gg = faces_[g];
-          quads[k] = {ff.v[i],       ff.v[next(i)], ff.v[prev(i)], gg.v[prev(j)],
-                      ff.n[next(i)], ff.n[prev(i)], gg.n[next(j)], gg.n[prev(j)]};
-        }
+        for (std::size_t k = begin; k < end; ++k)
+          quads[k] = swap_quad(swaps[k].first, swaps[k].second);
       },
       1024);
   // Make the new faces, linked to the old outer faces for now, and kill the old ones.
@@ -212,17 +213,13 @@ FaceId Mesh::swap_batch(const std::vector<std::pair<FaceId, int>>& swaps, unsign
       count, workers,
       [&](std::size_t begin, std::size_t end, unsigned) {
         for (std::size_t k = begin; k < end; ++k) {
-          const Quad& q = quads[k];
-          const FaceId f = swaps[k].first, g = faces_[f].n[swaps[k].second];
+          const SwapQuad& q = quads[k];
           const FaceId n1 = first + 2 * static_cast<FaceId>(k), n2 = n1 + 1;
-          faces_[n1].v = {q.x, q.u, q.y};
-          faces_[n1].n = {q.across_xu, q.across_uy, n2};
-          faces_[n2].v = {q.y, q.v, q.x};
-          faces_[n2].n = {q.across_yv, q.across_vx, n1};
-          alive_[f] = 0;
-          alive_[g] = 0;
-          dead_into_[f] = n1;
-          dead_into_[g] = n1;
+          make_swapped_faces(q, n1, n2);
+          alive_[q.f] = 0;
+          alive_[q.g] = 0;
+          dead_into_[q.f] = n1;
+          dead_into_[q.g] = n1;
           // As add_face() in order would leave it: the last new face that holds the vertex (swaps that share
           // a vertex race here, and the highest id wins whatever the thread timing).
           auto raise = [&](PointIndex p, FaceId face) {

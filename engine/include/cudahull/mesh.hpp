@@ -78,6 +78,16 @@ class Mesh {
 
  private:
   FaceId add_face(PointIndex a, PointIndex b, PointIndex c);
+  // A swap of edge i of f as swap() and swap_batch() read it: f = (u, v, x), g = (v, u, y) across the edge,
+  // and the four faces around them.
+  struct SwapQuad {
+    FaceId f, g;
+    PointIndex u, v, x, y;
+    FaceId across_vx, across_xu, across_uy, across_yv;
+  };
+  SwapQuad swap_quad(FaceId f, int i) const;
+  // The swap's new faces n1 = (x, u, y) and n2 = (y, v, x), linked to each other and to the faces around.
+  void make_swapped_faces(const SwapQuad& q, FaceId n1, FaceId n2);
   template <class Visit>
   void walk_around(PointIndex v, Visit&& visit) const;
   void kill(FaceId f);
