@@ -20,10 +20,8 @@ class PointMap {
 
   // The value stored for `key`, or zero.
   V get(PointIndex key) const {
-    for (std::size_t i = slot(key);; i = (i + 1) & mask_) {
-      if (keys_[i] == key) return values_[i];
-      if (keys_[i] == kEmpty) return V{};
-    }
+    const std::size_t i = probe(key);
+    return keys_[i] == key ? values_[i] : V{};
   }
   // A reference to the value for `key`, inserting a zero first if absent.  Valid until the next insert.
   V& operator[](PointIndex key) {
@@ -43,10 +41,8 @@ class PointMap {
   // The value stored for `key` if it is present, else null.  Several threads may look up and write the
   // values of different present keys at once, as long as none inserts.
   V* find(PointIndex key) {
-    for (std::size_t i = slot(key);; i = (i + 1) & mask_) {
-      if (keys_[i] == key) return &values_[i];
-      if (keys_[i] == kEmpty) return nullptr;
-    }
+    const std::size_t i = probe(key);
+    return keys_[i] == key ? &values_[i] : nullptr;
   }
   void clear() { rehash(64); }
   // Room for `count` keys without growing.
@@ -59,9 +55,7 @@ class PointMap {
   // Calls visit(key, value&) for every stored key, in no particular order.
   template <class Visit>
   void for_each(Visit&& visit) {
-    for (std::size_t i = 0; i < keys_.size(); ++i) {
-      if (keys_[i] != kEmpty) visit(keys_[i], values_[i]);
-    }
+    for_each_in(0, keys_.size(), visit);
   }
   // The same over slots [begin, end) of slot_count(): disjoint ranges may run on different threads.
   std::size_t slot_count() const { return keys_.size(); }
@@ -80,6 +74,13 @@ class PointMap {
 
  private:
   static constexpr PointIndex kEmpty = 0xffffffffu;  // never a point index (at most 2^32 - 2 points)
+  // The slot that holds `key`, or the empty slot where it would go.
+  std::size_t probe(PointIndex key) const {
+    std::size_t i = slot(key);
+    while (keys_[i] != key && keys_[i] != kEmpty)
+      i = (i + 1) & mask_;
+    return i;
+  }
   std::size_t slot(PointIndex key) const {
     return static_cast<std::size_t>((static_cast<std::uint64_t>(key) * 0x9E3779B97F4A7C15ull) >> 32) & mask_;
   }
