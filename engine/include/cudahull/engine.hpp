@@ -150,6 +150,7 @@ class Engine {
   std::size_t external_ = 0;
   std::vector<FaceExtreme> extremes_;
   std::vector<PointIndex> removed_vertices_;
+  std::vector<PointIndex> removed_near_;   // per removed vertex: one of its ring, where finish() looks for it
   std::vector<PointIndex> used_vertices_;  // every point that was ever a mesh vertex
   PointMap<std::uint8_t> vertex_flags_;    // per vertex: kDoomed, kRemovedOnce (engine.cpp)
   int stalled_ = 0;                        // iterations without progress

@@ -36,6 +36,8 @@ class Mesh {
   const MeshFace& face(FaceId f) const { return faces_[f]; }
   std::size_t vertex_count() const { return vertex_count_; }
   bool has_vertex(PointIndex v) const { return vertex_face_.get(v) != 0; }
+  // Some live face that holds v, or kNoFace when v is not a vertex.
+  FaceId face_of_vertex(PointIndex v) const { return vertex_face_.get(v) - 1; }
   // The number of edges at v, counting no further than `limit`.
   std::size_t degree(PointIndex v, std::size_t limit = SIZE_MAX) const;
   std::vector<PointIndex> vertices() const;  // sorted
@@ -103,7 +105,6 @@ class Mesh {
   std::size_t live_count_ = 0;
   // Per input point: 1 + some live face that holds it, or 0 when it is not a vertex.
   PointMap<FaceId> vertex_face_;
-  FaceId face_of_vertex(PointIndex v) const { return vertex_face_.get(v) - 1; }
   std::size_t vertex_count_ = 0;
 };
 
