@@ -12,7 +12,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <cub/device/device_select.cuh>
 #include <string>
 #include <utility>
 
@@ -130,6 +129,8 @@ constexpr int kDistributeBlocksPerSm = CUDAHULL_DISTRIBUTE_BLOCKS_PER_SM;
 // Faces up to this many accumulate their counts and keys in shared memory (12 bytes a face) before one
 // global atomic per face and block; beyond it, contention is low and the kernel goes straight to global.
 constexpr std::int32_t kSharedFaces = 2048;
+// Each warp's buffer of kept point indices (distribute_kernel's fused compaction): 4 KB a block.
+constexpr unsigned kKeptBuffer = 128;
 
 std::size_t align_up(std::size_t x, std::size_t a) {
   return (x + a - 1) / a * a;
@@ -183,6 +184,7 @@ __device__ __forceinline__ void block_argmax(double& s, PointIndex& i) {
 template <class Score>
 __global__ void __launch_bounds__(kBlock) argmax_partial(const Point3* __restrict__ points, std::size_t n,
                                                          Score score, Candidate* __restrict__ partial) {
+  score.prepare(points);
   double best_s = -INFINITY;
   PointIndex best_i = 0xffffffffu;
   const std::size_t stride = static_cast<std::size_t>(gridDim.x) * blockDim.x;
@@ -211,17 +213,46 @@ __global__ void __launch_bounds__(kBlock)
   if (threadIdx.x == 0) *result = best_i;
 }
 
-// CpuBackend::extremes_x: lowest x (as the highest -x; exact in double) and highest x.
-struct ScoreMinusX {
-  __device__ double operator()(const Point3& q) const { return -static_cast<double>(q.x); }
-};
-struct ScoreX {
-  __device__ double operator()(const Point3& q) const { return static_cast<double>(q.x); }
-};
+// CpuBackend::extremes_x, both ends in one pass: lowest x (as the highest -x; exact in double) in
+// partial[0, gridDim), highest x in partial[gridDim, 2 gridDim).
+__global__ void __launch_bounds__(kBlock)
+    extremes_x_partial(const Point3* __restrict__ points, std::size_t n, Candidate* __restrict__ partial) {
+  double low_s = -INFINITY, high_s = -INFINITY;
+  PointIndex low_i = 0xffffffffu, high_i = 0xffffffffu;
+  const std::size_t stride = static_cast<std::size_t>(gridDim.x) * blockDim.x;
+  for (std::size_t k = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x; k < n; k += stride) {
+    const double x = points[k].x;
+    if (better(-x, static_cast<PointIndex>(k), low_s, low_i)) {
+      low_s = -x;
+      low_i = static_cast<PointIndex>(k);
+    }
+    if (better(x, static_cast<PointIndex>(k), high_s, high_i)) {
+      high_s = x;
+      high_i = static_cast<PointIndex>(k);
+    }
+  }
+  block_argmax(low_s, low_i);
+  if (threadIdx.x == 0) partial[blockIdx.x] = {low_s, low_i};
+  __syncthreads();  // block_argmax's shared slots are used again
+  block_argmax(high_s, high_i);
+  if (threadIdx.x == 0) partial[gridDim.x + blockIdx.x] = {high_s, high_i};
+}
 
+// The fixed corners of the next two queries are read on the device (prepare(), once per thread), so no
+// query waits for a point to come back to the host first.
 // CpuBackend::furthest_from_line: |d x (q - a)|^2, the same double operations, each rounded once.
 struct ScoreLine {
+  PointIndex a, b;
   double ax, ay, az, dx, dy, dz;
+  __device__ void prepare(const Point3* points) {
+    const Point3 pa = points[a], pb = points[b];
+    ax = pa.x;
+    ay = pa.y;
+    az = pa.z;
+    dx = __dsub_rn(pb.x, ax);
+    dy = __dsub_rn(pb.y, ay);
+    dz = __dsub_rn(pb.z, az);
+  }
   __device__ double operator()(const Point3& q) const {
     const double wx = __dsub_rn(q.x, ax), wy = __dsub_rn(q.y, ay), wz = __dsub_rn(q.z, az);
     const double cx = __dsub_rn(__dmul_rn(dy, wz), __dmul_rn(dz, wy));
@@ -233,7 +264,13 @@ struct ScoreLine {
 
 // CpuBackend::furthest_from_plane: |face_height|.
 struct ScorePlane {
+  PointIndex a, b, c;
   FaceGeometry face;
+  __device__ void prepare(const Point3* points) {
+    face.v[0] = points[a];
+    face.v[1] = points[b];
+    face.v[2] = points[c];
+  }
   __device__ double operator()(const Point3& q) const { return fabs(face_height(face, q)); }
 };
 
@@ -255,11 +292,22 @@ __global__ void retire_kernel(const PointIndex* __restrict__ retired, std::size_
 // One pass over the active points: route, exact verdict, and for external points the per-face count and
 // the packed extreme key (getExtremePoints fused into the pass, as on the CPU).  With kShared, per-block
 // accumulators in shared memory take the contention of the early iterations (few faces, many points).
-template <bool kShared>
+// Each face's planes prepared for the pass (routing.hpp, FacePlanes): with many points a face, the exact
+// verdicts then cost a few dot products instead of up to four orient3d filters each.
+__global__ void prepare_planes_kernel(const FaceGeometry* __restrict__ faces, std::int32_t count,
+                                      Vec3d interior, FacePlanes* __restrict__ planes) {
+  const std::int32_t f = blockIdx.x * blockDim.x + threadIdx.x;
+  if (f < count) prepare_face_planes(faces[f], interior, planes[f]);
+}
+
+// With kPrepared, `planes` holds every face's FacePlanes (classify_point_prepared, the same answers).
+template <bool kShared, bool kPrepared>
 __global__ void __launch_bounds__(kBlock, kDistributeBlocksPerSm)
     distribute_kernel(const Point3* __restrict__ points, const PointIndex* __restrict__ active, std::size_t n,
-                      std::int32_t* __restrict__ face_of, RoutingView view, std::uint32_t* __restrict__ count,
-                      unsigned long long* __restrict__ best) {
+                      std::int32_t* __restrict__ face_of, RoutingView view,
+                      const FacePlanes* __restrict__ planes, std::uint32_t* __restrict__ count,
+                      unsigned long long* __restrict__ best, PointIndex* __restrict__ kept,
+                      unsigned long long* __restrict__ kept_count) {
   extern __shared__ unsigned long long shared_mem[];
   unsigned long long* s_best = shared_mem;
   std::uint32_t* s_count = reinterpret_cast<std::uint32_t*>(shared_mem + (kShared ? view.face_count : 0));
@@ -273,21 +321,50 @@ __global__ void __launch_bounds__(kBlock, kDistributeBlocksPerSm)
   unsigned long long* acc_best = kShared ? s_best : best;
   std::uint32_t* acc_count = kShared ? s_count : count;
 
+  // The compaction of the index array (Algorithm 2's last step) is fused into the pass: each warp gathers
+  // its external points, in order, in a buffer in shared memory and, when it is full, moves them to a range
+  // of `kept` that it reserves with one atomicAdd.  Warps finish in any order, so the order of the ranges
+  // varies; no result depends on it (counts add, extreme keys take the max, each point keeps its own face).
+  // A separate cub::DeviceSelect pass cost two more launches and another read of the index array every
+  // iteration; a block-wide scan here cost more (its barriers idle the block's warps, and two blocks an SM
+  // is all the registers allow).
+  __shared__ PointIndex kept_buffer[kBlock / 32][kKeptBuffer];
+  PointIndex* const warp_kept = kept_buffer[threadIdx.x / 32];
+  const unsigned lane = threadIdx.x % 32;
+  unsigned warp_fill = 0;  // the same in every lane
+  auto flush = [&] {
+    __syncwarp();
+    unsigned long long start = 0;
+    if (lane == 0) start = atomicAdd(kept_count, static_cast<unsigned long long>(warp_fill));
+    start = __shfl_sync(0xffffffffu, start, 0);
+    for (unsigned j = lane; j < warp_fill; j += 32)
+      kept[start + j] = warp_kept[j];
+    __syncwarp();
+    warp_fill = 0;
+  };
+
   const std::size_t stride = static_cast<std::size_t>(gridDim.x) * blockDim.x;
-  // Every lane of a warp runs the same number of rounds (the base is uniform), so the warp-wide
-  // __match_any_sync below is safe.
+  // Every thread of a block runs the same number of rounds (the base is uniform), so the warp-wide
+  // __match_any_sync and the block-wide barriers below are safe.
   for (std::size_t base = static_cast<std::size_t>(blockIdx.x) * blockDim.x; base < n; base += stride) {
     const std::size_t k = base + threadIdx.x;
     std::int32_t g = kRouteInternal;
     unsigned long long key = 0;
+    PointIndex i = 0;
     if (k < n) {
-      const PointIndex i = active[k];
+      i = active[k];
       const std::int32_t old_face = face_of[i];
       if (old_face != kRouteInternal) {  // not retired
         const Point3 x = points[i];
-        g = classify_point(x, old_face, view);
+        if (kPrepared) {
+          double height = 0;
+          g = classify_point_prepared(x, old_face, view, planes, &height);
+          if (g != kRouteInternal) key = pack_extreme(height, i);
+        } else {
+          g = classify_point(x, old_face, view);
+          if (g != kRouteInternal) key = pack_extreme(face_height(view.faces[g], x), i);
+        }
         face_of[i] = g;
-        if (g != kRouteInternal) key = pack_extreme(face_height(view.faces[g], x), i);
       }
     }
     // Lanes with the same face add their count once; a key is offered only when it beats the current
@@ -299,7 +376,12 @@ __global__ void __launch_bounds__(kBlock, kDistributeBlocksPerSm)
       }
       if (key > *static_cast<volatile unsigned long long*>(acc_best + g)) atomicMax(acc_best + g, key);
     }
+    const unsigned kept_lanes = __ballot_sync(0xffffffffu, g != kRouteInternal);
+    if (warp_fill + __popc(kept_lanes) > kKeptBuffer) flush();
+    if (g != kRouteInternal) warp_kept[warp_fill + __popc(kept_lanes & ((1u << lane) - 1u))] = i;
+    warp_fill += __popc(kept_lanes);
   }
+  if (warp_fill != 0) flush();
   if (kShared) {
     __syncthreads();
     for (std::int32_t f = threadIdx.x; f < view.face_count; f += blockDim.x) {
@@ -310,11 +392,6 @@ __global__ void __launch_bounds__(kBlock, kDistributeBlocksPerSm)
     }
   }
 }
-
-struct IsExternal {
-  const std::int32_t* face_of;
-  __device__ bool operator()(PointIndex i) const { return face_of[i] != kRouteInternal; }
-};
 
 __global__ void point_faces_kernel(const PointIndex* __restrict__ active, std::size_t n,
                                    const std::int32_t* __restrict__ face_of, std::int32_t* __restrict__ out) {
@@ -388,8 +465,10 @@ class CudaBackend final : public Backend {
     // The exact orient3d fallback keeps its expansions on the thread's stack (a few KB of local memory).
     // Reserve it now, so that no launch has to grow the local memory (a hidden synchronisation).
     std::size_t frame = 0;
-    for (const void* kernel : {reinterpret_cast<const void*>(&distribute_kernel<true>),
-                               reinterpret_cast<const void*>(&distribute_kernel<false>)}) {
+    for (const void* kernel : {reinterpret_cast<const void*>(&distribute_kernel<true, true>),
+                               reinterpret_cast<const void*>(&distribute_kernel<true, false>),
+                               reinterpret_cast<const void*>(&distribute_kernel<false, true>),
+                               reinterpret_cast<const void*>(&distribute_kernel<false, false>)}) {
       cudaFuncAttributes attr{};
       check(cudaFuncGetAttributes(&attr, kernel), "reading the kernel attributes");
       frame = std::max(frame, attr.localSizeBytes);
@@ -399,18 +478,12 @@ class CudaBackend final : public Backend {
     const std::size_t want = align_up(frame, 256);
     if (stack < want) check(cudaDeviceSetLimit(cudaLimitStackSize, want), "setting the stack limit");
 
-    // Enough resident blocks to fill the chip; the grid-stride loops take the rest.
-    int per_sm = 0;
-    check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, distribute_kernel<true>, kBlock,
-                                                        kSharedFaces * (sizeof(unsigned long long) + 4)),
-          "reading the occupancy");
-    distribute_blocks_shared_ = std::max(1, per_sm) * sm_count_;
-    check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, distribute_kernel<false>, kBlock, 0),
-          "reading the occupancy");
-    distribute_blocks_global_ = std::max(1, per_sm) * sm_count_;
+    distribute_blocks_[1][1] = resident_blocks(distribute_kernel<true, true>, kSharedFaces);
+    distribute_blocks_[1][0] = resident_blocks(distribute_kernel<true, false>, kSharedFaces);
+    distribute_blocks_[0][1] = resident_blocks(distribute_kernel<false, true>, 0);
+    distribute_blocks_[0][0] = resident_blocks(distribute_kernel<false, false>, 0);
 
     scalars_host_.reserve(64, "result scalars");
-    scalar_dev_.reserve(1, "the compacted count");
     argmax_result_.reserve(2, "argmax results");
     argmax_partial_.reserve(static_cast<std::size_t>(sm_count_) * 8, "argmax partials");
   }
@@ -448,8 +521,15 @@ class CudaBackend final : public Backend {
   std::array<PointIndex, 2> extremes_x() override {
     select_device();
     if (n_points_ == 0) return {0, 0};
-    launch_argmax(ScoreMinusX{}, 0);
-    launch_argmax(ScoreX{}, 1);
+    const unsigned blocks =
+        std::min<unsigned>(blocks_for(n_points_), static_cast<unsigned>(argmax_partial_.capacity() / 2));
+    extremes_x_partial<<<blocks, kBlock, 0, stream_>>>(points_.get(), n_points_, argmax_partial_.get());
+    check(cudaGetLastError(), "launching extremes_x_partial");
+    for (int slot = 0; slot < 2; ++slot) {
+      argmax_final<<<1, kBlock, 0, stream_>>>(argmax_partial_.get() + slot * blocks, static_cast<int>(blocks),
+                                              argmax_result_.get() + slot);
+      check(cudaGetLastError(), "launching argmax_final");
+    }
     const PointIndex* r = read_argmax(2);
     return {r[0], r[1]};
   }
@@ -457,14 +537,9 @@ class CudaBackend final : public Backend {
   PointIndex furthest_from_line(PointIndex a, PointIndex b) override {
     select_device();
     if (n_points_ == 0) return 0;
-    const Point3 pa = point_at(a), pb = point_at(b);
-    ScoreLine s;
-    s.ax = pa.x;
-    s.ay = pa.y;
-    s.az = pa.z;
-    s.dx = static_cast<double>(pb.x) - s.ax;
-    s.dy = static_cast<double>(pb.y) - s.ay;
-    s.dz = static_cast<double>(pb.z) - s.az;
+    ScoreLine s{};
+    s.a = a;
+    s.b = b;
     launch_argmax(s, 0);
     return read_argmax(1)[0];
   }
@@ -473,9 +548,9 @@ class CudaBackend final : public Backend {
     select_device();
     if (n_points_ == 0) return 0;
     ScorePlane s{};
-    s.face.v[0] = point_at(a);
-    s.face.v[1] = point_at(b);
-    s.face.v[2] = point_at(c);
+    s.a = a;
+    s.b = b;
+    s.c = c;
     launch_argmax(s, 0);
     return read_argmax(1)[0];
   }
@@ -531,14 +606,14 @@ class CudaBackend final : public Backend {
     view.interior = tables.interior;
     const auto* retired = reinterpret_cast<const PointIndex*>(base + offsets[4]);
 
-    // Per-face results, in the layout get_extreme_points copies back in one piece: keys, then counts.
+    // The pass's results, in the layout compact_index_array copies back in one piece: the number of points
+    // kept, then per face the extreme keys and the counts.
     extremes_dev_.reserve(extremes_bytes(face_count_), "the per-face counts and extremes", true);
     unsigned long long* best = extremes_best();
     std::uint32_t* count = extremes_count();
-    if (face_count_ != 0) {
-      check(cudaMemsetAsync(extremes_dev_.get(), 0, extremes_bytes(face_count_), stream_),
-            "clearing the per-face counts");
-    }
+    check(cudaMemsetAsync(extremes_dev_.get(), 0, extremes_bytes(face_count_), stream_),
+          "clearing the per-face counts");
+    results_on_host_ = false;
 
     if (!tables.retired.empty()) {
       retire_kernel<<<blocks_for(tables.retired.size()), kBlock, 0, stream_>>>(retired, tables.retired.size(),
@@ -546,38 +621,41 @@ class CudaBackend final : public Backend {
       check(cudaGetLastError(), "launching retire_kernel");
     }
     if (n_active_ == 0) return;
-    if (face_count <= kSharedFaces) {
-      const unsigned blocks = std::min<unsigned>(blocks_for(n_active_), distribute_blocks_shared_);
-      const std::size_t smem = face_count_ * (sizeof(unsigned long long) + sizeof(std::uint32_t));
-      distribute_kernel<true><<<blocks, kBlock, smem, stream_>>>(points_.get(), active_.get(), n_active_,
-                                                                 face_of_.get(), view, count, best);
+    // Planes prepared once a face pay off when there are more points than faces (not in a sphere's late
+    // iterations: two million faces and a few thousand points).
+    const bool prepared = n_active_ >= face_count_;
+    if (prepared) {
+      planes_.reserve(face_count_, "the prepared face planes", true);
+      prepare_planes_kernel<<<blocks_for(face_count_), kBlock, 0, stream_>>>(view.faces, face_count,
+                                                                             view.interior, planes_.get());
+      check(cudaGetLastError(), "launching prepare_planes_kernel");
+    }
+    const bool shared = face_count <= kSharedFaces;
+    const unsigned blocks = std::min<unsigned>(blocks_for(n_active_), distribute_blocks_[shared][prepared]);
+    const std::size_t smem = shared ? face_count_ * (sizeof(unsigned long long) + sizeof(std::uint32_t)) : 0;
+    auto launch = [&](auto kernel) {
+      kernel<<<blocks, kBlock, smem, stream_>>>(points_.get(), active_.get(), n_active_, face_of_.get(), view,
+                                                planes_.get(), count, best, active_alt_.get(), kept_count());
+    };
+    if (shared) {
+      prepared ? launch(distribute_kernel<true, true>) : launch(distribute_kernel<true, false>);
     } else {
-      const unsigned blocks = std::min<unsigned>(blocks_for(n_active_), distribute_blocks_global_);
-      distribute_kernel<false><<<blocks, kBlock, 0, stream_>>>(points_.get(), active_.get(), n_active_,
-                                                               face_of_.get(), view, count, best);
+      prepared ? launch(distribute_kernel<false, true>) : launch(distribute_kernel<false, false>);
     }
     check(cudaGetLastError(), "launching distribute_kernel");
   }
 
+  // The pass compacted the index array itself (distribute_kernel); here its count comes back together with
+  // the per-face results: one copy and one wait an iteration.
   std::size_t compact_index_array() override {
     select_device();
-    if (n_active_ == 0) return 0;
-    const IsExternal keep{face_of_.get()};
-    std::size_t temp_bytes = 0;
-    check(cub::DeviceSelect::If(nullptr, temp_bytes, active_.get(), active_alt_.get(), scalar_dev_.get(),
-                                static_cast<std::int64_t>(n_active_), keep, stream_),
-          "sizing the compaction");
-    cub_temp_.reserve(temp_bytes, "the compaction's temporary storage", true);
-    check(cub::DeviceSelect::If(cub_temp_.get(), temp_bytes, active_.get(), active_alt_.get(),
-                                scalar_dev_.get(), static_cast<std::int64_t>(n_active_), keep, stream_),
-          "launching the compaction");
-    auto* selected = reinterpret_cast<std::int64_t*>(scalars_host_.get());
-    check(cudaMemcpyAsync(selected, scalar_dev_.get(), sizeof(std::int64_t), cudaMemcpyDeviceToHost, stream_),
-          "reading the compacted count");
-    check(cudaStreamSynchronize(stream_), "distributing and compacting the points (kernel fault)");
-    bytes_from_ += sizeof(std::int64_t);
-    active_.swap(active_alt_);
-    n_active_ = static_cast<std::size_t>(*selected);
+    read_results();
+    std::uint64_t kept = 0;
+    std::memcpy(&kept, extremes_host_.get(), sizeof kept);
+    if (n_active_ != 0) {
+      active_.swap(active_alt_);
+      n_active_ = static_cast<std::size_t>(kept);
+    }
     return n_active_;
   }
 
@@ -585,14 +663,10 @@ class CudaBackend final : public Backend {
     select_device();
     out.assign(face_count_, {});
     if (face_count_ == 0) return;
-    const std::size_t bytes = extremes_bytes(face_count_);
-    extremes_host_.reserve(bytes, "the per-face results");
-    check(cudaMemcpyAsync(extremes_host_.get(), extremes_dev_.get(), bytes, cudaMemcpyDeviceToHost, stream_),
-          "reading the per-face counts and extremes");
-    check(cudaStreamSynchronize(stream_), "reading the per-face counts and extremes");
-    bytes_from_ += bytes;
-    const auto* best = reinterpret_cast<const unsigned long long*>(extremes_host_.get());
-    const auto* count = reinterpret_cast<const std::uint32_t*>(extremes_host_.get() + 8 * face_count_);
+    if (!results_on_host_) read_results();
+    const auto* best = reinterpret_cast<const unsigned long long*>(extremes_host_.get() + kKeptBytes);
+    const auto* count =
+        reinterpret_cast<const std::uint32_t*>(extremes_host_.get() + kKeptBytes + 8 * face_count_);
     parallel_chunks(
         face_count_, hardware_workers(),
         [&](std::size_t begin, std::size_t end, unsigned) {
@@ -657,16 +731,25 @@ class CudaBackend final : public Backend {
  private:
   void select_device() { check(cudaSetDevice(device_), "selecting the device"); }
 
-  // One point's coordinates, for the queries' fixed corners: 12 bytes.
-  Point3 point_at(PointIndex i) {
-    Point3 p;
-    check(cudaMemcpyAsync(scalars_host_.get(), points_.get() + i, sizeof(Point3), cudaMemcpyDeviceToHost,
-                          stream_),
-          "reading a point");
-    check(cudaStreamSynchronize(stream_), "reading a point");
-    std::memcpy(&p, scalars_host_.get(), sizeof p);
-    bytes_from_ += sizeof(Point3);
-    return p;
+  // Enough resident blocks of `kernel` to fill the chip (the grid-stride loop takes the rest).
+  template <class Kernel>
+  unsigned resident_blocks(Kernel kernel, std::int32_t shared_faces) const {
+    int per_sm = 0;
+    check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, kernel, kBlock,
+                                                        shared_faces * (sizeof(unsigned long long) + 4)),
+          "reading the occupancy");
+    return static_cast<unsigned>(std::max(1, per_sm) * sm_count_);
+  }
+
+  // The distribution pass's results (kept count, per-face keys and counts) to the host, then wait.
+  void read_results() {
+    const std::size_t bytes = extremes_bytes(face_count_);
+    extremes_host_.reserve(bytes, "the per-face results");
+    check(cudaMemcpyAsync(extremes_host_.get(), extremes_dev_.get(), bytes, cudaMemcpyDeviceToHost, stream_),
+          "reading the per-face counts and extremes");
+    check(cudaStreamSynchronize(stream_), "distributing the points (kernel fault)");
+    bytes_from_ += bytes;
+    results_on_host_ = true;
   }
 
   template <class Score>
@@ -689,18 +772,25 @@ class CudaBackend final : public Backend {
     return reinterpret_cast<const PointIndex*>(scalars_host_.get());
   }
 
-  static std::size_t extremes_bytes(std::size_t faces) { return faces * (sizeof(unsigned long long) + 4); }
-  unsigned long long* extremes_best() const {
+  static constexpr std::size_t kKeptBytes = sizeof(unsigned long long);
+  static std::size_t extremes_bytes(std::size_t faces) {
+    return kKeptBytes + faces * (sizeof(unsigned long long) + 4);
+  }
+  unsigned long long* kept_count() const {
     return reinterpret_cast<unsigned long long*>(extremes_dev_.get());
   }
+  unsigned long long* extremes_best() const {
+    return reinterpret_cast<unsigned long long*>(extremes_dev_.get() + kKeptBytes);
+  }
   std::uint32_t* extremes_count() const {
-    return reinterpret_cast<std::uint32_t*>(extremes_dev_.get() + sizeof(unsigned long long) * face_count_);
+    return reinterpret_cast<std::uint32_t*>(extremes_dev_.get() + kKeptBytes +
+                                            sizeof(unsigned long long) * face_count_);
   }
 
   int device_;
   std::string name_;
   int sm_count_ = 0;
-  unsigned distribute_blocks_shared_ = 0, distribute_blocks_global_ = 0;
+  unsigned distribute_blocks_[2][2] = {};  // [shared accumulators][prepared planes]: resident blocks
   // Declared first among the resources, so destroyed last: the stream is drained before buffers go.
   Stream stream_holder_;
   Event event_holder_;
@@ -712,8 +802,9 @@ class CudaBackend final : public Backend {
   DeviceBuffer<PointIndex> active_, active_alt_;
   DeviceBuffer<PointIndex> vertex_ids_;  // write_point_states_on_device
   DeviceBuffer<std::int32_t> face_of_;
-  DeviceBuffer<unsigned char> tables_dev_, extremes_dev_, cub_temp_;
-  DeviceBuffer<std::int64_t> scalar_dev_;
+  DeviceBuffer<FacePlanes> planes_;
+  DeviceBuffer<unsigned char> tables_dev_, extremes_dev_;
+  bool results_on_host_ = false;  // extremes_host_ holds the last distribution's results
   DeviceBuffer<Candidate> argmax_partial_;
   DeviceBuffer<PointIndex> argmax_result_;
   PinnedBuffer staging_, extremes_host_, scalars_host_;

@@ -1189,8 +1189,8 @@ IterationRecord Engine::iterate() {
   record.host_ms = ms_since(t0);
   if (phase_times_wanted())
     std::fprintf(stderr,
-                 "iteration %d host ms: collect %.1f split %.1f regular+batched %.1f settle %.1f planes %.1f "
-                 "tables %.1f geometry %.1f\n",
+                 "iteration %d host ms: collect %.2f split %.2f regular+batched %.2f settle %.2f planes %.2f "
+                 "tables %.2f geometry %.2f\n",
                  record.iteration, tp0, tp1 - tp0, tp2 - tp1, tp3 - tp2, tp4 - tp3, tp5 - tp4,
                  record.host_ms - tp5);
 
@@ -1380,7 +1380,7 @@ void Engine::finish(IterationRecord& record) {
   }
   record.host_ms += ms_since(t0);
   if (phase_times_wanted())
-    std::fprintf(stderr, "finish host ms %.1f: check %.1f dropped %.1f result %.1f\n", ms_since(t0), tf_check,
+    std::fprintf(stderr, "finish host ms %.2f: check %.2f dropped %.2f result %.2f\n", ms_since(t0), tf_check,
                  tf_dropped - tf_check, ms_since(t0) - tf_dropped);
   done_ = true;
 }

@@ -166,6 +166,82 @@ CUDAHULL_HD inline double face_height(const FaceGeometry& f, const Point3& x) {
 #endif
 }
 
+// A face's four planes prepared once for all the points of an iteration (the CUDA backend's distribution
+// pass; docs/benchmarks.md): the normal of the face as face_height() computes it, and the normals of its
+// three radial planes through the interior point c, each with per-axis permanents that bound the rounding
+// error of normal . (x - base).  face_verdict_prepared() then needs no orient3d unless a point lies within
+// that bound of a plane, and gives exactly face_verdict()'s answer.
+struct FacePlanes {
+  double normal[3], normal_perm[3];        // (v1 - v0) x (v2 - v0), base v0
+  double radial[3][3], radial_perm[3][3];  // radial plane k: (v[k] - c) x (v[k+1] - c), base c
+};
+
+namespace detail {
+// (a - base) x (b - base), rounded as face_height() rounds it, and its permanents |.y||.z| + |.z||.y|, ...
+CUDAHULL_HD inline void prepared_cross(double ax, double ay, double az, double bx, double by, double bz,
+                                       double out[3], double perm[3]) {
+  out[0] = sub_rn(mul_rn(ay, bz), mul_rn(az, by));
+  out[1] = sub_rn(mul_rn(az, bx), mul_rn(ax, bz));
+  out[2] = sub_rn(mul_rn(ax, by), mul_rn(ay, bx));
+  perm[0] = add_rn(mul_rn(abs_d(ay), abs_d(bz)), mul_rn(abs_d(az), abs_d(by)));
+  perm[1] = add_rn(mul_rn(abs_d(az), abs_d(bx)), mul_rn(abs_d(ax), abs_d(bz)));
+  perm[2] = add_rn(mul_rn(abs_d(ax), abs_d(by)), mul_rn(abs_d(ay), abs_d(bx)));
+}
+// n . w, rounded as face_height() rounds it.
+CUDAHULL_HD inline double prepared_dot(const double n[3], double wx, double wy, double wz) {
+  return add_rn(add_rn(mul_rn(n[0], wx), mul_rn(n[1], wy)), mul_rn(n[2], wz));
+}
+// The sign of the exact n . w when the rounded `value` is certain of it, else 0.  Each of the six terms of
+// the exact determinant passes through at most 8 roundings (two differences, a product and a difference
+// for n, the difference w, a product and two sums), so |value - exact| <= gamma_8 * sum|terms|, and
+// perm . |w| bounds sum|terms| up to a few more roundings: 16 u (2^-49) covers it all with room to spare.
+// No underflow or overflow is possible for float32 coordinates (predicates_impl.hpp).
+CUDAHULL_HD inline int certain_sign(double value, const double perm[3], double wx, double wy, double wz) {
+  const double bound = mul_rn(0x1p-49, prepared_dot(perm, abs_d(wx), abs_d(wy), abs_d(wz)));
+  return value > bound ? 1 : (value < -bound ? -1 : 0);
+}
+}  // namespace detail
+
+CUDAHULL_HD inline void prepare_face_planes(const FaceGeometry& f, const Vec3d& c, FacePlanes& out) {
+  using namespace detail;
+  const Point3* v = f.v;
+  detail::prepared_cross(sub_rn(v[1].x, v[0].x), sub_rn(v[1].y, v[0].y), sub_rn(v[1].z, v[0].z),
+                         sub_rn(v[2].x, v[0].x), sub_rn(v[2].y, v[0].y), sub_rn(v[2].z, v[0].z), out.normal,
+                         out.normal_perm);
+  for (int k = 0; k < 3; ++k) {
+    const Point3& a = v[k];
+    const Point3& b = v[(k + 1) % 3];
+    detail::prepared_cross(sub_rn(a.x, c.x), sub_rn(a.y, c.y), sub_rn(a.z, c.z), sub_rn(b.x, c.x),
+                           sub_rn(b.y, c.y), sub_rn(b.z, c.z), out.radial[k], out.radial_perm[k]);
+  }
+}
+
+// face_verdict() through the prepared planes: the same verdict and exit edge (exact orient3d decides
+// whenever the rounded value is not certain), plus *height = face_height(f, x), bit for bit.
+CUDAHULL_HD inline PointVerdict face_verdict_prepared(const FaceGeometry& f, const FacePlanes& planes,
+                                                      const Vec3d& c, const Point3& x, int* exit_edge,
+                                                      double* height) {
+  using namespace detail;
+  *exit_edge = -1;
+  const double wx = sub_rn(x.x, f.v[0].x), wy = sub_rn(x.y, f.v[0].y), wz = sub_rn(x.z, f.v[0].z);
+  *height = prepared_dot(planes.normal, wx, wy, wz);
+  int above = certain_sign(*height, planes.normal_perm, wx, wy, wz);
+  if (above == 0) above = orient3d(to_vec3d(f.v[0]), to_vec3d(f.v[1]), to_vec3d(f.v[2]), to_vec3d(x));
+  if (above > 0) return kVerdictExternal;
+  if (f.tet[0] == 0 || f.tet[1] == 0 || f.tet[2] == 0 || f.tet[3] == 0) return kVerdictStray;  // flat
+  if (above * f.tet[3] < 0) return kVerdictStray;
+  const double cx = sub_rn(x.x, c.x), cy = sub_rn(x.y, c.y), cz = sub_rn(x.z, c.z);
+  for (int k = 0; k < 3; ++k) {
+    int side = certain_sign(prepared_dot(planes.radial[k], cx, cy, cz), planes.radial_perm[k], cx, cy, cz);
+    if (side == 0) side = orient3d(c, to_vec3d(f.v[k]), to_vec3d(f.v[(k + 1) % 3]), to_vec3d(x));
+    if (side * f.tet[k] < 0) {
+      *exit_edge = k;
+      return kVerdictStray;
+    }
+  }
+  return kVerdictInternal;
+}
+
 // Packs (height, point index) so that a 64-bit max picks the highest point and, among equal heights, the
 // lowest index: duplicates then always elect their lowest-index copy.  Heights are > 0 here.
 CUDAHULL_HD inline std::uint64_t pack_extreme(double height, PointIndex index) {
@@ -199,14 +275,16 @@ inline constexpr int kMaxStrayWalk = 64;
 // From face `start`, the face x is strictly above, or kRouteInternal when x is proven inside the hull.  A
 // point below a face but outside that face's tetrahedron with c crossed a radial plane: walk to the
 // neighbour across it, at most `max_walk` steps, then fall back to an exhaustive exact scan.
-CUDAHULL_HD inline std::int32_t locate_point(const Point3& x, std::int32_t start, const FaceGeometry* faces,
-                                             std::int32_t face_count, const Vec3d& interior, int max_walk) {
+// `verdict(g, &exit_edge)` is face_verdict() for face g, or an equivalent (face_verdict_prepared()).
+template <class Verdict>
+CUDAHULL_HD inline std::int32_t walk_to_face(const Point3& x, std::int32_t start, const FaceGeometry* faces,
+                                             std::int32_t face_count, int max_walk, Verdict&& verdict) {
   std::int32_t g = start;
   for (int step = 0; step < max_walk; ++step) {
     int exit_edge;
-    const PointVerdict verdict = face_verdict(faces[g], interior, x, &exit_edge);
-    if (verdict == kVerdictExternal) return g;
-    if (verdict == kVerdictInternal) return kRouteInternal;
+    const PointVerdict v = verdict(g, &exit_edge);
+    if (v == kVerdictExternal) return g;
+    if (v == kVerdictInternal) return kRouteInternal;
     if (exit_edge < 0) break;
     g = faces[g].neighbor[exit_edge];
   }
@@ -219,25 +297,51 @@ CUDAHULL_HD inline std::int32_t locate_point(const Point3& x, std::int32_t start
   return kRouteInternal;
 }
 
+CUDAHULL_HD inline std::int32_t locate_point(const Point3& x, std::int32_t start, const FaceGeometry* faces,
+                                             std::int32_t face_count, const Vec3d& interior, int max_walk) {
+  return walk_to_face(x, start, faces, face_count, max_walk, [&](std::int32_t g, int* exit_edge) {
+    return face_verdict(faces[g], interior, x, exit_edge);
+  });
+}
+
+// Algorithm 2's routing of x from old face `old_face` by the separating planes (no exact test yet): the
+// face of the new mesh to start the exact verdicts from, or kRouteInternal.
+CUDAHULL_HD inline std::int32_t routed_face(const Point3& x, std::int32_t old_face, const RoutingView& t) {
+  if (t.initial_cells == nullptr)
+    return route_point(x, old_face, t.old_face_split, t.old_face_route, t.refinement, t.decision);
+  for (std::int32_t f = 0; f < 4; ++f) {  // section 3.1: the first tetrahedron face whose cell holds x
+    const SeparatingPlane* cell = t.initial_cells + 3 * f;
+    if (plane_value(cell[0], x) >= 0 && plane_value(cell[1], x) >= 0 && plane_value(cell[2], x) >= 0)
+      return f;
+  }
+  return 0;
+}
+
 // Algorithm 2 for one point: the new face id that x belongs to (x strictly above it), or kRouteInternal when
 // x is proven inside the hull.  Deterministic and exact in its verdict; only the choice of face among those
 // x is above depends on the (inexact) separating planes.
 CUDAHULL_HD inline std::int32_t classify_point(const Point3& x, std::int32_t old_face, const RoutingView& t) {
-  std::int32_t g;
-  if (t.initial_cells != nullptr) {
-    g = 0;  // section 3.1: the first tetrahedron face whose cell holds x
-    for (std::int32_t f = 0; f < 4; ++f) {
-      const SeparatingPlane* cell = t.initial_cells + 3 * f;
-      if (plane_value(cell[0], x) >= 0 && plane_value(cell[1], x) >= 0 && plane_value(cell[2], x) >= 0) {
-        g = f;
-        break;
-      }
-    }
-  } else {
-    g = route_point(x, old_face, t.old_face_split, t.old_face_route, t.refinement, t.decision);
-    if (g == kRouteInternal) return kRouteInternal;
-  }
+  const std::int32_t g = routed_face(x, old_face, t);
+  if (g == kRouteInternal) return kRouteInternal;
   return locate_point(x, g, t.faces, t.face_count, t.interior, kMaxStrayWalk);
+}
+
+// classify_point() with each face's planes prepared (`planes[f]` for t.faces[f]): the same face, and
+// *height = face_height() of x above it (for the extreme-point key) when x is external.
+CUDAHULL_HD inline std::int32_t classify_point_prepared(const Point3& x, std::int32_t old_face,
+                                                        const RoutingView& t, const FacePlanes* planes,
+                                                        double* height) {
+  const std::int32_t g = routed_face(x, old_face, t);
+  if (g == kRouteInternal) return kRouteInternal;
+  std::int32_t last = kRouteInternal;  // the face of the last verdict, whose height *height holds
+  const std::int32_t found =
+      walk_to_face(x, g, t.faces, t.face_count, kMaxStrayWalk, [&](std::int32_t f, int* exit_edge) {
+        last = f;
+        return face_verdict_prepared(t.faces[f], planes[f], t.interior, x, exit_edge, height);
+      });
+  if (found != kRouteInternal && found != last)
+    *height = face_height(t.faces[found], x);  // found by the scan
+  return found;
 }
 
 }  // namespace cudahull
