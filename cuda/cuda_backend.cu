@@ -126,6 +126,12 @@ constexpr int kBlock = 256;
 #define CUDAHULL_DISTRIBUTE_BLOCKS_PER_SM 2
 #endif
 constexpr int kDistributeBlocksPerSm = CUDAHULL_DISTRIBUTE_BLOCKS_PER_SM;
+// The pass with prepared planes needs fewer registers: 3 blocks (80 registers, a few spilled) made the
+// 10M-point cube's device time 2.24-2.33 ms against 2.50-2.59 at 2 blocks (H100, alternating runs).
+#ifndef CUDAHULL_PREPARED_BLOCKS_PER_SM
+#define CUDAHULL_PREPARED_BLOCKS_PER_SM 3
+#endif
+constexpr int kPreparedBlocksPerSm = CUDAHULL_PREPARED_BLOCKS_PER_SM;
 // Faces up to this many accumulate their counts and keys in shared memory (12 bytes a face) before one
 // global atomic per face and block; beyond it, contention is low and the kernel goes straight to global.
 constexpr std::int32_t kSharedFaces = 2048;
@@ -277,11 +283,6 @@ struct ScorePlane {
 // ---------------------------------------------------------------------------------------------------------
 // Algorithm 2.
 
-__global__ void iota_kernel(PointIndex* __restrict__ out, std::size_t n) {
-  const std::size_t k = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (k < n) out[k] = static_cast<PointIndex>(k);
-}
-
 // Apexes leave the point set without routing (CpuBackend: face_of_[i] = kRouteInternal).
 __global__ void retire_kernel(const PointIndex* __restrict__ retired, std::size_t n,
                               std::int32_t* __restrict__ face_of) {
@@ -302,7 +303,7 @@ __global__ void prepare_planes_kernel(const FaceGeometry* __restrict__ faces, st
 
 // With kPrepared, `planes` holds every face's FacePlanes (classify_point_prepared, the same answers).
 template <bool kShared, bool kPrepared>
-__global__ void __launch_bounds__(kBlock, kDistributeBlocksPerSm)
+__global__ void __launch_bounds__(kBlock, kPrepared ? kPreparedBlocksPerSm : kDistributeBlocksPerSm)
     distribute_kernel(const Point3* __restrict__ points, const PointIndex* __restrict__ active, std::size_t n,
                       std::int32_t* __restrict__ face_of, RoutingView view,
                       const FacePlanes* __restrict__ planes, std::uint32_t* __restrict__ count,
@@ -352,7 +353,7 @@ __global__ void __launch_bounds__(kBlock, kDistributeBlocksPerSm)
     unsigned long long key = 0;
     PointIndex i = 0;
     if (k < n) {
-      i = active[k];
+      i = active != nullptr ? active[k] : static_cast<PointIndex>(k);
       const std::int32_t old_face = face_of[i];
       if (old_face != kRouteInternal) {  // not retired
         const Point3 x = points[i];
@@ -396,7 +397,9 @@ __global__ void __launch_bounds__(kBlock, kDistributeBlocksPerSm)
 __global__ void point_faces_kernel(const PointIndex* __restrict__ active, std::size_t n,
                                    const std::int32_t* __restrict__ face_of, std::int32_t* __restrict__ out) {
   const std::size_t k = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (k < n) out[active[k]] = face_of[active[k]];
+  if (k >= n) return;
+  const PointIndex i = active != nullptr ? active[k] : static_cast<PointIndex>(k);
+  out[i] = face_of[i];
 }
 
 // CUDA-GL interop (issue 5): every point's state, written where the viewer draws from.
@@ -510,8 +513,7 @@ class CudaBackend final : public Backend {
                           stream_),
           "uploading the points");
     bytes_to_ += n_points_ * sizeof(Point3);
-    iota_kernel<<<blocks_for(n_points_), kBlock, 0, stream_>>>(active_.get(), n_points_);
-    check(cudaGetLastError(), "launching iota_kernel");
+    all_active_ = true;  // the index array is the identity until the first compaction
     check(cudaMemsetAsync(face_of_.get(), 0, n_points_ * sizeof(std::int32_t), stream_),
           "clearing the per-point faces");
     // The caller's vector may change after return: wait for the (pageable) copy.
@@ -634,8 +636,9 @@ class CudaBackend final : public Backend {
     const unsigned blocks = std::min<unsigned>(blocks_for(n_active_), distribute_blocks_[shared][prepared]);
     const std::size_t smem = shared ? face_count_ * (sizeof(unsigned long long) + sizeof(std::uint32_t)) : 0;
     auto launch = [&](auto kernel) {
-      kernel<<<blocks, kBlock, smem, stream_>>>(points_.get(), active_.get(), n_active_, face_of_.get(), view,
-                                                planes_.get(), count, best, active_alt_.get(), kept_count());
+      kernel<<<blocks, kBlock, smem, stream_>>>(points_.get(), active_indices(), n_active_, face_of_.get(),
+                                                view, planes_.get(), count, best, active_alt_.get(),
+                                                kept_count());
     };
     if (shared) {
       prepared ? launch(distribute_kernel<true, true>) : launch(distribute_kernel<true, false>);
@@ -654,6 +657,7 @@ class CudaBackend final : public Backend {
     std::memcpy(&kept, extremes_host_.get(), sizeof kept);
     if (n_active_ != 0) {
       active_.swap(active_alt_);
+      all_active_ = false;
       n_active_ = static_cast<std::size_t>(kept);
     }
     return n_active_;
@@ -687,7 +691,7 @@ class CudaBackend final : public Backend {
     fill_kernel<<<blocks_for(count), kBlock, 0, stream_>>>(out, count, kPointStateInternal);
     check(cudaGetLastError(), "launching fill_kernel");
     if (n_active_ != 0) {  // active points are external: their face
-      point_faces_kernel<<<blocks_for(n_active_), kBlock, 0, stream_>>>(active_.get(), n_active_,
+      point_faces_kernel<<<blocks_for(n_active_), kBlock, 0, stream_>>>(active_indices(), n_active_,
                                                                         face_of_.get(), out);
       check(cudaGetLastError(), "launching point_faces_kernel");
     }
@@ -714,7 +718,7 @@ class CudaBackend final : public Backend {
     check(cudaMemsetAsync(faces.get(), 0xff, n_points_ * sizeof(std::int32_t), stream_),
           "clearing the point faces");  // all bytes 0xff: -1
     if (n_active_ != 0) {
-      point_faces_kernel<<<blocks_for(n_active_), kBlock, 0, stream_>>>(active_.get(), n_active_,
+      point_faces_kernel<<<blocks_for(n_active_), kBlock, 0, stream_>>>(active_indices(), n_active_,
                                                                         face_of_.get(), faces.get());
       check(cudaGetLastError(), "launching point_faces_kernel");
     }
@@ -730,6 +734,10 @@ class CudaBackend final : public Backend {
 
  private:
   void select_device() { check(cudaSetDevice(device_), "selecting the device"); }
+
+  // The active points' indices for a kernel: null while every point is active (the kernels then use the
+  // identity; no index array to fill and read for the first pass over all the points).
+  const PointIndex* active_indices() const { return all_active_ ? nullptr : active_.get(); }
 
   // Enough resident blocks of `kernel` to fill the chip (the grid-stride loop takes the rest).
   template <class Kernel>
@@ -804,7 +812,8 @@ class CudaBackend final : public Backend {
   DeviceBuffer<std::int32_t> face_of_;
   DeviceBuffer<FacePlanes> planes_;
   DeviceBuffer<unsigned char> tables_dev_, extremes_dev_;
-  bool results_on_host_ = false;  // extremes_host_ holds the last distribution's results
+  bool results_on_host_ = false;
+  bool all_active_ = false;  // active_indices()  // extremes_host_ holds the last distribution's results
   DeviceBuffer<Candidate> argmax_partial_;
   DeviceBuffer<PointIndex> argmax_result_;
   PinnedBuffer staging_, extremes_host_, scalars_host_;

@@ -1,9 +1,14 @@
 // The persistent worker threads behind parallel_chunks().  Started on first use, one fewer than the
 // hardware threads (the caller works too), and never stopped.  Each sleeps on its own semaphore, so a job
 // for k workers wakes exactly k - 1 threads (a shared condition variable woke all of them for every job,
-// which cost more than the job in the engine's many small per-iteration passes).  They do not spin for
-// the next job: spinning workers slowed the serial edits between jobs.
+// which cost more than the job in the engine's many small per-iteration passes).  After a job a worker
+// watches for the next one for a short while (kWatch) before it sleeps: the engine's batched swap rounds
+// run about ten jobs back to back, and on the GPU machine waking a sleeping thread took tens of
+// microseconds, more than many of those jobs.  It watches with a pause instruction, so that a hyperthread
+// sibling doing serial edits is not slowed; for longer, spinning workers did slow the serial edits between
+// jobs.
 #include <atomic>
+#include <chrono>
 #include <exception>
 #include <memory>
 #include <mutex>
@@ -11,18 +16,32 @@
 
 #include "cudahull/parallel.hpp"
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#endif
+
 namespace cudahull::detail {
 
 namespace {
 
 thread_local bool on_pool_worker = false;
 
+constexpr auto kWatch = std::chrono::microseconds(200);
+
+inline void cpu_pause() {
+#if defined(__x86_64__) || defined(__i386__)
+  _mm_pause();
+#endif
+}
+
 class WorkerPool {
  public:
   explicit WorkerPool(unsigned size) : size_(size) {
     wake_.reserve(size_ + 1);
-    for (unsigned w = 0; w <= size_; ++w)
-      wake_.push_back(std::make_unique<std::binary_semaphore>(0));
+    for (unsigned w = 0; w <= size_; ++w) {
+      wake_.push_back(std::make_unique<std::counting_semaphore<>>(0));
+      ready_.push_back(std::make_unique<std::atomic<bool>>(false));
+    }
     for (unsigned w = 1; w <= size_; ++w)
       std::thread([this, w] { work(w); }).detach();
   }
@@ -37,15 +56,18 @@ class WorkerPool {
     body_ = body;
     error_ = nullptr;
     pending_.store(workers - 1, std::memory_order_relaxed);
-    for (unsigned w = 1; w < workers; ++w)
-      wake_[w]->release();  // publishes the job fields above to worker w
+    finished_.store(false, std::memory_order_relaxed);
+    for (unsigned w = 1; w < workers; ++w) {
+      ready_[w]->store(true, std::memory_order_release);  // publishes the job fields above to worker w
+      wake_[w]->release();  // in case it sleeps; a watching worker leaves this count behind (see work())
+    }
     std::exception_ptr mine;
     try {
       call(body, 0, std::min(n, chunk(n, workers)), 0);
     } catch (...) {
       mine = std::current_exception();
     }
-    if (workers > 1) done_.acquire();
+    if (workers > 1) wait_for_workers();
     if (mine) std::rethrow_exception(mine);
     if (error_) std::rethrow_exception(error_);
     return true;
@@ -57,7 +79,11 @@ class WorkerPool {
   void work(unsigned w) {
     on_pool_worker = true;
     for (;;) {
-      wake_[w]->acquire();
+      if (!watch(w)) {
+        wake_[w]->acquire();
+        // A count left by a job that was taken while watching: no job now, sleep again.
+        if (!ready_[w]->exchange(false, std::memory_order_acquire)) continue;
+      }
       const std::size_t size = chunk(n_, workers_);
       const std::size_t begin = std::min(n_, w * size), end = std::min(n_, begin + size);
       try {
@@ -66,14 +92,41 @@ class WorkerPool {
         std::lock_guard lock(error_mutex_);
         if (!error_) error_ = std::current_exception();
       }
-      if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) done_.release();
+      if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+        finished_.store(true, std::memory_order_release);
+        finished_.notify_one();
+      }
+    }
+  }
+
+  // The caller, for the last worker of its job: watched, as the workers watch for jobs, then asleep.
+  void wait_for_workers() {
+    const auto until = std::chrono::steady_clock::now() + kWatch;
+    for (int spins = 0; !finished_.load(std::memory_order_acquire); ++spins) {
+      cpu_pause();
+      if ((spins & 63) == 63 && std::chrono::steady_clock::now() > until) {
+        finished_.wait(false, std::memory_order_acquire);
+        return;
+      }
+    }
+  }
+
+  // Watches worker w's ready flag for kWatch; true (and the flag taken) when a job came.
+  bool watch(unsigned w) {
+    const auto until = std::chrono::steady_clock::now() + kWatch;
+    for (int spins = 0;; ++spins) {
+      if (ready_[w]->load(std::memory_order_relaxed) && ready_[w]->exchange(false, std::memory_order_acquire))
+        return true;
+      cpu_pause();
+      if ((spins & 63) == 63 && std::chrono::steady_clock::now() > until) return false;
     }
   }
 
   const unsigned size_;
-  std::mutex run_mutex_;                                      // one job at a time
-  std::vector<std::unique_ptr<std::binary_semaphore>> wake_;  // per worker (index 0 unused: the caller)
-  std::binary_semaphore done_{0};                             // the last worker to finish releases it
+  std::mutex run_mutex_;                                          // one job at a time
+  std::vector<std::unique_ptr<std::counting_semaphore<>>> wake_;  // per worker (index 0 unused: the caller)
+  std::vector<std::unique_ptr<std::atomic<bool>>> ready_;         // per worker: a job is waiting for it
+  std::atomic<bool> finished_{false};                             // set by the last worker to finish
   std::atomic<unsigned> pending_{0};
   std::size_t n_ = 0;
   unsigned workers_ = 0;
