@@ -283,22 +283,21 @@ struct ScorePlane {
 // ---------------------------------------------------------------------------------------------------------
 // Algorithm 2.
 
-// Apexes leave the point set without routing (CpuBackend: face_of_[i] = kRouteInternal).
-__global__ void retire_kernel(const PointIndex* __restrict__ retired, std::size_t n,
-                              std::int32_t* __restrict__ face_of) {
+// Everything a pass needs done first, in one launch (each launch and copy on the stream costs a few
+// microseconds, which is most of a late iteration): the pass's results cleared (`words` 64-bit words: the
+// kept count, the per-face keys and counts), the retired apexes taken out of the point set without routing
+// (CpuBackend: face_of_[i] = kRouteInternal), and with `planes` each face's planes prepared (routing.hpp,
+// FacePlanes: with many points a face, the exact verdicts then cost a few dot products instead of up to four
+// orient3d filters each).
+__global__ void begin_pass_kernel(unsigned long long* __restrict__ results, std::size_t words,
+                                  const PointIndex* __restrict__ retired, std::size_t retired_count,
+                                  std::int32_t* __restrict__ face_of, const FaceGeometry* __restrict__ faces,
+                                  std::int32_t face_count, Vec3d interior, FacePlanes* __restrict__ planes) {
   const std::size_t k = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (k < n) face_of[retired[k]] = kRouteInternal;
-}
-
-// One pass over the active points: route, exact verdict, and for external points the per-face count and
-// the packed extreme key (getExtremePoints fused into the pass, as on the CPU).  With kShared, per-block
-// accumulators in shared memory take the contention of the early iterations (few faces, many points).
-// Each face's planes prepared for the pass (routing.hpp, FacePlanes): with many points a face, the exact
-// verdicts then cost a few dot products instead of up to four orient3d filters each.
-__global__ void prepare_planes_kernel(const FaceGeometry* __restrict__ faces, std::int32_t count,
-                                      Vec3d interior, FacePlanes* __restrict__ planes) {
-  const std::int32_t f = blockIdx.x * blockDim.x + threadIdx.x;
-  if (f < count) prepare_face_planes(faces[f], interior, planes[f]);
+  if (k < words) results[k] = 0;
+  if (k < retired_count) face_of[retired[k]] = kRouteInternal;
+  if (planes != nullptr && k < static_cast<std::size_t>(face_count))
+    prepare_face_planes(faces[k], interior, planes[k]);
 }
 
 // With kPrepared, `planes` holds every face's FacePlanes (classify_point_prepared, the same answers).
@@ -610,28 +609,21 @@ class CudaBackend final : public Backend {
 
     // The pass's results, in the layout compact_index_array copies back in one piece: the number of points
     // kept, then per face the extreme keys and the counts.
-    extremes_dev_.reserve(extremes_bytes(face_count_), "the per-face counts and extremes", true);
+    const std::size_t words = (extremes_bytes(face_count_) + 7) / 8;
+    extremes_dev_.reserve(8 * words, "the per-face counts and extremes", true);
     unsigned long long* best = extremes_best();
     std::uint32_t* count = extremes_count();
-    check(cudaMemsetAsync(extremes_dev_.get(), 0, extremes_bytes(face_count_), stream_),
-          "clearing the per-face counts");
     results_on_host_ = false;
-
-    if (!tables.retired.empty()) {
-      retire_kernel<<<blocks_for(tables.retired.size()), kBlock, 0, stream_>>>(retired, tables.retired.size(),
-                                                                               face_of_.get());
-      check(cudaGetLastError(), "launching retire_kernel");
-    }
-    if (n_active_ == 0) return;
     // Planes prepared once a face pay off when there are more points than faces (not in a sphere's late
     // iterations: two million faces and a few thousand points).
-    const bool prepared = n_active_ >= face_count_;
-    if (prepared) {
-      planes_.reserve(face_count_, "the prepared face planes", true);
-      prepare_planes_kernel<<<blocks_for(face_count_), kBlock, 0, stream_>>>(view.faces, face_count,
-                                                                             view.interior, planes_.get());
-      check(cudaGetLastError(), "launching prepare_planes_kernel");
-    }
+    const bool prepared = n_active_ != 0 && n_active_ >= face_count_;
+    if (prepared) planes_.reserve(face_count_, "the prepared face planes", true);
+    const std::size_t threads = std::max({words, tables.retired.size(), prepared ? face_count_ : 0});
+    begin_pass_kernel<<<blocks_for(threads), kBlock, 0, stream_>>>(
+        reinterpret_cast<unsigned long long*>(extremes_dev_.get()), words, retired, tables.retired.size(),
+        face_of_.get(), view.faces, face_count, view.interior, prepared ? planes_.get() : nullptr);
+    check(cudaGetLastError(), "launching begin_pass_kernel");
+    if (n_active_ == 0) return;
     const bool shared = face_count <= kSharedFaces;
     const unsigned blocks = std::min<unsigned>(blocks_for(n_active_), distribute_blocks_[shared][prepared]);
     const std::size_t smem = shared ? face_count_ * (sizeof(unsigned long long) + sizeof(std::uint32_t)) : 0;
