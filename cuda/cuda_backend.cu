@@ -344,8 +344,8 @@ __global__ void __launch_bounds__(kBlock, kPrepared ? kPreparedBlocksPerSm : kDi
   };
 
   const std::size_t stride = static_cast<std::size_t>(gridDim.x) * blockDim.x;
-  // Every thread of a block runs the same number of rounds (the base is uniform), so the warp-wide
-  // __match_any_sync and the block-wide barriers below are safe.
+  // Every lane of a warp runs the same number of rounds (the base is uniform), so the warp-wide
+  // __match_any_sync, __ballot_sync and flushes below are safe.
   for (std::size_t base = static_cast<std::size_t>(blockIdx.x) * blockDim.x; base < n; base += stride) {
     const std::size_t k = base + threadIdx.x;
     std::int32_t g = kRouteInternal;
