@@ -2,13 +2,14 @@
 // hardware threads (the caller works too), and never stopped.  Each sleeps on its own semaphore, so a job
 // for k workers wakes exactly k - 1 threads (a shared condition variable woke all of them for every job,
 // which cost more than the job in the engine's many small per-iteration passes).  After a job a worker
-// watches for the next one for a short while (kWatch) before it sleeps: the engine's batched swap rounds
-// run about ten jobs back to back, and on the GPU machine waking a sleeping thread took tens of
+// watches for the next one for a short while (watch_time()) before it sleeps: the engine's batched swap
+// rounds run about ten jobs back to back, and on the GPU machine waking a sleeping thread took tens of
 // microseconds, more than many of those jobs.  It watches with a pause instruction, so that a hyperthread
 // sibling doing serial edits is not slowed; for longer, spinning workers did slow the serial edits between
 // jobs.
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <exception>
 #include <memory>
 #include <mutex>
@@ -26,7 +27,15 @@ namespace {
 
 thread_local bool on_pool_worker = false;
 
-constexpr auto kWatch = std::chrono::microseconds(200);
+// How long a worker watches for the next job (and the caller for the last worker) before sleeping; the
+// environment variable CUDAHULL_WORKER_WATCH_US overrides it (0: sleep at once), for A/B runs.
+std::chrono::microseconds watch_time() {
+  static const std::chrono::microseconds watch = [] {
+    const char* text = std::getenv("CUDAHULL_WORKER_WATCH_US");
+    return std::chrono::microseconds(text != nullptr ? std::strtol(text, nullptr, 10) : 200);
+  }();
+  return watch;
+}
 
 inline void cpu_pause() {
 #if defined(__x86_64__) || defined(__i386__)
@@ -101,7 +110,7 @@ class WorkerPool {
 
   // The caller, for the last worker of its job: watched, as the workers watch for jobs, then asleep.
   void wait_for_workers() {
-    const auto until = std::chrono::steady_clock::now() + kWatch;
+    const auto until = std::chrono::steady_clock::now() + watch_time();
     for (int spins = 0; !finished_.load(std::memory_order_acquire); ++spins) {
       cpu_pause();
       if ((spins & 63) == 63 && std::chrono::steady_clock::now() > until) {
@@ -111,9 +120,9 @@ class WorkerPool {
     }
   }
 
-  // Watches worker w's ready flag for kWatch; true (and the flag taken) when a job came.
+  // Watches worker w's ready flag for watch_time(); true (and the flag taken) when a job came.
   bool watch(unsigned w) {
-    const auto until = std::chrono::steady_clock::now() + kWatch;
+    const auto until = std::chrono::steady_clock::now() + watch_time();
     for (int spins = 0;; ++spins) {
       if (ready_[w]->load(std::memory_order_relaxed) && ready_[w]->exchange(false, std::memory_order_acquire))
         return true;
