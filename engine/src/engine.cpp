@@ -117,21 +117,39 @@ struct Engine::EditScratch {
   std::vector<BatchTrial> trials;            // per candidate
   std::vector<std::pair<FaceId, int>> made;  // the round's winners: face and edge
   std::vector<std::size_t> winner_at, winner_of;
-  // Face claims, (round << 32 | candidate) per face id (used through atomic_ref).  Tagged by round, so old
-  // entries need no clearing: a grown table keeps them and only its new tail is zeroed.  It doubles as the
-  // mesh grows (every round adds faces).
-  std::vector<std::uint64_t> face_claims;
+  // Claims, (round << 32 | candidate): per face id, and per hashed new edge (used through atomic_ref).
+  std::unique_ptr<std::uint64_t[]> face_claims, edge_claims;
+  std::size_t face_claim_count = 0, edge_claim_bits = 0;
   std::uint64_t claim_round = 0;
-  // The round's new edges, (edge << 32 | candidate), sorted: the lowest candidate of each edge may make it.
-  // (A hashed claim table in fresh memory cost more in page faults than this sort, and let collisions
-  // delay swaps.)
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> new_edges;
 
-  void grow_claims(std::size_t faces) {
-    if (faces > face_claims.size()) face_claims.resize(std::max(faces, 2 * face_claims.size()));
+  // Grown tables are zeroed on all cores: a serial clear of 100 MB would cost more than a round.
+  static void zero(std::uint64_t* table, std::size_t count) {
+    parallel_chunks(count, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
+      std::fill(table + begin, table + end, std::uint64_t{0});
+    });
+  }
+  void grow_claims(std::size_t faces, std::size_t edges) {
+    if (faces > face_claim_count) {
+      face_claim_count = std::max(faces, face_claim_count + face_claim_count / 2);
+      face_claims.reset(new std::uint64_t[face_claim_count]);
+      zero(face_claims.get(), face_claim_count);
+    }
+    std::size_t bits = 12;
+    while ((std::size_t{1} << bits) < 2 * edges)
+      ++bits;
+    if (bits > edge_claim_bits) {
+      edge_claims.reset(new std::uint64_t[std::size_t{1} << bits]);
+      zero(edge_claims.get(), std::size_t{1} << bits);
+      edge_claim_bits = bits;
+    }
   }
   std::atomic_ref<std::uint64_t> face_claim(FaceId f) {
     return std::atomic_ref<std::uint64_t>(face_claims[f]);
+  }
+  std::atomic_ref<std::uint64_t> edge_claim(PointIndex a, PointIndex b) {
+    const std::uint64_t key = static_cast<std::uint64_t>(std::min(a, b)) << 32 | std::max(a, b);
+    return std::atomic_ref<std::uint64_t>(
+        edge_claims[(key * 0x9E3779B97F4A7C15ull) >> (64 - edge_claim_bits)]);
   }
 };
 
@@ -397,24 +415,10 @@ struct Engine::Impl {
           256);
       t_eval += ms_since(q0);
       q0 = Clock::now();
-      // A swap wins when it is the lowest candidate among those that would kill either of its two faces and
-      // among those that would make its new edge.  Edges first: sorted (edge, candidate) pairs.
-      std::vector<std::pair<std::uint64_t, std::uint32_t>>& new_edges = scratch.new_edges;
-      new_edges.clear();
-      for (std::size_t k = 0; k < count; ++k) {
-        BatchTrial& t = trials[k];
-        t.winner = t.trial == Trial::kValid;
-        if (!t.winner) continue;
-        const PointIndex x = t.swap.new_edge[0], y = t.swap.new_edge[1];
-        new_edges.push_back({static_cast<std::uint64_t>(std::min(x, y)) << 32 | std::max(x, y),
-                             static_cast<std::uint32_t>(k)});
-      }
-      parallel_sort(new_edges);
-      for (std::size_t j = 1; j < new_edges.size(); ++j) {
-        if (new_edges[j].first == new_edges[j - 1].first) trials[new_edges[j].second].winner = false;
-      }
-      // Then faces, through claims tagged by round (the table needs no clearing between rounds).
-      scratch.grow_claims(e.mesh_.face_capacity());
+      // Claims, tagged by round so that the tables need no clearing and stay from one iteration to the next:
+      // a swap wins when it is the lowest candidate among those that would kill either of its two faces and
+      // among those that would make its new edge (hashed; a collision only delays a swap to the next round).
+      scratch.grow_claims(e.mesh_.face_capacity(), 4 * count);
       const std::uint64_t round = ++scratch.claim_round;
       auto claim = [round](std::atomic_ref<std::uint64_t> slot, std::uint64_t k) {
         const std::uint64_t mine = round << 32 | k;
@@ -431,6 +435,7 @@ struct Engine::Impl {
               if (t.trial != Trial::kValid) continue;
               claim(scratch.face_claim(candidates[k].edge.face), k);
               claim(scratch.face_claim(t.other_face), k);
+              claim(scratch.edge_claim(t.swap.new_edge[0], t.swap.new_edge[1]), k);
             }
           },
           256);
@@ -439,11 +444,13 @@ struct Engine::Impl {
           [&](std::size_t begin, std::size_t end, unsigned) {
             for (std::size_t k = begin; k < end; ++k) {
               BatchTrial& t = trials[k];
-              if (!t.winner) continue;  // not valid, or not the lowest candidate of its new edge
+              if (t.trial != Trial::kValid) continue;
               const std::uint64_t mine = round << 32 | k;
               t.winner =
                   scratch.face_claim(candidates[k].edge.face).load(std::memory_order_relaxed) == mine &&
-                  scratch.face_claim(t.other_face).load(std::memory_order_relaxed) == mine;
+                  scratch.face_claim(t.other_face).load(std::memory_order_relaxed) == mine &&
+                  scratch.edge_claim(t.swap.new_edge[0], t.swap.new_edge[1])
+                          .load(std::memory_order_relaxed) == mine;
             }
           },
           256);
