@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/generators.hpp"
+#include "cudahull/mesh_io.hpp"
 
 namespace {
 
@@ -49,7 +50,8 @@ int main(int argc, char** argv) {
   auto* hull_cmd = app.add_subcommand("hull", "Compute the exact convex hull of a point set");
   hull_cmd->add_option("INPUT", hull.input, "Input: .ply .obj .off .xyz .txt, or - for xyz on stdin")
       ->required();
-  hull_cmd->add_option("-o,--output", hull.output, "Write the hull mesh: .obj, .off or .ply");
+  hull_cmd->add_option("-o,--output", hull.output, "Write the hull mesh: .obj, .off or .ply")
+      ->check([](const std::string& path) { return mesh_path_problem(path); });  // before any work
   hull_cmd->add_option(
       "--vertices-out", hull.vertices_out,
       "Write the hull vertices, one 'index x y z' line each (0-based input indices, sorted)");

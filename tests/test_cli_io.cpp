@@ -15,6 +15,7 @@
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -401,51 +402,83 @@ struct InterruptSetup {
   }
 };
 
-// Ctrl-C in the middle of writing -o: the process dies by SIGINT and the output folder holds exactly what
-// it held before, byte for byte: no partial out.obj, no --vertices-out file, no temporary file; earlier
-// outputs survive.  To hit the write and not the computation before it, the test waits for a new name in
-// the folder (the temporary file), stops the process there (SIGSTOP), checks that out.obj is still as
-// before, queues SIGINT and lets the process go on (SIGCONT), so that the signal lands inside the write.
-// A run that got past out.obj before it could be stopped is killed and run again.
-TEST(CliInterrupt, SigintDuringTheWriteLeavesNothingPartial) {
+std::vector<std::string> canonical_lines(const std::string& bytes);
+
+// Starts the run, waits for a new name in the output folder (the temporary file of -o), stops the process
+// there (SIGSTOP) and, if out.obj is still as `before`, queues `sig` and lets it go on (SIGCONT), so that
+// the signal lands inside the write.  A run that got past out.obj before it could be stopped is killed and
+// run again.  Returns how the caught run ended, or nothing after five misses.
+std::optional<CliEnd> signal_during_the_write(const InterruptSetup& s,
+                                              const std::map<std::string, std::string>& before, int sig,
+                                              bool ignore_sigint = false) {
+  for (int attempt = 0; attempt < 5; ++attempt) {
+    reset_folder(s.out, before);
+    const CliProcess p = start_cli(s.args, s.logs, ignore_sigint);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    bool new_name = false;
+    while (!new_name && std::chrono::steady_clock::now() < deadline) {
+      new_name = TempDir::files_in(s.out).size() > before.size();
+      siginfo_t info{};
+      if (!new_name && ::waitid(P_PID, static_cast<id_t>(p.pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 &&
+          info.si_pid == p.pid) {
+        break;  // it ended without writing anything we saw
+      }
+      if (!new_name) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    bool caught = false;
+    if (new_name && ::kill(p.pid, SIGSTOP) == 0 && stopped_not_ended(p.pid)) {
+      const auto now = folder_contents(s.out);
+      const auto obj = now.find("out.obj");
+      const auto was = before.find("out.obj");
+      const bool obj_as_before =
+          was == before.end() ? obj == now.end() : obj != now.end() && obj->second == was->second;
+      caught = obj_as_before && now.size() > before.size();  // a temporary file, out.obj not renamed
+      ::kill(p.pid, caught ? sig : SIGKILL);
+      ::kill(p.pid, SIGCONT);
+    } else {
+      ::kill(p.pid, SIGKILL);
+    }
+    const CliEnd e = wait_cli(p);
+    if (caught) return e;
+  }
+  return std::nullopt;
+}
+
+// Ctrl-C, or the terminal closing (SIGHUP), in the middle of writing -o: the process dies by the signal and
+// the output folder holds exactly what it held before, byte for byte: no partial out.obj, no
+// --vertices-out file, no temporary file; earlier outputs survive.
+TEST(CliInterrupt, SignalDuringTheWriteLeavesNothingPartial) {
   InterruptSetup s(50000);
   const std::map<std::string, std::string> earlier{{"out.obj", "# an earlier hull\nv 0 0 0\n"},
                                                    {"v.txt", "0 0 0 0\n"}};
-  for (const auto& before : {std::map<std::string, std::string>{}, earlier}) {
-    SCOPED_TRACE(before.empty() ? "empty output folder" : "earlier outputs in the folder");
-    bool interrupted = false;
-    for (int attempt = 0; attempt < 5 && !interrupted; ++attempt) {
-      reset_folder(s.out, before);
-      const CliProcess p = start_cli(s.args, s.logs);
-      const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-      bool new_name = false;
-      while (!new_name && std::chrono::steady_clock::now() < deadline) {
-        new_name = TempDir::files_in(s.out).size() > before.size();
-        siginfo_t info{};
-        if (!new_name && ::waitid(P_PID, static_cast<id_t>(p.pid), &info, WEXITED | WNOHANG | WNOWAIT) == 0 &&
-            info.si_pid == p.pid) {
-          break;  // it ended without writing anything we saw
-        }
-        if (!new_name) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-      }
-      if (new_name && ::kill(p.pid, SIGSTOP) == 0 && stopped_not_ended(p.pid)) {
-        const auto now = folder_contents(s.out);
-        const auto obj = now.find("out.obj");
-        const auto was = before.find("out.obj");
-        const bool obj_as_before =
-            was == before.end() ? obj == now.end() : obj != now.end() && obj->second == was->second;
-        interrupted = obj_as_before && now.size() > before.size();  // a temporary file, out.obj not renamed
-        ::kill(p.pid, interrupted ? SIGINT : SIGKILL);
-        ::kill(p.pid, SIGCONT);
-      } else {
-        ::kill(p.pid, SIGKILL);
-      }
-      const CliEnd e = wait_cli(p);
-      if (!interrupted) continue;
-      EXPECT_EQ(e.signal(), SIGINT) << describe(e);
+  for (const int sig : {SIGINT, SIGHUP}) {
+    for (const auto& before : {std::map<std::string, std::string>{}, earlier}) {
+      SCOPED_TRACE(std::string(sig == SIGINT ? "SIGINT, " : "SIGHUP, ") +
+                   (before.empty() ? "empty output folder" : "earlier outputs in the folder"));
+      const std::optional<CliEnd> e = signal_during_the_write(s, before, sig);
+      ASSERT_TRUE(e.has_value()) << "never caught the process while it wrote out.obj";
+      EXPECT_EQ(e->signal(), sig) << describe(*e);
       EXPECT_EQ(folder_contents(s.out), before);
     }
-    EXPECT_TRUE(interrupted) << "never caught the process while it wrote out.obj";
+  }
+}
+
+// A SIGINT that the caller ignores (a background job of a shell) stays ignored while -o is written: the
+// run goes on and writes both outputs whole.
+TEST(CliInterrupt, IgnoredSigintStaysIgnoredDuringTheWrite) {
+  InterruptSetup s(50000);
+  const CliEnd whole = wait_cli(start_cli(s.args, s.logs));
+  ASSERT_EQ(whole.exit_code(), 0) << describe(whole);
+  const auto complete = folder_contents(s.out);
+  ASSERT_EQ(complete.size(), 2u);
+  const std::optional<CliEnd> e = signal_during_the_write(s, {}, SIGINT, /*ignore_sigint=*/true);
+  ASSERT_TRUE(e.has_value()) << "never caught the process while it wrote out.obj";
+  EXPECT_EQ(e->exit_code(), 0) << describe(*e);
+  const auto written = folder_contents(s.out);
+  ASSERT_EQ(written.size(), complete.size());
+  for (const auto& [name, bytes] : written) {
+    ASSERT_TRUE(complete.count(name)) << "unexpected file: " << name;
+    EXPECT_TRUE(canonical_lines(bytes) == canonical_lines(complete.at(name))) << name << " differs";
   }
 }
 
@@ -554,6 +587,17 @@ TEST(CliUsage, BadCommandLinesExitTwo) {
     EXPECT_EQ(r.exit_code, cudahull::kExitUsage) << args[0] << " ...\n" << describe(r);
   }
   EXPECT_FALSE(fs::exists(out));
+}
+
+// An -o name the hull cannot be written to is a usage error found before anything else: with an input that
+// does not exist either, the answer is still the extension (exit 2), not the missing file (exit 3).
+TEST(CliUsage, UnknownMeshExtensionFailsBeforeAnyWork) {
+  TempDir dir;
+  const fs::path out = dir / "hull.stl";
+  const CliRun r = run_cli({"hull", (dir / "missing.xyz").string(), "-o", out.string(), "--backend", "cpu"});
+  EXPECT_EQ(r.exit_code, cudahull::kExitUsage) << describe(r);
+  expect_one_error_line(r, "unknown mesh extension '.stl'");
+  EXPECT_TRUE(dir.files().empty());
 }
 
 }  // namespace

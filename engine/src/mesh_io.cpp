@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <mutex>
 #include <numeric>
 #include <span>
@@ -26,9 +27,10 @@ namespace {
 
 // ------------------------------------------------------------------ temporary files and interrupts
 //
-// A SIGINT/SIGTERM while a temporary file exists unlinks it and then dies by the signal as before.  The
-// handler may only touch async-signal-safe state: fixed buffers and lock-free atomics.  A few slots let
-// several threads write at once.
+// A SIGINT, SIGTERM or SIGHUP (the terminal closed) while a temporary file exists unlinks it and then dies
+// by the signal as before.  A signal the caller set to be ignored stays ignored (nothing is interrupted, so
+// nothing is left behind).  The handler may only touch async-signal-safe state: fixed buffers and lock-free
+// atomics.  A few slots let several threads write at once.
 
 constexpr int kTempSlots = 8;
 constexpr std::size_t kTempPathMax = 4096;
@@ -39,7 +41,10 @@ static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs 
 std::mutex g_temp_mutex;  // guards slot claims and handler (un)installation, never used in the handler
 bool g_slot_claimed[kTempSlots];
 int g_active_writers = 0;
-struct sigaction g_old_sigint, g_old_sigterm;
+constexpr int kHandledSignals[] = {SIGINT, SIGTERM, SIGHUP};
+constexpr int kHandledCount = static_cast<int>(std::size(kHandledSignals));
+struct sigaction g_old_actions[kHandledCount];
+bool g_installed[kHandledCount];
 
 extern "C" void unlink_temps_and_reraise(int sig) {
   for (int i = 0; i < kTempSlots; ++i) {
@@ -72,8 +77,12 @@ class TempFileGuard {
       struct sigaction sa {};
       sa.sa_handler = unlink_temps_and_reraise;
       sigemptyset(&sa.sa_mask);
-      ::sigaction(SIGINT, &sa, &g_old_sigint);
-      ::sigaction(SIGTERM, &sa, &g_old_sigterm);
+      for (int k = 0; k < kHandledCount; ++k) {
+        g_installed[k] = false;
+        if (::sigaction(kHandledSignals[k], nullptr, &g_old_actions[k]) != 0) continue;
+        if (g_old_actions[k].sa_handler == SIG_IGN) continue;  // ignored by the caller: leave it so
+        g_installed[k] = ::sigaction(kHandledSignals[k], &sa, nullptr) == 0;
+      }
     }
   }
   ~TempFileGuard() {
@@ -82,8 +91,9 @@ class TempFileGuard {
     g_temp_active[slot_].store(false);
     g_slot_claimed[slot_] = false;
     if (--g_active_writers == 0) {
-      ::sigaction(SIGINT, &g_old_sigint, nullptr);
-      ::sigaction(SIGTERM, &g_old_sigterm, nullptr);
+      for (int k = 0; k < kHandledCount; ++k) {
+        if (g_installed[k]) ::sigaction(kHandledSignals[k], &g_old_actions[k], nullptr);
+      }
     }
   }
   TempFileGuard(const TempFileGuard&) = delete;
@@ -159,16 +169,33 @@ class TextOut {
 
 enum class MeshFormat { kObj, kOff, kPly };
 
-MeshFormat mesh_format(const std::string& path) {
+// The format `path` names, or false with *why set.
+bool find_mesh_format(const std::string& path, MeshFormat* format, std::string* why) {
   // "-" has no extension; OBJ is the format most tools read from a pipe.
-  if (path == "-") return MeshFormat::kObj;
+  if (path == "-") {
+    *format = MeshFormat::kObj;
+    return true;
+  }
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  if (ext == ".obj") return MeshFormat::kObj;
-  if (ext == ".off") return MeshFormat::kOff;
-  if (ext == ".ply") return MeshFormat::kPly;
-  throw OutputError("cannot write " + path + ": unknown mesh extension '" + ext +
-                    "' (expected .obj, .off or .ply)");
+  if (ext == ".obj")
+    *format = MeshFormat::kObj;
+  else if (ext == ".off")
+    *format = MeshFormat::kOff;
+  else if (ext == ".ply")
+    *format = MeshFormat::kPly;
+  else {
+    *why = "unknown mesh extension '" + ext + "' (expected .obj, .off or .ply)";
+    return false;
+  }
+  return true;
+}
+
+MeshFormat mesh_format(const std::string& path) {
+  MeshFormat format;
+  std::string why;
+  if (!find_mesh_format(path, &format, &why)) throw OutputError("cannot write " + path + ": " + why);
+  return format;
 }
 
 // The faces to write: the triangles, the one polygon of a planar hull, or none for a segment or a point.
@@ -250,6 +277,12 @@ void write_ply(std::ostream& os, const HullMesh& hull, const Faces& faces) {
 }
 
 }  // namespace
+
+std::string mesh_path_problem(const std::string& path) {
+  MeshFormat format;
+  std::string why;
+  return find_mesh_format(path, &format, &why) ? std::string() : why;
+}
 
 void write_mesh(const std::string& path, const HullMesh& hull) {
   const MeshFormat format = mesh_format(path);

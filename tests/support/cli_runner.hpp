@@ -100,15 +100,17 @@ std::string describe(const CliRun& r) {
 }
 
 // A `cudahull` process started with posix_spawn (no shell in between, so its pid is the CLI's own), with
-// stdin from /dev/null, stdout and stderr to files in `log_dir`, and SIGINT/SIGTERM at their defaults
-// whatever the test runner inherited.
+// stdin from /dev/null, stdout and stderr to files in `log_dir`, and SIGINT/SIGTERM/SIGHUP at their
+// defaults whatever the test runner inherited; with `ignore_sigint`, SIGINT ignored instead (as a shell
+// leaves it for a background job).
 struct CliProcess {
   pid_t pid = -1;
   fs::path out_path, err_path;
   std::chrono::steady_clock::time_point started;
 };
 
-CliProcess start_cli(const std::vector<std::string>& args, const fs::path& log_dir) {
+CliProcess start_cli(const std::vector<std::string>& args, const fs::path& log_dir,
+                     bool ignore_sigint = false) {
   static int counter = 0;
   CliProcess p;
   const std::string tag = std::to_string(counter++);
@@ -131,13 +133,21 @@ CliProcess start_cli(const std::vector<std::string>& args, const fs::path& log_d
   sigset_t none, defaults;
   sigemptyset(&none);
   sigemptyset(&defaults);
-  sigaddset(&defaults, SIGINT);
+  if (!ignore_sigint) sigaddset(&defaults, SIGINT);
   sigaddset(&defaults, SIGTERM);
+  sigaddset(&defaults, SIGHUP);
+  // An ignored disposition is inherited through exec: set it here around the spawn.
+  struct sigaction ignore {
+  }, previous{};
+  ignore.sa_handler = SIG_IGN;
+  sigemptyset(&ignore.sa_mask);
+  if (ignore_sigint) ::sigaction(SIGINT, &ignore, &previous);
   posix_spawnattr_setsigmask(&attr, &none);
   posix_spawnattr_setsigdefault(&attr, &defaults);
   posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
   p.started = std::chrono::steady_clock::now();
   const int rc = ::posix_spawn(&p.pid, kCli.c_str(), &files, &attr, argv.data(), environ);
+  if (ignore_sigint) ::sigaction(SIGINT, &previous, nullptr);
   posix_spawnattr_destroy(&attr);
   posix_spawn_file_actions_destroy(&files);
   if (rc != 0) {

@@ -15,11 +15,16 @@ namespace cudahull {
 // planar hull (dimension 2) is written as one polygon face, a segment or a point as vertices only.
 void write_mesh(const std::string& path, const HullMesh& hull);
 
+// Why write_mesh() could not write `path` (an unknown extension), or empty: for checking an output name
+// before the work that produces the mesh.
+std::string mesh_path_problem(const std::string& path);
+
 // Writes one line per hull vertex, "index x y z", 0-based input indices sorted ascending.  "-" is stdout.
 void write_vertices(const std::string& path, const HullMesh& hull);
 
 // Writes `write_body` to `path` atomically: a temporary name in the same folder, then rename(2).  The
-// temporary file is removed on any failure and on SIGINT/SIGTERM.  "-" writes to stdout directly.
+// temporary file is removed on any failure and on SIGINT, SIGTERM or SIGHUP (unless the caller ignores it).
+// "-" writes to stdout directly.
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write_body);
 
 }  // namespace cudahull
