@@ -15,11 +15,6 @@ out vec3 v_view_pos;
 noperspective out vec3 v_bary;
 flat out vec3 v_base;
 
-vec3 hsv_to_rgb(float h, float s, float v) {
-  vec3 k = clamp(abs(mod(h * 6.0 + vec3(0.0, 4.0, 2.0), 6.0) - 3.0) - 1.0, 0.0, 1.0);
-  return v * mix(vec3(1.0), k, s);
-}
-
 void main() {
   vec4 view_pos = u_view * vec4(a_position, 1.0);
   v_view_pos = view_pos.xyz;

@@ -25,21 +25,6 @@ uniform vec3 u_external_color;
 uniform int u_selected_face;  // as in points.vert.glsl
 uniform vec3 u_selected_color;
 
-vec3 hsv_to_rgb(float h, float s, float v) {
-  vec3 k = clamp(abs(mod(h * 6.0 + vec3(0.0, 4.0, 2.0), 6.0) - 3.0) - 1.0, 0.0, 1.0);
-  return v * mix(vec3(1.0), k, s);
-}
-
-vec3 face_color(int face) {
-  uint h = uint(face) * 2654435761u;
-  h ^= h >> 15;
-  h *= 2246822519u;
-  h ^= h >> 13;
-  float hue = float(h & 1023u) / 1024.0;
-  float value = 0.65 + 0.3 * float((h >> 10) & 3u) / 3.0;
-  return hsv_to_rgb(hue, 0.7, value);
-}
-
 void main() {
   // Dispatched as a 2-d grid (at most 65535 groups a row): the point index runs across the rows.
   uint i = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * 256u + gl_LocalInvocationID.x;

@@ -19,9 +19,16 @@ namespace {
 constexpr const char* kLayerNames[kLayerCount] = {"hull",  "wireframe", "internal", "external",  "vertices",
                                                   "cells", "swaps",     "normals",  "refinement"};
 
+// Compiles `source` with shaders/colors.glsl (hsv_to_rgb, face_color) after its #version line: GLSL has
+// no #include.  `#line 2` keeps the driver's line numbers those of the file.
 unsigned compile(GLenum type, const char* source, const char* name) {
+  const std::string text(source);
+  const std::size_t first_line_end = text.find('\n') + 1;
+  const std::string version = text.substr(0, first_line_end);
+  const std::string rest = "#line 2\n" + text.substr(first_line_end);
+  const char* parts[] = {version.c_str(), shaders::colors, rest.c_str()};
   const GLuint shader = glCreateShader(type);
-  glShaderSource(shader, 1, &source, nullptr);
+  glShaderSource(shader, 3, parts, nullptr);
   glCompileShader(shader);
   GLint ok = 0;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
