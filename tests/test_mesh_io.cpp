@@ -350,29 +350,54 @@ TEST(AtomicWrite, SigtermDuringWriteRemovesTheTemporary) {
   EXPECT_TRUE(dir.files().empty());
 }
 
+extern "C" void callers_handler(int) {}
+
+// While a temporary file exists, SIGINT, SIGTERM and SIGHUP go to the writer's handler (which removes the
+// file); afterwards the caller's handlers are back.
 TEST(AtomicWrite, RestoresTheCallersSignalHandlers) {
   struct sigaction mine {};
-  mine.sa_handler = SIG_IGN;
+  mine.sa_handler = callers_handler;
   sigemptyset(&mine.sa_mask);
-  struct sigaction old_int {
-  }, old_term{};
-  ASSERT_EQ(::sigaction(SIGINT, &mine, &old_int), 0);
-  ASSERT_EQ(::sigaction(SIGTERM, &mine, &old_term), 0);
+  const int signals[] = {SIGINT, SIGTERM, SIGHUP};
+  struct sigaction old[3] = {};
+  for (int k = 0; k < 3; ++k)
+    ASSERT_EQ(::sigaction(signals[k], &mine, &old[k]), 0);
+  TempDir dir;
+  struct sigaction during[3] = {};
+  write_file_atomically((dir / "x.txt").string(), [&](std::ostream& os) {
+    for (int k = 0; k < 3; ++k)
+      ::sigaction(signals[k], nullptr, &during[k]);
+    os << "x";
+  });
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NE(during[k].sa_handler, callers_handler)
+        << "no handler for signal " << signals[k] << " while writing";
+    struct sigaction after {};
+    ::sigaction(signals[k], nullptr, &after);
+    EXPECT_EQ(after.sa_handler, callers_handler) << "signal " << signals[k] << " not restored";
+    ::sigaction(signals[k], &old[k], nullptr);
+  }
+}
+
+// A signal the caller ignores stays ignored while writing (a shell's background job ignores SIGINT): the
+// write is not interrupted, so there is nothing to clean up.
+TEST(AtomicWrite, LeavesIgnoredSignalsIgnored) {
+  struct sigaction ignore {};
+  ignore.sa_handler = SIG_IGN;
+  sigemptyset(&ignore.sa_mask);
+  struct sigaction old {};
+  ASSERT_EQ(::sigaction(SIGINT, &ignore, &old), 0);
   TempDir dir;
   struct sigaction during {};
   write_file_atomically((dir / "x.txt").string(), [&](std::ostream& os) {
     ::sigaction(SIGINT, nullptr, &during);
     os << "x";
   });
-  EXPECT_NE(during.sa_handler, SIG_IGN) << "no handler installed while writing";
-  struct sigaction after_int {
-  }, after_term{};
-  ::sigaction(SIGINT, nullptr, &after_int);
-  ::sigaction(SIGTERM, nullptr, &after_term);
-  EXPECT_EQ(after_int.sa_handler, SIG_IGN);
-  EXPECT_EQ(after_term.sa_handler, SIG_IGN);
-  ::sigaction(SIGINT, &old_int, nullptr);
-  ::sigaction(SIGTERM, &old_term, nullptr);
+  EXPECT_EQ(during.sa_handler, SIG_IGN);
+  struct sigaction after {};
+  ::sigaction(SIGINT, nullptr, &after);
+  EXPECT_EQ(after.sa_handler, SIG_IGN);
+  ::sigaction(SIGINT, &old, nullptr);
 }
 
 }  // namespace
