@@ -402,7 +402,34 @@ struct InterruptSetup {
   }
 };
 
-std::vector<std::string> canonical_lines(const std::string& bytes);
+// A file's lines, sorted, with face lines reduced to "f": equal for two complete hull files even if the
+// engine ordered their faces or vertices differently, and different for a file cut short.
+std::vector<std::string> canonical_lines(const std::string& bytes) {
+  std::vector<std::string> lines;
+  std::istringstream in(bytes);
+  for (std::string line; std::getline(in, line);)
+    lines.push_back(line.rfind("f ", 0) == 0 ? "f" : line);
+  std::sort(lines.begin(), lines.end());
+  return lines;
+}
+
+// An uninterrupted run: its outputs (-o and --vertices-out) by name, and how long it took.
+std::pair<std::map<std::string, std::string>, double> complete_run(const InterruptSetup& s) {
+  const CliEnd whole = wait_cli(start_cli(s.args, s.logs));
+  EXPECT_EQ(whole.exit_code(), 0) << describe(whole);
+  const auto complete = folder_contents(s.out);
+  EXPECT_EQ(complete.size(), 2u);
+  return {complete, whole.seconds};
+}
+
+// Every file in `out` is one of the complete outputs, whole (the same lines), never partial or temporary.
+void expect_only_whole_outputs(const fs::path& out, const std::map<std::string, std::string>& complete) {
+  for (const auto& [name, bytes] : folder_contents(out)) {
+    ASSERT_TRUE(complete.count(name)) << "left behind: " << name;
+    EXPECT_TRUE(canonical_lines(bytes) == canonical_lines(complete.at(name)))
+        << name << " is partial: " << bytes.size() << " of " << complete.at(name).size() << " bytes";
+  }
+}
 
 // Starts the run, waits for a new name in the output folder (the temporary file of -o), stops the process
 // there (SIGSTOP) and, if out.obj is still as `before`, queues `sig` and lets it go on (SIGCONT), so that
@@ -467,30 +494,13 @@ TEST(CliInterrupt, SignalDuringTheWriteLeavesNothingPartial) {
 // run goes on and writes both outputs whole.
 TEST(CliInterrupt, IgnoredSigintStaysIgnoredDuringTheWrite) {
   InterruptSetup s(50000);
-  const CliEnd whole = wait_cli(start_cli(s.args, s.logs));
-  ASSERT_EQ(whole.exit_code(), 0) << describe(whole);
-  const auto complete = folder_contents(s.out);
+  const auto [complete, seconds] = complete_run(s);
   ASSERT_EQ(complete.size(), 2u);
   const std::optional<CliEnd> e = signal_during_the_write(s, {}, SIGINT, /*ignore_sigint=*/true);
   ASSERT_TRUE(e.has_value()) << "never caught the process while it wrote out.obj";
   EXPECT_EQ(e->exit_code(), 0) << describe(*e);
-  const auto written = folder_contents(s.out);
-  ASSERT_EQ(written.size(), complete.size());
-  for (const auto& [name, bytes] : written) {
-    ASSERT_TRUE(complete.count(name)) << "unexpected file: " << name;
-    EXPECT_TRUE(canonical_lines(bytes) == canonical_lines(complete.at(name))) << name << " differs";
-  }
-}
-
-// A file's lines, sorted, with face lines reduced to "f": equal for two complete hull files even if the
-// engine ordered their faces or vertices differently, and different for a file cut short.
-std::vector<std::string> canonical_lines(const std::string& bytes) {
-  std::vector<std::string> lines;
-  std::istringstream in(bytes);
-  for (std::string line; std::getline(in, line);)
-    lines.push_back(line.rfind("f ", 0) == 0 ? "f" : line);
-  std::sort(lines.begin(), lines.end());
-  return lines;
+  EXPECT_EQ(folder_contents(s.out).size(), complete.size());
+  expect_only_whole_outputs(s.out, complete);
 }
 
 // SIGINT at a spread of moments, from the start to past the end: whenever it lands, the process either
@@ -498,11 +508,9 @@ std::vector<std::string> canonical_lines(const std::string& bytes) {
 // run writes it), with no temporary file.
 TEST(CliInterrupt, SigintAtAnyMomentLeavesCompleteFilesOrNone) {
   InterruptSetup s(20000);
-  const CliEnd whole = wait_cli(start_cli(s.args, s.logs));
-  ASSERT_EQ(whole.exit_code(), 0) << describe(whole);
-  const auto complete = folder_contents(s.out);
+  const auto [complete, seconds] = complete_run(s);
   ASSERT_EQ(complete.size(), 2u);
-  const double run_ms = whole.seconds * 1000;
+  const double run_ms = seconds * 1000;
   for (const double fraction : {0.0, 0.5, 0.8, 0.9, 1.0, 1.2}) {
     SCOPED_TRACE("SIGINT at " + std::to_string(fraction) + " of a run");
     reset_folder(s.out, {});
@@ -511,11 +519,7 @@ TEST(CliInterrupt, SigintAtAnyMomentLeavesCompleteFilesOrNone) {
     ::kill(p.pid, SIGINT);
     const CliEnd e = wait_cli(p);
     EXPECT_TRUE(e.signal() == SIGINT || e.exit_code() == 0) << describe(e);
-    for (const auto& [name, bytes] : folder_contents(s.out)) {
-      ASSERT_TRUE(complete.count(name)) << "left behind: " << name;
-      EXPECT_TRUE(canonical_lines(bytes) == canonical_lines(complete.at(name)))
-          << name << " is partial: " << bytes.size() << " of " << complete.at(name).size() << " bytes";
-    }
+    expect_only_whole_outputs(s.out, complete);
   }
 }
 
