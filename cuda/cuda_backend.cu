@@ -393,6 +393,12 @@ __global__ void __launch_bounds__(kBlock, kPrepared ? kPreparedBlocksPerSm : kDi
   }
 }
 
+// The four variants of the pass, [kShared][kPrepared], for the occupancy queries and the launch.
+using DistributeKernel = decltype(&distribute_kernel<false, false>);
+constexpr DistributeKernel kDistributeKernels[2][2] = {
+    {&distribute_kernel<false, false>, &distribute_kernel<false, true>},
+    {&distribute_kernel<true, false>, &distribute_kernel<true, true>}};
+
 __global__ void point_faces_kernel(const PointIndex* __restrict__ active, std::size_t n,
                                    const std::int32_t* __restrict__ face_of, std::int32_t* __restrict__ out) {
   const std::size_t k = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x;
@@ -467,23 +473,23 @@ class CudaBackend final : public Backend {
     // The exact orient3d fallback keeps its expansions on the thread's stack (a few KB of local memory).
     // Reserve it now, so that no launch has to grow the local memory (a hidden synchronisation).
     std::size_t frame = 0;
-    for (const void* kernel : {reinterpret_cast<const void*>(&distribute_kernel<true, true>),
-                               reinterpret_cast<const void*>(&distribute_kernel<true, false>),
-                               reinterpret_cast<const void*>(&distribute_kernel<false, true>),
-                               reinterpret_cast<const void*>(&distribute_kernel<false, false>)}) {
-      cudaFuncAttributes attr{};
-      check(cudaFuncGetAttributes(&attr, kernel), "reading the kernel attributes");
-      frame = std::max(frame, attr.localSizeBytes);
+    for (const auto& by_prepared : kDistributeKernels) {
+      for (DistributeKernel kernel : by_prepared) {
+        cudaFuncAttributes attr{};
+        check(cudaFuncGetAttributes(&attr, kernel), "reading the kernel attributes");
+        frame = std::max(frame, attr.localSizeBytes);
+      }
     }
     std::size_t stack = 0;
     check(cudaDeviceGetLimit(&stack, cudaLimitStackSize), "reading the stack limit");
     const std::size_t want = align_up(frame, 256);
     if (stack < want) check(cudaDeviceSetLimit(cudaLimitStackSize, want), "setting the stack limit");
 
-    distribute_blocks_[1][1] = resident_blocks(distribute_kernel<true, true>, kSharedFaces);
-    distribute_blocks_[1][0] = resident_blocks(distribute_kernel<true, false>, kSharedFaces);
-    distribute_blocks_[0][1] = resident_blocks(distribute_kernel<false, true>, 0);
-    distribute_blocks_[0][0] = resident_blocks(distribute_kernel<false, false>, 0);
+    for (int shared = 0; shared < 2; ++shared) {
+      for (int prepared = 0; prepared < 2; ++prepared)
+        distribute_blocks_[shared][prepared] =
+            resident_blocks(kDistributeKernels[shared][prepared], shared ? kSharedFaces : 0);
+    }
 
     scalars_host_.reserve(64, "result scalars");
     argmax_result_.reserve(2, "argmax results");
@@ -627,16 +633,9 @@ class CudaBackend final : public Backend {
     const bool shared = face_count <= kSharedFaces;
     const unsigned blocks = std::min<unsigned>(blocks_for(n_active_), distribute_blocks_[shared][prepared]);
     const std::size_t smem = shared ? face_count_ * (sizeof(unsigned long long) + sizeof(std::uint32_t)) : 0;
-    auto launch = [&](auto kernel) {
-      kernel<<<blocks, kBlock, smem, stream_>>>(points_.get(), active_indices(), n_active_, face_of_.get(),
-                                                view, planes_.get(), count, best, active_alt_.get(),
-                                                kept_count());
-    };
-    if (shared) {
-      prepared ? launch(distribute_kernel<true, true>) : launch(distribute_kernel<true, false>);
-    } else {
-      prepared ? launch(distribute_kernel<false, true>) : launch(distribute_kernel<false, false>);
-    }
+    kDistributeKernels[shared][prepared]<<<blocks, kBlock, smem, stream_>>>(
+        points_.get(), active_indices(), n_active_, face_of_.get(), view, planes_.get(), count, best,
+        active_alt_.get(), kept_count());
     check(cudaGetLastError(), "launching distribute_kernel");
   }
 
@@ -804,8 +803,8 @@ class CudaBackend final : public Backend {
   DeviceBuffer<std::int32_t> face_of_;
   DeviceBuffer<FacePlanes> planes_;
   DeviceBuffer<unsigned char> tables_dev_, extremes_dev_;
-  bool results_on_host_ = false;
-  bool all_active_ = false;  // active_indices()  // extremes_host_ holds the last distribution's results
+  bool results_on_host_ = false;  // extremes_host_ holds the last distribution's results
+  bool all_active_ = false;       // see active_indices()
   DeviceBuffer<Candidate> argmax_partial_;
   DeviceBuffer<PointIndex> argmax_result_;
   PinnedBuffer staging_, extremes_host_, scalars_host_;

@@ -108,27 +108,29 @@ class WorkerPool {
     }
   }
 
+  // Polls `ready()` with a pause instruction between tries for up to watch_time(); true once it holds.
+  template <class Ready>
+  static bool watch_for(Ready&& ready) {
+    const auto until = std::chrono::steady_clock::now() + watch_time();
+    for (int spins = 0;; ++spins) {
+      if (ready()) return true;
+      cpu_pause();
+      if ((spins & 63) == 63 && std::chrono::steady_clock::now() > until) return false;
+    }
+  }
+
   // The caller, for the last worker of its job: watched, as the workers watch for jobs, then asleep.
   void wait_for_workers() {
-    const auto until = std::chrono::steady_clock::now() + watch_time();
-    for (int spins = 0; !finished_.load(std::memory_order_acquire); ++spins) {
-      cpu_pause();
-      if ((spins & 63) == 63 && std::chrono::steady_clock::now() > until) {
-        finished_.wait(false, std::memory_order_acquire);
-        return;
-      }
-    }
+    if (!watch_for([&] { return finished_.load(std::memory_order_acquire); }))
+      finished_.wait(false, std::memory_order_acquire);
   }
 
   // Watches worker w's ready flag for watch_time(); true (and the flag taken) when a job came.
   bool watch(unsigned w) {
-    const auto until = std::chrono::steady_clock::now() + watch_time();
-    for (int spins = 0;; ++spins) {
-      if (ready_[w]->load(std::memory_order_relaxed) && ready_[w]->exchange(false, std::memory_order_acquire))
-        return true;
-      cpu_pause();
-      if ((spins & 63) == 63 && std::chrono::steady_clock::now() > until) return false;
-    }
+    return watch_for([&] {
+      return ready_[w]->load(std::memory_order_relaxed) &&
+             ready_[w]->exchange(false, std::memory_order_acquire);
+    });
   }
 
   const unsigned size_;
