@@ -4,13 +4,17 @@
 // Resident on the device for the whole run: the points (float AoS, uploaded once), the index array of the
 // active points (two buffers, compacted from one into the other), each point's face (int32, as
 // CpuBackend::face_of_) and per face of the current mesh its external count and packed extreme key.  Per
-// iteration the host sends the O(faces) tables in one copy from pinned staging and reads back the O(faces)
-// counts and keys plus the compacted count: never O(points) data (point_faces(), for the debugger, aside).
+// iteration the host sends the O(faces) tables as one block (through two small pinned buffers taking turns)
+// and reads back the O(faces) counts and keys plus the compacted count: never O(points) data (point_faces(),
+// for the debugger, aside).
 #include <cuda_runtime.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -467,8 +471,10 @@ class CudaBackend final : public Backend {
     sm_count_ = prop.multiProcessorCount;
     check(cudaStreamCreateWithFlags(&stream_holder_.handle, cudaStreamNonBlocking), "creating a stream");
     stream_ = stream_holder_.handle;
-    check(cudaEventCreateWithFlags(&event_holder_.handle, cudaEventDisableTiming), "creating an event");
-    staging_free_ = event_holder_.handle;
+    for (int b = 0; b < 2; ++b) {
+      check(cudaEventCreateWithFlags(&event_holder_[b].handle, cudaEventDisableTiming), "creating an event");
+      staging_free_[b] = event_holder_[b].handle;
+    }
 
     // The exact orient3d fallback keeps its expansions on the thread's stack (a few KB of local memory).
     // Reserve it now, so that no launch has to grow the local memory (a hidden synchronisation).
@@ -567,7 +573,7 @@ class CudaBackend final : public Backend {
     face_count_ = tables.faces.size();
     const auto face_count = static_cast<std::int32_t>(face_count_);
 
-    // One staging area, one copy: the sections at 16-byte aligned offsets.
+    // One block on the device: the sections at 16-byte aligned offsets.
     constexpr int kSections = 7;
     const std::size_t sizes[kSections] = {tables.refinement.size() * sizeof(RefinementEntry),
                                           tables.decision.size() * sizeof(DecisionEntry),
@@ -585,20 +591,14 @@ class CudaBackend final : public Backend {
       offsets[s] = total;
       total = align_up(total + sizes[s], 16);
     }
-    // The previous iteration's copy out of the staging area must be done before it is overwritten.
-    check(cudaEventSynchronize(staging_free_), "waiting for the previous table upload");
-    staging_.reserve(total, "the table staging area");
+    times_ = {};
+    auto t0 = Clock::now();
     tables_dev_.reserve(total, "the iteration tables", true);
-    for (int s = 0; s < kSections; ++s) {
-      if (sizes[s] != 0)
-        parallel_memcpy(staging_.get() + offsets[s], sources[s], sizes[s]);  // ~110 MB at 2M faces
-    }
-    if (total != 0) {
-      check(cudaMemcpyAsync(tables_dev_.get(), staging_.get(), total, cudaMemcpyHostToDevice, stream_),
-            "uploading the iteration tables");
-      bytes_to_ += total;
-    }
-    check(cudaEventRecord(staging_free_, stream_), "recording an event");
+    times_.allocate = ms_since(t0);
+    t0 = Clock::now();
+    upload_staged(sources, sizes, offsets, kSections, total);  // ~160 MB at 2M faces
+    times_.stage = ms_since(t0);
+    times_.table_bytes = total;
 
     unsigned char* base = tables_dev_.get();
     RoutingView view;
@@ -662,6 +662,7 @@ class CudaBackend final : public Backend {
     const auto* best = reinterpret_cast<const unsigned long long*>(extremes_host_.get() + kKeptBytes);
     const auto* count =
         reinterpret_cast<const std::uint32_t*>(extremes_host_.get() + kKeptBytes + 8 * face_count_);
+    const auto t0 = Clock::now();
     parallel_chunks(
         face_count_, hardware_workers(),
         [&](std::size_t begin, std::size_t end, unsigned) {
@@ -671,6 +672,12 @@ class CudaBackend final : public Backend {
           }
         },
         65536);
+    if (phase_times_wanted()) {
+      std::fprintf(stderr,
+                   "  cuda ms: allocate %.2f stage %.2f (%.1f MB) copy+pass+readback wait %.2f unpack %.2f\n",
+                   times_.allocate, times_.stage, static_cast<double>(times_.table_bytes) / 1e6, times_.wait,
+                   ms_since(t0));
+    }
   }
 
   bool has_device_point_states() const override { return true; }
@@ -726,6 +733,22 @@ class CudaBackend final : public Backend {
  private:
   void select_device() { check(cudaSetDevice(device_), "selecting the device"); }
 
+  // CUDAHULL_PHASE_TIMES=1 prints where each distribution's time goes on the host side of the backend, next
+  // to the engine's phases (docs/benchmarks.md).
+  using Clock = std::chrono::steady_clock;
+  static double ms_since(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+  }
+  static bool phase_times_wanted() {
+    static const bool wanted = std::getenv("CUDAHULL_PHASE_TIMES") != nullptr;
+    return wanted;
+  }
+  struct PassTimes {
+    double allocate = 0, stage = 0, wait = 0;
+    std::size_t table_bytes = 0;
+  };
+  PassTimes times_;
+
   // The active points' indices for a kernel: null while every point is active (the kernels then use the
   // identity; no index array to fill and read for the first pass over all the points).
   const PointIndex* active_indices() const { return all_active_ ? nullptr : active_.get(); }
@@ -740,13 +763,54 @@ class CudaBackend final : public Backend {
     return static_cast<unsigned>(std::max(1, per_sm) * sm_count_);
   }
 
+  // The tables go up through two pinned buffers of at most kStagingChunk bytes, taking turns: the cores fill
+  // one while the other's copy runs.  One pinned area as large as the tables cost more than the whole
+  // upload: pinning is slow (cudaMallocHost took 83 ms for 80 MB and 136 ms for 240 MB on the GPU machine),
+  // and a sphere's tables grow 2-3x an iteration, so it was pinned afresh in five iterations, 330 of the
+  // 1M-point sphere's 430 device milliseconds (docs/benchmarks.md).
+  static constexpr std::size_t kStagingChunk = std::size_t{8} << 20;
+  static constexpr std::size_t kParallelStaging = std::size_t{16} << 20;
+
+  void upload_staged(const void* const* sources, const std::size_t* sizes, const std::size_t* offsets,
+                     int sections, std::size_t total) {
+    if (total == 0) return;
+    const std::size_t chunk = std::min(total, kStagingChunk);
+    // Small tables are copied by this thread alone: waking the pool costs more than copying a few MB (a
+    // 10M-point ball's are at most 2.5 MB).
+    const unsigned workers = total >= kParallelStaging ? hardware_workers() : 1;
+    for (std::size_t begin = 0, turn = 0; begin < total; begin += chunk, ++turn) {
+      const std::size_t end = std::min(total, begin + chunk);
+      const int b = static_cast<int>(turn % 2);
+      // This buffer's previous copy (this iteration's, or the last one's) must be done before it is refilled.
+      check(cudaEventSynchronize(staging_free_[b]), "waiting for a table upload");
+      staging_[b].reserve(chunk, "the table staging area");
+      for (int s = 0; s < sections; ++s) {
+        const std::size_t from = std::max(begin, offsets[s]), to = std::min(end, offsets[s] + sizes[s]);
+        if (from < to) {
+          parallel_memcpy(staging_[b].get() + (from - begin),
+                          static_cast<const unsigned char*>(sources[s]) + (from - offsets[s]), to - from,
+                          std::size_t{256} << 10, workers);
+        }
+      }
+      check(cudaMemcpyAsync(tables_dev_.get() + begin, staging_[b].get(), end - begin, cudaMemcpyHostToDevice,
+                            stream_),
+            "uploading the iteration tables");
+      check(cudaEventRecord(staging_free_[b], stream_), "recording an event");
+    }
+    bytes_to_ += total;
+  }
+
   // The distribution pass's results (kept count, per-face keys and counts) to the host, then wait.
   void read_results() {
     const std::size_t bytes = extremes_bytes(face_count_);
+    auto t0 = Clock::now();
     extremes_host_.reserve(bytes, "the per-face results");
+    times_.allocate += ms_since(t0);
+    t0 = Clock::now();
     check(cudaMemcpyAsync(extremes_host_.get(), extremes_dev_.get(), bytes, cudaMemcpyDeviceToHost, stream_),
           "reading the per-face counts and extremes");
     check(cudaStreamSynchronize(stream_), "distributing the points (kernel fault)");
+    times_.wait = ms_since(t0);
     bytes_from_ += bytes;
     results_on_host_ = true;
   }
@@ -792,9 +856,9 @@ class CudaBackend final : public Backend {
   unsigned distribute_blocks_[2][2] = {};  // [shared accumulators][prepared planes]: resident blocks
   // Declared first among the resources, so destroyed last: the stream is drained before buffers go.
   Stream stream_holder_;
-  Event event_holder_;
+  Event event_holder_[2];
   cudaStream_t stream_ = nullptr;
-  cudaEvent_t staging_free_ = nullptr;
+  cudaEvent_t staging_free_[2] = {nullptr, nullptr};  // per staging buffer: its last copy is done
 
   std::size_t n_points_ = 0, n_active_ = 0, face_count_ = 0;
   DeviceBuffer<Point3> points_;
@@ -807,7 +871,7 @@ class CudaBackend final : public Backend {
   bool all_active_ = false;       // see active_indices()
   DeviceBuffer<Candidate> argmax_partial_;
   DeviceBuffer<PointIndex> argmax_result_;
-  PinnedBuffer staging_, extremes_host_, scalars_host_;
+  PinnedBuffer staging_[2], extremes_host_, scalars_host_;
 
   std::uint64_t bytes_to_ = 0, bytes_from_ = 0;
 };

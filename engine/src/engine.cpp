@@ -113,10 +113,19 @@ struct BatchTrial {
 
 // Buffers of the batched swap rounds, kept from one iteration to the next (fresh arrays of this size would
 // cost page faults every time).
+// Per block of kNumberingBlock candidates of a batched round: how many won, lost, were rejected, and won
+// as regular swaps; then, after a prefix sum, the same counts before the block.
+struct BlockCount {
+  std::size_t winners = 0, losers = 0, rejected = 0, regular = 0;
+};
+using BlockCounts = std::vector<BlockCount>;
+constexpr std::size_t kNumberingBlock = 4096;
+
 struct Engine::EditScratch {
   std::vector<BatchTrial> trials;            // per candidate
   std::vector<std::pair<FaceId, int>> made;  // the round's winners: face and edge
-  std::vector<std::size_t> winner_at, winner_of;
+  std::vector<std::size_t> winner_of, rejected_at, wins_before, recorded;
+  BlockCounts counts;
   // Claims, (round << 32 | candidate): per face id, and per hashed new edge (used through atomic_ref).
   std::unique_ptr<std::uint64_t[]> face_claims, edge_claims;
   std::size_t face_claim_count = 0, edge_claim_bits = 0;
@@ -301,7 +310,8 @@ struct Engine::Impl {
     return Trial::kRejected;
   }
 
-  void note_rejected(SwapRecord& swap, SwapKind verdict, bool beneath_inside) {
+  // A rejection's effect on the edits; true when it is to be recorded.
+  bool doom_and_mark_rejected(const SwapRecord& swap, bool beneath_inside) {
     // A vertex beneath that is inside the hull is taken out with complementary swaps and a removal (Fig. 4).
     if (beneath_inside && !is_doomed(swap.beneath_vertex)) {
       e.vertex_flags_[swap.beneath_vertex] |= kDoomed;
@@ -310,7 +320,11 @@ struct Engine::Impl {
     }
     // Record each rejected edge once per iteration, however often a neighbour change re-queues it.
     const PointIndex u = swap.old_edge[0], v = swap.old_edge[1];
-    if (rejected_edges.insert({std::min(u, v), std::max(u, v)}).second) {
+    return rejected_edges.insert({std::min(u, v), std::max(u, v)}).second;
+  }
+
+  void note_rejected(SwapRecord& swap, SwapKind verdict, bool beneath_inside) {
+    if (doom_and_mark_rejected(swap, beneath_inside)) {
       swap.kind = verdict;
       swap.sequence = sequence++;
       record.swaps.push_back(swap);
@@ -454,45 +468,101 @@ struct Engine::Impl {
             }
           },
           256);
-      std::vector<std::pair<FaceId, int>>& made = scratch.made;
-      made.clear();
-      for (std::size_t k = 0; k < count; ++k) {
-        if (trials[k].winner) made.push_back({candidates[k].edge.face, candidates[k].edge.index});
+      // The outcomes numbered in candidate order, as note_swapped() and note_rejected() one at a time would
+      // number them, but on all cores: per block of candidates the count of winners, losers (valid, but an
+      // earlier candidate took a face or the new edge: tried again next round) and rejections; then each
+      // block's offsets; then the numbering.  Only the rejections go one at a time, in order (they doom
+      // vertices, and each edge is recorded once an iteration), and they are few.
+      BlockCounts& counts = scratch.counts;
+      const std::size_t blocks = (count + kNumberingBlock - 1) / kNumberingBlock;
+      counts.resize(blocks);
+      parallel_chunks(
+          blocks, workers,
+          [&](std::size_t begin, std::size_t end, unsigned) {
+            for (std::size_t b = begin; b < end; ++b) {
+              BlockCount c;
+              for (std::size_t k = b * kNumberingBlock; k < std::min(count, (b + 1) * kNumberingBlock); ++k) {
+                const BatchTrial& t = trials[k];
+                if (t.winner) {
+                  ++c.winners;
+                  c.regular += candidates[k].kind == SwapKind::kRegular;
+                } else if (t.trial == Trial::kRejected) {
+                  ++c.rejected;
+                } else if (t.trial == Trial::kValid) {
+                  ++c.losers;
+                }
+              }
+              counts[b] = c;
+            }
+          },
+          4);
+      BlockCount total;
+      for (BlockCount& c : counts) {  // counts become each block's offsets
+        const BlockCount here = c;
+        c = total;
+        total.winners += here.winners, total.losers += here.losers, total.rejected += here.rejected;
+        total.regular += here.regular;
       }
-      const std::size_t winners = made.size();
+      const std::size_t winners = total.winners;
       if (winners == 0) break;
+      std::vector<std::pair<FaceId, int>>& made = scratch.made;
+      std::vector<std::size_t>& winner_of = scratch.winner_of;      // candidate -> winner number
+      std::vector<std::size_t>& rejected_at = scratch.rejected_at;  // rejection -> candidate
+      std::vector<std::size_t>& wins_before = scratch.wins_before;  // rejection -> winners before it
+      made.resize(winners);
+      winner_of.resize(count);
+      rejected_at.resize(total.rejected);
+      wins_before.resize(total.rejected);
+      next.resize(total.losers + 4 * winners);
+      parallel_chunks(
+          blocks, workers,
+          [&](std::size_t begin, std::size_t end, unsigned) {
+            for (std::size_t b = begin; b < end; ++b) {
+              BlockCount at = counts[b];
+              for (std::size_t k = b * kNumberingBlock; k < std::min(count, (b + 1) * kNumberingBlock); ++k) {
+                const BatchTrial& t = trials[k];
+                if (t.winner) {
+                  winner_of[k] = at.winners;
+                  made[at.winners++] = {candidates[k].edge.face, candidates[k].edge.index};
+                } else if (t.trial == Trial::kRejected) {
+                  rejected_at[at.rejected] = k;
+                  wins_before[at.rejected++] = at.winners;
+                } else if (t.trial == Trial::kValid) {
+                  next[at.losers++] = candidates[k];
+                }
+              }
+            }
+          },
+          4);
       t_claim += ms_since(q0);
       q0 = Clock::now();
       const FaceId base = e.mesh_.swap_batch(made, workers);
       t_apply += ms_since(q0);
       q0 = Clock::now();
       budget = budget > winners ? budget - winners : 0;
-      // The bookkeeping, as note_swapped() one at a time would do it: a serial pass for the order (sequence
-      // numbers, rejections, the candidates to retry), then the winners' entries and records on all cores.
-      next.clear();
-      std::vector<std::size_t>& winner_at = scratch.winner_at;  // winner -> its record in record.swaps
-      std::vector<std::size_t>& winner_of = scratch.winner_of;  // candidate -> winner number
-      winner_at.clear();
-      winner_of.resize(count);
-      if (record.swaps.capacity() < record.swaps.size() + count)
-        record.swaps.reserve(std::max(2 * record.swaps.capacity(), record.swaps.size() + count));
-      for (std::size_t k = 0; k < count; ++k) {
-        BatchTrial& t = trials[k];
-        if (t.winner) {
-          winner_of[k] = winner_at.size();
-          winner_at.push_back(record.swaps.size());
-          t.swap.sequence = sequence++;
-          t.swap.kind = candidates[k].kind;
-          record.swaps.emplace_back();
-          (t.swap.kind == SwapKind::kRegular ? record.swaps_regular : record.swaps_complementary)++;
-        } else if (t.trial == Trial::kRejected) {
-          note_rejected(t.swap, t.verdict, t.beneath_inside);
-        } else if (t.trial == Trial::kValid) {
-          next.push_back(candidates[k]);  // lost a face or its new edge to an earlier candidate: try again
-        }
+      // Rejections in order: each doomed vertex and each first rejection of an edge, which is recorded.
+      // Records and sequence numbers follow candidate order, winners and recorded rejections interleaved.
+      const std::size_t first_record = record.swaps.size();
+      const int first_sequence = sequence;
+      std::vector<std::size_t>& recorded = scratch.recorded;  // candidates of the recorded rejections
+      recorded.clear();
+      for (std::size_t r = 0; r < rejected_at.size(); ++r) {
+        BatchTrial& t = trials[rejected_at[r]];
+        if (!doom_and_mark_rejected(t.swap, t.beneath_inside)) continue;
+        const std::size_t slot = wins_before[r] + recorded.size();
+        t.swap.kind = t.verdict;
+        t.swap.sequence = first_sequence + static_cast<int>(slot);
+        if (record.swaps.size() < first_record + slot + 1) record.swaps.resize(first_record + slot + 1);
+        record.swaps[first_record + slot] = t.swap;
+        ++record.swaps_rejected;
+        recorded.push_back(rejected_at[r]);
       }
-      const std::size_t carried = next.size(), first_entry = entries.size(), first_plane = swap_planes.size();
-      next.resize(carried + 4 * winners);
+      record.swaps.resize(first_record + winners + recorded.size());
+      sequence = first_sequence + static_cast<int>(winners + recorded.size());
+      record.swaps_regular += total.regular;
+      record.swaps_complementary += winners - total.regular;
+      const std::size_t carried = total.losers, first_entry = entries.size(),
+                        first_plane = swap_planes.size();
       entries.resize(first_entry + winners);
       entry_targets.resize(first_entry + winners);
       swap_planes.resize(first_plane + winners);
@@ -506,9 +576,15 @@ struct Engine::Impl {
               if (!t.winner) continue;
               const std::size_t w = winner_of[k];
               const FaceId n1 = base + 2 * static_cast<FaceId>(w), n2 = n1 + 1;
+              // Its slot: after the winners and the recorded rejections before it.
+              const std::size_t slot =
+                  w + static_cast<std::size_t>(std::lower_bound(recorded.begin(), recorded.end(), k) -
+                                               recorded.begin());
+              t.swap.kind = candidates[k].kind;
+              t.swap.sequence = first_sequence + static_cast<int>(slot);
               write_swap_entry(static_cast<std::int32_t>(first_entry + w), first_plane + w,
                                candidates[k].edge.face, t.other_face, n1, n2, t.swap);
-              record.swaps[winner_at[w]] = t.swap;
+              record.swaps[first_record + slot] = t.swap;
               Candidate* around = next.data() + carried + 4 * w;
               for (const Edge& edge : edges_around(n1, n2))
                 *around++ = {edge, SwapKind::kComplementary};
@@ -902,9 +978,19 @@ std::vector<std::int32_t> Engine::point_faces() const {
   return out;
 }
 
-void Engine::face_geometry(std::vector<FaceGeometry>& faces, const std::vector<FaceId>* remap) const {
+void Engine::face_geometry(FaceGeometryArray& faces, const std::vector<FaceId>* remap) const {
   const std::size_t count = mesh_.live_faces();
-  faces.resize(count);  // reuses the spare buffer: a fresh 100 MB array costs page faults every iteration
+  // Reuses the spare buffer: a fresh 100 MB array costs page faults every iteration.  When it must grow, a
+  // new one with room to spare, its old contents not copied (every face is written below), and its pages
+  // first touched by the parallel passes below rather than by one core (on a 1M-point sphere, growing
+  // these arrays cost ~600 ms on 2 cores, more than a third of the host time).  The spare room is only
+  // address space until written, so it is generous.
+  if (count > faces.capacity()) {
+    FaceGeometryArray grown;
+    grown.reserve(2 * count);
+    faces.swap(grown);
+  }
+  faces.resize(count);
   // Faces that survived the iteration keep their corners and tetrahedron signs (4 exact orient3d each);
   // compaction keeps the order, so this is one forward pass.  Only new faces are computed.
   std::vector<std::uint8_t> known(count, 0);
@@ -1081,12 +1167,14 @@ IterationRecord Engine::iterate() {
   std::vector<std::array<FaceId, 3>> children;  // work ids, one triple per refinement entry
   std::vector<Edge> regular_candidates;
   std::vector<FaceId> refined;
-  // Room for every vertex the edits may flag (each refinement adds one), so touch() never rehashes.
-  vertex_flags_.reserve(mesh_.vertex_count() + old_faces);
   for (FaceId f = 0; f < old_faces; ++f) {
     if (extremes_[f].count != 0) refined.push_back(f);
   }
   const std::size_t refined_count = refined.size();
+  // Room for every vertex the edits may flag (every point that was ever a vertex, the apexes included), so
+  // touch() never rehashes.  (Not vertices + old faces: on a 1M-point sphere that bound grew the table
+  // to 8M slots in one iteration, a ~100 ms rehash.)
+  vertex_flags_.reserve(used_vertices_.size() + refined_count);
   refinement.resize(refined_count);
   record.refined_apexes.resize(refined_count);
   record.refined_faces.resize(refined_count);
@@ -1301,7 +1389,7 @@ void Engine::finish(IterationRecord& record) {
     dropped.erase(std::unique(dropped.begin(), dropped.end(),
                               [](const auto& a, const auto& b) { return a.first == b.first; }),
                   dropped.end());
-    const std::vector<FaceGeometry>& geometry = geometry_;
+    const FaceGeometryArray& geometry = geometry_;
     const int walk = 64 + 4 * static_cast<int>(std::sqrt(static_cast<double>(geometry.size())));
     std::atomic<std::size_t> outside{0};
     parallel_chunks(

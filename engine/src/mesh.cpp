@@ -347,6 +347,11 @@ const std::vector<FaceId>& Mesh::compact() {
   for (unsigned w = 0; w < workers; ++w)
     chunk_base[w + 1] += chunk_base[w];
   const FaceId live = chunk_base[workers];
+  if (live > compacted_.capacity()) {  // grown without copying what it held: every face is written below
+    std::vector<MeshFace> grown;
+    grown.reserve(2 * live);  // only address space until written
+    compacted_.swap(grown);
+  }
   compacted_.resize(live);
   parallel_chunks(
       workers, workers,

@@ -8,7 +8,10 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "cudahull/routing.hpp"
@@ -16,13 +19,36 @@
 
 namespace cudahull {
 
+// std::allocator, except that resize() leaves new elements of a trivial type uninitialised instead of
+// zeroing them: the engine overwrites every face of its face arrays anyway, and zeroing two million faces
+// (100 MB) on one core, first touch and all, cost more than the parallel pass that then fills them.
+template <class T>
+struct DefaultInitAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = DefaultInitAllocator<U>;
+  };
+  DefaultInitAllocator() = default;
+  template <class U>
+  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+using FaceGeometryArray = std::vector<FaceGeometry, DefaultInitAllocator<FaceGeometry>>;
+
 // The per-iteration tables (Fig. 7) and the new mesh's faces.
 struct IterationTables {
   std::vector<std::int32_t> old_face_split;  // per face of the previous mesh: refinement index, or -1
   std::vector<std::int32_t> old_face_route;  // per face of the previous mesh: route code if not refined
   std::vector<RefinementEntry> refinement;   // one per refined face
   std::vector<DecisionEntry> decision;
-  std::vector<FaceGeometry> faces;             // the new mesh, compacted
+  FaceGeometryArray faces;                     // the new mesh, compacted
   std::vector<SeparatingPlane> initial_cells;  // first distribution only (4 faces x 3 planes)
   // Points that became vertices this iteration (the apexes): they leave the point set without routing.  The
   // engine accounts for them exactly (they are hull candidates until its final check).

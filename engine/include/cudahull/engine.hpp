@@ -137,7 +137,7 @@ class Engine {
   void finish(IterationRecord& record);
   // The (compacted) mesh as the backend sees it; with `remap` (old id -> new id from the last compaction),
   // surviving faces reuse geometry_'s exact signs.
-  void face_geometry(std::vector<FaceGeometry>& out, const std::vector<FaceId>* remap = nullptr) const;
+  void face_geometry(FaceGeometryArray& out, const std::vector<FaceId>* remap = nullptr) const;
 
   std::vector<Point3> points_;
   std::unique_ptr<Backend> backend_;
@@ -156,7 +156,7 @@ class Engine {
   int stalled_ = 0;                        // iterations without progress
   HullMesh result_;
   IterationRecord last_record_;
-  std::vector<FaceGeometry> geometry_;    // the current mesh's faces as last sent to the backend
+  FaceGeometryArray geometry_;            // the current mesh's faces as last sent to the backend
   IterationTables tables_;                // reused every iteration (its buffers keep their capacity)
   std::unique_ptr<EditScratch> scratch_;  // the batched swap rounds' buffers, also reused
 };

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdlib>
 #include <cstring>
 #include <thread>
 #include <vector>
@@ -12,9 +13,15 @@ namespace cudahull {
 
 // Asked once: glibc answers hardware_concurrency() by opening and reading /sys/devices/system/cpu/online,
 // and the engine asks before every parallel pass (78 times for a 100K-point cube, most of its host time on
-// the GPU machine).
+// the GPU machine).  CUDAHULL_THREADS=N (N >= 1) sets the count instead, as OMP_NUM_THREADS does elsewhere.
 inline unsigned hardware_workers() {
-  static const unsigned workers = std::max(1u, std::thread::hardware_concurrency());
+  static const unsigned workers = [] {
+    if (const char* text = std::getenv("CUDAHULL_THREADS")) {
+      const long asked = std::strtol(text, nullptr, 10);
+      if (asked >= 1) return static_cast<unsigned>(std::min(asked, 1024L));
+    }
+    return std::max(1u, std::thread::hardware_concurrency());
+  }();
   return workers;
 }
 
