@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -328,6 +329,52 @@ TEST(CliHull, BackendAutoSaysWhichAndCudaNeedsADevice) {
     EXPECT_EQ(cuda.exit_code, kExitDevice) << describe(cuda);
     EXPECT_THAT(cuda.err, HasSubstr("cudahull: error: --backend cuda: no usable CUDA device"));
   }
+}
+
+// CUDAHULL_THREADS sets the host threads (README); the hull and the trace do not depend on their number.
+TEST(CliHull, ThreadCountFromTheEnvironmentChangesNothingButTheThreads) {
+  TempDir dir;
+  // Enough refinements for batched swap rounds (from 4096 candidates) to run on the threads.
+  write_points((dir / "in.xyz").string(), generate_points(Distribution::kSphere, 20000, 5));
+  auto run_with = [&](const char* threads, const std::string& tag) {
+    if (threads != nullptr) {
+      ::setenv("CUDAHULL_THREADS", threads, 1);
+    } else {
+      ::unsetenv("CUDAHULL_THREADS");
+    }
+    const CliRun r = run_cli({"hull", (dir / "in.xyz").string(), "--backend", "cpu", "--vertices-out",
+                              (dir / ("v" + tag)).string(), "--trace", (dir / ("t" + tag)).string()});
+    ::unsetenv("CUDAHULL_THREADS");
+    EXPECT_EQ(r.exit_code, kExitOk) << describe(r);
+    return r;
+  };
+  EXPECT_THAT(run_with("1", "1").err, HasSubstr("backend: cpu (1 thread)"));
+  EXPECT_THAT(run_with("3", "3").err, HasSubstr("backend: cpu (3 threads)"));
+  const std::string vertices = slurp(dir / "v1");
+  ASSERT_FALSE(vertices.empty());
+  EXPECT_EQ(slurp(dir / "v3"), vertices);
+  // The traces match but for their timings.
+  auto without_times = [](std::string trace) {
+    for (const char* key : {"\"host_ms\":", "\"backend_ms\":", "\"upload_ms\":"}) {
+      for (std::size_t at = trace.find(key); at != std::string::npos; at = trace.find(key, at + 1)) {
+        const std::size_t value = at + std::strlen(key);
+        trace.erase(value, trace.find_first_of(",}", value) - value);
+      }
+    }
+    return trace;
+  };
+  const std::string trace = without_times(slurp(dir / "t1"));
+  EXPECT_NE(trace.find("\"swaps\":[{"), std::string::npos);
+  EXPECT_EQ(without_times(slurp(dir / "t3")), trace);
+  // Not a positive number: the hardware's count, as without the variable.
+  auto backend_line = [](const std::string& err) {
+    const std::size_t at = err.find("backend: cpu (");
+    return at == std::string::npos ? std::string("(none)") : err.substr(at, err.find('\n', at) - at);
+  };
+  const std::string hardware = backend_line(run_with(nullptr, "u").err);
+  EXPECT_NE(hardware, "(none)");
+  EXPECT_EQ(backend_line(run_with("zero", "z").err), hardware);
+  EXPECT_EQ(slurp(dir / "vz"), vertices);
 }
 
 }  // namespace

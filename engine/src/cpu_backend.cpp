@@ -14,7 +14,9 @@ class CpuBackend final : public Backend {
  public:
   explicit CpuBackend(unsigned threads) : workers_(threads ? threads : hardware_workers()) {}
 
-  std::string name() const override { return "cpu (" + std::to_string(workers_) + " threads)"; }
+  std::string name() const override {
+    return "cpu (" + std::to_string(workers_) + (workers_ == 1 ? " thread)" : " threads)");
+  }
 
   void upload_points(const std::vector<Point3>& points) override {
     points_ = &points;
