@@ -1,4 +1,5 @@
 #include "commands.hpp"
+#include "huge_pages.hpp"
 
 #include <unistd.h>
 
@@ -278,7 +279,8 @@ int run_bench(const BenchOptions& o) {
                    {"total_ms", median(total)},
                    {"host_ms", median(host)},
                    {"device_ms", median(dev)},
-                   {"upload_ms", median(upload)}};
+                   {"upload_ms", median(upload)},
+                   {"host_huge_pages", huge_pages_in_use()}};
   double qhull_ms = 0;
   bool same = false;
   if (o.versus == "qhull") {

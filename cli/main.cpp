@@ -8,6 +8,7 @@
 #include "cudahull/errors.hpp"
 #include "cudahull/generators.hpp"
 #include "cudahull/mesh_io.hpp"
+#include "huge_pages.hpp"
 
 namespace {
 
@@ -23,6 +24,7 @@ int fail(int code, const std::string& message) {
 
 int main(int argc, char** argv) {
   using namespace cudahull;
+  cli::use_huge_pages(argv);
   CLI::App app{
       "cudahull: exact 3D convex hulls with the CudaHull algorithm (Stein, Geva, El-Sana 2012).\n"
       "Points are read and computed as float32; the hull is exact for those values."};

@@ -4,9 +4,9 @@
 // Resident on the device for the whole run: the points (float AoS, uploaded once), the index array of the
 // active points (two buffers, compacted from one into the other), each point's face (int32, as
 // CpuBackend::face_of_) and per face of the current mesh its external count and packed extreme key.  Per
-// iteration the host sends the O(faces) tables as one block (through two small pinned buffers taking turns)
-// and reads back the O(faces) counts and keys plus the compacted count: never O(points) data (point_faces(),
-// for the debugger, aside).
+// iteration the host sends the O(faces) tables as one block (through ordinary or pinned buffers by size,
+// upload_staged()) and reads back the O(faces) counts and keys plus the compacted count: never O(points) data
+// (point_faces(), for the debugger, aside).
 #include <cuda_runtime.h>
 
 #include <algorithm>
@@ -18,6 +18,7 @@
 #include <cstring>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "cuda_backend.hpp"
 #include "cudahull/errors.hpp"
@@ -645,7 +646,7 @@ class CudaBackend final : public Backend {
     select_device();
     read_results();
     std::uint64_t kept = 0;
-    std::memcpy(&kept, extremes_host_.get(), sizeof kept);
+    std::memcpy(&kept, results_host_, sizeof kept);
     if (n_active_ != 0) {
       active_.swap(active_alt_);
       all_active_ = false;
@@ -659,9 +660,8 @@ class CudaBackend final : public Backend {
     out.assign(face_count_, {});
     if (face_count_ == 0) return;
     if (!results_on_host_) read_results();
-    const auto* best = reinterpret_cast<const unsigned long long*>(extremes_host_.get() + kKeptBytes);
-    const auto* count =
-        reinterpret_cast<const std::uint32_t*>(extremes_host_.get() + kKeptBytes + 8 * face_count_);
+    const auto* best = reinterpret_cast<const unsigned long long*>(results_host_ + kKeptBytes);
+    const auto* count = reinterpret_cast<const std::uint32_t*>(results_host_ + kKeptBytes + 8 * face_count_);
     const auto t0 = Clock::now();
     parallel_chunks(
         face_count_, hardware_workers(),
@@ -763,21 +763,39 @@ class CudaBackend final : public Backend {
     return static_cast<unsigned>(std::max(1, per_sm) * sm_count_);
   }
 
-  // The tables go up through two pinned buffers of at most kStagingChunk bytes, taking turns: the cores fill
-  // one while the other's copy runs.  One pinned area as large as the tables cost more than the whole
-  // upload: pinning is slow (cudaMallocHost took 83 ms for 80 MB and 136 ms for 240 MB on the GPU machine),
-  // and a sphere's tables grow 2-3x an iteration, so it was pinned afresh in five iterations, 330 of the
-  // 1M-point sphere's 430 device milliseconds (docs/benchmarks.md).
+  // Pinned memory is slow to make on the GPU machine: cudaMallocHost took about 1 ms a MB (83 ms for 80 MB,
+  // 4 ms to grow a buffer to 3.7 MB), more than copying the same bytes.  So the tables go up by size:
+  // - below kSmallPinned, through one pinned buffer (small, so cheap to grow);
+  // - below kPinnedStaging, gathered in ordinary memory and copied from there (the driver stages such
+  //   copies through pinned buffers of its own; a 10M-point ball's tables, up to 2.5 MB, grew the pinned
+  //   buffer for 6 ms);
+  // - above, through two pinned buffers of kStagingChunk bytes, made once, taking turns: the cores fill one
+  //   while the other's copy runs.  One pinned area as large as the tables was pinned afresh as a sphere's
+  //   tables grew 2-3x an iteration: 330 of the 1M-point sphere's 430 device milliseconds
+  //   (docs/benchmarks.md).
+  // read_results() picks its buffer by the same sizes.
+  static constexpr std::size_t kSmallPinned = std::size_t{256} << 10;
+  static constexpr std::size_t kPinnedStaging = std::size_t{16} << 20;
   static constexpr std::size_t kStagingChunk = std::size_t{8} << 20;
-  static constexpr std::size_t kParallelStaging = std::size_t{16} << 20;
 
   void upload_staged(const void* const* sources, const std::size_t* sizes, const std::size_t* offsets,
                      int sections, std::size_t total) {
     if (total == 0) return;
+    if (total >= kSmallPinned && total < kPinnedStaging) {
+      tables_pageable_.resize(total);
+      for (int s = 0; s < sections; ++s) {
+        if (sizes[s] != 0) std::memcpy(tables_pageable_.data() + offsets[s], sources[s], sizes[s]);
+      }
+      // From pageable memory the call returns once the driver has taken the bytes: the buffer is free again.
+      check(
+          cudaMemcpyAsync(tables_dev_.get(), tables_pageable_.data(), total, cudaMemcpyHostToDevice, stream_),
+          "uploading the iteration tables");
+      bytes_to_ += total;
+      return;
+    }
     const std::size_t chunk = std::min(total, kStagingChunk);
-    // Small tables are copied by this thread alone: waking the pool costs more than copying a few MB (a
-    // 10M-point ball's are at most 2.5 MB).
-    const unsigned workers = total >= kParallelStaging ? hardware_workers() : 1;
+    // Tables under kPinnedStaging are copied by this thread alone: waking the pool would cost more.
+    const unsigned workers = total >= kPinnedStaging ? hardware_workers() : 1;
     for (std::size_t begin = 0, turn = 0; begin < total; begin += chunk, ++turn) {
       const std::size_t end = std::min(total, begin + chunk);
       const int b = static_cast<int>(turn % 2);
@@ -804,10 +822,16 @@ class CudaBackend final : public Backend {
   void read_results() {
     const std::size_t bytes = extremes_bytes(face_count_);
     auto t0 = Clock::now();
-    extremes_host_.reserve(bytes, "the per-face results");
+    if (bytes < kSmallPinned || bytes >= kPinnedStaging) {
+      extremes_host_.reserve(bytes, "the per-face results");
+      results_host_ = extremes_host_.get();
+    } else {  // see upload_staged(): a pinned buffer would cost more to make than this copy
+      results_pageable_.resize(bytes);
+      results_host_ = results_pageable_.data();
+    }
     times_.allocate += ms_since(t0);
     t0 = Clock::now();
-    check(cudaMemcpyAsync(extremes_host_.get(), extremes_dev_.get(), bytes, cudaMemcpyDeviceToHost, stream_),
+    check(cudaMemcpyAsync(results_host_, extremes_dev_.get(), bytes, cudaMemcpyDeviceToHost, stream_),
           "reading the per-face counts and extremes");
     check(cudaStreamSynchronize(stream_), "distributing the points (kernel fault)");
     times_.wait = ms_since(t0);
@@ -867,8 +891,10 @@ class CudaBackend final : public Backend {
   DeviceBuffer<std::int32_t> face_of_;
   DeviceBuffer<FacePlanes> planes_;
   DeviceBuffer<unsigned char> tables_dev_, extremes_dev_;
-  bool results_on_host_ = false;  // extremes_host_ holds the last distribution's results
-  bool all_active_ = false;       // see active_indices()
+  bool results_on_host_ = false;           // results_host_ holds the last distribution's results
+  unsigned char* results_host_ = nullptr;  // extremes_host_ or results_pageable_, by size (read_results())
+  std::vector<unsigned char> results_pageable_, tables_pageable_;
+  bool all_active_ = false;  // see active_indices()
   DeviceBuffer<Candidate> argmax_partial_;
   DeviceBuffer<PointIndex> argmax_result_;
   PinnedBuffer staging_[2], extremes_host_, scalars_host_;

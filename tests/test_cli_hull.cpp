@@ -377,5 +377,36 @@ TEST(CliHull, ThreadCountFromTheEnvironmentChangesNothingButTheThreads) {
   EXPECT_EQ(slurp(dir / "vz"), vertices);
 }
 
+// The CLI runs with glibc's huge-page tunable unless told not to (cli/huge_pages.hpp), and a caller's own
+// setting of it wins; the hull is the same either way.
+TEST(CliHull, HugePagesByDefaultOffOnRequestAndTheCallersChoiceKept) {
+  auto bench_with = [](const char* huge_pages, const char* tunables) {
+    auto set = [](const char* name, const char* value) {
+      if (value != nullptr) {
+        ::setenv(name, value, 1);
+      } else {
+        ::unsetenv(name);
+      }
+    };
+    set("CUDAHULL_HUGE_PAGES", huge_pages);
+    set("GLIBC_TUNABLES", tunables);
+    const CliRun r =
+        run_cli({"bench", "--dist", "ball", "--n", "20000", "--repeat", "1", "--backend", "cpu", "--json"});
+    ::unsetenv("CUDAHULL_HUGE_PAGES");
+    ::unsetenv("GLIBC_TUNABLES");
+    EXPECT_EQ(r.exit_code, kExitOk) << describe(r);
+    return nlohmann::json::parse(r.out.empty() ? "{}" : r.out);
+  };
+  const auto by_default = bench_with(nullptr, nullptr);
+  const auto off = bench_with("0", nullptr);
+  const auto callers = bench_with(nullptr, "glibc.malloc.hugetlb=0");
+  EXPECT_EQ(by_default.value("host_huge_pages", false), true);
+  EXPECT_EQ(off.value("host_huge_pages", true), false);
+  EXPECT_EQ(callers.value("host_huge_pages", true), false);
+  EXPECT_GT(by_default.value("hull_vertices", 0), 0);
+  EXPECT_EQ(off.value("hull_vertices", -1), by_default.value("hull_vertices", -2));
+  EXPECT_EQ(callers.value("hull_vertices", -1), by_default.value("hull_vertices", -2));
+}
+
 }  // namespace
 }  // namespace cudahull
