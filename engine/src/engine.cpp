@@ -111,8 +111,6 @@ struct BatchTrial {
 };
 }  // namespace
 
-// Buffers of the batched swap rounds, kept from one iteration to the next (fresh arrays of this size would
-// cost page faults every time).
 // Per block of kNumberingBlock candidates of a batched round: how many won, lost, were rejected, and won
 // as regular swaps; then, after a prefix sum, the same counts before the block.
 struct BlockCount {
@@ -121,6 +119,8 @@ struct BlockCount {
 using BlockCounts = std::vector<BlockCount>;
 constexpr std::size_t kNumberingBlock = 4096;
 
+// Buffers of the batched swap rounds, kept from one iteration to the next (fresh arrays of this size would
+// cost page faults every time).
 struct Engine::EditScratch {
   std::vector<BatchTrial> trials;            // per candidate
   std::vector<std::pair<FaceId, int>> made;  // the round's winners: face and edge
