@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -19,6 +18,7 @@
 #include "cudahull/generators.hpp"
 #include "cudahull/hull_checker.hpp"
 #include "cudahull/mesh_io.hpp"
+#include "cudahull/phase_times.hpp"
 #include "cudahull/point_io.hpp"
 #include "cudahull/point_writer.hpp"
 #include "cudahull/trace.hpp"
@@ -28,11 +28,6 @@
 namespace cudahull::cli {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 // A progress line on stderr for long loads, only when stderr is a terminal.
 ProgressFn stderr_progress(const std::string& what, bool quiet) {

@@ -10,11 +10,9 @@
 #include <cuda_runtime.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <utility>
@@ -23,6 +21,7 @@
 #include "cuda_backend.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/parallel.hpp"
+#include "cudahull/phase_times.hpp"
 #include "cudahull/routing.hpp"
 
 namespace cudahull {
@@ -743,14 +742,6 @@ class CudaBackend final : public Backend {
 
   // CUDAHULL_PHASE_TIMES=1 prints where each distribution's time goes on the host side of the backend, next
   // to the engine's phases (docs/benchmarks.md).
-  using Clock = std::chrono::steady_clock;
-  static double ms_since(Clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-  }
-  static bool phase_times_wanted() {
-    static const bool wanted = std::getenv("CUDAHULL_PHASE_TIMES") != nullptr;
-    return wanted;
-  }
   struct PassTimes {
     double allocate = 0, stage = 0, wait = 0;
     std::size_t table_bytes = 0;
@@ -781,18 +772,19 @@ class CudaBackend final : public Backend {
   //   while the other's copy runs.  One pinned area as large as the tables was pinned afresh as a sphere's
   //   tables grew 2-3x an iteration: 337 of the 1M-point sphere's 431 device milliseconds
   //   (docs/benchmarks.md).
-  // read_results() picks its buffer by the same sizes.
+  // read_results() picks its buffer by the same sizes (through_pinned()).
   static constexpr std::size_t kSmallPinned = std::size_t{256} << 10;
   // upload_points()'s first sizes: the tables and results of a hull of about 2,000 faces.
   static constexpr std::size_t kInitialTableBytes = std::size_t{128} << 10;
   static constexpr std::size_t kInitialFaces = 2048;
   static constexpr std::size_t kPinnedStaging = std::size_t{16} << 20;
   static constexpr std::size_t kStagingChunk = std::size_t{8} << 20;
+  static bool through_pinned(std::size_t bytes) { return bytes < kSmallPinned || bytes >= kPinnedStaging; }
 
   void upload_staged(const void* const* sources, const std::size_t* sizes, const std::size_t* offsets,
                      int sections, std::size_t total) {
     if (total == 0) return;
-    if (total >= kSmallPinned && total < kPinnedStaging) {
+    if (!through_pinned(total)) {
       tables_pageable_.resize(total);
       for (int s = 0; s < sections; ++s) {
         if (sizes[s] != 0) std::memcpy(tables_pageable_.data() + offsets[s], sources[s], sizes[s]);
@@ -833,7 +825,7 @@ class CudaBackend final : public Backend {
   void read_results() {
     const std::size_t bytes = extremes_bytes(face_count_);
     auto t0 = Clock::now();
-    if (bytes < kSmallPinned || bytes >= kPinnedStaging) {
+    if (through_pinned(bytes)) {
       extremes_host_.reserve(bytes, "the per-face results");
       results_host_ = extremes_host_.get();
     } else {  // see upload_staged(): a pinned buffer would cost more to make than this copy

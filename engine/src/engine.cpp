@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +13,7 @@
 
 #include "cudahull/exact_hull.hpp"
 #include "cudahull/parallel.hpp"
+#include "cudahull/phase_times.hpp"
 #include "cudahull/predicates.hpp"
 
 namespace cudahull {
@@ -35,11 +35,6 @@ const char* swap_kind_name(SwapKind kind) {
 }
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 Vec3d sub(const Vec3d& a, const Vec3d& b) {
   return {a.x - b.x, a.y - b.y, a.z - b.z};
@@ -78,13 +73,6 @@ struct Edge {
   FaceId face;
   int index;
 };
-
-// CUDAHULL_PHASE_TIMES=1 prints each iteration's host phases to stderr: where the host time goes, as in the
-// paper's Fig. 9 (docs/benchmarks.md).
-bool phase_times_wanted() {
-  static const bool wanted = std::getenv("CUDAHULL_PHASE_TIMES") != nullptr;
-  return wanted;
-}
 
 // Per-point flags of the mesh edits.
 constexpr std::uint8_t kDoomed = 1;       // a vertex proven inside the hull, being taken out
