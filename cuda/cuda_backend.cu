@@ -539,6 +539,16 @@ class CudaBackend final : public Backend {
     check(cudaStreamSynchronize(stream_), "uploading the points");
   }
 
+  void restart() override {
+    n_active_ = n_points_;
+    face_count_ = 0;
+    all_active_ = true;
+    if (n_points_ == 0) return;
+    check(cudaMemsetAsync(face_of_.get(), 0, n_points_ * sizeof(std::int32_t), stream_),
+          "clearing the per-point faces");
+    check(cudaStreamSynchronize(stream_), "restarting");
+  }
+
   std::array<PointIndex, 2> extremes_x() override {
     select_device();
     if (n_points_ == 0) return {0, 0};

@@ -12,25 +12,20 @@ glm::dvec3 at(const Engine& engine, PointIndex i) {
   return {p.x, p.y, p.z};
 }
 
-glm::dvec3 unit_normal(const Engine& engine, FaceId f) {
-  const MeshFace& face = engine.mesh().face(f);
-  const glm::dvec3 a = at(engine, face.v[0]), b = at(engine, face.v[1]), c = at(engine, face.v[2]);
-  const glm::dvec3 n = glm::cross(b - a, c - a);
-  const double length = glm::length(n);
-  return length > 0 ? n / length : glm::dvec3(0.0);
+glm::dvec3 plane_normal(const SeparatingPlane& p) {
+  return {p.nx, p.ny, p.nz};
 }
 
-// The direction the separating plane of edge i of face f rises along from the edge: the average normal of
-// the edge's two faces, made perpendicular to the edge.
-glm::dvec3 edge_normal(const Engine& engine, FaceId f, int i) {
+// The direction the engine's separating plane of edge i of face f (Engine::face_cell(), `cell`) rises along
+// from the edge: the unit direction in that plane perpendicular to the edge, pointing outward (with the
+// face's outward normal).
+glm::dvec3 wall_direction(const Engine& engine, const FaceCell& cell, FaceId f, int i) {
   const MeshFace& face = engine.mesh().face(f);
-  const glm::dvec3 a = at(engine, face.v[i]), b = at(engine, face.v[(i + 1) % 3]);
-  glm::dvec3 along = unit_normal(engine, f) + unit_normal(engine, face.n[i]);
-  const glm::dvec3 e = b - a;
-  const double e2 = glm::dot(e, e);
-  if (e2 > 0) along -= e * (glm::dot(along, e) / e2);
-  const double length = glm::length(along);
-  return length > 0 ? along / length : glm::dvec3(0.0);
+  const glm::dvec3 e = at(engine, face.v[(i + 1) % 3]) - at(engine, face.v[i]);
+  glm::dvec3 up = glm::cross(plane_normal(cell.edge_plane[i]), e);
+  if (glm::dot(up, plane_normal(cell.face_plane)) < 0) up = -up;
+  const double length = glm::length(up);
+  return length > 0 ? up / length : glm::dvec3(0.0);
 }
 
 void push(std::vector<OverlayVertex>& out, const glm::dvec3& p, std::uint32_t rgba) {
@@ -139,6 +134,7 @@ void build_overlay(const Engine& engine, long long selected, const OverlayLayers
   if (layers.cells && selected >= 0 && selected < faces) {
     const auto f = static_cast<FaceId>(selected);
     const MeshFace& face = mesh.face(f);
+    const FaceCell cell = engine.face_cell(f);
     double longest = 0;
     for (int i = 0; i < 3; ++i)
       longest = std::max(longest, glm::length(at(engine, face.v[(i + 1) % 3]) - at(engine, face.v[i])));
@@ -150,7 +146,7 @@ void build_overlay(const Engine& engine, long long selected, const OverlayLayers
     const std::uint32_t outline = pack_rgba(1.0f, 1.0f, 1.0f, 1.0f);
     for (int i = 0; i < 3; ++i) {
       const glm::dvec3 a = at(engine, face.v[i]), b = at(engine, face.v[(i + 1) % 3]);
-      const glm::dvec3 up = edge_normal(engine, f, i) * height;
+      const glm::dvec3 up = wall_direction(engine, cell, f, i) * height;
       for (const glm::dvec3& p : {a, b, b + up, a, b + up, a + up})
         push(out.triangles, p, wall[i]);
       for (const glm::dvec3& p : {a, b, a + up, b + up})
@@ -170,11 +166,12 @@ void build_overlay(const Engine& engine, long long selected, const OverlayLayers
     for (FaceId f = 0; f < mesh.face_capacity(); ++f) {
       if (!mesh.alive(f)) continue;
       const MeshFace& face = mesh.face(f);
+      const FaceCell cell = engine.face_cell(f);
       for (int i = 0; i < 3; ++i) {
         if (face.n[i] < f) continue;  // each edge once
         const glm::dvec3 a = at(engine, face.v[i]), b = at(engine, face.v[(i + 1) % 3]);
         const double length = 0.3 * glm::length(b - a);
-        const glm::dvec3 mid = 0.5 * (a + b), n = edge_normal(engine, f, i), tip = mid + length * n;
+        const glm::dvec3 mid = 0.5 * (a + b), n = wall_direction(engine, cell, f, i), tip = mid + length * n;
         const glm::dvec3 side = glm::normalize(b - a) * (0.25 * length);
         for (const glm::dvec3& p :
              {mid, tip, tip, tip - 0.35 * length * n + side, tip, tip - 0.35 * length * n - side})

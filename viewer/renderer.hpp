@@ -1,4 +1,4 @@
-// The renderer: plain OpenGL 4.5 core on whatever context is current (DESIGN.md, "Layout"); it knows
+// The renderer: plain OpenGL 4.5 core on whatever context is current (README, "Layout"); it knows
 // nothing of GLFW, EGL or the engine.
 //
 // Draws (cf. the paper's Figs. 1 and 10):

@@ -20,10 +20,14 @@ class CpuBackend final : public Backend {
 
   void upload_points(const std::vector<Point3>& points) override {
     points_ = &points;
-    active_.resize(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i)
+    restart();
+  }
+  void restart() override {
+    const std::size_t n = points_ ? points_->size() : 0;
+    active_.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
       active_[i] = static_cast<PointIndex>(i);
-    face_of_.assign(points.size(), 0);
+    face_of_.assign(n, 0);
   }
 
   std::array<PointIndex, 2> extremes_x() override {

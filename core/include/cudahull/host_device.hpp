@@ -1,5 +1,5 @@
-// CUDAHULL_HD marks functions that both the CPU backend and the CUDA backend compile (DESIGN.md: one source
-// of truth for every per-point decision, so both backends give identical hulls).
+// CUDAHULL_HD marks functions that both the CPU backend and the CUDA backend compile: one source of truth
+// for every per-point decision, so both backends give identical hulls (docs/architecture.md).
 #pragma once
 
 #if defined(__CUDACC__)

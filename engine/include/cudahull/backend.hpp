@@ -91,6 +91,9 @@ class Backend {
 
   // Keeps (or uploads) the points; they stay resident for the whole run.
   virtual void upload_points(const std::vector<Point3>& points) = 0;
+  // Back to the state right after upload_points(), the points kept: every point active, no faces.  The
+  // engine restarts this way (the viewer's rewind and replays) without sending the points again.
+  virtual void restart() = 0;
 
   // Section 3.1.  Ties go to the lowest index.  furthest_* rank by an inexact distance; the engine checks
   // the answers with exact predicates.

@@ -20,55 +20,14 @@
 #include "cudahull/backend.hpp"
 #include "cudahull/mesh.hpp"
 #include "cudahull/point_map.hpp"
+#include "cudahull/records.hpp"
 #include "cudahull/types.hpp"
 
 namespace cudahull {
 
-enum class SwapKind : std::uint8_t {
-  kRegular,             // a concave edge of a refined face, swapped (Fig. 3b)
-  kComplementary,       // a concave edge made by an earlier swap or removal of the same iteration (Fig. 4)
-  kRejectedFoldover,    // swapping would fold the surface over: a vertex lies beneath a new triangle (Fig. 5)
-  kRejectedEdgeExists,  // the new edge is already an edge of the mesh (would not be a 2-manifold)
-  kRejectedDegenerate,  // the four points are coplanar in the projection from the interior point
-};
-const char* swap_kind_name(SwapKind kind);
-
-struct SwapRecord {
-  SwapKind kind = SwapKind::kRegular;
-  int sequence = 0;                      // order within the iteration, over all swaps and rejections
-  PointIndex old_edge[2] = {0, 0};       // u, v
-  PointIndex new_edge[2] = {0, 0};       // x, y (the edge it would become, for rejected ones)
-  PointIndex beneath_vertex = kNoPoint;  // foldover: the vertex of the old edge lying beneath ...
-  PointIndex beneath_triangle[3] = {kNoPoint, kNoPoint, kNoPoint};  // ... this would-be triangle
-  std::int32_t decision_index = -1;  // its entry in the decision array, for performed swaps
-};
-
-struct RemovalRecord {
-  int sequence = 0;  // order within the iteration, shared with the swaps
-  PointIndex vertex = 0;
-  PointIndex ring[3] = {0, 0, 0};  // the new face
-  std::int32_t decision_index = -1;
-  bool rejected = false;  // concave but removal would fold over or create congruent triangles
-};
-
-struct IterationRecord {
-  int iteration = 0;  // 0 is the initial tetrahedron and first distribution (section 3.1)
-  std::size_t faces_before = 0, faces_after = 0, faces_refined = 0;
-  std::size_t swaps_regular = 0, swaps_complementary = 0, swaps_rejected = 0;
-  std::size_t vertices_removed = 0, removals_rejected = 0;
-  std::size_t decision_entries = 0;
-  std::size_t external_before = 0, external_after = 0;  // points still outside the current hull
-  std::size_t repairs = 0;  // exact fixes where the local procedure fell short (0 in general position)
-  double host_ms = 0, backend_ms = 0;
-  double upload_ms = 0;  // iteration 0: putting the points on the backend (part of backend_ms)
-  std::uint64_t bytes_to_backend = 0, bytes_from_backend = 0;
-  std::vector<SwapRecord> swaps;
-  std::vector<RemovalRecord> removals;
-  std::vector<PointIndex> refined_apexes;                // the extreme points used, one per refined face
-  std::vector<std::array<PointIndex, 3>> refined_faces;  // each refined face's corners, as refined_apexes
-  std::vector<DecisionEntry> decisions;                  // the decision array (Fig. 7) sent this iteration
-  std::string note;                                      // e.g. "degenerate input: dimension 2"
-};
+namespace phases {
+struct SwapScratch;
+}
 
 // Each face's cell (section 3): its plane and its three separating planes (through edge i, containing the
 // average of the unit normals of the two faces of the edge), positive inside the cell.
@@ -88,18 +47,24 @@ struct EngineOptions {
 
 class Engine {
  public:
-  Engine(std::vector<Point3> points, std::unique_ptr<Backend> backend, EngineOptions options = {});
+  // The engine borrows `points` (as std::span would): they must stay alive and unchanged while it lives.
+  // The backend keeps what it needs of them (a GPU backend uploads them once, on the first step).
+  Engine(const std::vector<Point3>& points, std::unique_ptr<Backend> backend, EngineOptions options = {});
+  Engine(std::vector<Point3>&& points, std::unique_ptr<Backend> backend, EngineOptions options = {}) = delete;
   ~Engine();
   Engine(const Engine&) = delete;
   Engine& operator=(const Engine&) = delete;
 
   bool done() const { return done_; }
+  // Back to before the first step, on the same points and backend: the backend keeps its points (nothing
+  // is uploaded again), so stepping again repeats the same steps.
+  void restart();
   // One iteration of Algorithm 1 (the first call builds the tetrahedron and distributes the points).
   IterationRecord step();
   // Steps until no external point remains; `on_step` sees every record.
   void run(const std::function<void(const IterationRecord&)>& on_step = {});
 
-  const std::vector<Point3>& points() const { return points_; }
+  const std::vector<Point3>& points() const { return *points_; }
   const Mesh& mesh() const { return mesh_; }
   const Backend& backend() const { return *backend_; }
   int dimension() const { return dimension_; }  // affine dimension of the input, known after step 0
@@ -130,18 +95,18 @@ class Engine {
   const HullMesh& result() const { return result_; }
 
  private:
-  struct Impl;
-  struct EditScratch;
+  // Algorithm 1 (engine.cpp): the first step (section 3.1), then one iteration per step, then the exact
+  // finish.  The phases themselves live in engine/src/phases/ (docs/architecture.md).
   IterationRecord initialize();
   IterationRecord iterate();
   void finish(IterationRecord& record);
-  // The (compacted) mesh as the backend sees it; with `remap` (old id -> new id from the last compaction),
-  // surviving faces reuse geometry_'s exact signs.
-  void face_geometry(FaceGeometryArray& out, const std::vector<FaceId>* remap = nullptr) const;
+  // Algorithm 2 on the backend: distribute, compact, extremes; returns the backend's milliseconds.
+  double distribute();
 
-  std::vector<Point3> points_;
+  const std::vector<Point3>* points_;
   std::unique_ptr<Backend> backend_;
   EngineOptions options_;
+  bool uploaded_ = false;  // the backend holds the points
   Mesh mesh_;
   int iteration_ = 0;
   bool started_ = false, done_ = false;
@@ -152,13 +117,13 @@ class Engine {
   std::vector<PointIndex> removed_vertices_;
   std::vector<PointIndex> removed_near_;   // per removed vertex: one of its ring, where finish() looks for it
   std::vector<PointIndex> used_vertices_;  // every point that was ever a mesh vertex
-  PointMap<std::uint8_t> vertex_flags_;    // per vertex: kDoomed, kRemovedOnce (engine.cpp)
+  PointMap<std::uint8_t> vertex_flags_;    // per vertex: the local edits' flags (phases/local_edits.hpp)
   int stalled_ = 0;                        // iterations without progress
   HullMesh result_;
   IterationRecord last_record_;
-  FaceGeometryArray geometry_;            // the current mesh's faces as last sent to the backend
-  IterationTables tables_;                // reused every iteration (its buffers keep their capacity)
-  std::unique_ptr<EditScratch> scratch_;  // the batched swap rounds' buffers, also reused
+  FaceGeometryArray geometry_;  // the current mesh's faces as last sent to the backend
+  IterationTables tables_;      // reused every iteration (its buffers keep their capacity)
+  std::unique_ptr<phases::SwapScratch> swap_scratch_;  // the swap rounds' buffers, also reused
 };
 
 }  // namespace cudahull

@@ -1,4 +1,5 @@
-// The hull mesh: triangles with adjacency in flat index arrays (DESIGN.md: no pointer graphs).
+// The hull mesh: triangles with adjacency in flat index arrays, not pointer graphs, so that the same arrays
+// can live on the device (docs/architecture.md).
 //
 // Face f has vertices v[0..2] (input point indices, counter-clockwise seen from outside) and neighbours
 // n[0..2], where n[i] is the face across the directed edge v[i] -> v[(i+1) % 3].  Faces are created by the

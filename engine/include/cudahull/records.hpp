@@ -1,0 +1,63 @@
+// What one step of the engine did, for the debugger, the trace and the tests: the records of Algorithm 1's
+// phases.  The engine fills them (engine/src/phases/), trace.cpp writes them as JSON lines, the viewer draws
+// them (the swaps and refinement layers, the Debugger panel).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cudahull/mesh.hpp"
+#include "cudahull/routing.hpp"
+#include "cudahull/types.hpp"
+
+namespace cudahull {
+
+enum class SwapKind : std::uint8_t {
+  kRegular,             // a concave edge of a refined face, swapped (Fig. 3b)
+  kComplementary,       // a concave edge made by an earlier swap or removal of the same iteration (Fig. 4)
+  kRejectedFoldover,    // swapping would fold the surface over: a vertex lies beneath a new triangle (Fig. 5)
+  kRejectedEdgeExists,  // the new edge is already an edge of the mesh (would not be a 2-manifold)
+  kRejectedDegenerate,  // the four points are coplanar in the projection from the interior point
+};
+const char* swap_kind_name(SwapKind kind);
+
+struct SwapRecord {
+  SwapKind kind = SwapKind::kRegular;
+  int sequence = 0;                      // order within the iteration, over all swaps and rejections
+  PointIndex old_edge[2] = {0, 0};       // u, v
+  PointIndex new_edge[2] = {0, 0};       // x, y (the edge it would become, for rejected ones)
+  PointIndex beneath_vertex = kNoPoint;  // foldover: the vertex of the old edge lying beneath ...
+  PointIndex beneath_triangle[3] = {kNoPoint, kNoPoint, kNoPoint};  // ... this would-be triangle
+  std::int32_t decision_index = -1;  // its entry in the decision array, for performed swaps
+};
+
+struct RemovalRecord {
+  int sequence = 0;  // order within the iteration, shared with the swaps
+  PointIndex vertex = 0;
+  PointIndex ring[3] = {0, 0, 0};  // the new face
+  std::int32_t decision_index = -1;
+  bool rejected = false;  // concave but removal would fold over or create congruent triangles
+};
+
+struct IterationRecord {
+  int iteration = 0;  // 0 is the initial tetrahedron and first distribution (section 3.1)
+  std::size_t faces_before = 0, faces_after = 0, faces_refined = 0;
+  std::size_t swaps_regular = 0, swaps_complementary = 0, swaps_rejected = 0;
+  std::size_t vertices_removed = 0, removals_rejected = 0;
+  std::size_t decision_entries = 0;
+  std::size_t external_before = 0, external_after = 0;  // points still outside the current hull
+  std::size_t repairs = 0;  // exact fixes where the local procedure fell short (0 in general position)
+  double host_ms = 0, backend_ms = 0;
+  double upload_ms = 0;  // iteration 0: putting the points on the backend (part of backend_ms)
+  std::uint64_t bytes_to_backend = 0, bytes_from_backend = 0;
+  std::vector<SwapRecord> swaps;
+  std::vector<RemovalRecord> removals;
+  std::vector<PointIndex> refined_apexes;                // the extreme points used, one per refined face
+  std::vector<std::array<PointIndex, 3>> refined_faces;  // each refined face's corners, as refined_apexes
+  std::vector<DecisionEntry> decisions;                  // the decision array (Fig. 7) sent this iteration
+  std::string note;                                      // e.g. "degenerate input: dimension 2"
+};
+
+}  // namespace cudahull
