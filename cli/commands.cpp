@@ -121,6 +121,8 @@ int run_info(const InfoOptions& o) {
     j["bbox"] = nullptr;
   }
   j["dimension"] = affine_dimension(points);
+  // What `--precision auto` picks for this file (from its format and PLY header; the points above are float).
+  j["precision"] = precision_name(auto_precision(o.input));
   j["read_ms"] = read_ms;
   std::cout << j.dump() << "\n";
   return kExitOk;
@@ -144,7 +146,7 @@ int run_hull(const HullOptions& o) {
   const std::string backend_name = backend->name();
   const std::size_t point_count = points.size();
 
-  Engine engine(std::move(points), std::move(backend));
+  Engine engine(points, std::move(backend));  // borrows the points
   std::ostringstream trace;
   double host_ms = 0, backend_ms = 0;
   std::size_t repairs = 0, swaps = 0, rejected = 0, removed = 0;

@@ -50,6 +50,7 @@ TEST(CliBinary, Exists) {
 struct Model {
   const char* file;
   std::size_t points;
+  const char* precision;  // what `--precision auto` picks: ascii PLY and OBJ double, binary float PLY float
 };
 
 class InfoOnModels : public ::testing::TestWithParam<Model> {};
@@ -63,6 +64,8 @@ TEST_P(InfoOnModels, PrintsReadmeCountAndBoundingBox) {
   ASSERT_TRUE(j.is_object()) << "not one JSON object:\n" << r.out;
   ASSERT_TRUE(j.contains("points")) << r.out;
   EXPECT_EQ(j["points"].get<std::size_t>(), GetParam().points);
+  ASSERT_TRUE(j.contains("precision")) << r.out;
+  EXPECT_EQ(j["precision"], GetParam().precision) << r.out;
   ASSERT_TRUE(j.contains("bbox")) << r.out;
   const auto& box = j["bbox"];
   ASSERT_TRUE(box.contains("min") && box.contains("max")) << r.out;
@@ -91,11 +94,46 @@ std::string model_name(const ::testing::TestParamInfo<Model>& info) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Models, InfoOnModels,
-                         ::testing::Values(Model{"bun_zipper.ply", 35947}, Model{"stanford-bunny.obj", 35947},
-                                           Model{"dragonStandRight_0.ply", 41841},
-                                           Model{"dragon_scans.ply", 469193}, Model{"teapot.obj", 3644},
-                                           Model{"spot.obj", 2930}),
+                         ::testing::Values(Model{"bun_zipper.ply", 35947, "double"},
+                                           Model{"stanford-bunny.obj", 35947, "double"},
+                                           Model{"dragonStandRight_0.ply", 41841, "double"},
+                                           Model{"dragon_scans.ply", 469193, "float"},
+                                           Model{"teapot.obj", 3644, "double"},
+                                           Model{"spot.obj", 2930, "double"}),
                          model_name);
+
+// `info` says which precision `--precision auto` would pick: double for decimals (text formats) and binary
+// doubles, float for binary PLY whose x, y, z are floats.
+TEST(CliInfo, ReportsThePrecisionAutoWouldPick) {
+  TempDir dir;
+  const auto binary_ply = [](const std::string& type, int size) {
+    std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty " + type +
+                      " x\nproperty " + type + " y\nproperty " + type + " z\nend_header\n";
+    const double coords[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    for (double c : coords) {
+      const float f = static_cast<float>(c);
+      ply.append(size == 4 ? reinterpret_cast<const char*>(&f) : reinterpret_cast<const char*>(&c), size);
+    }
+    return ply;
+  };
+  std::ofstream(dir / "a.xyz") << "0 0 0\n1 0 0\n0 1 0\n0 0 1.000000000001\n";
+  std::ofstream(dir / "f.ply", std::ios::binary) << binary_ply("float", 4);
+  std::ofstream(dir / "d.ply", std::ios::binary) << binary_ply("double", 8);
+  std::ofstream(dir / "a.ply")
+      << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+         "property float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n";
+  for (const auto& [file, precision] : std::vector<std::pair<std::string, std::string>>{
+           {"a.xyz", "double"}, {"f.ply", "float"}, {"d.ply", "double"}, {"a.ply", "double"}}) {
+    SCOPED_TRACE(file);
+    const CliRun r = run_cli({"info", (dir / file).string()});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    const auto j = nlohmann::json::parse(r.out, nullptr, /*allow_exceptions=*/false);
+    ASSERT_TRUE(j.is_object()) << "not one JSON object:\n" << r.out;
+    EXPECT_EQ(j["points"], 4) << r.out;
+    ASSERT_TRUE(j.contains("precision")) << r.out;
+    EXPECT_EQ(j["precision"], precision) << r.out;
+  }
+}
 
 // ------------------------------------------------------------------------------------------ bad input
 

@@ -1,7 +1,11 @@
 // Point readers: OBJ, PLY (ascii and binary), OFF, XYZ (README, "Input formats").
 //
-// Every text number goes straight from decimal to float with std::from_chars<float> (correctly rounded), so a
-// coordinate is rounded exactly once, as types.hpp promises; binary doubles are rounded once from the double.
+// Every reader is a template over the point type.  For Point3 (read_points) a text number goes straight from
+// decimal to float with std::from_chars<float> (correctly rounded), so a coordinate is rounded exactly once,
+// as types.hpp promises; binary doubles are rounded once from the double.  For Point3d (read_points_double) a
+// text number goes to the nearest double with std::from_chars<double>, and binary values are kept exactly.
+// The float path never goes through a double: decimal -> double -> float can differ from decimal -> float
+// (double rounding), so the float results are those of direct parsing.
 //
 // OBJ is parsed here too, not with tinyobjloader: its number parser turns "nan", "inf", "abc" and a missing z
 // into 0 without any warning, so the errors this file must report would pass silently, and its decimal
@@ -23,6 +27,7 @@
 #include <optional>
 #include <string_view>
 #include <system_error>
+#include <type_traits>
 
 #include "cudahull/errors.hpp"
 
@@ -88,9 +93,21 @@ bool is_blank(std::string_view line) {
 
 enum class NumStatus { kOk, kBad, kNaN, kInf, kTooBig };
 
-// Decimal text to float, rounded once.  Values beyond float range are errors; values too small for float
-// underflow to a denormal or zero, as IEEE rounding says.
-NumStatus parse_float(std::string_view token, float& out) {
+// The coordinate type of a point type, and its name for messages.
+template <typename P>
+using Scalar = std::remove_cv_t<decltype(P::x)>;
+static_assert(std::is_same_v<Scalar<Point3>, float> && std::is_same_v<Scalar<Point3d>, double>);
+static_assert(sizeof(Point3) == 3 * sizeof(float) && sizeof(Point3d) == 3 * sizeof(double));
+
+template <typename T>
+constexpr const char* type_name() {
+  return std::is_same_v<T, float> ? "float" : "double";
+}
+
+// Decimal text to T (float or double), rounded once.  Values beyond T's range are errors; values too small
+// for T underflow to a denormal or zero, as IEEE rounding says.
+template <typename T>
+NumStatus parse_number(std::string_view token, T& out) {
   const char* first = token.data();
   const char* last = token.data() + token.size();
   // from_chars rejects a leading '+', which other writers do emit.
@@ -98,10 +115,15 @@ NumStatus parse_float(std::string_view token, float& out) {
   const auto [ptr, ec] = std::from_chars(first, last, out);
   if (ptr != last || (ec != std::errc() && ec != std::errc::result_out_of_range)) return NumStatus::kBad;
   if (ec == std::errc::result_out_of_range) {
-    // Overflow or underflow: strtof tells them apart and rounds an underflow correctly.
+    // Overflow or underflow: strtof/strtod tell them apart and round an underflow correctly.
     const std::string copy(first, last);
     errno = 0;
-    const float value = std::strtof(copy.c_str(), nullptr);
+    T value;
+    if constexpr (std::is_same_v<T, float>) {
+      value = std::strtof(copy.c_str(), nullptr);
+    } else {
+      value = std::strtod(copy.c_str(), nullptr);
+    }
     if (std::isinf(value)) return NumStatus::kTooBig;
     out = value;
     return NumStatus::kOk;
@@ -115,7 +137,7 @@ const char* axis_name(int axis) {
   return axis == 0 ? "x" : axis == 1 ? "y" : "z";
 }
 
-std::string number_error(NumStatus status, int axis, std::string_view token) {
+std::string number_error(NumStatus status, int axis, std::string_view token, const char* type) {
   const std::string what = std::string(axis_name(axis)) + " coordinate " + quote(token);
   switch (status) {
     case NumStatus::kNaN:
@@ -123,18 +145,22 @@ std::string number_error(NumStatus status, int axis, std::string_view token) {
     case NumStatus::kInf:
       return "infinite " + what;
     case NumStatus::kTooBig:
-      return what + " is beyond float range";
+      return what + " is beyond " + type + " range";
     default:
       return "invalid " + what;
   }
 }
 
 // Parses three coordinate tokens of a text line into a point, or throws naming the line.
-Point3 parse_xyz_tokens(const std::string_view* tokens, const std::string& name, std::uint64_t line) {
-  float v[3];
+template <typename P>
+P parse_xyz_tokens(const std::string_view* tokens, const std::string& name, std::uint64_t line) {
+  using T = Scalar<P>;
+  T v[3];
   for (int axis = 0; axis < 3; ++axis) {
-    const NumStatus status = parse_float(tokens[axis], v[axis]);
-    if (status != NumStatus::kOk) fail_line(name, line, number_error(status, axis, tokens[axis]));
+    const NumStatus status = parse_number(tokens[axis], v[axis]);
+    if (status != NumStatus::kOk) {
+      fail_line(name, line, number_error(status, axis, tokens[axis], type_name<T>()));
+    }
   }
   return {v[0], v[1], v[2]};
 }
@@ -284,11 +310,13 @@ class Source {
   std::optional<std::uint64_t> size_;
 };
 
-void check_not_too_many(const std::vector<Point3>& points, const std::string& name, std::uint64_t line) {
+template <typename P>
+void check_not_too_many(const std::vector<P>& points, const std::string& name, std::uint64_t line) {
   if (points.size() >= kMaxPoints) fail_line(name, line, "more than 4294967295 points");
 }
 
-void finish(std::vector<Point3>& points, const Source& src, const std::string& name, const char* what,
+template <typename P>
+void finish(std::vector<P>& points, const Source& src, const std::string& name, const char* what,
             const Progress& progress) {
   if (points.empty()) fail(name, src.consumed() == 0 ? "empty file" : what);
   progress.report(1.0);
@@ -299,8 +327,9 @@ void finish(std::vector<Point3>& points, const Source& src, const std::string& n
 // One point per line, "x y z".  Columns after the third (normals, colours, intensities) are allowed and
 // ignored without being parsed, since xyz files from scanners commonly carry them.  '#' starts a comment
 // anywhere on a line; blank lines are skipped.
-std::vector<Point3> read_xyz(Source& src, const std::string& name, const Progress& progress) {
-  std::vector<Point3> points;
+template <typename P>
+std::vector<P> read_xyz(Source& src, const std::string& name, const Progress& progress) {
+  std::vector<P> points;
   std::string_view line;
   std::string_view tokens[3];
   while (src.next_line(line)) {
@@ -308,7 +337,7 @@ std::vector<Point3> read_xyz(Source& src, const std::string& name, const Progres
     if (n == 0) continue;
     if (n < 3) fail_line(name, src.line_number(), "expected 3 coordinates, found " + std::to_string(n));
     check_not_too_many(points, name, src.line_number());
-    points.push_back(parse_xyz_tokens(tokens, name, src.line_number()));
+    points.push_back(parse_xyz_tokens<P>(tokens, name, src.line_number()));
     if (progress.due(points.size())) progress.report(src.fraction());
   }
   finish(points, src, name, "no points", progress);
@@ -319,8 +348,9 @@ std::vector<Point3> read_xyz(Source& src, const std::string& name, const Progres
 
 // `v x y z [w]` and `v x y z r g b` lines; everything else (faces, normals, groups, unknown keywords) is
 // ignored, as OBJ readers do.
-std::vector<Point3> read_obj(Source& src, const std::string& name, const Progress& progress) {
-  std::vector<Point3> points;
+template <typename P>
+std::vector<P> read_obj(Source& src, const std::string& name, const Progress& progress) {
+  std::vector<P> points;
   std::string_view line;
   std::string_view tokens[4];
   while (src.next_line(line)) {
@@ -333,7 +363,7 @@ std::vector<Point3> read_obj(Source& src, const std::string& name, const Progres
       fail_line(name, src.line_number(), "vertex needs 3 coordinates, found " + std::to_string(n));
     }
     check_not_too_many(points, name, src.line_number());
-    points.push_back(parse_xyz_tokens(tokens, name, src.line_number()));
+    points.push_back(parse_xyz_tokens<P>(tokens, name, src.line_number()));
     if (progress.due(points.size())) progress.report(src.fraction());
   }
   finish(points, src, name, "no vertices", progress);
@@ -376,7 +406,8 @@ bool is_off_keyword(std::string_view word) {
   return prefix.empty();
 }
 
-std::vector<Point3> read_off(Source& src, const std::string& name, const Progress& progress) {
+template <typename P>
+std::vector<P> read_off(Source& src, const std::string& name, const Progress& progress) {
   std::string_view line;
   if (!next_content_line(src, line)) fail(name, src.consumed() == 0 ? "empty file" : "no OFF header");
   std::string_view tokens[4];
@@ -402,7 +433,7 @@ std::vector<Point3> read_off(Source& src, const std::string& name, const Progres
   if (nv == 0) fail_line(name, src.line_number(), "no vertices");
   check_count_limit(nv, name, src.line_number());
 
-  std::vector<Point3> points;
+  std::vector<P> points;
   points.reserve(text_reserve(nv, 6, src));  // "0 0 0\n"
   while (points.size() < nv) {
     if (!next_content_line(src, line)) {
@@ -412,7 +443,7 @@ std::vector<Point3> read_off(Source& src, const std::string& name, const Progres
     }
     const std::size_t k = tokenize(line, tokens, 3);
     if (k < 3) fail_line(name, src.line_number(), "expected 3 coordinates, found " + std::to_string(k));
-    points.push_back(parse_xyz_tokens(tokens, name, src.line_number()));
+    points.push_back(parse_xyz_tokens<P>(tokens, name, src.line_number()));
     if (progress.due(points.size())) progress.report(double(points.size()) / double(nv));
   }
   progress.report(1.0);
@@ -595,6 +626,20 @@ const char* binary_coordinate_error(double v, float& out) {
   return "";
 }
 
+// Keeps a binary coordinate as a double (every PLY type is exact in double); "" when fine.
+const char* binary_coordinate_error(double v, double& out) {
+  if (std::isnan(v)) return "NaN";
+  if (std::isinf(v)) return "infinite";
+  out = v;
+  return "";
+}
+
+// The PLY type whose bytes are a T in host order.
+template <typename T>
+constexpr PlyType ply_type_of() {
+  return std::is_same_v<T, float> ? PlyType::kFloat32 : PlyType::kFloat64;
+}
+
 [[noreturn]] void fail_binary_coordinate(const std::string& name, std::uint64_t index, int axis,
                                          const char* what) {
   const std::string coord = std::string(axis_name(axis)) + " coordinate";
@@ -686,8 +731,10 @@ void skip_ascii_element(Source& src, const PlyElement& e, const std::string& nam
   fail_vertex(name, index, "truncated binary data (header says " + std::to_string(count) + " vertices)");
 }
 
-std::vector<Point3> read_binary_vertices(Source& src, const PlyElement& v, bool swap, const std::string& name,
-                                         const Progress& progress) {
+template <typename P>
+std::vector<P> read_binary_vertices(Source& src, const PlyElement& v, bool swap, const std::string& name,
+                                    const Progress& progress) {
+  using T = Scalar<P>;
   const XyzLayout layout = find_xyz(v, name);
   // Each record holds at least its scalars and its list lengths.
   std::size_t min_record = 0;
@@ -696,14 +743,14 @@ std::vector<Point3> read_binary_vertices(Source& src, const PlyElement& v, bool 
   const auto left = src.remaining();
   if (left && v.count > *left / min_record) fail_truncated(name, *left / min_record, v.count);
 
-  std::vector<Point3> points;
+  std::vector<P> points;
   if (v.has_list) {
     points.reserve(left ? static_cast<std::size_t>(v.count) : std::size_t{1} << 20);
     for (std::uint64_t i = 0; i < v.count; ++i) {
       double xyz[3] = {0, 0, 0};
       if (!read_binary_record(src, v, swap, &layout, xyz, name, i)) fail_truncated(name, i, v.count);
-      Point3 p;
-      float* out[3] = {&p.x, &p.y, &p.z};
+      P p;
+      T* out[3] = {&p.x, &p.y, &p.z};
       for (int a = 0; a < 3; ++a) {
         const char* err = binary_coordinate_error(xyz[a], *out[a]);
         if (*err != '\0') fail_binary_coordinate(name, i, a, err);
@@ -715,28 +762,28 @@ std::vector<Point3> read_binary_vertices(Source& src, const PlyElement& v, bool 
   }
 
   const std::size_t stride = v.stride;
-  const bool plain_floats = std::endian::native == std::endian::little && !swap && stride == sizeof(Point3) &&
-                            layout.axis[0]->offset == 0 && layout.axis[1]->offset == 4 &&
-                            layout.axis[2]->offset == 8 && layout.axis[0]->type == PlyType::kFloat32 &&
-                            layout.axis[1]->type == PlyType::kFloat32 &&
-                            layout.axis[2]->type == PlyType::kFloat32;
+  constexpr PlyType kPlain = ply_type_of<T>();
+  const bool plain = std::endian::native == std::endian::little && !swap && stride == sizeof(P) &&
+                     layout.axis[0]->offset == 0 && layout.axis[1]->offset == sizeof(T) &&
+                     layout.axis[2]->offset == 2 * sizeof(T) && layout.axis[0]->type == kPlain &&
+                     layout.axis[1]->type == kPlain && layout.axis[2]->type == kPlain;
   const std::uint64_t per_chunk = std::max<std::uint64_t>(1, kChunkBytes / stride);
   if (left) {
     points.resize(static_cast<std::size_t>(v.count));
   } else {
     points.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(v.count, std::uint64_t{1} << 20)));
   }
-  std::vector<char> chunk(plain_floats ? 0 : static_cast<std::size_t>(per_chunk * stride));
+  std::vector<char> chunk(plain ? 0 : static_cast<std::size_t>(per_chunk * stride));
   for (std::uint64_t first = 0; first < v.count; first += per_chunk) {
     const std::uint64_t n = std::min(per_chunk, v.count - first);
     if (!left) points.resize(static_cast<std::size_t>(first + n));
-    Point3* dst = points.data() + first;
-    if (plain_floats) {
-      // x y z float32 in host order: the file's bytes are already the points.
+    P* dst = points.data() + first;
+    if (plain) {
+      // x y z of the point's type in host order: the file's bytes are already the points.
       const std::size_t got = src.read_bytes(reinterpret_cast<char*>(dst), n * stride);
       if (got != n * stride) fail_truncated(name, first + got / stride, v.count);
       for (std::uint64_t i = 0; i < n; ++i) {
-        const float c[3] = {dst[i].x, dst[i].y, dst[i].z};
+        const T c[3] = {dst[i].x, dst[i].y, dst[i].z};
         for (int a = 0; a < 3; ++a) {
           if (!std::isfinite(c[a]))
             fail_binary_coordinate(name, first + i, a, std::isnan(c[a]) ? "NaN" : "infinite");
@@ -747,7 +794,7 @@ std::vector<Point3> read_binary_vertices(Source& src, const PlyElement& v, bool 
       if (got != n * stride) fail_truncated(name, first + got / stride, v.count);
       for (std::uint64_t i = 0; i < n; ++i) {
         const char* rec = chunk.data() + i * stride;
-        float* out[3] = {&dst[i].x, &dst[i].y, &dst[i].z};
+        T* out[3] = {&dst[i].x, &dst[i].y, &dst[i].z};
         for (int a = 0; a < 3; ++a) {
           const double value = load_value(rec + layout.axis[a]->offset, layout.axis[a]->type, swap);
           const char* err = binary_coordinate_error(value, *out[a]);
@@ -760,10 +807,12 @@ std::vector<Point3> read_binary_vertices(Source& src, const PlyElement& v, bool 
   return points;
 }
 
-std::vector<Point3> read_ascii_vertices(Source& src, const PlyElement& v, const std::string& name,
-                                        const Progress& progress) {
+template <typename P>
+std::vector<P> read_ascii_vertices(Source& src, const PlyElement& v, const std::string& name,
+                                   const Progress& progress) {
+  using T = Scalar<P>;
   const XyzLayout layout = find_xyz(v, name);
-  std::vector<Point3> points;
+  std::vector<P> points;
   // Every value takes at least a digit and a separator.
   points.reserve(text_reserve(v.count, 2 * v.properties.size(), src));
   std::string_view line;
@@ -792,7 +841,7 @@ std::vector<Point3> read_ascii_vertices(Source& src, const PlyElement& v, const 
       ++found;
       return line.substr(start, pos - start);
     };
-    float xyz[3] = {0, 0, 0};
+    T xyz[3] = {0, 0, 0};
     for (const PlyProperty& p : v.properties) {
       if (p.is_list) {
         const std::string_view tok = next_token();
@@ -805,8 +854,8 @@ std::vector<Point3> read_ascii_vertices(Source& src, const PlyElement& v, const 
       const std::string_view tok = next_token();
       for (int a = 0; a < 3; ++a) {
         if (layout.axis[a] != &p) continue;
-        const NumStatus status = parse_float(tok, xyz[a]);
-        if (status != NumStatus::kOk) fail_line(name, ln, number_error(status, a, tok));
+        const NumStatus status = parse_number(tok, xyz[a]);
+        if (status != NumStatus::kOk) fail_line(name, ln, number_error(status, a, tok, type_name<T>()));
       }
     }
     // Extra values mean the header does not describe the data (e.g. face lines read as vertices).
@@ -819,7 +868,26 @@ std::vector<Point3> read_ascii_vertices(Source& src, const PlyElement& v, const 
   return points;
 }
 
-std::vector<Point3> read_ply(Source& src, const std::string& name, const Progress& progress) {
+// What `auto` picks for a PLY file: double for ascii (decimals), and for binary x, y, z of a type that float
+// cannot hold exactly (double, 32-bit integers); float otherwise.
+Precision ply_precision(const PlyHeader& header, const PlyElement& vertex, const std::string& name) {
+  const XyzLayout layout = find_xyz(vertex, name);
+  if (header.format == PlyFormat::kAscii) return Precision::kDouble;
+  for (const PlyProperty* p : layout.axis) {
+    if (p->type == PlyType::kFloat64 || p->type == PlyType::kInt32 || p->type == PlyType::kUint32) {
+      return Precision::kDouble;
+    }
+  }
+  return Precision::kFloat;
+}
+
+[[noreturn]] void fail_no_vertex_element(const std::string& name) {
+  fail(name, "no 'vertex' element in the PLY header");
+}
+
+template <typename P>
+std::vector<P> read_ply(Source& src, const std::string& name, const Progress& progress,
+                        Precision* precision) {
   const PlyHeader header = read_ply_header(src, name);
   const bool swap = (header.format == PlyFormat::kBinaryLE) != (std::endian::native == std::endian::little);
   for (const PlyElement& e : header.elements) {
@@ -834,14 +902,44 @@ std::vector<Point3> read_ply(Source& src, const std::string& name, const Progres
     find_xyz(e, name);
     if (e.count == 0) fail_line(name, e.line, "no vertices");
     check_count_limit(e.count, name, e.line);
+    if (precision != nullptr) *precision = ply_precision(header, e, name);
     // Elements after the vertices (faces, range grids) are never read.
-    std::vector<Point3> points = header.format == PlyFormat::kAscii
-                                     ? read_ascii_vertices(src, e, name, progress)
-                                     : read_binary_vertices(src, e, swap, name, progress);
+    std::vector<P> points = header.format == PlyFormat::kAscii
+                                ? read_ascii_vertices<P>(src, e, name, progress)
+                                : read_binary_vertices<P>(src, e, swap, name, progress);
     progress.report(1.0);
     return points;
   }
-  fail(name, "no 'vertex' element in the PLY header");
+  fail_no_vertex_element(name);
+}
+
+// Reads every point of a stream of the given format; sets *precision (if given) to what `auto` picks.
+template <typename P>
+std::vector<P> read_stream(std::istream& in, PointFormat format, const std::string& name,
+                           const ProgressFn& progress, Precision* precision) {
+  Source src(in, name);
+  const Progress prog(progress);
+  prog.report(0.0);
+  if (precision != nullptr) *precision = Precision::kDouble;  // every text format
+  switch (format) {
+    case PointFormat::kObj:
+      return read_obj<P>(src, name, prog);
+    case PointFormat::kPly:
+      return read_ply<P>(src, name, prog, precision);
+    case PointFormat::kOff:
+      return read_off<P>(src, name, prog);
+    case PointFormat::kXyz:
+      return read_xyz<P>(src, name, prog);
+  }
+  fail(name, "unknown point format");
+}
+
+// Opens a point file for reading, or throws naming it.
+void open_file(const std::string& path, std::ifstream& in) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory");
+  in.open(path, std::ios::binary);
+  if (!in) fail(path, std::string("cannot open: ") + std::strerror(errno));
 }
 
 std::string lower_extension(const std::string& path) {
@@ -866,29 +964,47 @@ PointFormat point_format_from_path(const std::string& path) {
 std::vector<Point3> read_points(const std::string& path, const ProgressFn& progress) {
   if (path == "-") return read_points(std::cin, PointFormat::kXyz, "<stdin>", progress);
   const PointFormat format = point_format_from_path(path);
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, std::string("cannot open: ") + std::strerror(errno));
+  std::ifstream in;
+  open_file(path, in);
   return read_points(in, format, path, progress);
 }
 
 std::vector<Point3> read_points(std::istream& in, PointFormat format, const std::string& name,
                                 const ProgressFn& progress) {
+  return read_stream<Point3>(in, format, name, progress, nullptr);
+}
+
+DoublePoints read_points_double(const std::string& path, const ProgressFn& progress) {
+  if (path == "-") return read_points_double(std::cin, PointFormat::kXyz, "<stdin>", progress);
+  const PointFormat format = point_format_from_path(path);
+  std::ifstream in;
+  open_file(path, in);
+  return read_points_double(in, format, path, progress);
+}
+
+DoublePoints read_points_double(std::istream& in, PointFormat format, const std::string& name,
+                                const ProgressFn& progress) {
+  DoublePoints result;
+  result.points = read_stream<Point3d>(in, format, name, progress, &result.precision);
+  return result;
+}
+
+Precision auto_precision(const std::string& path) {
+  if (path == "-") return Precision::kDouble;
+  const PointFormat format = point_format_from_path(path);
+  std::ifstream in;
+  open_file(path, in);
+  return auto_precision(in, format, path);
+}
+
+Precision auto_precision(std::istream& in, PointFormat format, const std::string& name) {
+  if (format != PointFormat::kPly) return Precision::kDouble;
   Source src(in, name);
-  const Progress prog(progress);
-  prog.report(0.0);
-  switch (format) {
-    case PointFormat::kObj:
-      return read_obj(src, name, prog);
-    case PointFormat::kPly:
-      return read_ply(src, name, prog);
-    case PointFormat::kOff:
-      return read_off(src, name, prog);
-    case PointFormat::kXyz:
-      return read_xyz(src, name, prog);
+  const PlyHeader header = read_ply_header(src, name);
+  for (const PlyElement& e : header.elements) {
+    if (e.name == "vertex") return ply_precision(header, e, name);
   }
-  fail(name, "unknown point format");
+  fail_no_vertex_element(name);
 }
 
 }  // namespace cudahull

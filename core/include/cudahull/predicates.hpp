@@ -17,7 +17,9 @@ struct Vec3d {
   double x = 0, y = 0, z = 0;
 };
 
-CUDAHULL_HD inline Vec3d to_vec3d(const Point3& p) {
+// Point3 (float) or Point3d (double): exact either way.
+template <class Point>
+CUDAHULL_HD inline Vec3d to_vec3d(const Point& p) {
   return {p.x, p.y, p.z};
 }
 

@@ -17,6 +17,33 @@ struct Point3 {
   friend bool operator!=(const Point3& a, const Point3& b) { return !(a == b); }
 };
 
+// A point in double precision, as read_points_double (io) returns it: text coordinates to the nearest double,
+// binary float, double and integer values exactly.
+struct Point3d {
+  double x = 0, y = 0, z = 0;
+  friend bool operator==(const Point3d& a, const Point3d& b) {
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+  }
+  friend bool operator!=(const Point3d& a, const Point3d& b) { return !(a == b); }
+};
+
+// The coordinate type a computation runs in.  kAuto picks, per input file, the narrowest type that holds
+// every coordinate as the file gives it: kFloat for binary PLY whose x, y, z are float (or 8- or 16-bit
+// integers), kDouble for text formats and for binary PLY whose x, y, z include a double or a 32-bit integer.
+enum class Precision { kAuto, kFloat, kDouble };
+
+// "auto", "float" or "double".
+inline const char* precision_name(Precision p) {
+  switch (p) {
+    case Precision::kFloat:
+      return "float";
+    case Precision::kDouble:
+      return "double";
+    default:
+      return "auto";
+  }
+}
+
 using PointIndex = std::uint32_t;
 using Triangle = std::array<std::uint32_t, 3>;
 

@@ -1,8 +1,11 @@
 // Reading point sets (README, "Input formats").
 //
-// Every reader stores coordinates as float32.  A coordinate that is NaN, infinite or beyond float range, a
-// short line, a wrong element count or truncated binary data throws InputError whose one-line message names
-// the file and the line (text formats) or the vertex index (binary formats).
+// read_points stores coordinates as float32: a decimal goes straight to the nearest float, a binary value is
+// rounded to float once.  read_points_double keeps them as the file gives them: a decimal goes to the nearest
+// double, a binary value (float, double or integer) is kept exactly.  A coordinate that is NaN, infinite or
+// beyond the range of the type read into, a short line, a wrong element count or truncated binary data throws
+// InputError whose one-line message names the file and the line (text formats) or the vertex index (binary
+// formats).
 #pragma once
 
 #include <cstdint>
@@ -30,5 +33,25 @@ std::vector<Point3> read_points(const std::string& path, const ProgressFn& progr
 // Reads from an open stream; `name` is used in error messages only.
 std::vector<Point3> read_points(std::istream& in, PointFormat format, const std::string& name,
                                 const ProgressFn& progress = {});
+
+// The points of a file at the precision the file gives, and the precision `auto` picks for it.
+struct DoublePoints {
+  std::vector<Point3d> points;
+  // kDouble for .xyz/.txt, .obj, .off and ascii PLY (decimals are not floats in general) and for binary PLY
+  // whose x, y or z is a double or a 32-bit integer; kFloat for binary PLY whose x, y and z are float or
+  // 8- or 16-bit integers (the double values are then floats exactly).  Never kAuto.
+  Precision precision = Precision::kDouble;
+};
+
+// As read_points, but at full precision (see above).  The points are the same as read_points' wherever
+// those are exact; the errors are the same except that the range checked is double's.
+DoublePoints read_points_double(const std::string& path, const ProgressFn& progress = {});
+DoublePoints read_points_double(std::istream& in, PointFormat format, const std::string& name,
+                                const ProgressFn& progress = {});
+
+// The precision `auto` picks for `path` (DoublePoints::precision), from the format and, for PLY, the header
+// alone: no point is read.  Throws InputError for an unknown extension, a missing file or a bad PLY header.
+Precision auto_precision(const std::string& path);
+Precision auto_precision(std::istream& in, PointFormat format, const std::string& name);
 
 }  // namespace cudahull
