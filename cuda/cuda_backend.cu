@@ -363,10 +363,10 @@ __global__ void __launch_bounds__(kBlock, kPrepared ? kPreparedBlocksPerSm : kDi
         if (kPrepared) {
           double height = 0;
           g = classify_point_prepared(x, old_face, view, planes, &height);
-          if (g != kRouteInternal) key = pack_extreme(height, i);
+          if (g != kRouteInternal) key = pack_extreme<Point3>(height, i);
         } else {
           g = classify_point(x, old_face, view);
-          if (g != kRouteInternal) key = pack_extreme(face_height(view.faces[g], x), i);
+          if (g != kRouteInternal) key = pack_extreme<Point3>(face_height(view.faces[g], x), i);
         }
         face_of[i] = g;
       }

@@ -10,15 +10,17 @@
 namespace cudahull {
 namespace {
 
-class CpuBackend final : public Backend {
+template <class Point>
+class CpuBackend final : public BasicBackend<Point> {
  public:
+  using Tables = BasicIterationTables<Point>;
   explicit CpuBackend(unsigned threads) : workers_(threads ? threads : hardware_workers()) {}
 
   std::string name() const override {
     return "cpu (" + std::to_string(workers_) + (workers_ == 1 ? " thread)" : " threads)");
   }
 
-  void upload_points(const std::vector<Point3>& points) override {
+  void upload_points(const std::vector<Point>& points) override {
     points_ = &points;
     restart();
   }
@@ -44,7 +46,7 @@ class CpuBackend final : public Backend {
     const auto& p = *points_;
     const double ax = p[a].x, ay = p[a].y, az = p[a].z;
     const double dx = p[b].x - ax, dy = p[b].y - ay, dz = p[b].z - az;
-    return argmax([&](const Point3& q) {
+    return argmax([&](const Point& q) {
       const double wx = q.x - ax, wy = q.y - ay, wz = q.z - az;
       const double cx = dy * wz - dz * wy, cy = dz * wx - dx * wz, cz = dx * wy - dy * wx;
       return cx * cx + cy * cy + cz * cz;
@@ -53,15 +55,15 @@ class CpuBackend final : public Backend {
 
   PointIndex furthest_from_plane(PointIndex a, PointIndex b, PointIndex c) override {
     const auto& p = *points_;
-    FaceGeometry f{};
+    BasicFaceGeometry<Point> f{};
     f.v[0] = p[a];
     f.v[1] = p[b];
     f.v[2] = p[c];
-    return argmax([&](const Point3& q) { return std::fabs(face_height(f, q)); });
+    return argmax([&](const Point& q) { return std::fabs(face_height(f, q)); });
   }
 
-  void distribute_points(const IterationTables& tables) override {
-    RoutingView view;
+  void distribute_points(const Tables& tables) override {
+    BasicRoutingView<Point> view;
     view.old_face_split = tables.old_face_split.data();
     view.old_face_route = tables.old_face_route.data();
     view.refinement = tables.refinement.data();
@@ -101,7 +103,7 @@ class CpuBackend final : public Backend {
         if (face == kRouteInternal) continue;
         ++local.count[face];
         if (!prepared) height = face_height(tables.faces[face], p[i]);
-        const std::uint64_t packed = pack_extreme(height, i);
+        const std::uint64_t packed = pack_extreme<Point>(height, i);
         if (packed > local.best[face]) local.best[face] = packed;
       }
     });
@@ -163,7 +165,7 @@ class CpuBackend final : public Backend {
   };
 
   unsigned workers_;
-  const std::vector<Point3>* points_ = nullptr;
+  const std::vector<Point>* points_ = nullptr;
   std::vector<PointIndex> active_;
   std::vector<std::int32_t> face_of_;  // per point: face id, or kRouteInternal
   std::size_t face_count_ = 0;
@@ -172,8 +174,11 @@ class CpuBackend final : public Backend {
 
 }  // namespace
 
-std::unique_ptr<Backend> make_cpu_backend(unsigned threads) {
-  return std::make_unique<CpuBackend>(threads);
+template <class Point>
+std::unique_ptr<BasicBackend<Point>> make_cpu_backend(unsigned threads) {
+  return std::make_unique<CpuBackend<Point>>(threads);
 }
+template std::unique_ptr<BasicBackend<Point3>> make_cpu_backend<Point3>(unsigned);
+template std::unique_ptr<BasicBackend<Point3d>> make_cpu_backend<Point3d>(unsigned);
 
 }  // namespace cudahull

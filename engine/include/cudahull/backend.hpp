@@ -40,15 +40,19 @@ struct DefaultInitAllocator : std::allocator<T> {
     ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
   }
 };
-using FaceGeometryArray = std::vector<FaceGeometry, DefaultInitAllocator<FaceGeometry>>;
+template <class Point>
+using BasicFaceGeometryArray =
+    std::vector<BasicFaceGeometry<Point>, DefaultInitAllocator<BasicFaceGeometry<Point>>>;
+using FaceGeometryArray = BasicFaceGeometryArray<Point3>;
 
 // The per-iteration tables (Fig. 7) and the new mesh's faces.
-struct IterationTables {
+template <class Point>
+struct BasicIterationTables {
   std::vector<std::int32_t> old_face_split;  // per face of the previous mesh: refinement index, or -1
   std::vector<std::int32_t> old_face_route;  // per face of the previous mesh: route code if not refined
   std::vector<RefinementEntry> refinement;   // one per refined face
   std::vector<DecisionEntry> decision;
-  FaceGeometryArray faces;                     // the new mesh, compacted
+  BasicFaceGeometryArray<Point> faces;         // the new mesh, compacted
   std::vector<SeparatingPlane> initial_cells;  // first distribution only (4 faces x 3 planes)
   // Points that became vertices this iteration (the apexes): they leave the point set without routing.  The
   // engine accounts for them exactly (they are hull candidates until its final check).
@@ -70,10 +74,11 @@ struct IterationTables {
   std::uint64_t bytes() const {
     return (old_face_split.size() + old_face_route.size()) * sizeof(std::int32_t) +
            refinement.size() * sizeof(RefinementEntry) + decision.size() * sizeof(DecisionEntry) +
-           faces.size() * sizeof(FaceGeometry) + initial_cells.size() * sizeof(SeparatingPlane) +
+           faces.size() * sizeof(BasicFaceGeometry<Point>) + initial_cells.size() * sizeof(SeparatingPlane) +
            retired.size() * sizeof(PointIndex) + sizeof(Vec3d);
   }
 };
+using IterationTables = BasicIterationTables<Point3>;
 
 // What getExtremePoints returns per face: how many external points it holds and the furthest one.
 struct FaceExtreme {
@@ -84,13 +89,16 @@ struct FaceExtreme {
 inline constexpr std::int32_t kPointStateInternal = -1;
 inline constexpr std::int32_t kPointStateVertex = -2;
 
-class Backend {
+// `Point` is the coordinate type the backend computes on: Point3 (float) or Point3d (double).
+template <class Point>
+class BasicBackend {
  public:
-  virtual ~Backend() = default;
+  using Tables = BasicIterationTables<Point>;
+  virtual ~BasicBackend() = default;
   virtual std::string name() const = 0;
 
   // Keeps (or uploads) the points; they stay resident for the whole run.
-  virtual void upload_points(const std::vector<Point3>& points) = 0;
+  virtual void upload_points(const std::vector<Point>& points) = 0;
   // Back to the state right after upload_points(), the points kept: every point active, no faces.  The
   // engine restarts this way (the viewer's rewind and replays) without sending the points again.
   virtual void restart() = 0;
@@ -102,7 +110,7 @@ class Backend {
   virtual PointIndex furthest_from_plane(PointIndex a, PointIndex b, PointIndex c) = 0;
 
   // Algorithm 2: routes every remaining point through the tables to its new face, or marks it internal.
-  virtual void distribute_points(const IterationTables& tables) = 0;
+  virtual void distribute_points(const Tables& tables) = 0;
   // Drops internal points from the index array; returns how many remain (all external).
   virtual std::size_t compact_index_array() = 0;
   // One entry per face of the new mesh.
@@ -126,5 +134,6 @@ class Backend {
   virtual std::uint64_t bytes_to_backend() const { return 0; }
   virtual std::uint64_t bytes_from_backend() const { return 0; }
 };
+using Backend = BasicBackend<Point3>;
 
 }  // namespace cudahull

@@ -8,6 +8,8 @@
 
 namespace cudahull {
 
-std::unique_ptr<Backend> make_cpu_backend(unsigned threads = 0);  // 0: one per hardware thread
+// `threads` 0: one per hardware thread.  Point3 (float) or Point3d (double) coordinates.
+template <class Point = Point3>
+std::unique_ptr<BasicBackend<Point>> make_cpu_backend(unsigned threads = 0);
 
 }  // namespace cudahull

@@ -45,14 +45,19 @@ struct DecisionEntry {
 };
 
 // A face of the new mesh as the backend sees it: its corners (exact tests) and neighbours (stray walks).
-struct FaceGeometry {
-  Point3 v[3];
+// `Point` is Point3 (float) or Point3d (double): every function below is generic in it, and exact for the
+// coordinates as given in either precision.
+template <class Point>
+struct BasicFaceGeometry {
+  Point v[3];
   std::int32_t neighbor[3];  // across v[i] -> v[i+1]
   std::int8_t tet[4];        // see face_tetrahedron_signs()
 };
+using FaceGeometry = BasicFaceGeometry<Point3>;
 
 // Evaluated in double with explicit rounding so host and device agree bit for bit.
-CUDAHULL_HD inline double plane_value(const SeparatingPlane& p, const Point3& x) {
+template <class Point>
+CUDAHULL_HD inline double plane_value(const SeparatingPlane& p, const Point& x) {
 #if defined(__CUDA_ARCH__)
   return __dadd_rn(__dadd_rn(__dadd_rn(__dmul_rn(p.nx, x.x), __dmul_rn(p.ny, x.y)), __dmul_rn(p.nz, x.z)),
                    p.d);
@@ -63,7 +68,8 @@ CUDAHULL_HD inline double plane_value(const SeparatingPlane& p, const Point3& x)
 
 // Algorithm 2, lines "refinement" and "decision": the route code of the face that receives point x, which
 // belonged to old face `old_face`.
-CUDAHULL_HD inline std::int32_t route_point(const Point3& x, std::int32_t old_face,
+template <class Point>
+CUDAHULL_HD inline std::int32_t route_point(const Point& x, std::int32_t old_face,
                                             const std::int32_t* old_face_split,
                                             const std::int32_t* old_face_route,
                                             const RefinementEntry* refinement,
@@ -106,7 +112,8 @@ enum PointVerdict : int { kVerdictInternal = 0, kVerdictExternal = 1, kVerdictSt
 // face_tetrahedron_signs(): tet[0..2] = orientation of the opposite corner for the radial planes
 // (c, a, b), (c, b, d), (c, d, a); tet[3] = orient3d(a, b, d, c), which is -1 when the interior point c is
 // below the face, as it is wherever the mesh is convex.
-CUDAHULL_HD inline void face_tetrahedron_signs(const Vec3d& c, const Point3 v[3], std::int8_t tet[4]) {
+template <class Point>
+CUDAHULL_HD inline void face_tetrahedron_signs(const Vec3d& c, const Point v[3], std::int8_t tet[4]) {
   const Vec3d a = to_vec3d(v[0]), b = to_vec3d(v[1]), d = to_vec3d(v[2]);
   tet[0] = static_cast<std::int8_t>(orient3d(c, a, b, d));
   tet[1] = static_cast<std::int8_t>(orient3d(c, b, d, a));
@@ -119,8 +126,9 @@ CUDAHULL_HD inline void face_tetrahedron_signs(const Vec3d& c, const Point3 v[3]
 // convex hull of the input (c is inside the first tetrahedron, the corners are input points), so discarding
 // a point inside one is always safe, whatever shape the mesh has mid-iteration.  For a stray point,
 // *exit_edge names the radial plane it is beyond (the neighbour to walk to), or -1.
-CUDAHULL_HD inline PointVerdict face_verdict(const FaceGeometry& f, const Vec3d& c, const Point3& x,
-                                             int* exit_edge) {
+template <class Point>
+CUDAHULL_HD inline PointVerdict face_verdict(const BasicFaceGeometry<Point>& f, const Vec3d& c,
+                                             const Point& x, int* exit_edge) {
   const Vec3d a = to_vec3d(f.v[0]), b = to_vec3d(f.v[1]), d = to_vec3d(f.v[2]), p = to_vec3d(x);
   *exit_edge = -1;
   const int above = orient3d(a, b, d, p);
@@ -144,7 +152,8 @@ CUDAHULL_HD inline PointVerdict face_verdict(const FaceGeometry& f, const Vec3d&
 
 // Ranking distance for the extreme-point search (getExtremePoints): proportional to the distance above face
 // f.  Not exact; only its order matters, and both backends compute it identically.
-CUDAHULL_HD inline double face_height(const FaceGeometry& f, const Point3& x) {
+template <class Point>
+CUDAHULL_HD inline double face_height(const BasicFaceGeometry<Point>& f, const Point& x) {
 #if defined(__CUDA_ARCH__)
   const double ux = __dsub_rn(f.v[1].x, f.v[0].x), uy = __dsub_rn(f.v[1].y, f.v[0].y),
                uz = __dsub_rn(f.v[1].z, f.v[0].z);
@@ -202,15 +211,17 @@ CUDAHULL_HD inline int certain_sign(double value, const double perm[3], double w
 }
 }  // namespace detail
 
-CUDAHULL_HD inline void prepare_face_planes(const FaceGeometry& f, const Vec3d& c, FacePlanes& out) {
+template <class Point>
+CUDAHULL_HD inline void prepare_face_planes(const BasicFaceGeometry<Point>& f, const Vec3d& c,
+                                            FacePlanes& out) {
   using namespace detail;
-  const Point3* v = f.v;
+  const Point* v = f.v;
   detail::prepared_cross(sub_rn(v[1].x, v[0].x), sub_rn(v[1].y, v[0].y), sub_rn(v[1].z, v[0].z),
                          sub_rn(v[2].x, v[0].x), sub_rn(v[2].y, v[0].y), sub_rn(v[2].z, v[0].z), out.normal,
                          out.normal_perm);
   for (int k = 0; k < 3; ++k) {
-    const Point3& a = v[k];
-    const Point3& b = v[(k + 1) % 3];
+    const Point& a = v[k];
+    const Point& b = v[(k + 1) % 3];
     detail::prepared_cross(sub_rn(a.x, c.x), sub_rn(a.y, c.y), sub_rn(a.z, c.z), sub_rn(b.x, c.x),
                            sub_rn(b.y, c.y), sub_rn(b.z, c.z), out.radial[k], out.radial_perm[k]);
   }
@@ -218,9 +229,10 @@ CUDAHULL_HD inline void prepare_face_planes(const FaceGeometry& f, const Vec3d& 
 
 // face_verdict() through the prepared planes: the same verdict and exit edge (exact orient3d decides
 // whenever the rounded value is not certain), plus *height = face_height(f, x), bit for bit.
-CUDAHULL_HD inline PointVerdict face_verdict_prepared(const FaceGeometry& f, const FacePlanes& planes,
-                                                      const Vec3d& c, const Point3& x, int* exit_edge,
-                                                      double* height) {
+template <class Point>
+CUDAHULL_HD inline PointVerdict face_verdict_prepared(const BasicFaceGeometry<Point>& f,
+                                                      const FacePlanes& planes, const Vec3d& c,
+                                                      const Point& x, int* exit_edge, double* height) {
   using namespace detail;
   *exit_edge = -1;
   const double wx = sub_rn(x.x, f.v[0].x), wy = sub_rn(x.y, f.v[0].y), wz = sub_rn(x.z, f.v[0].z);
@@ -243,15 +255,30 @@ CUDAHULL_HD inline PointVerdict face_verdict_prepared(const FaceGeometry& f, con
 }
 
 // Packs (height, point index) so that a 64-bit max picks the highest point and, among equal heights, the
-// lowest index: duplicates then always elect their lowest-index copy.  Heights are > 0 here.
+// lowest index: duplicates then always elect their lowest-index copy.  Heights are > 0 here.  The key is
+// the height as a float for float points, and the upper half of the double for double points (positive
+// doubles order as their bits; a float would overflow above 3e38, and double coordinates reach 2^250, so
+// heights reach 2^750).  Any external point is a correct apex; the key only picks a good one.
+template <class Point>
 CUDAHULL_HD inline std::uint64_t pack_extreme(double height, PointIndex index) {
-  const float h = height > 0 ? static_cast<float>(height) : 0.0f;  // keep the sign bit clear
   std::uint32_t bits;
+  if constexpr (sizeof(Point::x) == sizeof(float)) {
+    const float h = height > 0 ? static_cast<float>(height) : 0.0f;  // keep the sign bit clear
 #if defined(__CUDA_ARCH__)
-  bits = __float_as_uint(h);
+    bits = __float_as_uint(h);
 #else
-  __builtin_memcpy(&bits, &h, sizeof bits);
+    __builtin_memcpy(&bits, &h, sizeof bits);
 #endif
+  } else {
+    const double h = height > 0 ? height : 0.0;
+    std::uint64_t all;
+#if defined(__CUDA_ARCH__)
+    all = static_cast<std::uint64_t>(__double_as_longlong(h));
+#else
+    __builtin_memcpy(&all, &h, sizeof all);
+#endif
+    bits = static_cast<std::uint32_t>(all >> 32);
+  }
   return (static_cast<std::uint64_t>(bits) << 32) | static_cast<std::uint64_t>(0xffffffffu - index);
 }
 CUDAHULL_HD inline PointIndex unpack_extreme_index(std::uint64_t packed) {
@@ -259,16 +286,18 @@ CUDAHULL_HD inline PointIndex unpack_extreme_index(std::uint64_t packed) {
 }
 
 // Views of the per-iteration tables, as both backends hold them (host vectors or device buffers).
-struct RoutingView {
+template <class Point>
+struct BasicRoutingView {
   const std::int32_t* old_face_split = nullptr;  // per old face: refinement index or -1
   const std::int32_t* old_face_route = nullptr;  // per old face: route code when not refined
   const RefinementEntry* refinement = nullptr;
   const DecisionEntry* decision = nullptr;
-  const FaceGeometry* faces = nullptr;  // the new mesh
+  const BasicFaceGeometry<Point>* faces = nullptr;  // the new mesh
   std::int32_t face_count = 0;
   const SeparatingPlane* initial_cells = nullptr;  // first distribution only: 3 planes per tetrahedron face
   Vec3d interior;                                  // the interior reference point c
 };
+using RoutingView = BasicRoutingView<Point3>;
 
 inline constexpr int kMaxStrayWalk = 64;
 
@@ -276,9 +305,10 @@ inline constexpr int kMaxStrayWalk = 64;
 // point below a face but outside that face's tetrahedron with c crossed a radial plane: walk to the
 // neighbour across it, at most `max_walk` steps, then fall back to an exhaustive exact scan.
 // `verdict(g, &exit_edge)` is face_verdict() for face g, or an equivalent (face_verdict_prepared()).
-template <class Verdict>
-CUDAHULL_HD inline std::int32_t walk_to_face(const Point3& x, std::int32_t start, const FaceGeometry* faces,
-                                             std::int32_t face_count, int max_walk, Verdict&& verdict) {
+template <class Point, class Verdict>
+CUDAHULL_HD inline std::int32_t walk_to_face(const Point& x, std::int32_t start,
+                                             const BasicFaceGeometry<Point>* faces, std::int32_t face_count,
+                                             int max_walk, Verdict&& verdict) {
   std::int32_t g = start;
   for (int step = 0; step < max_walk; ++step) {
     int exit_edge;
@@ -291,14 +321,16 @@ CUDAHULL_HD inline std::int32_t walk_to_face(const Point3& x, std::int32_t start
   // Exhaustive: above some face, or below every face plane of the closed mesh and hence inside it (and so
   // inside the hull of the input).
   for (std::int32_t f = 0; f < face_count; ++f) {
-    const FaceGeometry& face = faces[f];
+    const BasicFaceGeometry<Point>& face = faces[f];
     if (orient3d(to_vec3d(face.v[0]), to_vec3d(face.v[1]), to_vec3d(face.v[2]), to_vec3d(x)) > 0) return f;
   }
   return kRouteInternal;
 }
 
-CUDAHULL_HD inline std::int32_t locate_point(const Point3& x, std::int32_t start, const FaceGeometry* faces,
-                                             std::int32_t face_count, const Vec3d& interior, int max_walk) {
+template <class Point>
+CUDAHULL_HD inline std::int32_t locate_point(const Point& x, std::int32_t start,
+                                             const BasicFaceGeometry<Point>* faces, std::int32_t face_count,
+                                             const Vec3d& interior, int max_walk) {
   return walk_to_face(x, start, faces, face_count, max_walk, [&](std::int32_t g, int* exit_edge) {
     return face_verdict(faces[g], interior, x, exit_edge);
   });
@@ -306,7 +338,9 @@ CUDAHULL_HD inline std::int32_t locate_point(const Point3& x, std::int32_t start
 
 // Algorithm 2's routing of x from old face `old_face` by the separating planes (no exact test yet): the
 // face of the new mesh to start the exact verdicts from, or kRouteInternal.
-CUDAHULL_HD inline std::int32_t routed_face(const Point3& x, std::int32_t old_face, const RoutingView& t) {
+template <class Point>
+CUDAHULL_HD inline std::int32_t routed_face(const Point& x, std::int32_t old_face,
+                                            const BasicRoutingView<Point>& t) {
   if (t.initial_cells == nullptr)
     return route_point(x, old_face, t.old_face_split, t.old_face_route, t.refinement, t.decision);
   for (std::int32_t f = 0; f < 4; ++f) {  // section 3.1: the first tetrahedron face whose cell holds x
@@ -320,7 +354,9 @@ CUDAHULL_HD inline std::int32_t routed_face(const Point3& x, std::int32_t old_fa
 // Algorithm 2 for one point: the new face id that x belongs to (x strictly above it), or kRouteInternal when
 // x is proven inside the hull.  Deterministic and exact in its verdict; only the choice of face among those
 // x is above depends on the (inexact) separating planes.
-CUDAHULL_HD inline std::int32_t classify_point(const Point3& x, std::int32_t old_face, const RoutingView& t) {
+template <class Point>
+CUDAHULL_HD inline std::int32_t classify_point(const Point& x, std::int32_t old_face,
+                                               const BasicRoutingView<Point>& t) {
   const std::int32_t g = routed_face(x, old_face, t);
   if (g == kRouteInternal) return kRouteInternal;
   return locate_point(x, g, t.faces, t.face_count, t.interior, kMaxStrayWalk);
@@ -328,9 +364,10 @@ CUDAHULL_HD inline std::int32_t classify_point(const Point3& x, std::int32_t old
 
 // classify_point() with each face's planes prepared (`planes[f]` for t.faces[f]): the same face, and
 // *height = face_height() of x above it (for the extreme-point key) when x is external.
-CUDAHULL_HD inline std::int32_t classify_point_prepared(const Point3& x, std::int32_t old_face,
-                                                        const RoutingView& t, const FacePlanes* planes,
-                                                        double* height) {
+template <class Point>
+CUDAHULL_HD inline std::int32_t classify_point_prepared(const Point& x, std::int32_t old_face,
+                                                        const BasicRoutingView<Point>& t,
+                                                        const FacePlanes* planes, double* height) {
   const std::int32_t g = routed_face(x, old_face, t);
   if (g == kRouteInternal) return kRouteInternal;
   std::int32_t last = kRouteInternal;  // the face of the last verdict, whose height *height holds
