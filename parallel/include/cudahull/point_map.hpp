@@ -44,7 +44,14 @@ class PointMap {
     const std::size_t i = probe(key);
     return keys_[i] == key ? &values_[i] : nullptr;
   }
-  void clear() { rehash(64); }
+  // Empties the map, back to 64 slots.  (It was rehash(64), which kept every entry: a restarted engine then
+  // saw the last run's vertex flags.)
+  void clear() {
+    keys_.assign(64, kEmpty);
+    values_.assign(64, V{});
+    mask_ = 63;
+    size_ = 0;
+  }
   // Room for `count` keys without growing.
   void reserve(std::size_t count) {
     std::size_t capacity = keys_.size();
