@@ -6,7 +6,10 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <random>
+#include <sstream>
+#include <string>
 
 #include "cudahull/cpu_backend.hpp"
 #include "cudahull/engine.hpp"
@@ -289,6 +292,155 @@ TEST(EngineSteps, ThreadCountDoesNotChangeTheHull) {
   EXPECT_EQ(one.hull.vertex_ids, four.hull.vertex_ids);
   EXPECT_EQ(one.hull.triangles, four.hull.triangles);
   ASSERT_EQ(one.records.size(), four.records.size());
+}
+
+// --- Engine::restart(): the same run again, on the points the backend already holds ----------------------
+
+// The first field in which two runs' records differ ("" when none does), so that a test can also check
+// that a difference is seen.
+std::string first_difference(const std::vector<IterationRecord>& a, const std::vector<IterationRecord>& b) {
+  if (a.size() != b.size())
+    return "record count " + std::to_string(a.size()) + " vs " + std::to_string(b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    const IterationRecord &x = a[k], &y = b[k];
+    std::ostringstream where;
+    where << "record " << k << ": ";
+    const auto differs = [&](const char* field) { return where.str() + field; };
+    if (x.iteration != y.iteration) return differs("iteration");
+    if (x.faces_before != y.faces_before || x.faces_after != y.faces_after ||
+        x.faces_refined != y.faces_refined)
+      return differs("face counts");
+    if (x.swaps_regular != y.swaps_regular || x.swaps_complementary != y.swaps_complementary ||
+        x.swaps_rejected != y.swaps_rejected)
+      return differs("swap counts");
+    if (x.vertices_removed != y.vertices_removed || x.removals_rejected != y.removals_rejected)
+      return differs("removal counts");
+    if (x.decision_entries != y.decision_entries) return differs("decision_entries");
+    if (x.external_before != y.external_before || x.external_after != y.external_after)
+      return differs("external counts");
+    if (x.repairs != y.repairs) return differs("repairs");
+    if (x.swaps.size() != y.swaps.size()) return differs("swaps.size()");
+    for (std::size_t i = 0; i < x.swaps.size(); ++i) {
+      const SwapRecord &s = x.swaps[i], &t = y.swaps[i];
+      if (s.kind != t.kind || s.sequence != t.sequence || s.old_edge[0] != t.old_edge[0] ||
+          s.old_edge[1] != t.old_edge[1] || s.new_edge[0] != t.new_edge[0] ||
+          s.new_edge[1] != t.new_edge[1] || s.decision_index != t.decision_index)
+        return differs("swap ") + std::to_string(i);
+    }
+    if (x.removals.size() != y.removals.size()) return differs("removals.size()");
+    for (std::size_t i = 0; i < x.removals.size(); ++i) {
+      const RemovalRecord &r = x.removals[i], &s = y.removals[i];
+      if (r.sequence != s.sequence || r.vertex != s.vertex || r.rejected != s.rejected ||
+          !std::equal(std::begin(r.ring), std::end(r.ring), std::begin(s.ring)) ||
+          r.decision_index != s.decision_index)
+        return differs("removal ") + std::to_string(i);
+    }
+    if (x.refined_apexes != y.refined_apexes) return differs("refined_apexes");
+    if (x.refined_faces != y.refined_faces) return differs("refined_faces");
+    if (x.decisions.size() != y.decisions.size()) return differs("decisions.size()");
+    for (std::size_t i = 0; i < x.decisions.size(); ++i) {
+      const DecisionEntry &d = x.decisions[i], &e = y.decisions[i];
+      if (d.above != e.above || d.below != e.below || d.kind != e.kind)
+        return differs("decision ") + std::to_string(i);
+    }
+  }
+  return "";
+}
+
+// Forwards every call to a CPU backend and counts upload_points() and restart().
+struct BackendCalls {
+  int uploads = 0, restarts = 0;
+};
+
+class CountingBackend final : public Backend {
+ public:
+  CountingBackend(std::unique_ptr<Backend> inner, BackendCalls& calls)
+      : inner_(std::move(inner)), calls_(calls) {}
+
+  std::string name() const override { return "counting " + inner_->name(); }
+  void upload_points(const std::vector<Point3>& points) override {
+    ++calls_.uploads;
+    inner_->upload_points(points);
+  }
+  void restart() override {
+    ++calls_.restarts;
+    inner_->restart();
+  }
+  std::array<PointIndex, 2> extremes_x() override { return inner_->extremes_x(); }
+  PointIndex furthest_from_line(PointIndex a, PointIndex b) override {
+    return inner_->furthest_from_line(a, b);
+  }
+  PointIndex furthest_from_plane(PointIndex a, PointIndex b, PointIndex c) override {
+    return inner_->furthest_from_plane(a, b, c);
+  }
+  void distribute_points(const IterationTables& tables) override { inner_->distribute_points(tables); }
+  std::size_t compact_index_array() override { return inner_->compact_index_array(); }
+  void get_extreme_points(std::vector<FaceExtreme>& out) override { inner_->get_extreme_points(out); }
+  void point_faces(std::vector<std::int32_t>& out) override { inner_->point_faces(out); }
+  bool has_device_point_states() const override { return inner_->has_device_point_states(); }
+  bool write_point_states_on_device(std::int32_t* device_out, std::size_t count,
+                                    const std::vector<PointIndex>& vertices) override {
+    return inner_->write_point_states_on_device(device_out, count, vertices);
+  }
+  std::uint64_t bytes_to_backend() const override { return inner_->bytes_to_backend(); }
+  std::uint64_t bytes_from_backend() const override { return inner_->bytes_from_backend(); }
+
+ private:
+  std::unique_ptr<Backend> inner_;
+  BackendCalls& calls_;
+};
+
+std::vector<IterationRecord> step_to_end(Engine& engine) {
+  std::vector<IterationRecord> records;
+  while (!engine.done())
+    records.push_back(engine.step());
+  return records;
+}
+
+TEST(EngineRestart, RepeatsTheRunWithoutUploadingAgain) {
+  const auto points = generate_points(Distribution::kBall, 20000, 31);
+  BackendCalls calls;
+  Engine engine(points, std::make_unique<CountingBackend>(make_cpu_backend(2), calls));
+  EXPECT_EQ(calls.uploads, 0) << "the engine uploads on its first step";
+
+  const std::vector<IterationRecord> first = step_to_end(engine);
+  const HullMesh first_hull = engine.result();
+  ASSERT_GT(first.size(), 3u);
+  ASSERT_EQ(first_hull.dimension, 3);
+  ASSERT_FALSE(first_hull.vertex_ids.empty());
+  EXPECT_EQ(calls.uploads, 1);
+  EXPECT_EQ(calls.restarts, 0);
+  // The comparison sees a difference where there is one.
+  std::vector<IterationRecord> altered = first;
+  IterationRecord& changed = altered[altered.size() / 2];
+  ASSERT_FALSE(changed.decisions.empty());
+  ++changed.decisions.back().above;
+  EXPECT_NE(first_difference(first, altered), "");
+  EXPECT_NE(first_difference(first, {first.begin(), first.end() - 1}), "");
+
+  // Restarted at the end: the same steps again.
+  engine.restart();
+  EXPECT_FALSE(engine.done());
+  EXPECT_EQ(engine.mesh().live_faces(), 0u);
+  EXPECT_EQ(calls.restarts, 1);
+  const std::vector<IterationRecord> second = step_to_end(engine);
+  EXPECT_EQ(first_difference(first, second), "");
+  EXPECT_EQ(engine.result().vertex_ids, first_hull.vertex_ids);
+  EXPECT_EQ(engine.result().triangles, first_hull.triangles);
+
+  // Restarted in the middle (after 3 steps): the full sequence again, from its start.
+  engine.restart();
+  for (int k = 0; k < 3; ++k)
+    engine.step();
+  engine.restart();
+  EXPECT_EQ(calls.restarts, 3);
+  const std::vector<IterationRecord> third = step_to_end(engine);
+  EXPECT_EQ(first_difference(first, third), "");
+  EXPECT_EQ(engine.result().vertex_ids, first_hull.vertex_ids);
+  EXPECT_EQ(engine.result().triangles, first_hull.triangles);
+
+  // The points went to the backend once, across all three runs.
+  EXPECT_EQ(calls.uploads, 1);
 }
 
 // Batched swap rounds (engine.cpp, batched_swaps()) make many swaps at once; their sequence numbers must

@@ -36,9 +36,18 @@ Scene::Scene(std::shared_ptr<const std::vector<Point3>> points, BackendFactory m
   render_.dirty = kDirtyAll;
 }
 
+Engine& Scene::restarted_replay() const {
+  if (replay_) {
+    replay_->restart();
+  } else {
+    replay_ = std::make_unique<Engine>(*points_, make_backend_());
+  }
+  return *replay_;
+}
+
 std::vector<IterationRecord> Scene::replay_records() const {
   std::vector<IterationRecord> records;
-  Engine replay(*points_, make_backend_());
+  Engine& replay = restarted_replay();
   for (int k = 0; k < position_ && !replay.done(); ++k)
     records.push_back(replay.step());
   return records;
@@ -48,7 +57,8 @@ std::vector<std::string> Scene::explain_point(PointIndex point) const {
   if (point >= points_->size())
     return {"no point " + std::to_string(point) + " (there are " + std::to_string(points_->size()) + ")"};
   if (position_ == 0) return {"position 0: no step yet"};
-  Engine replay(*points_, make_backend_());
+  Engine& replay = restarted_replay();
+  const std::uint64_t bytes_before = replay.backend().bytes_from_backend();  // cumulative per backend
   for (int k = 0; k + 1 < position_ && !replay.done(); ++k)
     replay.step();
   std::int32_t before = 0;
@@ -59,7 +69,7 @@ std::vector<std::string> Scene::explain_point(PointIndex point) const {
   replay.step();
   std::vector<std::string> lines = replay.explain_route(point, before);
   const std::vector<std::int32_t> after = replay.point_faces();
-  point_readback_bytes_ += replay.backend().bytes_from_backend();  // the replay's, to be honest about it
+  point_readback_bytes_ += replay.backend().bytes_from_backend() - bytes_before;  // the replay's
   const bool verdict = !lines.empty() && (lines.back() == "internal" || lines.back() == "vertex" ||
                                           lines.back().rfind("face ", 0) == 0);
   if (verdict && point < after.size()) {
@@ -73,7 +83,11 @@ std::vector<std::string> Scene::explain_point(PointIndex point) const {
 }
 
 void Scene::restart() {
-  engine_ = std::make_unique<Engine>(*points_, make_backend_());
+  if (engine_) {
+    engine_->restart();  // the backend keeps its points
+  } else {
+    engine_ = std::make_unique<Engine>(*points_, make_backend_());
+  }
   position_ = 0;
   born_.clear();
   substep_ = -1;
@@ -139,12 +153,13 @@ void Scene::build_substeps() {
   substep_point_state_.clear();
   if (position_ < 2 || engine_->dimension() != 3) return;
   // The mesh and the points as they were before the step.
-  Engine before(*points_, make_backend_());
+  Engine& before = restarted_replay();
+  const std::uint64_t bytes_before = before.backend().bytes_from_backend();  // cumulative per backend
   for (int k = 0; k + 1 < position_ && !before.done(); ++k)
     before.step();
   if (before.done()) return;
   substep_point_state_ = before.point_faces();
-  point_readback_bytes_ += before.backend().bytes_from_backend();  // the replay's, to be honest about it
+  point_readback_bytes_ += before.backend().bytes_from_backend() - bytes_before;  // the replay's
   substep_point_state_.resize(points_->size(), kPointInternal);
   for (PointIndex v : before.mesh().vertices())
     substep_point_state_[v] = kPointVertex;

@@ -3,9 +3,11 @@
 //
 // Positions on the timeline count engine steps: 0 is before the first step (the bare point set), 1 is after
 // iteration 0 (the tetrahedron and the first distribution, section 3.1), k after iteration k - 1.  Rewinding
-// replays deterministically from the start: a new Engine on the same points, stepped k times (the engine is
-// deterministic, so the replay passes through the same meshes).  The history keeps one record per position
-// reached, without the O(faces) vectors, for the plots (cf. Fig. 9).
+// replays deterministically from the start: the engine restarted (Engine::restart(): the same points and
+// backend, nothing uploaded again) and stepped k times (the engine is deterministic, so the replay passes
+// through the same meshes).  The debugger's replays (sub-steps, explain point, trace export) restart a
+// second engine the scene keeps, so the main one stays where it is.  The history keeps one record per
+// position reached, without the O(faces) vectors, for the plots (cf. Fig. 9).
 //
 // render_data() is derived lazily, once per position shown, not once per step of a replay or a run.
 // Per-point state comes from Engine::point_faces() (the "CPU upload" path, O(points) per refresh), or, with
@@ -72,7 +74,7 @@ class Scene {
   std::uint64_t point_readback_bytes() const { return point_readback_bytes_; }
 
   // The full records (swaps, decisions, ...) of every step from the start to the current position, by a
-  // deterministic replay on a fresh engine (the history keeps only the counters): for the trace export.
+  // deterministic replay on the replay engine (the history keeps only the counters): for the trace export.
   std::vector<IterationRecord> replay_records() const;
   // The debugger's "explain point" for the step that led here: the point's face before the step, its path
   // through refinement[] and decision[] to a face or "internal" (Engine::explain_route), and whether that
@@ -109,6 +111,8 @@ class Scene {
   using BirthMap = std::unordered_map<FaceKey, int, FaceKeyHash>;
 
   void restart();
+  // The replay engine, made on first use (with a backend of its own) or restarted: before its first step.
+  Engine& restarted_replay() const;
   void step_once();
   void current_faces(std::vector<FaceKey>& faces) const;  // the polyhedron shown now, input indices
   void refresh_render_data();
@@ -117,6 +121,9 @@ class Scene {
   BackendFactory make_backend_;
   std::string label_;
   std::unique_ptr<Engine> engine_;
+  // The debugger's replays (sub-steps, explain_point, replay_records): kept between them so that its
+  // backend keeps its points, and restarted before each.
+  mutable std::unique_ptr<Engine> replay_;
   int position_ = 0;
   bool final_known_ = false;
   std::vector<IterationRecord> history_;
