@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -43,14 +44,17 @@ std::string joined(const CheckResult& r) {
 }
 
 // Expects a rejection with at least one line containing `needle`.
-void expect_rejected(const std::vector<Point3>& pts, const HullMesh& h, const std::string& needle) {
+template <class Point>
+void expect_rejected(const std::vector<Point>& pts, const BasicHullMesh<Point>& h,
+                     const std::string& needle) {
   const CheckResult r = check_hull(pts, h);
   EXPECT_FALSE(r.ok);
   EXPECT_FALSE(r.failures.empty());
   EXPECT_NE(joined(r).find(needle), std::string::npos) << "expected \"" << needle << "\" in:\n" << joined(r);
 }
 
-void expect_accepted(const std::vector<Point3>& pts, const HullMesh& h) {
+template <class Point>
+void expect_accepted(const std::vector<Point>& pts, const BasicHullMesh<Point>& h) {
   const CheckResult r = check_hull(pts, h);
   EXPECT_TRUE(r.ok) << joined(r);
 }
@@ -264,6 +268,117 @@ TEST(HullChecker, MillionPointsIsFast) {
   RecordProperty("milliseconds", std::to_string(ms));
   EXPECT_TRUE(r.ok) << joined(r);
   EXPECT_LT(ms, 10000);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Double coordinates (Point3d): every test is exact on the doubles, nothing is rounded to float.
+
+std::vector<Point3> to_float(const std::vector<Point3d>& p) {
+  std::vector<Point3> f;
+  for (const Point3d& q : p)
+    f.push_back({static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)});
+  return f;
+}
+
+// The cube [-1, 1]^3 (points 0..7) and, on each face, two points 1e-12 outside and one 1e-12 inside.  In
+// double the outside points are vertices; in float they round onto the faces.
+std::vector<Point3d> cube_with_points_just_off_its_faces() {
+  Rng r(31);
+  std::vector<Point3d> p;
+  for (int c = 0; c < 8; ++c)
+    p.push_back({c & 1 ? 1.0 : -1.0, c & 2 ? 1.0 : -1.0, c & 4 ? 1.0 : -1.0});
+  for (int face = 0; face < 6; ++face)
+    for (int k = 0; k < 3; ++k) {
+      const int axis = face / 2;
+      double c[3];
+      c[axis] = (face % 2 ? 1.0 : -1.0) * (k < 2 ? 1 + 1e-12 : 1 - 1e-12);
+      c[(axis + 1) % 3] = 0.8 * r.unit() + 1e-3 / 3;  // not float-exact
+      c[(axis + 2) % 3] = 0.8 * r.unit() - 1e-3 / 7;
+      p.push_back({c[0], c[1], c[2]});
+    }
+  return p;
+}
+
+TEST(HullCheckerDouble, AcceptsTheDoubleHullAndRejectsOneMissingAPointOneTrillionthOutside) {
+  const std::vector<Point3d> p = cube_with_points_just_off_its_faces();
+  const HullMeshd full = exact_hull(p);
+  ASSERT_EQ(full.vertex_ids.size(), 8u + 12u);  // the corners and the points just outside
+  expect_accepted(p, full);
+
+  // Point 9 is 1e-12 outside the face x = -1: leave it out of the hull.
+  const PointIndex missing = 9;
+  ASSERT_EQ(p[missing].x, -(1 + 1e-12));
+  std::vector<PointIndex> rest;
+  for (PointIndex i = 0; i < p.size(); ++i)
+    if (i != missing) rest.push_back(i);
+  const HullMeshd h = exact_hull(p, rest);
+  const CheckResult r = check_hull(p, h);
+  EXPECT_FALSE(r.ok);
+  // Named with its coordinates in full (17 significant digits: 9 would print -1).
+  EXPECT_NE(joined(r).find("point 9 (-1.000000000001"), std::string::npos) << joined(r);
+  EXPECT_NE(joined(r).find("is above"), std::string::npos) << joined(r);
+
+  // The same hulls in float: the point rounds onto the face and both hulls are the cube, accepted.
+  const std::vector<Point3> pf = to_float(p);
+  EXPECT_EQ(exact_hull(pf, rest).vertex_ids.size(), 8u);
+  expect_accepted(pf, exact_hull(pf, rest));
+}
+
+TEST(HullCheckerDouble, RejectsVertexCoordinatesRoundedToFloat) {
+  const std::vector<Point3d> p = cube_with_points_just_off_its_faces();
+  HullMeshd h = exact_hull(p);
+  const std::size_t k = h.vertices.size() - 1;  // one of the points just outside
+  ASSERT_GE(h.vertex_ids[k], 8u);
+  Point3d& v = h.vertices[k];
+  v = {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
+  ASSERT_NE(v, p[h.vertex_ids[k]]);
+  expect_rejected(p, h, "has coordinates");
+}
+
+TEST(HullCheckerDouble, PointsEqualOnlyInFloatAreNotDuplicates) {
+  // A cube and, beyond its face x = 1, two points alone on the plane x = 2 that are equal in float.
+  std::vector<Point3d> p;
+  for (int c = 0; c < 8; ++c)
+    p.push_back({c & 1 ? 1.0 : -1.0, c & 2 ? 1.0 : -1.0, c & 4 ? 1.0 : -1.0});
+  p.push_back({2, 0.375, -0.625});
+  p.push_back({2, 0.375 + 1e-9, -0.625});
+  const std::vector<Point3> pf = to_float(p);
+  ASSERT_EQ(pf[8], pf[9]);
+  const HullMeshd h = exact_hull(p);
+  ASSERT_EQ(h.vertex_ids.size(), 10u);
+  expect_accepted(p, h);
+  // The same mesh on the float points: two vertices with identical coordinates.
+  HullMesh hf;
+  hf.vertex_ids = h.vertex_ids;
+  for (PointIndex i : hf.vertex_ids)
+    hf.vertices.push_back(pf[i]);
+  hf.triangles = h.triangles;
+  expect_rejected(pf, hf, "identical coordinates");
+  // And a double hull that leaves out point 9 (it is outside the rest's hull).
+  std::vector<PointIndex> rest(9);
+  std::iota(rest.begin(), rest.end(), 0u);
+  expect_rejected(p, exact_hull(p, rest), "point 9 (2 0.37500000100000003 -0.625)");
+}
+
+TEST(HullCheckerDouble, LowerDimensionsInDouble) {
+  // A segment whose ends differ from interior points only beyond float precision.
+  const std::vector<Point3d> seg = {{1e6, 0, 0}, {1e6 + 1e-9, 0, 0}, {1e6 + 2e-9, 0, 0}};
+  HullMeshd h = exact_hull(seg);
+  EXPECT_EQ(h.dimension, 1);
+  EXPECT_EQ(h.vertex_ids, (std::vector<PointIndex>{0, 2}));
+  expect_accepted(seg, h);
+  HullMeshd short_seg = h;
+  short_seg.vertex_ids = {0, 1};
+  short_seg.vertices = {seg[0], seg[1]};
+  expect_rejected(seg, short_seg, "beyond the segment's ends");
+  // A triangle in the plane z = 1 with a point 1e-12 outside one edge: a corner in double.
+  const std::vector<Point3d> tri = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {0.5 + 1e-12, 0.5, 1}};
+  const HullMeshd ht = exact_hull(tri);
+  EXPECT_EQ(ht.dimension, 2);
+  EXPECT_EQ(ht.vertex_ids.size(), 4u);
+  expect_accepted(tri, ht);
+  const std::vector<PointIndex> three = {0, 1, 2};
+  expect_rejected(tri, exact_hull(tri, three), "is outside the polygon");
 }
 
 }  // namespace

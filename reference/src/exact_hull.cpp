@@ -2,9 +2,10 @@
 // polish pass that merges coplanar faces into facets and keeps only strict corners.  Lower-dimensional
 // inputs get an exact segment or an exact 2D hull (Andrew's monotone chain).
 //
-// Every combinatorial decision is an exact predicate (orient3d, orient2d, collinear3d).  Doubles appear only
-// to rank candidates (furthest point), which needs no exactness: a wrong ranking costs time, never
-// correctness, because every choice is re-checked exactly.
+// Every combinatorial decision is an exact predicate (orient3d, orient2d, collinear3d) on the input's own
+// coordinates, float (Point3) or double (Point3d): one implementation, instantiated for both.  Other
+// arithmetic appears only to rank candidates (furthest point), which needs no exactness: a wrong ranking
+// costs time, never correctness, because every choice is re-checked exactly.
 #include "cudahull/exact_hull.hpp"
 
 #include <algorithm>
@@ -25,9 +26,12 @@ namespace {
 
 constexpr std::uint32_t kNone = 0xffffffffu;
 
-// A distinct input point: coordinates plus the lowest input index among the points with these coordinates.
+// A distinct input point: coordinates (float for Point3, double for Point3d) plus the lowest input index
+// among the points with these coordinates.
+template <class Point>
 struct Site {
-  float x, y, z;
+  using Coord = decltype(Point::x);
+  Coord x, y, z;
   PointIndex id;
 };
 
@@ -82,7 +86,9 @@ Basis find_basis(std::size_t n, const Get& get) {
     const double d = dot(w, w);
     if (d > best_d) best_d = d, best = i;
   }
-  if (collinear3d(a, b, get(best))) {  // the approximate pick may be exactly collinear: scan exactly
+  // The approximate pick may be exactly collinear (or missing, when a huge double input overflows the
+  // ranking to NaN): scan exactly.
+  if (best == kNone || collinear3d(a, b, get(best))) {
     best = kNone;
     for (std::uint32_t i = 0; i < n && best == kNone; ++i)
       if (!collinear3d(a, b, get(i))) best = i;
@@ -99,7 +105,7 @@ Basis find_basis(std::size_t n, const Get& get) {
     const double d = std::fabs(dot(nrm, sub(get(i), a)));
     if (d > best_d) best_d = d, best = i;
   }
-  if (orient3d(a, b, c, get(best)) == 0) {
+  if (best == kNone || orient3d(a, b, c, get(best)) == 0) {
     best = kNone;
     for (std::uint32_t i = 0; i < n && best == kNone; ++i)
       if (orient3d(a, b, c, get(i)) != 0) best = i;
@@ -112,21 +118,22 @@ Basis find_basis(std::size_t n, const Get& get) {
 
 // Builds the mesh from local site indices `keep` (each a strict extreme point): vertex_ids ascending.
 // Returns the map site -> output vertex (kNone for sites not kept) through `out_index`.
-HullMesh make_mesh(const std::vector<Site>& sites, std::vector<std::uint32_t> keep, int dimension,
-                   std::vector<std::uint32_t>& out_index) {
+template <class Point>
+BasicHullMesh<Point> make_mesh(const std::vector<Site<Point>>& sites, std::vector<std::uint32_t> keep,
+                               int dimension, std::vector<std::uint32_t>& out_index) {
   std::vector<std::pair<PointIndex, std::uint32_t>> by_id(keep.size());
   for (std::size_t k = 0; k < keep.size(); ++k)
     by_id[k] = {sites[keep[k]].id, keep[k]};
   std::sort(by_id.begin(), by_id.end());
   for (std::size_t k = 0; k < keep.size(); ++k)
     keep[k] = by_id[k].second;
-  HullMesh m;
+  BasicHullMesh<Point> m;
   m.dimension = dimension;
   out_index.assign(sites.size(), kNone);
   m.vertex_ids.reserve(keep.size());
   m.vertices.reserve(keep.size());
   for (std::uint32_t k = 0; k < keep.size(); ++k) {
-    const Site& s = sites[keep[k]];
+    const Site<Point>& s = sites[keep[k]];
     out_index[keep[k]] = k;
     m.vertex_ids.push_back(s.id);
     m.vertices.push_back({s.x, s.y, s.z});
@@ -145,7 +152,13 @@ std::uint64_t spread3(std::uint64_t x) {
   return x;
 }
 
-bool site_less(const Site& a, const Site& b) {
+// The Morton cell of a coordinate scaled to [0, 2^21): NaN (an overflowing double extent) goes to cell 0.
+std::uint64_t morton_cell(double t) {
+  return t > 0 ? static_cast<std::uint64_t>(std::min(t, 2097151.0)) : 0;
+}
+
+template <class Point>
+bool site_less(const Site<Point>& a, const Site<Point>& b) {
   if (a.x != b.x) return a.x < b.x;
   if (a.y != b.y) return a.y < b.y;
   if (a.z != b.z) return a.z < b.z;
@@ -156,11 +169,13 @@ bool site_less(const Site& a, const Site& b) {
 // each coordinate triple.  The Morton order is for memory locality only: QuickHull touches the points of a
 // region together.  Identical coordinates get identical keys, so duplicates end up in one run of equal keys,
 // sorted there by coordinates and id.  (+0 and -0 compare equal and get equal keys.)
-void sort_and_dedupe(std::vector<Site>& sites) {
+template <class Point>
+void sort_and_dedupe(std::vector<Site<Point>>& sites) {
+  using Coord = typename Site<Point>::Coord;
   if (sites.empty()) return;
-  float lo[3] = {sites[0].x, sites[0].y, sites[0].z}, hi[3] = {lo[0], lo[1], lo[2]};
-  for (const Site& s : sites) {
-    const float c[3] = {s.x, s.y, s.z};
+  Coord lo[3] = {sites[0].x, sites[0].y, sites[0].z}, hi[3] = {lo[0], lo[1], lo[2]};
+  for (const Site<Point>& s : sites) {
+    const Coord c[3] = {s.x, s.y, s.z};
     for (int k = 0; k < 3; ++k)
       lo[k] = std::min(lo[k], c[k]), hi[k] = std::max(hi[k], c[k]);
   }
@@ -171,28 +186,29 @@ void sort_and_dedupe(std::vector<Site>& sites) {
   }
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(sites.size());
   for (std::uint32_t i = 0; i < sites.size(); ++i) {
-    const Site& s = sites[i];
+    const Site<Point>& s = sites[i];
     const double c[3] = {s.x, s.y, s.z};
     std::uint64_t key = 0;
     for (int k = 0; k < 3; ++k)
-      key |= spread3(static_cast<std::uint64_t>(std::min((c[k] - lo[k]) * scale[k], 2097151.0))) << k;
+      key |= spread3(morton_cell((c[k] - lo[k]) * scale[k])) << k;
     keys[i] = {key, i};
   }
   std::sort(keys.begin(), keys.end());
-  std::vector<Site> sorted(sites.size());
+  std::vector<Site<Point>> sorted(sites.size());
   for (std::size_t i = 0; i < keys.size(); ++i)
     sorted[i] = sites[keys[i].second];
   for (std::size_t b = 0; b < keys.size();) {
     std::size_t e = b + 1;
     while (e < keys.size() && keys[e].first == keys[b].first)
       ++e;
-    if (e - b > 1) std::sort(sorted.begin() + b, sorted.begin() + e, site_less);
+    if (e - b > 1) std::sort(sorted.begin() + b, sorted.begin() + e, site_less<Point>);
     b = e;
   }
-  sorted.erase(
-      std::unique(sorted.begin(), sorted.end(),
-                  [](const Site& a, const Site& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }),
-      sorted.end());
+  sorted.erase(std::unique(sorted.begin(), sorted.end(),
+                           [](const Site<Point>& a, const Site<Point>& b) {
+                             return a.x == b.x && a.y == b.y && a.z == b.z;
+                           }),
+               sorted.end());
   sites.swap(sorted);
 }
 
@@ -503,7 +519,7 @@ std::vector<std::uint32_t> hull_2d(const std::vector<Vec3d>& p, const Basis& bs)
   double best = -1;
   for (int t = 0; t < 3; ++t) {
     const double mag = std::fabs(coord(nrm, t));
-    if (sign_n[t] != 0 && mag > best) best = mag, k = t;
+    if (sign_n[t] != 0 && (k < 0 || mag > best)) best = mag, k = t;  // k < 0: NaN for huge doubles
   }
   const int u = (k + 1) % 3, v = (k + 2) % 3;
 
@@ -547,29 +563,31 @@ std::vector<std::uint32_t> hull_2d(const std::vector<Vec3d>& p, const Basis& bs)
 
 // ---------------------------------------------------------------------------------------------------------
 
-int affine_dimension(const std::vector<Point3>& points) {
+template <class Point>
+int affine_dimension(const std::vector<Point>& points) {
   return find_basis(points.size(), [&](std::uint32_t i) { return to_vec3d(points[i]); }).dim;
 }
 
-HullMesh exact_hull(const std::vector<Point3>& points, const std::vector<PointIndex>& ids) {
+template <class Point>
+BasicHullMesh<Point> exact_hull(const std::vector<Point>& points, const std::vector<PointIndex>& ids) {
   const std::size_t n = ids.empty() ? points.size() : ids.size();
   if (n >= kNone) throw std::length_error("exact_hull: too many points");
 
   // Distinct points, each carrying the lowest input index of its coordinates: only that index may become a
   // vertex.
-  std::vector<Site> sites(n);
+  std::vector<Site<Point>> sites(n);
   for (std::size_t i = 0; i < n; ++i) {
     const PointIndex id = ids.empty() ? static_cast<PointIndex>(i) : ids[i];
     if (id >= points.size())
       throw std::out_of_range("exact_hull: id " + std::to_string(id) + " out of range");
-    const Point3& q = points[id];
+    const Point& q = points[id];
     sites[i] = {q.x, q.y, q.z, id};
   }
   sort_and_dedupe(sites);
   const std::size_t m = sites.size();
   // The vertex coordinates are those of the vertex's own input point (+0 and -0 compared equal above).
-  for (Site& s : sites) {
-    const Point3& q = points[s.id];
+  for (Site<Point>& s : sites) {
+    const Point& q = points[s.id];
     s.x = q.x, s.y = q.y, s.z = q.z;
   }
 
@@ -581,17 +599,17 @@ HullMesh exact_hull(const std::vector<Point3>& points, const std::vector<PointIn
   std::vector<std::uint32_t> out_index;
   switch (bs.dim) {
     case -1: {
-      HullMesh empty;
+      BasicHullMesh<Point> empty;
       empty.dimension = -1;
       return empty;
     }
     case 0:
-      return make_mesh(sites, {bs.a}, 0, out_index);
+      return make_mesh<Point>(sites, {bs.a}, 0, out_index);
     case 1:
-      return make_mesh(sites, {bs.a, bs.b}, 1, out_index);
+      return make_mesh<Point>(sites, {bs.a, bs.b}, 1, out_index);
     case 2: {
       const std::vector<std::uint32_t> poly = hull_2d(p, bs);
-      HullMesh mesh = make_mesh(sites, poly, 2, out_index);
+      BasicHullMesh<Point> mesh = make_mesh(sites, poly, 2, out_index);
       for (std::uint32_t s : poly)
         mesh.polygon.push_back(out_index[s]);
       return mesh;
@@ -610,11 +628,17 @@ HullMesh exact_hull(const std::vector<Point3>& points, const std::vector<PointIn
   std::vector<std::uint32_t> keep;
   for (std::uint32_t i = 0; i < m; ++i)
     if (used[i]) keep.push_back(i);
-  HullMesh mesh = make_mesh(sites, std::move(keep), 3, out_index);
+  BasicHullMesh<Point> mesh = make_mesh(sites, std::move(keep), 3, out_index);
   mesh.triangles.reserve(tris.size());
   for (const Triangle& t : tris)
     mesh.triangles.push_back({out_index[t[0]], out_index[t[1]], out_index[t[2]]});
   return mesh;
 }
+
+// The two point types; one implementation.
+template HullMesh exact_hull(const std::vector<Point3>&, const std::vector<PointIndex>&);
+template HullMeshd exact_hull(const std::vector<Point3d>&, const std::vector<PointIndex>&);
+template int affine_dimension(const std::vector<Point3>&);
+template int affine_dimension(const std::vector<Point3d>&);
 
 }  // namespace cudahull

@@ -50,11 +50,16 @@ std::string fmt(const char* f, ...) {
   return buf;
 }
 
+// Coordinates in full precision: 9 significant digits identify a float, 17 a double.
 std::string coords(const Point3& p) {
   return fmt("(%.9g %.9g %.9g)", p.x, p.y, p.z);
 }
+std::string coords(const Point3d& p) {
+  return fmt("(%.17g %.17g %.17g)", p.x, p.y, p.z);
+}
 
-bool lex_less(const Point3& a, const Point3& b) {
+template <class Point>
+bool lex_less(const Point& a, const Point& b) {
   if (a.x != b.x) return a.x < b.x;
   if (a.y != b.y) return a.y < b.y;
   return a.z < b.z;
@@ -103,7 +108,8 @@ std::size_t parallel_failures(std::size_t n, std::size_t work, Report& rep, cons
 }
 
 // Affine dimension of the input, exactly (its own small scan: the checker shares no code with exact_hull).
-int input_dimension(const std::vector<Point3>& pts) {
+template <class Point>
+int input_dimension(const std::vector<Point>& pts) {
   if (pts.empty()) return -1;
   const Vec3d a = to_vec3d(pts[0]);
   std::size_t i = 1;
@@ -127,7 +133,14 @@ std::uint32_t bits(float f) {
   std::memcpy(&u, &f, 4);
   return u;
 }
-std::uint64_t hash_of(const Point3& p) {
+std::uint64_t bits(double f) {
+  if (f == 0) f = 0;
+  std::uint64_t u;
+  std::memcpy(&u, &f, 8);
+  return u;
+}
+template <class Point>
+std::uint64_t hash_of(const Point& p) {
   std::uint64_t h = bits(p.x) * 0x9E3779B97F4A7C15ull;
   h ^= (h >> 29) + bits(p.y) * 0xBF58476D1CE4E5B9ull;
   h ^= (h >> 31) + bits(p.z) * 0x94D049BB133111EBull;
@@ -136,9 +149,10 @@ std::uint64_t hash_of(const Point3& p) {
 
 // Open-addressing table from vertex coordinates to vertex index (read-only after building, so the point
 // scan can share it between threads).
+template <class Point>
 class VertexTable {
  public:
-  explicit VertexTable(const std::vector<Point3>& vertices) : v_(vertices) {
+  explicit VertexTable(const std::vector<Point>& vertices) : v_(vertices) {
     std::size_t cap = 16;
     while (cap < 2 * vertices.size())
       cap *= 2;
@@ -155,21 +169,22 @@ class VertexTable {
       if (v_[slots_[s]] == v_[v]) return slots_[s];
     }
   }
-  std::uint32_t find(const Point3& p) const {
+  std::uint32_t find(const Point& p) const {
     for (std::size_t s = hash_of(p) & mask_;; s = (s + 1) & mask_) {
       if (slots_[s] == kNone || v_[slots_[s]] == p) return slots_[s];
     }
   }
 
  private:
-  const std::vector<Point3>& v_;
+  const std::vector<Point>& v_;
   std::vector<std::uint32_t> slots_;
   std::size_t mask_;
 };
 
+template <class Point>
 class Checker {
  public:
-  Checker(const std::vector<Point3>& pts, const HullMesh& hull, Report& rep)
+  Checker(const std::vector<Point>& pts, const BasicHullMesh<Point>& hull, Report& rep)
       : pts_(pts), h_(hull), rep_(rep) {}
   void run();
 
@@ -184,12 +199,13 @@ class Checker {
   void check_segment();
   void check_polygon();
 
-  const std::vector<Point3>& pts_;
-  const HullMesh& h_;
+  const std::vector<Point>& pts_;
+  const BasicHullMesh<Point>& h_;
   Report& rep_;
 };
 
-bool Checker::check_vertices() {
+template <class Point>
+bool Checker<Point>::check_vertices() {
   bool ok = true;
   if (h_.vertices.size() != h_.vertex_ids.size()) {
     rep_.fail(
@@ -219,8 +235,9 @@ bool Checker::check_vertices() {
 }
 
 // Item 5: no two vertices coincide, and no input point with a lower index has a vertex's coordinates.
-void Checker::check_lowest_index() {
-  VertexTable table(h_.vertices);
+template <class Point>
+void Checker<Point>::check_lowest_index() {
+  VertexTable<Point> table(h_.vertices);
   for (std::uint32_t v = 0; v < h_.vertices.size(); ++v) {
     const std::uint32_t w = table.insert(v);
     if (w != kNone)
@@ -260,8 +277,9 @@ void Checker::check_lowest_index() {
 
 // Dimension 1: the input is collinear (checked), so a point is inside the segment iff it lies between the
 // ends in lexicographic order, which is monotone along a line.
-void Checker::check_segment() {
-  Point3 lo = h_.vertices[0], hi = h_.vertices[1];
+template <class Point>
+void Checker<Point>::check_segment() {
+  Point lo = h_.vertices[0], hi = h_.vertices[1];
   if (lo == hi) return;  // reported as coincident vertices
   if (lex_less(hi, lo)) std::swap(lo, hi);
   std::size_t reported = 0;
@@ -274,7 +292,8 @@ void Checker::check_segment() {
 
 // Dimension 2: the input is coplanar (checked) and the corners are input points, so the polygon lies in the
 // input's plane.  Checks strict convexity, simplicity, and that every point is inside or on the polygon.
-void Checker::check_polygon() {
+template <class Point>
+void Checker<Point>::check_polygon() {
   const std::vector<std::uint32_t>& poly = h_.polygon;
   const std::size_t k = poly.size(), nv = h_.vertex_ids.size();
   if (k < 3) {
@@ -301,11 +320,11 @@ void Checker::check_polygon() {
   // Project by dropping an axis along which the plane's normal has an exactly non-zero component.  Any three
   // consecutive corners of a strictly convex polygon give that normal's direction; find a non-collinear
   // triple.
-  auto coord = [](const Point3& p, int a) { return a == 0 ? p.x : a == 1 ? p.y : p.z; };
+  auto coord = [](const Point& p, int a) -> double { return a == 0 ? p.x : a == 1 ? p.y : p.z; };
   int axis = -1;
   for (std::size_t i = 0; i < k && axis < 0; ++i) {
-    const Point3 &a = h_.vertices[poly[i]], &b = h_.vertices[poly[(i + 1) % k]],
-                 &c = h_.vertices[poly[(i + 2) % k]];
+    const Point &a = h_.vertices[poly[i]], &b = h_.vertices[poly[(i + 1) % k]],
+                &c = h_.vertices[poly[(i + 2) % k]];
     for (int t = 0; t < 3 && axis < 0; ++t) {
       const int u = (t + 1) % 3, w = (t + 2) % 3;
       if (orient2d(coord(a, u), coord(a, w), coord(b, u), coord(b, w), coord(c, u), coord(c, w)) != 0)
@@ -376,9 +395,11 @@ void Checker::check_polygon() {
 // O(F) passes touch memory in order even when the vertex ids are spatially random (a sphere's hull has as
 // many vertices as points).  Messages use the caller's face indices and input ids.
 
+template <class Point>
 class MeshChecker {
  public:
-  MeshChecker(const std::vector<Point3>& pts, const HullMesh& h, Report& rep) : pts_(pts), h_(h), rep_(rep) {}
+  MeshChecker(const std::vector<Point>& pts, const BasicHullMesh<Point>& h, Report& rep)
+      : pts_(pts), h_(h), rep_(rep) {}
   void run();
 
  private:
@@ -415,8 +436,8 @@ class MeshChecker {
   void brute_force_points();
   std::uint32_t walk(const Vec3d& q, std::uint32_t f, std::uint32_t& rng, std::size_t cap) const;
 
-  const std::vector<Point3>& pts_;
-  const HullMesh& h_;
+  const std::vector<Point>& pts_;
+  const BasicHullMesh<Point>& h_;
   Report& rep_;
   std::uint32_t nv_ = 0, nf_ = 0;
   std::vector<std::uint32_t> lv2v_, lf2f_;  // local vertex/face -> the caller's index
@@ -443,7 +464,8 @@ std::uint64_t spread_bits(std::uint64_t x) {
 }
 
 // Indices valid and faces non-degenerate; then the local numbering.  False when the faces are unusable.
-bool MeshChecker::renumber() {
+template <class Point>
+bool MeshChecker<Point>::renumber() {
   nv_ = static_cast<std::uint32_t>(h_.vertices.size());
   nf_ = static_cast<std::uint32_t>(h_.triangles.size());
   bool ok = true;
@@ -473,20 +495,21 @@ bool MeshChecker::renumber() {
   double lo[3], hi[3];
   for (int k = 0; k < 3; ++k)
     lo[k] = INFINITY, hi[k] = -INFINITY;
-  for (const Point3& p : h_.vertices) {
+  for (const Point& p : h_.vertices) {
     const double c[3] = {p.x, p.y, p.z};
     for (int k = 0; k < 3; ++k)
       lo[k] = std::min(lo[k], c[k]), hi[k] = std::max(hi[k], c[k]);
   }
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(nv_);
   for (std::uint32_t v = 0; v < nv_; ++v) {
-    const Point3& p = h_.vertices[v];
+    const Point& p = h_.vertices[v];
     const double c[3] = {p.x, p.y, p.z};
     std::uint64_t key = 0;
     for (int k = 0; k < 3; ++k) {
       const double ext = hi[k] - lo[k];
-      const double t = ext > 0 ? std::min((c[k] - lo[k]) / ext * 2097151.0, 2097151.0) : 0;
-      key |= spread_bits(static_cast<std::uint64_t>(t)) << k;
+      // An overflowing double extent (inf, NaN) goes to cell 0.
+      const double t = ext > 0 ? (c[k] - lo[k]) / ext * 2097151.0 : 0;
+      key |= spread_bits(t > 0 ? static_cast<std::uint64_t>(std::min(t, 2097151.0)) : 0) << k;
     }
     keys[v] = {key, v};
   }
@@ -519,7 +542,8 @@ bool MeshChecker::renumber() {
 
 // Item 1, edges: every directed edge once, each with its opposite.  Fills nb_/twin_.  Returns whether the
 // mesh is walkable (closed, no edge used twice in one direction).
-bool MeshChecker::build_adjacency() {
+template <class Point>
+bool MeshChecker<Point>::build_adjacency() {
   start_.assign(nv_ + 1, 0);
   for (const Triangle& t : tri_)
     for (std::uint32_t v : t)
@@ -580,7 +604,8 @@ bool MeshChecker::build_adjacency() {
 }
 
 // Item 1, the rest: no unused vertex, V - E + F = 2, one component, every vertex's faces one fan.
-bool MeshChecker::check_topology() {
+template <class Point>
+bool MeshChecker<Point>::check_topology() {
   bool ok = true;
   std::size_t edges = 0;
   for (std::uint32_t a = 0; a < nv_; ++a)
@@ -602,7 +627,8 @@ bool MeshChecker::check_topology() {
 }
 
 // Needs a walkable mesh.
-bool MeshChecker::check_edges() {
+template <class Point>
+bool MeshChecker<Point>::check_edges() {
   bool ok = true;
   // One connected component.
   std::vector<std::uint8_t> seen(nf_, 0);
@@ -667,7 +693,8 @@ bool MeshChecker::check_edges() {
 
 // The interior reference point c: the vertex centroid, or else the centroid of face 0 and the vertex
 // furthest below it.  Either is strictly inside a valid hull up to rounding; the exact test decides.
-bool MeshChecker::find_interior_point() {
+template <class Point>
+bool MeshChecker<Point>::find_interior_point() {
   auto strictly_inside = [&](const Vec3d& c) {
     c_ = c;
     std::atomic<bool> inside{true};
@@ -699,7 +726,8 @@ bool MeshChecker::find_interior_point() {
 }
 
 // Facets: maximal sets of faces joined by flat edges.
-void MeshChecker::build_facets() {
+template <class Point>
+void MeshChecker<Point>::build_facets() {
   facet_.resize(nf_);
   std::iota(facet_.begin(), facet_.end(), 0u);
   auto find = [&](std::uint32_t x) {
@@ -724,7 +752,8 @@ void MeshChecker::build_facets() {
 //    c through v, since c is strictly below it; the fan must cross the half-plane of its first neighbour
 //    exactly once.  With the rest, this makes the radial projection from c a homeomorphism, so the cones
 //    over the faces tile space exactly once.
-bool MeshChecker::check_vertex_fans(bool polytope) {
+template <class Point>
+bool MeshChecker<Point>::check_vertex_fans(bool polytope) {
   std::atomic<bool> winding_ok{true};
   parallel_failures(nv_, 8, rep_, [&](std::size_t vi, auto& sink, std::size_t) {
     const std::uint32_t v = static_cast<std::uint32_t>(vi);
@@ -793,7 +822,9 @@ bool MeshChecker::check_vertex_fans(bool polytope) {
 // Walks from face f towards the face whose cone from c contains q: crosses an edge whose radial plane has q
 // strictly outside, choosing among such edges from a random start (a deterministic walk can cycle).
 // Returns kNone after `cap` steps.
-std::uint32_t MeshChecker::walk(const Vec3d& q, std::uint32_t f, std::uint32_t& rng, std::size_t cap) const {
+template <class Point>
+std::uint32_t MeshChecker<Point>::walk(const Vec3d& q, std::uint32_t f, std::uint32_t& rng,
+                                       std::size_t cap) const {
   int entered = -1;  // the slot we came through: q is on its inner side already
   for (std::size_t step = 0; step < cap; ++step) {
     rng ^= rng << 13, rng ^= rng >> 17, rng ^= rng << 5;
@@ -812,7 +843,8 @@ std::uint32_t MeshChecker::walk(const Vec3d& q, std::uint32_t f, std::uint32_t& 
 }
 
 // Item 2 for a verified convex polytope: locate each point's cone and test it against that face only.
-void MeshChecker::locate_points() {
+template <class Point>
+void MeshChecker<Point>::locate_points() {
   const std::size_t cap = static_cast<std::size_t>(4 * std::sqrt(static_cast<double>(nf_))) + 100;
   // Start faces from a cube map of directions around c, filled by one sweep of short walks.
   const int g = std::clamp(static_cast<int>(std::sqrt(nf_ / 12.0)), 1, 256);
@@ -860,7 +892,7 @@ void MeshChecker::locate_points() {
   const std::size_t n = pts_.size(), ncells = cell_face.size();
   std::vector<std::uint32_t> cell(n), order(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const Point3& p = pts_[i];
+    const Point& p = pts_[i];
     cell[i] = static_cast<std::uint32_t>(cell_of(p.x - c_.x, p.y - c_.y, p.z - c_.z));
   }
   if (nf_ > 32768) {
@@ -900,7 +932,8 @@ void MeshChecker::locate_points() {
 }
 
 // Item 2 when the mesh is not a verified convex polytope: every point against every face (first face only).
-void MeshChecker::brute_force_points() {
+template <class Point>
+void MeshChecker<Point>::brute_force_points() {
   if (static_cast<double>(pts_.size()) * static_cast<double>(nf_) > 4e9) {
     rep_.fail(
         "containment of the input points was not checked: the mesh is not a valid convex polytope and "
@@ -918,7 +951,8 @@ void MeshChecker::brute_force_points() {
                     });
 }
 
-void MeshChecker::run() {
+template <class Point>
+void MeshChecker<Point>::run() {
   nv_ = static_cast<std::uint32_t>(h_.vertices.size());
   nf_ = static_cast<std::uint32_t>(h_.triangles.size());
   if (nv_ < 4 || nf_ < 4) {
@@ -943,7 +977,8 @@ void MeshChecker::run() {
   else
     brute_force_points();
 }
-void Checker::run() {
+template <class Point>
+void Checker<Point>::run() {
   if (!check_vertices()) return;
   check_lowest_index();
   const int d = h_.dimension;
@@ -973,16 +1008,22 @@ void Checker::run() {
   // was checked above, so nothing is left.
   if (d == 1) check_segment();
   if (d == 2) check_polygon();
-  if (d == 3) MeshChecker(pts_, h_, rep_).run();
+  if (d == 3) MeshChecker<Point>(pts_, h_, rep_).run();
 }
 
 }  // namespace
 
-CheckResult check_hull(const std::vector<Point3>& points, const HullMesh& hull, std::size_t max_failures) {
+template <class Point>
+CheckResult check_hull(const std::vector<Point>& points, const BasicHullMesh<Point>& hull,
+                       std::size_t max_failures) {
   CheckResult result;
   Report rep{result, max_failures};
-  Checker(points, hull, rep).run();
+  Checker<Point>(points, hull, rep).run();
   return result;
 }
+
+// The two point types; one implementation.
+template CheckResult check_hull(const std::vector<Point3>&, const HullMesh&, std::size_t);
+template CheckResult check_hull(const std::vector<Point3d>&, const HullMeshd&, std::size_t);
 
 }  // namespace cudahull

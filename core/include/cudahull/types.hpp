@@ -51,12 +51,16 @@ using Triangle = std::array<std::uint32_t, 3>;
 // counter-clockwise triangles seen from outside.  For a lower-dimensional input, `dimension` is 0, 1 or 2:
 // dimension 0 has one vertex, 1 has the two segment ends, 2 has the polygon's corners in counter-clockwise
 // order (seen from the side the polygon's normal points to) in `polygon` and no triangles.
-struct HullMesh {
+// `Point` is the input's point type, Point3 or Point3d: the vertices keep the input's coordinates exactly.
+template <class Point>
+struct BasicHullMesh {
   int dimension = 3;
   std::vector<PointIndex> vertex_ids;  // input indices, one per hull vertex
-  std::vector<Point3> vertices;        // coordinates of vertex_ids, same order
+  std::vector<Point> vertices;         // coordinates of vertex_ids, same order
   std::vector<Triangle> triangles;     // indices into `vertices`
   std::vector<std::uint32_t> polygon;  // dimension 2 only: indices into `vertices`, in order
 };
+using HullMesh = BasicHullMesh<Point3>;
+using HullMeshd = BasicHullMesh<Point3d>;
 
 }  // namespace cudahull

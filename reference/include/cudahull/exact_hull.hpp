@@ -17,9 +17,18 @@ namespace cudahull {
 //  - dimension 3: outward counter-clockwise triangles; coplanar facets are triangulated using corners only.
 //  - dimension 2: the polygon's strict corners in order, no triangles.  dimension 1: the two segment ends.
 //    dimension 0: a single point.  An empty input gives dimension -1 and no vertices.
-HullMesh exact_hull(const std::vector<Point3>& points, const std::vector<PointIndex>& ids = {});
+// `Point` is Point3 or Point3d (defined in exact_hull.cpp for both); the hull is exact on the coordinates as
+// given, so a double input is not rounded to float (barring overflow or underflow in the predicates).
+template <class Point = Point3>
+BasicHullMesh<Point> exact_hull(const std::vector<Point>& points, const std::vector<PointIndex>& ids = {});
 
-// The affine dimension (-1 for no points, 0..3) of the point set, exactly.
-int affine_dimension(const std::vector<Point3>& points);
+// The affine dimension (-1 for no points, 0..3) of the point set, exactly.  Point3 or Point3d.
+template <class Point = Point3>
+int affine_dimension(const std::vector<Point>& points);
+
+extern template HullMesh exact_hull(const std::vector<Point3>&, const std::vector<PointIndex>&);
+extern template HullMeshd exact_hull(const std::vector<Point3d>&, const std::vector<PointIndex>&);
+extern template int affine_dimension(const std::vector<Point3>&);
+extern template int affine_dimension(const std::vector<Point3d>&);
 
 }  // namespace cudahull

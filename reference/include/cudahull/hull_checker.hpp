@@ -24,7 +24,13 @@ struct CheckResult {
 //     points with the same coordinates.
 // For dimension 0..2 it checks the lower-dimensional analogues (all points on the line/plane, inside the
 // segment/polygon, ends/corners strictly extreme).  Reports at most `max_failures` lines.
-CheckResult check_hull(const std::vector<Point3>& points, const HullMesh& hull,
+// `Point` is Point3 or Point3d (defined in hull_checker.cpp for both); every test is exact on the given
+// coordinates, and messages print them in full precision (9 significant digits for float, 17 for double).
+template <class Point = Point3>
+CheckResult check_hull(const std::vector<Point>& points, const BasicHullMesh<Point>& hull,
                        std::size_t max_failures = 20);
+
+extern template CheckResult check_hull(const std::vector<Point3>&, const HullMesh&, std::size_t);
+extern template CheckResult check_hull(const std::vector<Point3d>&, const HullMeshd&, std::size_t);
 
 }  // namespace cudahull
