@@ -9,6 +9,7 @@
 // By default (CI) a slice runs: cases from 0 on for CUDAHULL_PROPERTY_SECONDS (60) seconds.
 // CUDAHULL_PROPERTY_CASES=N runs exactly cases 0..N-1 instead (the full run, N = 10000: docs/benchmarks.md);
 // CUDAHULL_PROPERTY_FIRST=K starts at case K, CUDAHULL_PROPERTY_VERBOSE=1 names each case before it runs.
+// The double test (30 s by default) runs the same sets in double, with variants that float cannot hold.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -140,31 +141,97 @@ Case make_case(std::uint64_t id) {
   }
 }
 
-// One case: the engine against exact_hull and the checker.  Returns "" or what went wrong.
-std::string run_case(std::uint64_t id) {
-  const Case c = make_case(id);
-  Engine engine(c.points, make_cpu_backend(1));
+// The double cases (issue 14): case i's set in double, then by i % 4 (i / 8 picks among them, so every
+// float kind meets every double variant): as it is (exact floats: the hull must be the float run's), jittered
+// by 1e-12 of its size (below float resolution: the answer changes under rounding), scaled by 2^200 or
+// 2^-200 (beyond float's range), or moved 1e9 away from the origin with a unit size (float's spacing there
+// is 64).
+struct DoubleCase {
+  const char* kind;
+  std::vector<Point3d> points;
+};
+
+DoubleCase make_double_case(std::uint64_t id) {
+  const Case base = make_case(id);
+  Rng r(id * 0x9E3779B97F4A7C15ull + 5);
+  std::vector<Point3d> p(base.points.size());
+  for (std::size_t k = 0; k < p.size(); ++k)
+    p[k] = {base.points[k].x, base.points[k].y, base.points[k].z};
+  double size = 0;
+  for (const Point3d& q : p)
+    size = std::max({size, std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
+  switch ((id / 8) % 4) {
+    case 0:
+      return {"exact floats", p};
+    case 1:
+      for (Point3d& q : p)
+        q = {q.x + 1e-12 * size * r.unit(), q.y + 1e-12 * size * r.unit(), q.z + 1e-12 * size * r.unit()};
+      return {"1e-12 jitter", p};
+    case 2: {
+      const double scale = r.below(2) ? 0x1p200 : 0x1p-200;
+      for (Point3d& q : p)
+        q = {q.x * scale, q.y * scale, q.z * scale};
+      return {"scaled by 2^+-200", p};
+    }
+    default:
+      for (Point3d& q : p) {
+        const double k = size > 0 ? 1 / size : 1;
+        q = {1e9 + q.x * k, -2e9 + q.y * k, 3e9 + q.z * k};
+      }
+      return {"1e9 from the origin", p};
+  }
+}
+
+// One case: the engine against exact_hull and the checker, in the points' own precision.  Returns "" or
+// what went wrong.
+template <class Point>
+std::string check_case(std::uint64_t id, const char* kind, const std::vector<Point>& points) {
+  BasicEngine<Point> engine(points, make_cpu_backend<Point>(1));
   engine.run();
-  const HullMesh& hull = engine.result();
-  const HullMesh oracle = exact_hull(c.points);
-  const std::string where =
-      "case " + std::to_string(id) + " (" + c.kind + ", " + std::to_string(c.points.size()) + " points): ";
+  const BasicHullMesh<Point>& hull = engine.result();
+  const BasicHullMesh<Point> oracle = exact_hull(points);
+  const std::string where = "case " + std::to_string(id) + " (" + kind + ", " +
+                            std::to_string(points.size()) +
+                            (sizeof(points[0].x) == 8 ? " double" : " float") + " points): ";
   if (hull.dimension != oracle.dimension)
     return where + "dimension " + std::to_string(hull.dimension) + ", exact " +
            std::to_string(oracle.dimension);
   if (hull.vertex_ids != oracle.vertex_ids)
     return where + std::to_string(hull.vertex_ids.size()) + " vertices, the exact hull has " +
            std::to_string(oracle.vertex_ids.size()) + " (or others)";
-  const CheckResult check = check_hull(c.points, hull, 3);
+  const CheckResult check = check_hull(points, hull, 3);
   if (!check.ok) return where + "the checker rejects the hull: " + check.failures.front();
   return "";
 }
 
-TEST(Property, EngineEqualsExactHullOnAdversarialSets) {
+std::string run_case(std::uint64_t id) {
+  const Case c = make_case(id);
+  return check_case(id, c.kind, c.points);
+}
+
+// A double case; an exact-floats case must also give the float run's vertices.
+std::string run_double_case(std::uint64_t id) {
+  const DoubleCase c = make_double_case(id);
+  std::string failure = check_case(id, c.kind, c.points);
+  if (failure.empty() && (id / 8) % 4 == 0) {
+    const Case f = make_case(id);
+    Engine engine(f.points, make_cpu_backend(1));
+    engine.run();
+    BasicEngine<Point3d> wide(c.points, make_cpu_backend<Point3d>(1));
+    wide.run();
+    if (engine.result().vertex_ids != wide.result().vertex_ids)
+      failure = "case " + std::to_string(id) + ": exact floats in double give other vertices than in float";
+  }
+  return failure;
+}
+
+// Cases from 0 on, for `default_seconds` (CUDAHULL_PROPERTY_SECONDS overrides) or CUDAHULL_PROPERTY_CASES.
+template <class Run>
+void run_slice(double default_seconds, const char* label, Run&& run) {
   const char* cases_env = std::getenv("CUDAHULL_PROPERTY_CASES");
   const char* seconds_env = std::getenv("CUDAHULL_PROPERTY_SECONDS");
   const std::uint64_t cases = cases_env ? std::strtoull(cases_env, nullptr, 10) : UINT64_MAX;
-  const double seconds = seconds_env ? std::atof(seconds_env) : 60.0;
+  const double seconds = seconds_env ? std::atof(seconds_env) : default_seconds;
   const auto t0 = std::chrono::steady_clock::now();
   std::uint64_t done = 0, failed = 0;
   const char* first_env = std::getenv("CUDAHULL_PROPERTY_FIRST");  // to rerun from a failing case
@@ -173,7 +240,7 @@ TEST(Property, EngineEqualsExactHullOnAdversarialSets) {
     if (verbose) std::fprintf(stderr, "case %llu\n", static_cast<unsigned long long>(id));
     if (!cases_env && std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() > seconds)
       break;
-    const std::string failure = run_case(id);
+    const std::string failure = run(id);
     ++done;
     if (!failure.empty()) {
       ++failed;
@@ -181,10 +248,19 @@ TEST(Property, EngineEqualsExactHullOnAdversarialSets) {
       if (failed >= 10) break;
     }
   }
-  std::printf("property: %llu cases, %llu failed, %.1f s\n", static_cast<unsigned long long>(done),
-              static_cast<unsigned long long>(failed),
+  std::printf("property (%s): %llu cases, %llu failed, %.1f s\n", label,
+              static_cast<unsigned long long>(done), static_cast<unsigned long long>(failed),
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   if (!cases_env && !first_env) EXPECT_GT(done, 100u) << "the slice must cover more than the first few cases";
+}
+
+TEST(Property, EngineEqualsExactHullOnAdversarialSets) {
+  run_slice(60.0, "float", run_case);
+}
+
+// The same in double, on the double variants of the same sets (issue 14).
+TEST(Property, DoubleEngineEqualsExactHullOnAdversarialSets) {
+  run_slice(30.0, "double", run_double_case);
 }
 
 }  // namespace

@@ -41,7 +41,9 @@ const char* swap_kind_name(SwapKind kind) {
   return "unknown";
 }
 
-Engine::Engine(const std::vector<Point3>& points, std::unique_ptr<Backend> backend, EngineOptions options)
+template <class Point>
+BasicEngine<Point>::BasicEngine(const std::vector<Point>& points,
+                                std::unique_ptr<BasicBackend<Point>> backend, EngineOptions options)
     : points_(&points), backend_(std::move(backend)), options_(options) {
   if (!backend_) throw std::invalid_argument("Engine needs a backend");
   if (const char* from = std::getenv("CUDAHULL_BATCHED_SWAPS_FROM"))
@@ -49,9 +51,11 @@ Engine::Engine(const std::vector<Point3>& points, std::unique_ptr<Backend> backe
   if (points_->size() >= 0xffffffffu) throw std::invalid_argument("too many points (at most 2^32 - 2)");
 }
 
-Engine::~Engine() = default;
+template <class Point>
+BasicEngine<Point>::~BasicEngine() = default;
 
-void Engine::restart() {
+template <class Point>
+void BasicEngine<Point>::restart() {
   mesh_ = Mesh{};
   iteration_ = 0;
   started_ = done_ = false;
@@ -64,13 +68,14 @@ void Engine::restart() {
   used_vertices_.clear();
   vertex_flags_.clear();
   stalled_ = 0;
-  result_ = HullMesh{};
+  result_ = BasicHullMesh<Point>{};
   last_record_ = IterationRecord{};
   tables_.clear();
   if (uploaded_) backend_->restart();
 }
 
-IterationRecord Engine::step() {
+template <class Point>
+IterationRecord BasicEngine<Point>::step() {
   if (done_) throw std::logic_error("Engine::step() after done()");
   if (!started_) {
     started_ = true;
@@ -81,20 +86,23 @@ IterationRecord Engine::step() {
   return last_record_;
 }
 
-void Engine::run(const std::function<void(const IterationRecord&)>& on_step) {
+template <class Point>
+void BasicEngine<Point>::run(const std::function<void(const IterationRecord&)>& on_step) {
   while (!done_) {
     IterationRecord r = step();
     if (on_step) on_step(r);
   }
 }
 
-bool Engine::write_point_states_on_device(std::int32_t* device_out, std::size_t count,
-                                          const std::vector<PointIndex>& vertices) {
+template <class Point>
+bool BasicEngine<Point>::write_point_states_on_device(std::int32_t* device_out, std::size_t count,
+                                                      const std::vector<PointIndex>& vertices) {
   if (!started_ || dimension_ != 3 || count != points_->size()) return false;
   return backend_->write_point_states_on_device(device_out, count, vertices);
 }
 
-std::vector<std::int32_t> Engine::point_faces() const {
+template <class Point>
+std::vector<std::int32_t> BasicEngine<Point>::point_faces() const {
   std::vector<std::int32_t> out;
   if (started_ && dimension_ == 3) backend_->point_faces(out);
   for (auto& f : out) {
@@ -103,11 +111,13 @@ std::vector<std::int32_t> Engine::point_faces() const {
   return out;
 }
 
-FaceCell Engine::face_cell(FaceId f) const {
+template <class Point>
+FaceCell BasicEngine<Point>::face_cell(FaceId f) const {
   return phases::face_cell(mesh_, *points_, f);
 }
 
-double Engine::distribute() {
+template <class Point>
+double BasicEngine<Point>::distribute() {
   const auto t0 = Clock::now();
   backend_->distribute_points(tables_);
   external_ = backend_->compact_index_array();
@@ -117,11 +127,12 @@ double Engine::distribute() {
 }
 
 // The first step: section 3.1's tetrahedron, its four cells, and the first distribution.
-IterationRecord Engine::initialize() {
+template <class Point>
+IterationRecord BasicEngine<Point>::initialize() {
   const auto t0 = Clock::now();
   IterationRecord record;
   record.iteration = iteration_++;
-  const std::vector<Point3>& points = *points_;
+  const std::vector<Point>& points = *points_;
   auto finish_lower = [&](int dim, const std::string& why) {
     dimension_ = dim;
     result_ = exact_hull(points);
@@ -151,7 +162,7 @@ IterationRecord Engine::initialize() {
     return finish_lower(3, "tetrahedron too flat for an interior point: exact hull of all points");
   }
 
-  IterationTables& tables = tables_;
+  auto& tables = tables_;
   tables.clear();
   tables.interior = interior_;
   for (FaceId f = 0; f < 4; ++f) {
@@ -175,10 +186,11 @@ IterationRecord Engine::initialize() {
 
 // One iteration of Algorithm 1: refine, regular swaps, complementary swaps and removals, build the tables,
 // distribute.
-IterationRecord Engine::iterate() {
+template <class Point>
+IterationRecord BasicEngine<Point>::iterate() {
   const auto t0 = Clock::now();
   const std::uint64_t to_before = backend_->bytes_to_backend(), from_before = backend_->bytes_from_backend();
-  const std::vector<Point3>& points = *points_;
+  const std::vector<Point>& points = *points_;
   IterationRecord record;
   record.iteration = iteration_++;
   record.faces_before = mesh_.live_faces();
@@ -263,7 +275,8 @@ IterationRecord Engine::iterate() {
 }
 
 // No external point is left (or progress stalled): the exact check, repair and result.
-void Engine::finish(IterationRecord& record) {
+template <class Point>
+void BasicEngine<Point>::finish(IterationRecord& record) {
   const auto t0 = Clock::now();
   phases::DecisionArrayBuilder decisions;  // the repairs' entries route no points
   if (!swap_scratch_) swap_scratch_ = std::make_unique<phases::SwapScratch>();
@@ -274,5 +287,8 @@ void Engine::finish(IterationRecord& record) {
   record.host_ms += ms_since(t0);
   done_ = true;
 }
+
+template class BasicEngine<Point3>;
+template class BasicEngine<Point3d>;
 
 }  // namespace cudahull

@@ -7,11 +7,12 @@
 
 namespace cudahull {
 
-std::vector<std::string> Engine::explain_route(PointIndex point, std::int32_t old_face) const {
+template <class Point>
+std::vector<std::string> BasicEngine<Point>::explain_route(PointIndex point, std::int32_t old_face) const {
   std::vector<std::string> lines;
-  const IterationTables& t = tables_;
+  const BasicIterationTables<Point>& t = tables_;
   if (!started_ || dimension_ != 3 || point >= points_->size()) return {"no 3-d step to explain"};
-  const Point3& x = (*points_)[point];
+  const Point& x = (*points_)[point];
   auto route = [](std::int32_t code) {
     return code == kRouteInternal ? std::string("internal")
            : code < 0             ? "decision[" + std::to_string(-code - 1) + "]"
@@ -101,5 +102,8 @@ std::vector<std::string> Engine::explain_route(PointIndex point, std::int32_t ol
   lines.push_back(found == kRouteInternal ? "internal" : "face " + std::to_string(found));
   return lines;
 }
+
+template class BasicEngine<Point3>;
+template class BasicEngine<Point3d>;
 
 }  // namespace cudahull

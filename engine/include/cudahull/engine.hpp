@@ -45,15 +45,20 @@ struct EngineOptions {
   std::size_t batched_swaps_from = 4096;
 };
 
-class Engine {
+// `Point` is Point3 (float) or Point3d (double) coordinates: one generic implementation, exact for the
+// coordinates as given in either precision (README, "Precision").
+template <class Point>
+class BasicEngine {
  public:
   // The engine borrows `points` (as std::span would): they must stay alive and unchanged while it lives.
   // The backend keeps what it needs of them (a GPU backend uploads them once, on the first step).
-  Engine(const std::vector<Point3>& points, std::unique_ptr<Backend> backend, EngineOptions options = {});
-  Engine(std::vector<Point3>&& points, std::unique_ptr<Backend> backend, EngineOptions options = {}) = delete;
-  ~Engine();
-  Engine(const Engine&) = delete;
-  Engine& operator=(const Engine&) = delete;
+  BasicEngine(const std::vector<Point>& points, std::unique_ptr<BasicBackend<Point>> backend,
+              EngineOptions options = {});
+  BasicEngine(std::vector<Point>&& points, std::unique_ptr<BasicBackend<Point>> backend,
+              EngineOptions options = {}) = delete;
+  ~BasicEngine();
+  BasicEngine(const BasicEngine&) = delete;
+  BasicEngine& operator=(const BasicEngine&) = delete;
 
   bool done() const { return done_; }
   // Back to before the first step, on the same points and backend: the backend keeps its points (nothing
@@ -64,9 +69,9 @@ class Engine {
   // Steps until no external point remains; `on_step` sees every record.
   void run(const std::function<void(const IterationRecord&)>& on_step = {});
 
-  const std::vector<Point3>& points() const { return *points_; }
+  const std::vector<Point>& points() const { return *points_; }
   const Mesh& mesh() const { return mesh_; }
-  const Backend& backend() const { return *backend_; }
+  const BasicBackend<Point>& backend() const { return *backend_; }
   int dimension() const { return dimension_; }  // affine dimension of the input, known after step 0
   Vec3d interior_point() const { return interior_; }
   FaceCell face_cell(FaceId f) const;
@@ -92,7 +97,7 @@ class Engine {
   const IterationRecord& last_record() const { return last_record_; }
 
   // The exact hull; valid once done().
-  const HullMesh& result() const { return result_; }
+  const BasicHullMesh<Point>& result() const { return result_; }
 
  private:
   // Algorithm 1 (engine.cpp): the first step (section 3.1), then one iteration per step, then the exact
@@ -103,8 +108,8 @@ class Engine {
   // Algorithm 2 on the backend: distribute, compact, extremes; returns the backend's milliseconds.
   double distribute();
 
-  const std::vector<Point3>* points_;
-  std::unique_ptr<Backend> backend_;
+  const std::vector<Point>* points_;
+  std::unique_ptr<BasicBackend<Point>> backend_;
   EngineOptions options_;
   bool uploaded_ = false;  // the backend holds the points
   Mesh mesh_;
@@ -119,11 +124,12 @@ class Engine {
   std::vector<PointIndex> used_vertices_;  // every point that was ever a mesh vertex
   PointMap<std::uint8_t> vertex_flags_;    // per vertex: the local edits' flags (phases/local_edits.hpp)
   int stalled_ = 0;                        // iterations without progress
-  HullMesh result_;
+  BasicHullMesh<Point> result_;
   IterationRecord last_record_;
-  FaceGeometryArray geometry_;  // the current mesh's faces as last sent to the backend
-  IterationTables tables_;      // reused every iteration (its buffers keep their capacity)
+  BasicFaceGeometryArray<Point> geometry_;  // the current mesh's faces as last sent to the backend
+  BasicIterationTables<Point> tables_;      // reused every iteration (its buffers keep their capacity)
   std::unique_ptr<phases::SwapScratch> swap_scratch_;  // the swap rounds' buffers, also reused
 };
+using Engine = BasicEngine<Point3>;
 
 }  // namespace cudahull

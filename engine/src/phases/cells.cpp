@@ -15,14 +15,16 @@ SeparatingPlane plane_through_edge(const Vec3d& a, const Vec3d& b, const Vec3d& 
   return {m.x, m.y, m.z, d};
 }
 
-Vec3d unit_normal(const Mesh& mesh, const std::vector<Point3>& points, FaceId f) {
+template <class Point>
+Vec3d unit_normal(const Mesh& mesh, const std::vector<Point>& points, FaceId f) {
   const MeshFace& face = mesh.face(f);
   const Vec3d a = to_vec3d(points[face.v[0]]), b = to_vec3d(points[face.v[1]]),
               c = to_vec3d(points[face.v[2]]);
   return normalized(cross(sub(b, a), sub(c, a)));
 }
 
-FaceCell face_cell(const Mesh& mesh, const std::vector<Point3>& points, FaceId f) {
+template <class Point>
+FaceCell face_cell(const Mesh& mesh, const std::vector<Point>& points, FaceId f) {
   auto P = [&](PointIndex i) { return to_vec3d(points[i]); };
   const MeshFace& face = mesh.face(f);
   FaceCell cell;
@@ -36,7 +38,8 @@ FaceCell face_cell(const Mesh& mesh, const std::vector<Point3>& points, FaceId f
   return cell;
 }
 
-void refinement_planes(const Mesh& mesh, const std::vector<Point3>& points,
+template <class Point>
+void refinement_planes(const Mesh& mesh, const std::vector<Point>& points,
                        std::vector<RefinementEntry>& refinement,
                        const std::vector<std::array<FaceId, 3>>& children) {
   auto P = [&](PointIndex i) { return to_vec3d(points[i]); };
@@ -60,12 +63,25 @@ void refinement_planes(const Mesh& mesh, const std::vector<Point3>& points,
       512);
 }
 
-SeparatingPlane swap_plane(const Mesh& mesh, const std::vector<Point3>& points, FaceId n1, FaceId n2,
+template <class Point>
+SeparatingPlane swap_plane(const Mesh& mesh, const std::vector<Point>& points, FaceId n1, FaceId n2,
                            PointIndex u) {
   const MeshFace& face = mesh.face(n1);  // (x, u, y)
   const Vec3d along = add(unit_normal(mesh, points, n1), unit_normal(mesh, points, n2));
   return plane_through_edge(to_vec3d(points[face.v[0]]), to_vec3d(points[face.v[2]]), along,
                             to_vec3d(points[u]));
 }
+
+// The two coordinate types (README, "Precision").
+template Vec3d unit_normal(const Mesh&, const std::vector<Point3>&, FaceId);
+template FaceCell face_cell(const Mesh&, const std::vector<Point3>&, FaceId);
+template void refinement_planes(const Mesh&, const std::vector<Point3>&, std::vector<RefinementEntry>&,
+                                const std::vector<std::array<FaceId, 3>>&);
+template SeparatingPlane swap_plane(const Mesh&, const std::vector<Point3>&, FaceId, FaceId, PointIndex);
+template Vec3d unit_normal(const Mesh&, const std::vector<Point3d>&, FaceId);
+template FaceCell face_cell(const Mesh&, const std::vector<Point3d>&, FaceId);
+template void refinement_planes(const Mesh&, const std::vector<Point3d>&, std::vector<RefinementEntry>&,
+                                const std::vector<std::array<FaceId, 3>>&);
+template SeparatingPlane swap_plane(const Mesh&, const std::vector<Point3d>&, FaceId, FaceId, PointIndex);
 
 }  // namespace cudahull::phases

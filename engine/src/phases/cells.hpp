@@ -24,19 +24,23 @@ namespace cudahull::phases {
 SeparatingPlane plane_through_edge(const Vec3d& a, const Vec3d& b, const Vec3d& along, const Vec3d& inside);
 
 // The unit outward normal of face f.
-Vec3d unit_normal(const Mesh& mesh, const std::vector<Point3>& points, FaceId f);
+template <class Point>
+Vec3d unit_normal(const Mesh& mesh, const std::vector<Point>& points, FaceId f);
 
 // Face f's cell: its plane and the separating planes of its three edges.
-FaceCell face_cell(const Mesh& mesh, const std::vector<Point3>& points, FaceId f);
+template <class Point>
+FaceCell face_cell(const Mesh& mesh, const std::vector<Point>& points, FaceId f);
 
 // The three planes of each refinement (children[k] are refinement[k]'s children, work ids): plane[i]
 // through the apex and old corner i separates child i-1 from child i, child i on its positive side.
-void refinement_planes(const Mesh& mesh, const std::vector<Point3>& points,
+template <class Point>
+void refinement_planes(const Mesh& mesh, const std::vector<Point>& points,
                        std::vector<RefinementEntry>& refinement,
                        const std::vector<std::array<FaceId, 3>>& children);
 
 // The separating plane of a swap's new edge: n1 = (x, u, y) and n2 = (y, v, x), positive on u's side.
-SeparatingPlane swap_plane(const Mesh& mesh, const std::vector<Point3>& points, FaceId n1, FaceId n2,
+template <class Point>
+SeparatingPlane swap_plane(const Mesh& mesh, const std::vector<Point>& points, FaceId n1, FaceId n2,
                            PointIndex u);
 
 }  // namespace cudahull::phases

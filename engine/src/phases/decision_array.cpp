@@ -41,7 +41,8 @@ void DecisionArrayBuilder::write_swap(std::int32_t index, FaceId f, FaceId g, Fa
   killed_by_[g] = index;
 }
 
-void DecisionArrayBuilder::resolve_swap_planes(const Mesh& mesh, const std::vector<Point3>& points) {
+template <class Point>
+void DecisionArrayBuilder::resolve_swap_planes(const Mesh& mesh, const std::vector<Point>& points) {
   parallel_chunks(
       entries_.size(), hardware_workers(),
       [&](std::size_t begin, std::size_t end, unsigned) {
@@ -59,7 +60,9 @@ std::int32_t DecisionArrayBuilder::route_code(FaceId work, const std::vector<Fac
   return -(killed_by_.at(work) + 1);
 }
 
-void DecisionArrayBuilder::build_tables(IterationTables& tables, std::vector<RefinementEntry> refinement,
+template <class Point>
+void DecisionArrayBuilder::build_tables(BasicIterationTables<Point>& tables,
+                                        std::vector<RefinementEntry> refinement,
                                         const std::vector<std::array<FaceId, 3>>& children,
                                         const std::vector<FaceId>& remap, FaceId old_faces,
                                         const std::vector<PointIndex>& apexes) const {
@@ -99,9 +102,10 @@ void DecisionArrayBuilder::build_tables(IterationTables& tables, std::vector<Ref
       16384);
 }
 
-void build_face_geometry(const Mesh& mesh, const std::vector<Point3>& points, const Vec3d& interior,
-                         const FaceGeometryArray& previous, const std::vector<FaceId>* remap,
-                         FaceGeometryArray& faces) {
+template <class Point>
+void build_face_geometry(const Mesh& mesh, const std::vector<Point>& points, const Vec3d& interior,
+                         const BasicFaceGeometryArray<Point>& previous, const std::vector<FaceId>* remap,
+                         BasicFaceGeometryArray<Point>& faces) {
   const std::size_t count = mesh.live_faces();
   // Reuses the spare buffer: a fresh 100 MB array costs page faults every iteration.  When it must grow, a
   // new one with room to spare, its old contents not copied (every face is written below), and its pages
@@ -109,7 +113,7 @@ void build_face_geometry(const Mesh& mesh, const std::vector<Point3>& points, co
   // these arrays cost ~600 ms on 2 cores, more than a third of the host time).  The spare room is only
   // address space until written, so it is generous.
   if (count > faces.capacity()) {
-    FaceGeometryArray grown;
+    BasicFaceGeometryArray<Point> grown;
     grown.reserve(2 * count);
     faces.swap(grown);
   }
@@ -152,7 +156,7 @@ void build_face_geometry(const Mesh& mesh, const std::vector<Point3>& points, co
       [&](std::size_t begin, std::size_t end, unsigned) {
         for (std::size_t k = begin; k < end; ++k) {
           const MeshFace& face = mesh.face(fresh[k]);
-          FaceGeometry& g = faces[fresh[k]];
+          auto& g = faces[fresh[k]];
           for (int i = 0; i < 3; ++i)
             g.v[i] = points[face.v[i]];
           face_tetrahedron_signs(interior, g.v, g.tet);
@@ -160,5 +164,23 @@ void build_face_geometry(const Mesh& mesh, const std::vector<Point3>& points, co
       },
       2048);
 }
+
+// The two coordinate types (README, "Precision").
+template void DecisionArrayBuilder::resolve_swap_planes(const Mesh&, const std::vector<Point3>&);
+template void DecisionArrayBuilder::build_tables(BasicIterationTables<Point3>&, std::vector<RefinementEntry>,
+                                                 const std::vector<std::array<FaceId, 3>>&,
+                                                 const std::vector<FaceId>&, FaceId,
+                                                 const std::vector<PointIndex>&) const;
+template void build_face_geometry(const Mesh&, const std::vector<Point3>&, const Vec3d&,
+                                  const BasicFaceGeometryArray<Point3>&, const std::vector<FaceId>*,
+                                  BasicFaceGeometryArray<Point3>&);
+template void DecisionArrayBuilder::resolve_swap_planes(const Mesh&, const std::vector<Point3d>&);
+template void DecisionArrayBuilder::build_tables(BasicIterationTables<Point3d>&, std::vector<RefinementEntry>,
+                                                 const std::vector<std::array<FaceId, 3>>&,
+                                                 const std::vector<FaceId>&, FaceId,
+                                                 const std::vector<PointIndex>&) const;
+template void build_face_geometry(const Mesh&, const std::vector<Point3d>&, const Vec3d&,
+                                  const BasicFaceGeometryArray<Point3d>&, const std::vector<FaceId>*,
+                                  BasicFaceGeometryArray<Point3d>&);
 
 }  // namespace cudahull::phases

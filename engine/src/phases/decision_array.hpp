@@ -35,13 +35,15 @@ class DecisionArrayBuilder {
   void write_swap(std::int32_t index, FaceId f, FaceId g, FaceId n1, FaceId n2, PointIndex u);
 
   // Every swap entry's separating plane (cells.hpp), on all cores.
-  void resolve_swap_planes(const Mesh& mesh, const std::vector<Point3>& points);
+  template <class Point>
+  void resolve_swap_planes(const Mesh& mesh, const std::vector<Point>& points);
 
   std::size_t size() const { return entries_.size(); }
 
   // The iteration's tables (Fig. 7) for the compacted mesh (`remap`: work id -> new id): the old faces'
   // routes, refinement[] with its children as route codes, decision[] and the retired apexes.
-  void build_tables(IterationTables& tables, std::vector<RefinementEntry> refinement,
+  template <class Point>
+  void build_tables(BasicIterationTables<Point>& tables, std::vector<RefinementEntry> refinement,
                     const std::vector<std::array<FaceId, 3>>& children, const std::vector<FaceId>& remap,
                     FaceId old_faces, const std::vector<PointIndex>& apexes) const;
 
@@ -63,8 +65,9 @@ class DecisionArrayBuilder {
 // The faces of the compacted mesh as the backend reads them (corners, exact signs of the tetrahedra with
 // the interior point, neighbours).  With `remap` (old id -> new id from the last compaction) surviving faces
 // copy their signs from `previous`.
-void build_face_geometry(const Mesh& mesh, const std::vector<Point3>& points, const Vec3d& interior,
-                         const FaceGeometryArray& previous, const std::vector<FaceId>* remap,
-                         FaceGeometryArray& out);
+template <class Point>
+void build_face_geometry(const Mesh& mesh, const std::vector<Point>& points, const Vec3d& interior,
+                         const BasicFaceGeometryArray<Point>& previous, const std::vector<FaceId>* remap,
+                         BasicFaceGeometryArray<Point>& out);
 
 }  // namespace cudahull::phases

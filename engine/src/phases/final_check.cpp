@@ -17,8 +17,9 @@ namespace {
 // The edges that are not strictly convex, each once (from its lower face id), in id order; on all cores (a
 // sphere of 1M points has 3M edges).  With `geometry` (matching the mesh) corners are read from there,
 // where they lie next to each other: fewer cache misses on a 2M-face mesh.
-std::vector<Edge> faulty_edges(const Mesh& mesh, const std::vector<Point3>& points,
-                               const FaceGeometryArray* geometry) {
+template <class Point>
+std::vector<Edge> faulty_edges(const Mesh& mesh, const std::vector<Point>& points,
+                               const BasicFaceGeometryArray<Point>* geometry) {
   auto P = [&](PointIndex i) { return to_vec3d(points[i]); };
   const auto capacity = static_cast<FaceId>(mesh.face_capacity());
   const unsigned workers = hardware_workers();
@@ -50,10 +51,11 @@ std::vector<Edge> faulty_edges(const Mesh& mesh, const std::vector<Point3>& poin
 }
 
 // Faulty edges plus faces that c is not strictly below (geometry matches the compacted mesh).
-std::size_t count_faults(const Mesh& mesh, const std::vector<Point3>& points,
-                         const FaceGeometryArray& geometry) {
+template <class Point>
+std::size_t count_faults(const Mesh& mesh, const std::vector<Point>& points,
+                         const BasicFaceGeometryArray<Point>& geometry) {
   std::size_t count = faulty_edges(mesh, points, &geometry).size();
-  for (const FaceGeometry& g : geometry)
+  for (const auto& g : geometry)
     count += g.tet[3] >= 0 ? 1 : 0;
   return count;
 }
@@ -61,7 +63,8 @@ std::size_t count_faults(const Mesh& mesh, const std::vector<Point3>& points,
 // How many dropped vertices lie outside the convex mesh: each located by a walk from a face of a vertex of
 // its old ring, when that is still a vertex (a few steps instead of a walk across the mesh from face 0: on
 // a 10M-point ball ~1,200 walks of up to ~700 faces).
-std::size_t dropped_outside(const LocalEdits& edits, const FaceGeometryArray& geometry) {
+template <class Point>
+std::size_t dropped_outside(const LocalEdits<Point>& edits, const BasicFaceGeometryArray<Point>& geometry) {
   const Mesh& mesh = edits.mesh;
   std::vector<std::pair<PointIndex, PointIndex>> dropped(edits.dropped.size());
   for (std::size_t k = 0; k < dropped.size(); ++k)
@@ -93,8 +96,9 @@ std::size_t dropped_outside(const LocalEdits& edits, const FaceGeometryArray& ge
 // The mesh as a HullMesh: vertices renumbered on all cores, through a per-point table when most points are
 // vertices (a sphere), else through a hash map of the vertices (a binary search in the sorted ids cost 6-12
 // ms for the 28K faces of a 10M-point ball: 84K searches, each ~14 mispredicted branches).
-HullMesh mesh_result(const Mesh& mesh, const std::vector<Point3>& points) {
-  HullMesh result;
+template <class Point>
+BasicHullMesh<Point> mesh_result(const Mesh& mesh, const std::vector<Point>& points) {
+  BasicHullMesh<Point> result;
   result.dimension = 3;
   result.vertex_ids = mesh.vertices();
   const std::vector<PointIndex>& ids = result.vertex_ids;
@@ -131,8 +135,10 @@ HullMesh mesh_result(const Mesh& mesh, const std::vector<Point3>& points) {
 
 }  // namespace
 
-HullMesh final_check(LocalEdits& edits, FaceGeometryArray& geometry, std::vector<PointIndex>& used_vertices,
-                     std::size_t external, const std::function<std::vector<std::int32_t>()>& point_faces) {
+template <class Point>
+BasicHullMesh<Point> final_check(LocalEdits<Point>& edits, BasicFaceGeometryArray<Point>& geometry,
+                                 std::vector<PointIndex>& used_vertices, std::size_t external,
+                                 const std::function<std::vector<std::int32_t>()>& point_faces) {
   const auto t0 = Clock::now();
   Mesh& mesh = edits.mesh;
   IterationRecord& record = edits.record;
@@ -142,7 +148,7 @@ HullMesh final_check(LocalEdits& edits, FaceGeometryArray& geometry, std::vector
     // The repairs go on the step's record after its own edits: their sequence numbers continue.
     edits.sequence = static_cast<int>(record.swaps.size() + record.removals.size());
     for (int round = 0; round < 8; ++round) {
-      const std::vector<Edge> faulty = faulty_edges(mesh, edits.points, nullptr);
+      const std::vector<Edge> faulty = faulty_edges<Point>(mesh, edits.points, nullptr);
       if (faulty.empty()) break;
       for (const Edge& edge : faulty) {
         edits.queue.push_back(edge);
@@ -164,7 +170,7 @@ HullMesh final_check(LocalEdits& edits, FaceGeometryArray& geometry, std::vector
   if (faults == 0) faults += dropped_outside(edits, geometry);
   faults += external;  // after a stall: points still outside the mesh
   const double tf_dropped = ms_since(t0);
-  HullMesh result;
+  BasicHullMesh<Point> result;
   if (faults == 0) {
     result = mesh_result(mesh, edits.points);
   } else {
@@ -189,5 +195,13 @@ HullMesh final_check(LocalEdits& edits, FaceGeometryArray& geometry, std::vector
                  tf_dropped - tf_check, ms_since(t0) - tf_dropped);
   return result;
 }
+
+// The two coordinate types (README, "Precision").
+template BasicHullMesh<Point3> final_check(LocalEdits<Point3>&, BasicFaceGeometryArray<Point3>&,
+                                           std::vector<PointIndex>&, std::size_t,
+                                           const std::function<std::vector<std::int32_t>()>&);
+template BasicHullMesh<Point3d> final_check(LocalEdits<Point3d>&, BasicFaceGeometryArray<Point3d>&,
+                                            std::vector<PointIndex>&, std::size_t,
+                                            const std::function<std::vector<std::int32_t>()>&);
 
 }  // namespace cudahull::phases

@@ -25,7 +25,9 @@ namespace cudahull::phases {
 // The exact hull from the mesh that `edits` edit (their record gets the repairs and a note); `geometry`
 // matches the compacted mesh on entry and after.  `external` points are still outside after a stall;
 // `point_faces` then lists every point's face (>= 0 while outside).
-HullMesh final_check(LocalEdits& edits, FaceGeometryArray& geometry, std::vector<PointIndex>& used_vertices,
-                     std::size_t external, const std::function<std::vector<std::int32_t>()>& point_faces);
+template <class Point>
+BasicHullMesh<Point> final_check(LocalEdits<Point>& edits, BasicFaceGeometryArray<Point>& geometry,
+                                 std::vector<PointIndex>& used_vertices, std::size_t external,
+                                 const std::function<std::vector<std::int32_t>()>& point_faces);
 
 }  // namespace cudahull::phases

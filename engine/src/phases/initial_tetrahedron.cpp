@@ -8,7 +8,8 @@
 
 namespace cudahull::phases {
 
-InitialTetrahedron find_initial_tetrahedron(const std::vector<Point3>& points, Backend& backend) {
+template <class Point>
+InitialTetrahedron find_initial_tetrahedron(const std::vector<Point>& points, BasicBackend<Point>& backend) {
   InitialTetrahedron out;
   const auto n = static_cast<PointIndex>(points.size());
   auto P = [&](PointIndex i) { return to_vec3d(points[i]); };
@@ -52,7 +53,8 @@ InitialTetrahedron find_initial_tetrahedron(const std::vector<Point3>& points, B
   return out;
 }
 
-bool make_initial_tetrahedron(const std::vector<Point3>& points, const std::array<PointIndex, 4>& corners,
+template <class Point>
+bool make_initial_tetrahedron(const std::vector<Point>& points, const std::array<PointIndex, 4>& corners,
                               Mesh& mesh, Vec3d& interior) {
   auto P = [&](PointIndex i) { return to_vec3d(points[i]); };
   const auto [p0, p1, p2, p3] = corners;
@@ -65,5 +67,13 @@ bool make_initial_tetrahedron(const std::vector<Point3>& points, const std::arra
   }
   return true;
 }
+
+// The two coordinate types (README, "Precision").
+template InitialTetrahedron find_initial_tetrahedron(const std::vector<Point3>&, BasicBackend<Point3>&);
+template bool make_initial_tetrahedron(const std::vector<Point3>&, const std::array<PointIndex, 4>&, Mesh&,
+                                       Vec3d&);
+template InitialTetrahedron find_initial_tetrahedron(const std::vector<Point3d>&, BasicBackend<Point3d>&);
+template bool make_initial_tetrahedron(const std::vector<Point3d>&, const std::array<PointIndex, 4>&, Mesh&,
+                                       Vec3d&);
 
 }  // namespace cudahull::phases

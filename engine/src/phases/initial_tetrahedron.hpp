@@ -28,11 +28,13 @@ struct InitialTetrahedron {
 };
 
 // Section 3.1's queries on the backend (which holds the points), confirmed exactly.
-InitialTetrahedron find_initial_tetrahedron(const std::vector<Point3>& points, Backend& backend);
+template <class Point>
+InitialTetrahedron find_initial_tetrahedron(const std::vector<Point>& points, BasicBackend<Point>& backend);
 
 // Makes the tetrahedron in `mesh` and returns its centroid in `interior`; false when the centroid, rounded,
 // is not strictly inside every face (a tetrahedron too flat: the caller finishes exactly).
-bool make_initial_tetrahedron(const std::vector<Point3>& points, const std::array<PointIndex, 4>& corners,
+template <class Point>
+bool make_initial_tetrahedron(const std::vector<Point>& points, const std::array<PointIndex, 4>& corners,
                               Mesh& mesh, Vec3d& interior);
 
 }  // namespace cudahull::phases

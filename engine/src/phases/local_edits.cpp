@@ -8,7 +8,8 @@
 
 namespace cudahull::phases {
 
-void settle(LocalEdits& edits) {
+template <class Point>
+void settle(LocalEdits<Point>& edits) {
   Mesh& mesh = edits.mesh;
   IterationRecord& record = edits.record;
   edits.reset_budget();
@@ -80,5 +81,9 @@ void settle(LocalEdits& edits) {
     if (edits.budget > 0) --edits.budget;  // unsigned: at 0 a plain decrement wrapped round and never ended
   }
 }
+
+// The two coordinate types (README, "Precision").
+template void settle(LocalEdits<Point3>&);
+template void settle(LocalEdits<Point3d>&);
 
 }  // namespace cudahull::phases

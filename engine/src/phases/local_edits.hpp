@@ -42,8 +42,9 @@ struct SwapScratch;  // swaps.hpp: the batched rounds' buffers, kept from one it
 
 // What the edits read (points, interior point, options) and what they change (mesh, flags, decision
 // entries, record, dropped vertices), and their work lists.
+template <class Point>
 struct LocalEdits {
-  const std::vector<Point3>& points;
+  const std::vector<Point>& points;
   const Vec3d& interior;  // c: every foldover test and every "proven inside" is relative to it
   std::size_t batched_swaps_from;
   Mesh& mesh;
@@ -86,6 +87,7 @@ struct LocalEdits {
 // Complementary swaps and removals until nothing changes (see the design above).  Concave swaps add
 // volume and take-outs lower the vertex count, so this terminates in exact arithmetic; the budget guards
 // against cycling on degenerate input (the property test found one: a cluster 1e6 from the origin).
-void settle(LocalEdits& edits);
+template <class Point>
+void settle(LocalEdits<Point>& edits);
 
 }  // namespace cudahull::phases

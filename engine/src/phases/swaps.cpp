@@ -55,7 +55,8 @@ std::array<Edge, 4> edges_around(FaceId n1, FaceId n2) {
 // What try_swap() would do with edge i of face f, changing nothing (so the rounds can ask on many threads
 // at once): the outcome, the swap's edges, and for a rejection the verdict and whether the vertex beneath
 // is proven inside the hull.
-SwapTrial trial_swap(const LocalEdits& edits, FaceId f, int i, const Vec3d* around_doomed) {
+template <class Point>
+SwapTrial trial_swap(const LocalEdits<Point>& edits, FaceId f, int i, const Vec3d* around_doomed) {
   SwapTrial t;
   const Mesh& mesh = edits.mesh;
   const MeshFace& face = mesh.face(f);
@@ -91,7 +92,8 @@ SwapTrial trial_swap(const LocalEdits& edits, FaceId f, int i, const Vec3d* arou
 }
 
 // A rejection's effect on the edits; true when it is to be recorded.
-bool doom_and_mark_rejected(LocalEdits& edits, const SwapRecord& swap, bool beneath_inside) {
+template <class Point>
+bool doom_and_mark_rejected(LocalEdits<Point>& edits, const SwapRecord& swap, bool beneath_inside) {
   // A vertex beneath that is inside the hull is taken out with complementary swaps and a removal (Fig. 4).
   if (beneath_inside && !edits.is_doomed(swap.beneath_vertex)) {
     edits.vertex_flags[swap.beneath_vertex] |= kDoomed;
@@ -107,8 +109,8 @@ bool doom_and_mark_rejected(LocalEdits& edits, const SwapRecord& swap, bool bene
 // (made[w] = face and edge of winner w): the mesh edit, then per winner its decision entry and its record
 // in record.swaps[first_record + slot(w)] with sequence first_sequence + slot(w).  `winner` maps w to its
 // trial.  Returns the first new face id: winner w made faces first + 2w and first + 2w + 1.
-template <class Winner, class Slot>
-FaceId make_swaps(LocalEdits& edits, const std::vector<std::pair<FaceId, int>>& made, Winner&& winner,
+template <class Point, class Winner, class Slot>
+FaceId make_swaps(LocalEdits<Point>& edits, const std::vector<std::pair<FaceId, int>>& made, Winner&& winner,
                   Slot&& slot, std::size_t first_record, int first_sequence) {
   const std::size_t count = made.size();
   const FaceId first = edits.mesh.swap_batch(made, hardware_workers());
@@ -143,7 +145,8 @@ void count_made(IterationRecord& record, SwapKind kind, std::size_t count) {
 
 }  // namespace
 
-SwapKind swap_validity(const LocalEdits& edits, PointIndex u, PointIndex v, PointIndex x, PointIndex y,
+template <class Point>
+SwapKind swap_validity(const LocalEdits<Point>& edits, PointIndex u, PointIndex v, PointIndex x, PointIndex y,
                        SwapRecord& swap, const Vec3d* view) {
   if (edits.mesh.adjacent(x, y)) return SwapKind::kRejectedEdgeExists;
   const Vec3d pu = edits.P(u), pv = edits.P(v), px = edits.P(x), py = edits.P(y);
@@ -165,7 +168,8 @@ SwapKind swap_validity(const LocalEdits& edits, PointIndex u, PointIndex v, Poin
   return SwapKind::kRejectedFoldover;
 }
 
-bool try_swap(LocalEdits& edits, FaceId f, int i, SwapKind kind, const Vec3d* around_doomed) {
+template <class Point>
+bool try_swap(LocalEdits<Point>& edits, FaceId f, int i, SwapKind kind, const Vec3d* around_doomed) {
   SwapTrial t = trial_swap(edits, f, i, around_doomed);
   IterationRecord& record = edits.record;
   if (t.outcome == SwapTrial::kRejected && doom_and_mark_rejected(edits, t.swap, t.beneath_inside)) {
@@ -190,7 +194,8 @@ bool try_swap(LocalEdits& edits, FaceId f, int i, SwapKind kind, const Vec3d* ar
   return true;
 }
 
-void swap_edges(LocalEdits& edits, std::vector<SwapCandidate> candidates) {
+template <class Point>
+void swap_edges(LocalEdits<Point>& edits, std::vector<SwapCandidate> candidates) {
   const unsigned workers = hardware_workers();
   SwapScratch& scratch = edits.scratch;
   IterationRecord& record = edits.record;
@@ -339,5 +344,15 @@ void swap_edges(LocalEdits& edits, std::vector<SwapCandidate> candidates) {
     }
   }
 }
+
+// The two coordinate types (README, "Precision").
+template SwapKind swap_validity(const LocalEdits<Point3>&, PointIndex, PointIndex, PointIndex, PointIndex,
+                                SwapRecord&, const Vec3d*);
+template bool try_swap(LocalEdits<Point3>&, FaceId, int, SwapKind, const Vec3d*);
+template void swap_edges(LocalEdits<Point3>&, std::vector<SwapCandidate>);
+template SwapKind swap_validity(const LocalEdits<Point3d>&, PointIndex, PointIndex, PointIndex, PointIndex,
+                                SwapRecord&, const Vec3d*);
+template bool try_swap(LocalEdits<Point3d>&, FaceId, int, SwapKind, const Vec3d*);
+template void swap_edges(LocalEdits<Point3d>&, std::vector<SwapCandidate>);
 
 }  // namespace cudahull::phases

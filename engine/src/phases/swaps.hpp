@@ -34,7 +34,8 @@ double extent(std::initializer_list<Vec3d> points);
 // The validity of the swap of u - v into x - y (see the design): kRegular when valid, else the reason; a
 // foldover fills swap.beneath_*.  Seen from far below the edge, or from `view` when given (one common
 // viewpoint for the swaps around a vertex being taken out).
-SwapKind swap_validity(const LocalEdits& edits, PointIndex u, PointIndex v, PointIndex x, PointIndex y,
+template <class Point>
+SwapKind swap_validity(const LocalEdits<Point>& edits, PointIndex u, PointIndex v, PointIndex x, PointIndex y,
                        SwapRecord& swap, const Vec3d* view = nullptr);
 
 // A candidate edge for a swap, and the kind it is recorded as when made.
@@ -46,11 +47,13 @@ struct SwapCandidate {
 // Fig. 3b: swap edge i of face f.  Only a concave edge, unless `around_doomed` (a complementary swap that
 // lowers the degree of a vertex being taken out, seen from that view).  Returns true if swapped; the four
 // edges around the new faces are queued and its vertices touched.
-bool try_swap(LocalEdits& edits, FaceId f, int i, SwapKind kind, const Vec3d* around_doomed = nullptr);
+template <class Point>
+bool try_swap(LocalEdits<Point>& edits, FaceId f, int i, SwapKind kind, const Vec3d* around_doomed = nullptr);
 
 // Tries every candidate: in rounds on all cores while at least edits.batched_swaps_from remain (edges
 // around the swaps made go to the next round as complementary candidates), then one at a time (regular
 // candidates now; the others are queued for settle()).
-void swap_edges(LocalEdits& edits, std::vector<SwapCandidate> candidates);
+template <class Point>
+void swap_edges(LocalEdits<Point>& edits, std::vector<SwapCandidate> candidates);
 
 }  // namespace cudahull::phases

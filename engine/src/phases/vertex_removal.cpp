@@ -8,7 +8,8 @@
 
 namespace cudahull::phases {
 
-bool try_remove(LocalEdits& edits, PointIndex v, bool doomed_vertex) {
+template <class Point>
+bool try_remove(LocalEdits<Point>& edits, PointIndex v, bool doomed_vertex) {
   Mesh& mesh = edits.mesh;
   IterationRecord& record = edits.record;
   std::vector<PointIndex>& ring = edits.ring;
@@ -60,7 +61,8 @@ bool try_remove(LocalEdits& edits, PointIndex v, bool doomed_vertex) {
   return true;
 }
 
-bool take_out(LocalEdits& edits, PointIndex w) {
+template <class Point>
+bool take_out(LocalEdits<Point>& edits, PointIndex w) {
   Mesh& mesh = edits.mesh;
   std::vector<PointIndex>& ring = edits.ring;
   std::vector<FaceId>& ring_faces = edits.ring_faces;
@@ -104,5 +106,11 @@ bool take_out(LocalEdits& edits, PointIndex w) {
     if (!swapped) return false;
   }
 }
+
+// The two coordinate types (README, "Precision").
+template bool try_remove(LocalEdits<Point3>&, PointIndex, bool);
+template bool take_out(LocalEdits<Point3>&, PointIndex);
+template bool try_remove(LocalEdits<Point3d>&, PointIndex, bool);
+template bool take_out(LocalEdits<Point3d>&, PointIndex);
 
 }  // namespace cudahull::phases

@@ -19,9 +19,11 @@ namespace cudahull::phases {
 
 // Removes v if it has degree 3 and is concave, flat or `doomed_vertex`, and the removal is valid; records a
 // rejected removal.  True if removed.
-bool try_remove(LocalEdits& edits, PointIndex v, bool doomed_vertex);
+template <class Point>
+bool try_remove(LocalEdits<Point>& edits, PointIndex v, bool doomed_vertex);
 
 // Takes the doomed vertex w out of the mesh; true when it is gone.
-bool take_out(LocalEdits& edits, PointIndex w);
+template <class Point>
+bool take_out(LocalEdits<Point>& edits, PointIndex w);
 
 }  // namespace cudahull::phases
