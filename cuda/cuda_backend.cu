@@ -1,12 +1,12 @@
 // The CUDA backend (issue 4): Algorithm 2 of the paper on the device, with the same per-point functions as
 // the CPU backend (routing.hpp), so both backends give bit-identical routing, counts and extreme points.
 //
-// Resident on the device for the whole run: the points (float AoS, uploaded once), the index array of the
-// active points (two buffers, compacted from one into the other), each point's face (int32, as
-// CpuBackend::face_of_) and per face of the current mesh its external count and packed extreme key.  Per
-// iteration the host sends the O(faces) tables as one block (through ordinary or pinned buffers by size,
-// upload_staged()) and reads back the O(faces) counts and keys plus the compacted count: never O(points) data
-// (point_faces(), for the debugger, aside).
+// Resident on the device for the whole run: the points (AoS of the backend's `Point`, Point3 or Point3d,
+// uploaded once), the index array of the active points (two buffers, compacted from one into the other),
+// each point's face (int32, as CpuBackend::face_of_) and per face of the current mesh its external count and
+// packed extreme key.  Per iteration the host sends the O(faces) tables as one block (through ordinary or
+// pinned buffers by size, upload_staged()) and reads back the O(faces) counts and keys plus the compacted
+// count: never O(points) data (point_faces(), for the debugger, aside).
 #include <cuda_runtime.h>
 
 #include <algorithm>
@@ -191,8 +191,8 @@ __device__ __forceinline__ void block_argmax(double& s, PointIndex& i) {
   }
 }
 
-template <class Score>
-__global__ void __launch_bounds__(kBlock) argmax_partial(const Point3* __restrict__ points, std::size_t n,
+template <class Point, class Score>
+__global__ void __launch_bounds__(kBlock) argmax_partial(const Point* __restrict__ points, std::size_t n,
                                                          Score score, Candidate* __restrict__ partial) {
   score.prepare(points);
   double best_s = -INFINITY;
@@ -225,8 +225,9 @@ __global__ void __launch_bounds__(kBlock)
 
 // CpuBackend::extremes_x, both ends in one pass: lowest x (as the highest -x; exact in double) in
 // partial[0, gridDim), highest x in partial[gridDim, 2 gridDim).
+template <class Point>
 __global__ void __launch_bounds__(kBlock)
-    extremes_x_partial(const Point3* __restrict__ points, std::size_t n, Candidate* __restrict__ partial) {
+    extremes_x_partial(const Point* __restrict__ points, std::size_t n, Candidate* __restrict__ partial) {
   double low_s = -INFINITY, high_s = -INFINITY;
   PointIndex low_i = 0xffffffffu, high_i = 0xffffffffu;
   const std::size_t stride = static_cast<std::size_t>(gridDim.x) * blockDim.x;
@@ -251,11 +252,12 @@ __global__ void __launch_bounds__(kBlock)
 // The fixed corners of the next two queries are read on the device (prepare(), once per thread), so no
 // query waits for a point to come back to the host first.
 // CpuBackend::furthest_from_line: |d x (q - a)|^2, the same double operations, each rounded once.
+template <class Point>
 struct ScoreLine {
   PointIndex a, b;
   double ax, ay, az, dx, dy, dz;
-  __device__ void prepare(const Point3* points) {
-    const Point3 pa = points[a], pb = points[b];
+  __device__ void prepare(const Point* points) {
+    const Point pa = points[a], pb = points[b];
     ax = pa.x;
     ay = pa.y;
     az = pa.z;
@@ -263,7 +265,7 @@ struct ScoreLine {
     dy = __dsub_rn(pb.y, ay);
     dz = __dsub_rn(pb.z, az);
   }
-  __device__ double operator()(const Point3& q) const {
+  __device__ double operator()(const Point& q) const {
     const double wx = __dsub_rn(q.x, ax), wy = __dsub_rn(q.y, ay), wz = __dsub_rn(q.z, az);
     const double cx = __dsub_rn(__dmul_rn(dy, wz), __dmul_rn(dz, wy));
     const double cy = __dsub_rn(__dmul_rn(dz, wx), __dmul_rn(dx, wz));
@@ -273,15 +275,16 @@ struct ScoreLine {
 };
 
 // CpuBackend::furthest_from_plane: |face_height|.
+template <class Point>
 struct ScorePlane {
   PointIndex a, b, c;
-  FaceGeometry face;
-  __device__ void prepare(const Point3* points) {
+  BasicFaceGeometry<Point> face;
+  __device__ void prepare(const Point* points) {
     face.v[0] = points[a];
     face.v[1] = points[b];
     face.v[2] = points[c];
   }
-  __device__ double operator()(const Point3& q) const { return fabs(face_height(face, q)); }
+  __device__ double operator()(const Point& q) const { return fabs(face_height(face, q)); }
 };
 
 // ---------------------------------------------------------------------------------------------------------
@@ -293,10 +296,12 @@ struct ScorePlane {
 // (CpuBackend: face_of_[i] = kRouteInternal), and with `planes` each face's planes prepared (routing.hpp,
 // FacePlanes: with many points a face, the exact verdicts then cost a few dot products instead of up to four
 // orient3d filters each).
+template <class Point>
 __global__ void begin_pass_kernel(unsigned long long* __restrict__ results, std::size_t words,
                                   const PointIndex* __restrict__ retired, std::size_t retired_count,
-                                  std::int32_t* __restrict__ face_of, const FaceGeometry* __restrict__ faces,
-                                  std::int32_t face_count, Vec3d interior, FacePlanes* __restrict__ planes) {
+                                  std::int32_t* __restrict__ face_of,
+                                  const BasicFaceGeometry<Point>* __restrict__ faces, std::int32_t face_count,
+                                  Vec3d interior, FacePlanes* __restrict__ planes) {
   const std::size_t k = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x;
   if (k < words) results[k] = 0;
   if (k < retired_count) face_of[retired[k]] = kRouteInternal;
@@ -305,10 +310,10 @@ __global__ void begin_pass_kernel(unsigned long long* __restrict__ results, std:
 }
 
 // With kPrepared, `planes` holds every face's FacePlanes (classify_point_prepared, the same answers).
-template <bool kShared, bool kPrepared>
+template <class Point, bool kShared, bool kPrepared>
 __global__ void __launch_bounds__(kBlock, kPrepared ? kPreparedBlocksPerSm : kDistributeBlocksPerSm)
-    distribute_kernel(const Point3* __restrict__ points, const PointIndex* __restrict__ active, std::size_t n,
-                      std::int32_t* __restrict__ face_of, RoutingView view,
+    distribute_kernel(const Point* __restrict__ points, const PointIndex* __restrict__ active, std::size_t n,
+                      std::int32_t* __restrict__ face_of, BasicRoutingView<Point> view,
                       const FacePlanes* __restrict__ planes, std::uint32_t* __restrict__ count,
                       unsigned long long* __restrict__ best, PointIndex* __restrict__ kept,
                       unsigned long long* __restrict__ kept_count) {
@@ -359,14 +364,14 @@ __global__ void __launch_bounds__(kBlock, kPrepared ? kPreparedBlocksPerSm : kDi
       i = active != nullptr ? active[k] : static_cast<PointIndex>(k);
       const std::int32_t old_face = face_of[i];
       if (old_face != kRouteInternal) {  // not retired
-        const Point3 x = points[i];
+        const Point x = points[i];
         if (kPrepared) {
           double height = 0;
           g = classify_point_prepared(x, old_face, view, planes, &height);
-          if (g != kRouteInternal) key = pack_extreme<Point3>(height, i);
+          if (g != kRouteInternal) key = pack_extreme<Point>(height, i);
         } else {
           g = classify_point(x, old_face, view);
-          if (g != kRouteInternal) key = pack_extreme<Point3>(face_height(view.faces[g], x), i);
+          if (g != kRouteInternal) key = pack_extreme<Point>(face_height(view.faces[g], x), i);
         }
         face_of[i] = g;
       }
@@ -398,10 +403,12 @@ __global__ void __launch_bounds__(kBlock, kPrepared ? kPreparedBlocksPerSm : kDi
 }
 
 // The four variants of the pass, [kShared][kPrepared], for the occupancy queries and the launch.
-using DistributeKernel = decltype(&distribute_kernel<false, false>);
-constexpr DistributeKernel kDistributeKernels[2][2] = {
-    {&distribute_kernel<false, false>, &distribute_kernel<false, true>},
-    {&distribute_kernel<true, false>, &distribute_kernel<true, true>}};
+template <class Point>
+using DistributeKernel = decltype(&distribute_kernel<Point, false, false>);
+template <class Point>
+constexpr DistributeKernel<Point> kDistributeKernels[2][2] = {
+    {&distribute_kernel<Point, false, false>, &distribute_kernel<Point, false, true>},
+    {&distribute_kernel<Point, true, false>, &distribute_kernel<Point, true, true>}};
 
 __global__ void point_faces_kernel(const PointIndex* __restrict__ active, std::size_t n,
                                    const std::int32_t* __restrict__ face_of, std::int32_t* __restrict__ out) {
@@ -451,8 +458,14 @@ struct Event {
 
 // ---------------------------------------------------------------------------------------------------------
 
-class CudaBackend final : public Backend {
+// `Point` is Point3 (float) or Point3d (double): the points on the device, the faces of the tables and every
+// kernel that reads them follow it; the rest (indices, faces of points, counts, keys, planes) is the same.
+template <class Point>
+class CudaBackend final : public BasicBackend<Point> {
  public:
+  using Tables = BasicIterationTables<Point>;
+  using Geometry = BasicFaceGeometry<Point>;
+
   explicit CudaBackend(int device) : device_(device) {
     int count = 0;
     cudaError_t e = cudaGetDeviceCount(&count);
@@ -477,10 +490,12 @@ class CudaBackend final : public Backend {
     }
 
     // The exact orient3d fallback keeps its expansions on the thread's stack (a few KB of local memory).
-    // Reserve it now, so that no launch has to grow the local memory (a hidden synchronisation).
+    // Reserve it now, so that no launch has to grow the local memory (a hidden synchronisation).  This
+    // backend's own kernels (its `Point`) decide; the limit is per device and only ever raised here, so a
+    // float and a double backend on one device both keep enough.
     std::size_t frame = 0;
-    for (const auto& by_prepared : kDistributeKernels) {
-      for (DistributeKernel kernel : by_prepared) {
+    for (const auto& by_prepared : kDistributeKernels<Point>) {
+      for (DistributeKernel<Point> kernel : by_prepared) {
         cudaFuncAttributes attr{};
         check(cudaFuncGetAttributes(&attr, kernel), "reading the kernel attributes");
         frame = std::max(frame, attr.localSizeBytes);
@@ -494,7 +509,7 @@ class CudaBackend final : public Backend {
     for (int shared = 0; shared < 2; ++shared) {
       for (int prepared = 0; prepared < 2; ++prepared)
         distribute_blocks_[shared][prepared] =
-            resident_blocks(kDistributeKernels[shared][prepared], shared ? kSharedFaces : 0);
+            resident_blocks(kDistributeKernels<Point>[shared][prepared], shared ? kSharedFaces : 0);
     }
 
     scalars_host_.reserve(64, "result scalars");
@@ -506,7 +521,7 @@ class CudaBackend final : public Backend {
 
   std::string name() const override { return name_; }
 
-  void upload_points(const std::vector<Point3>& points) override {
+  void upload_points(const std::vector<Point>& points) override {
     select_device();
     n_points_ = points.size();
     n_active_ = n_points_;
@@ -528,10 +543,10 @@ class CudaBackend final : public Backend {
     extremes_dev_.reserve(extremes_bytes(kInitialFaces), "the per-face counts and extremes");
     extremes_host_.reserve(extremes_bytes(kInitialFaces), "the per-face results");
     planes_.reserve(kInitialFaces, "the prepared face planes");
-    check(cudaMemcpyAsync(points_.get(), points.data(), n_points_ * sizeof(Point3), cudaMemcpyHostToDevice,
+    check(cudaMemcpyAsync(points_.get(), points.data(), n_points_ * sizeof(Point), cudaMemcpyHostToDevice,
                           stream_),
           "uploading the points");
-    bytes_to_ += n_points_ * sizeof(Point3);
+    bytes_to_ += n_points_ * sizeof(Point);
     all_active_ = true;  // the index array is the identity until the first compaction
     check(cudaMemsetAsync(face_of_.get(), 0, n_points_ * sizeof(std::int32_t), stream_),
           "clearing the per-point faces");
@@ -568,7 +583,7 @@ class CudaBackend final : public Backend {
   PointIndex furthest_from_line(PointIndex a, PointIndex b) override {
     select_device();
     if (n_points_ == 0) return 0;
-    ScoreLine s{};
+    ScoreLine<Point> s{};
     s.a = a;
     s.b = b;
     launch_argmax(s, 0);
@@ -578,7 +593,7 @@ class CudaBackend final : public Backend {
   PointIndex furthest_from_plane(PointIndex a, PointIndex b, PointIndex c) override {
     select_device();
     if (n_points_ == 0) return 0;
-    ScorePlane s{};
+    ScorePlane<Point> s{};
     s.a = a;
     s.b = b;
     s.c = c;
@@ -586,7 +601,7 @@ class CudaBackend final : public Backend {
     return read_argmax(1)[0];
   }
 
-  void distribute_points(const IterationTables& tables) override {
+  void distribute_points(const Tables& tables) override {
     select_device();
     face_count_ = tables.faces.size();
     const auto face_count = static_cast<std::int32_t>(face_count_);
@@ -595,7 +610,7 @@ class CudaBackend final : public Backend {
     constexpr int kSections = 7;
     const std::size_t sizes[kSections] = {tables.refinement.size() * sizeof(RefinementEntry),
                                           tables.decision.size() * sizeof(DecisionEntry),
-                                          tables.faces.size() * sizeof(FaceGeometry),
+                                          tables.faces.size() * sizeof(Geometry),
                                           tables.initial_cells.size() * sizeof(SeparatingPlane),
                                           tables.retired.size() * sizeof(PointIndex),
                                           tables.old_face_split.size() * sizeof(std::int32_t),
@@ -619,12 +634,12 @@ class CudaBackend final : public Backend {
     times_.table_bytes = total;
 
     unsigned char* base = tables_dev_.get();
-    RoutingView view;
+    BasicRoutingView<Point> view;
     view.refinement = reinterpret_cast<const RefinementEntry*>(base + offsets[0]);
     view.old_face_split = reinterpret_cast<const std::int32_t*>(base + offsets[5]);
     view.old_face_route = reinterpret_cast<const std::int32_t*>(base + offsets[6]);
     view.decision = reinterpret_cast<const DecisionEntry*>(base + offsets[1]);
-    view.faces = reinterpret_cast<const FaceGeometry*>(base + offsets[2]);
+    view.faces = reinterpret_cast<const Geometry*>(base + offsets[2]);
     view.face_count = face_count;
     view.initial_cells =
         tables.initial_cells.empty() ? nullptr : reinterpret_cast<const SeparatingPlane*>(base + offsets[3]);
@@ -651,7 +666,7 @@ class CudaBackend final : public Backend {
     const bool shared = face_count <= kSharedFaces;
     const unsigned blocks = std::min<unsigned>(blocks_for(n_active_), distribute_blocks_[shared][prepared]);
     const std::size_t smem = shared ? face_count_ * (sizeof(unsigned long long) + sizeof(std::uint32_t)) : 0;
-    kDistributeKernels[shared][prepared]<<<blocks, kBlock, smem, stream_>>>(
+    kDistributeKernels<Point>[shared][prepared]<<<blocks, kBlock, smem, stream_>>>(
         points_.get(), active_indices(), n_active_, face_of_.get(), view, planes_.get(), count, best,
         active_alt_.get(), kept_count());
     check(cudaGetLastError(), "launching distribute_kernel");
@@ -898,7 +913,7 @@ class CudaBackend final : public Backend {
   cudaEvent_t staging_free_[2] = {nullptr, nullptr};  // per staging buffer: its last copy is done
 
   std::size_t n_points_ = 0, n_active_ = 0, face_count_ = 0;
-  DeviceBuffer<Point3> points_;
+  DeviceBuffer<Point> points_;
   DeviceBuffer<PointIndex> active_, active_alt_;
   DeviceBuffer<PointIndex> vertex_ids_;  // write_point_states_on_device
   DeviceBuffer<std::int32_t> face_of_;
@@ -917,8 +932,11 @@ class CudaBackend final : public Backend {
 
 }  // namespace
 
-std::unique_ptr<Backend> make_cuda_backend(int device) {
-  return std::make_unique<CudaBackend>(device);
+template <class Point>
+std::unique_ptr<BasicBackend<Point>> make_cuda_backend(int device) {
+  return std::make_unique<CudaBackend<Point>>(device);
 }
+template std::unique_ptr<BasicBackend<Point3>> make_cuda_backend<Point3>(int);
+template std::unique_ptr<BasicBackend<Point3d>> make_cuda_backend<Point3d>(int);
 
 }  // namespace cudahull

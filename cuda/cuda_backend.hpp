@@ -14,6 +14,8 @@ namespace cudahull {
 
 // Uses CUDA device `device`.  Throws DeviceError with a one-line message when there is no usable device or
 // a CUDA call fails (also later, from any Backend call: out of memory with the byte count, a kernel fault).
-std::unique_ptr<Backend> make_cuda_backend(int device = 0);
+// Point3 (float) or Point3d (double) coordinates, as make_cpu_backend().
+template <class Point = Point3>
+std::unique_ptr<BasicBackend<Point>> make_cuda_backend(int device = 0);
 
 }  // namespace cudahull

@@ -12,11 +12,13 @@
 #include "support/point_sets.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <cuda_runtime_api.h>
 
@@ -351,6 +353,216 @@ TEST_F(Cuda, OutOfDeviceMemoryIsADeviceErrorThenRecovers) {
   Engine cpu(points, make_cpu_backend());
   cpu.run();
   EXPECT_EQ(engine.result().vertex_ids, cpu.result().vertex_ids);
+}
+
+// --- Double coordinates (BasicEngine<Point3d>, make_*_backend<Point3d>) ------------------------------------
+
+// The double backends run the same routing.hpp code on the same double points: everything must agree exactly,
+// as in compare_backends.  Returns the CUDA records.
+std::vector<IterationRecord> compare_double_backends(const std::vector<Point3d>& points,
+                                                     const std::string& what, CompareOptions options = {}) {
+  SCOPED_TRACE(what + " (double)");
+  BasicEngine<Point3d> cpu(points, make_cpu_backend<Point3d>());
+  BasicEngine<Point3d> gpu(points, make_cuda_backend<Point3d>());
+  std::vector<IterationRecord> records;
+  while (!cpu.done()) {
+    EXPECT_FALSE(gpu.done());
+    if (gpu.done()) break;
+    const IterationRecord c = cpu.step();
+    const IterationRecord g = gpu.step();
+    expect_same_record(c, g);
+    records.push_back(g);
+    const auto& ce = cpu.face_extremes();
+    const auto& ge = gpu.face_extremes();
+    EXPECT_EQ(ge.size(), ce.size()) << describe(c);
+    if (ge.size() == ce.size()) {
+      std::size_t differing = 0, first = 0;
+      for (std::size_t f = 0; f < ce.size(); ++f) {
+        if (ce[f].count != ge[f].count || ce[f].furthest != ge[f].furthest) {
+          if (differing++ == 0) first = f;
+        }
+      }
+      EXPECT_EQ(differing, 0u) << describe(c) << ": first differing face " << first << " (cpu count "
+                               << ce[first].count << " furthest " << ce[first].furthest << ", cuda count "
+                               << ge[first].count << " furthest " << ge[first].furthest << ")";
+    }
+    if (options.point_faces && cpu.dimension() == 3) {
+      const auto cf = cpu.point_faces(), gf = gpu.point_faces();
+      EXPECT_EQ(gf, cf) << describe(c) << ": per-point faces differ";
+    }
+    if (::testing::Test::HasFatalFailure()) break;
+  }
+  EXPECT_TRUE(gpu.done());
+  const HullMeshd& ch = cpu.result();
+  const HullMeshd& gh = gpu.result();
+  EXPECT_EQ(gh.dimension, ch.dimension);
+  EXPECT_EQ(gh.vertex_ids, ch.vertex_ids);
+  EXPECT_EQ(gh.vertices, ch.vertices);
+  EXPECT_EQ(gh.triangles, ch.triangles);
+  EXPECT_EQ(gh.polygon, ch.polygon);
+  if (options.check_hull) {
+    const CheckResult check = check_hull(points, gh);
+    EXPECT_TRUE(check.ok) << (check.failures.empty() ? "" : check.failures.front());
+  }
+  if (::testing::Test::HasFatalFailure()) return records;
+  // Backend::restart(): the CUDA backend keeps its double points and repeats every step.
+  gpu.restart();
+  std::size_t k = 0;
+  while (!gpu.done() && k < records.size()) {
+    const IterationRecord g = gpu.step();
+    expect_same_record(records[k++], g);
+    if (::testing::Test::HasFatalFailure()) break;
+  }
+  EXPECT_TRUE(gpu.done()) << "after restart()";
+  EXPECT_EQ(k, records.size()) << "after restart()";
+  EXPECT_EQ(gpu.result().vertex_ids, ch.vertex_ids) << "after restart()";
+  return records;
+}
+
+std::vector<Point3d> to_double(const std::vector<Point3>& p) {
+  std::vector<Point3d> d(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i)
+    d[i] = {p[i].x, p[i].y, p[i].z};
+  return d;
+}
+
+std::vector<Point3> to_float(const std::vector<Point3d>& p) {
+  std::vector<Point3> f(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i)
+    f[i] = {static_cast<float>(p[i].x), static_cast<float>(p[i].y), static_cast<float>(p[i].z)};
+  return f;
+}
+
+// A ball of float points around (2, 2, 2) (every coordinate in [1, 3], where a float step is 1.2e-7),
+// followed by a copy of each point 1e-12 further from the centre.  Rounded to float, each copy is its
+// original again (a float path sees every point twice); in double every copy lies strictly outside its
+// original, so the extremes in x and the hull's vertices are copies.
+std::vector<Point3d> ball_with_near_copies(std::size_t n, std::uint64_t seed) {
+  std::vector<Point3> ball = generate_points(Distribution::kBall, n, seed);
+  for (auto& q : ball)
+    q = {q.x + 2.0f, q.y + 2.0f, q.z + 2.0f};
+  std::vector<Point3d> p = to_double(ball);
+  p.reserve(2 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point3d q = p[i];
+    const double dx = q.x - 2.0, dy = q.y - 2.0, dz = q.z - 2.0;
+    const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+    if (r == 0) {
+      p.push_back({q.x, q.y, q.z + 1e-12});
+    } else {
+      p.push_back({q.x + 1e-12 * dx / r, q.y + 1e-12 * dy / r, q.z + 1e-12 * dz / r});
+    }
+  }
+  return p;
+}
+
+// (1, 1, 1) + 1e-12 q for q in a ball: every point rounds to (1, 1, 1) in float (dimension 0 there), while in
+// double the points span a ball of a few thousand steps of 2^-52 across (many coincidences and coplanar
+// points at that resolution).
+std::vector<Point3d> ball_at_1e12_scale(std::size_t n, std::uint64_t seed) {
+  std::vector<Point3d> p = to_double(generate_points(Distribution::kBall, n, seed));
+  for (auto& q : p)
+    q = {1.0 + 1e-12 * q.x, 1.0 + 1e-12 * q.y, 1.0 + 1e-12 * q.z};
+  return p;
+}
+
+TEST_F(Cuda, DoubleQueriesMatchTheCpuWhereFloatWouldTie) {
+  std::mt19937 rng(17);
+  const std::size_t n = 30000;
+  for (int trial = 0; trial < 4; ++trial) {
+    const std::vector<Point3d> p =
+        trial < 2 ? ball_with_near_copies(n, 40 + trial) : ball_at_1e12_scale(2 * n, 40 + trial);
+    auto cpu = make_cpu_backend<Point3d>(3);
+    auto gpu = make_cuda_backend<Point3d>();
+    cpu->upload_points(p);
+    gpu->upload_points(p);
+    EXPECT_EQ(gpu->bytes_to_backend(), p.size() * sizeof(Point3d)) << "trial " << trial;
+    const auto cx = cpu->extremes_x(), gx = gpu->extremes_x();
+    EXPECT_EQ(gx, cx) << "trial " << trial;
+    if (trial < 2) {
+      // The extremes in x are copies (the second half); in float they are originals.
+      EXPECT_GE(cx[0], n) << "trial " << trial;
+      EXPECT_GE(cx[1], n) << "trial " << trial;
+      auto cpu_float = make_cpu_backend<Point3>(3);
+      const std::vector<Point3> rounded = to_float(p);
+      cpu_float->upload_points(rounded);
+      const auto fx = cpu_float->extremes_x();
+      EXPECT_EQ(fx[0] + n, cx[0]) << "trial " << trial;
+      EXPECT_EQ(fx[1] + n, cx[1]) << "trial " << trial;
+    } else {
+      EXPECT_LT(p[cx[0]].x, p[cx[1]].x) << "trial " << trial;  // all one point in float
+    }
+    // The engine's corners (section 3.1), then random triples.
+    const PointIndex c = cpu->furthest_from_line(cx[0], cx[1]);
+    EXPECT_EQ(gpu->furthest_from_line(cx[0], cx[1]), c) << "trial " << trial;
+    EXPECT_EQ(gpu->furthest_from_plane(cx[0], cx[1], c), cpu->furthest_from_plane(cx[0], cx[1], c))
+        << "trial " << trial;
+    for (int k = 0; k < 5; ++k) {
+      std::uniform_int_distribution<PointIndex> pick(0, static_cast<PointIndex>(p.size() - 1));
+      const PointIndex a = pick(rng), b = pick(rng), d = pick(rng);
+      EXPECT_EQ(gpu->furthest_from_line(a, b), cpu->furthest_from_line(a, b)) << "trial " << trial;
+      EXPECT_EQ(gpu->furthest_from_plane(a, b, d), cpu->furthest_from_plane(a, b, d)) << "trial " << trial;
+    }
+  }
+}
+
+// The generators' float points, exactly as doubles: the same hulls as in float, through the double code.
+class CudaDouble : public Cuda, public ::testing::WithParamInterface<DistCase> {};
+
+TEST_P(CudaDouble, SameAsCpu) {
+  const auto [dist, n] = GetParam();
+  CompareOptions options;
+  options.point_faces = n <= 100000;
+  options.check_hull = n <= 100000;
+  const auto records = compare_double_backends(to_double(generate_points(dist, n, 31)),
+                                               distribution_name(dist) + " " + std::to_string(n), options);
+  ASSERT_FALSE(records.empty());
+  EXPECT_EQ(records.back().external_after, 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Engine, CudaDouble,
+    ::testing::Values(DistCase{Distribution::kCube, 100000}, DistCase{Distribution::kCube, 1000000},
+                      DistCase{Distribution::kBall, 100000}, DistCase{Distribution::kSphere, 100000},
+                      DistCase{Distribution::kGauss, 100000}),
+    [](const auto& info) { return distribution_name(info.param.dist) + "_" + std::to_string(info.param.n); });
+
+TEST_F(Cuda, DoubleDegenerateAndBeyondFloatRange) {
+  compare_double_backends(to_double(grid(6)), "integer grid 6x6x6", {true, true});
+  for (int e : {150, -150}) {  // beyond float's range: inf and 0 there
+    std::vector<Point3d> p = to_double(testing::dyadic_ball(20000, 13));
+    for (auto& q : p)
+      q = {std::ldexp(q.x, e), std::ldexp(q.y, e), std::ldexp(q.z, e)};
+    compare_double_backends(p, "ball scaled by 2^" + std::to_string(e), {true, true});
+  }
+}
+
+// Points 1e-12 apart, which float rounding merges: the double hull has copies among its vertices, unlike the
+// float hull of the rounded points; and a ball 1e-12 across, one point in float.
+TEST_F(Cuda, DoubleSameAsCpuWhereFloatWouldMergePoints) {
+  const std::size_t n = 20000;
+  const std::vector<Point3d> copies = ball_with_near_copies(n, 7);
+  compare_double_backends(copies, "ball with copies 1e-12 further out", {true, true});
+  BasicEngine<Point3d> dbl(copies, make_cpu_backend<Point3d>());
+  dbl.run();
+  const std::vector<Point3> rounded = to_float(copies);
+  Engine flt(rounded, make_cpu_backend());
+  flt.run();
+  EXPECT_NE(dbl.result().vertex_ids, flt.result().vertex_ids);
+  std::size_t copies_on_hull = 0;
+  for (PointIndex id : dbl.result().vertex_ids)
+    copies_on_hull += id >= n;
+  EXPECT_GT(copies_on_hull, 0u);
+
+  const std::vector<Point3d> tiny = ball_at_1e12_scale(50000, 8);
+  compare_double_backends(tiny, "ball of radius 1e-12 at (1, 1, 1)", {true, true});
+  BasicEngine<Point3d> tiny_double(tiny, make_cpu_backend<Point3d>());
+  tiny_double.run();
+  EXPECT_EQ(tiny_double.result().dimension, 3);
+  const std::vector<Point3> tiny_rounded = to_float(tiny);
+  Engine tiny_float(tiny_rounded, make_cpu_backend());
+  tiny_float.run();
+  EXPECT_EQ(tiny_float.result().dimension, 0);  // one point in float
 }
 
 }  // namespace
