@@ -61,12 +61,14 @@ struct QhullSession {
 
 }  // namespace
 
-QhullResult run_qhull(const std::vector<Point3>& points, const std::string& options) {
+template <class Point>
+QhullResult run_qhull(const std::vector<Point>& points, const std::string& options) {
   if (points.empty()) throw std::runtime_error("qhull failed: no input points");
   if (points.size() > static_cast<std::size_t>(INT_MAX / 3)) {
     throw std::runtime_error("qhull: too many points (" + std::to_string(points.size()) + ")");
   }
-  std::vector<coordT> coords(points.size() * 3);
+  static_assert(sizeof(coordT) == sizeof(double), "Qhull built with realT double");
+  std::vector<coordT> coords(points.size() * 3);  // exact for float and double coordinates
   for (std::size_t i = 0; i < points.size(); ++i) {
     coords[3 * i] = points[i].x;
     coords[3 * i + 1] = points[i].y;
@@ -102,5 +104,8 @@ QhullResult run_qhull(const std::vector<Point3>& points, const std::string& opti
   std::sort(result.vertex_ids.begin(), result.vertex_ids.end());
   return result;
 }
+
+template QhullResult run_qhull(const std::vector<Point3>&, const std::string&);
+template QhullResult run_qhull(const std::vector<Point3d>&, const std::string&);
 
 }  // namespace cudahull

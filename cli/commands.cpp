@@ -9,6 +9,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <type_traits>
 
 #include "cuda_backend.hpp"
 #include "cudahull/cpu_backend.hpp"
@@ -43,16 +44,18 @@ ProgressFn stderr_progress(const std::string& what, bool quiet) {
 
 // --backend: picks the backend and says which, in one line.  `auto` takes CUDA when a usable device is
 // present and the CPU otherwise; `cuda` without a usable device is a device failure (exit 4).
-std::unique_ptr<Backend> choose_backend(const std::string& requested, bool quiet, std::string* device) {
+template <class Point>
+std::unique_ptr<BasicBackend<Point>> choose_backend(const std::string& requested, bool quiet,
+                                                    std::string* device) {
   if (requested == "cpu") {
-    auto backend = make_cpu_backend();
+    auto backend = make_cpu_backend<Point>();
     if (!quiet) std::fprintf(stderr, "backend: %s (as requested)\n", backend->name().c_str());
     *device = "cpu";
     return backend;
   }
   const CudaDeviceInfo info = query_cuda_device();
   if (info.usable) {
-    auto backend = make_cuda_backend();
+    auto backend = make_cuda_backend<Point>();
     if (!quiet) {
       std::fprintf(stderr, "backend: %s (%s)\n", backend->name().c_str(),
                    requested == "auto" ? "auto: a usable CUDA device" : "as requested");
@@ -61,7 +64,7 @@ std::unique_ptr<Backend> choose_backend(const std::string& requested, bool quiet
     return backend;
   }
   if (requested == "cuda") throw DeviceError("--backend cuda: no usable CUDA device: " + info.reason);
-  auto backend = make_cpu_backend();
+  auto backend = make_cpu_backend<Point>();
   if (!quiet) {
     std::fprintf(stderr, "backend: %s (auto: no usable CUDA device: %s)\n", backend->name().c_str(),
                  info.reason.c_str());
@@ -70,10 +73,52 @@ std::unique_ptr<Backend> choose_backend(const std::string& requested, bool quiet
   return backend;
 }
 
-std::vector<Point3> load_or_generate(const std::string& input, const std::string& dist, std::uint64_t n,
-                                     std::uint64_t seed, bool quiet) {
-  if (!input.empty()) return read_points(input, stderr_progress("reading " + input, quiet));
-  return generate_points(distribution_from_name(dist), n, seed);
+// --precision: what a run computes in.  `auto` is the file's auto_precision() (double for text formats and
+// double PLY, float for binary float PLY) and float for a generated distribution (`input` empty).
+Precision resolve_precision(const std::string& requested, const std::string& input) {
+  if (requested == "float") return Precision::kFloat;
+  if (requested == "double") return Precision::kDouble;
+  if (input.empty()) return Precision::kFloat;
+  return auto_precision(input);
+}
+
+template <class Point>
+constexpr Precision precision_of() {
+  return std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
+}
+
+// The points of `path` in Point's precision: float as read_points() rounds them; double as the file gives
+// them, each coordinate inside the range the exact predicates are exact on (check_double_range(), exit 3).
+template <class Point>
+std::vector<Point> read_input(const std::string& path, bool quiet);
+
+template <>
+std::vector<Point3> read_input<Point3>(const std::string& path, bool quiet) {
+  return read_points(path, stderr_progress("reading " + path, quiet));
+}
+
+template <>
+std::vector<Point3d> read_input<Point3d>(const std::string& path, bool quiet) {
+  DoublePoints read = read_points_double(path, stderr_progress("reading " + path, quiet));
+  check_double_range(read.points, path == "-" ? "<stdin>" : path);
+  return std::move(read.points);
+}
+
+// A generated distribution is float; in double its points are the same values, widened exactly.
+template <class Point>
+std::vector<Point> load_or_generate(const std::string& input, const std::string& dist, std::uint64_t n,
+                                    std::uint64_t seed, bool quiet) {
+  if (!input.empty()) return read_input<Point>(input, quiet);
+  std::vector<Point3> generated = generate_points(distribution_from_name(dist), n, seed);
+  if constexpr (std::is_same_v<Point, Point3>) {
+    return generated;
+  } else {
+    std::vector<Point> widened(generated.size());
+    std::transform(generated.begin(), generated.end(), widened.begin(), [](const Point3& p) {
+      return Point{p.x, p.y, p.z};
+    });
+    return widened;
+  }
 }
 
 void write_text(const std::string& path, const std::string& text) {
@@ -81,7 +126,8 @@ void write_text(const std::string& path, const std::string& text) {
 }
 
 // The faces -o writes: the triangles, the one polygon of a planar hull, none for a segment or a point.
-std::size_t face_count(const HullMesh& hull) {
+template <class Point>
+std::size_t face_count(const BasicHullMesh<Point>& hull) {
   if (hull.dimension == 3) return hull.triangles.size();
   return hull.dimension == 2 && hull.polygon.size() >= 3 ? 1 : 0;
 }
@@ -137,16 +183,21 @@ int run_gen(const GenOptions& o) {
   return kExitOk;
 }
 
-int run_hull(const HullOptions& o) {
+namespace {
+
+// `cudahull hull` in the precision of Point (Point3 or Point3d): one code path for both.
+template <class Point>
+int hull_in(const HullOptions& o) {
+  constexpr Precision precision = precision_of<Point>();
   const auto t_read = Clock::now();
-  std::vector<Point3> points = read_points(o.input, stderr_progress("reading " + o.input, o.quiet));
+  const std::vector<Point> points = read_input<Point>(o.input, o.quiet);
   const double read_ms = ms_since(t_read);
   std::string device;
-  auto backend = choose_backend(o.backend, o.quiet, &device);
+  auto backend = choose_backend<Point>(o.backend, o.quiet, &device);
   const std::string backend_name = backend->name();
   const std::size_t point_count = points.size();
 
-  Engine engine(points, std::move(backend));  // borrows the points
+  BasicEngine<Point> engine(points, std::move(backend));  // borrows the points
   std::ostringstream trace;
   double host_ms = 0, backend_ms = 0;
   std::size_t repairs = 0, swaps = 0, rejected = 0, removed = 0;
@@ -177,7 +228,7 @@ int run_hull(const HullOptions& o) {
     if (!o.quiet && !r.note.empty()) std::fprintf(stderr, "note: %s\n", r.note.c_str());
   });
   const double run_ms = ms_since(t_run);
-  const HullMesh& hull = engine.result();
+  const BasicHullMesh<Point>& hull = engine.result();
   if (!o.quiet && hull.dimension < 3) {
     std::fprintf(stderr, "warning: the input is %d-dimensional; its hull is %s\n", hull.dimension,
                  dimension_name(hull.dimension));
@@ -216,6 +267,7 @@ int run_hull(const HullOptions& o) {
                      {"repairs", repairs},
                      {"backend", backend_name},
                      {"device", device},
+                     {"precision", precision_name(precision)},
                      {"read_ms", read_ms},
                      {"total_ms", run_ms},
                      {"host_ms", host_ms},
@@ -231,24 +283,28 @@ int run_hull(const HullOptions& o) {
     }
   }
   if (!o.quiet) {
-    std::fprintf(stderr, "hull: %zu points -> %zu vertices, %zu faces (%s) in %d iterations, %.1f ms%s\n",
-                 point_count, hull.vertex_ids.size(), face_count(hull), dimension_name(hull.dimension),
-                 iterations, run_ms, verified ? "; verified exact" : "");
+    std::fprintf(stderr,
+                 "hull: %zu points (%s) -> %zu vertices, %zu faces (%s) in %d iterations, %.1f ms%s\n",
+                 point_count, precision_name(precision), hull.vertex_ids.size(), face_count(hull),
+                 dimension_name(hull.dimension), iterations, run_ms, verified ? "; verified exact" : "");
   }
   return kExitOk;
 }
 
-int run_bench(const BenchOptions& o) {
-  const std::vector<Point3> points = load_or_generate(o.input, o.distribution, o.count, o.seed, o.json);
+// `cudahull bench` in the precision of Point (Point3 or Point3d): one code path for both.
+template <class Point>
+int bench_in(const BenchOptions& o) {
+  constexpr Precision precision = precision_of<Point>();
+  const std::vector<Point> points = load_or_generate<Point>(o.input, o.distribution, o.count, o.seed, o.json);
   const std::string label = o.input.empty() ? o.distribution + " " + std::to_string(points.size()) : o.input;
   std::string device;
   std::string backend_name;
   std::vector<double> total, host, dev, upload;
-  HullMesh hull;
+  BasicHullMesh<Point> hull;
   for (int r = 0; r < o.repeat; ++r) {
-    auto backend = choose_backend(o.backend, o.json || r > 0, &device);
+    auto backend = choose_backend<Point>(o.backend, o.json || r > 0, &device);
     backend_name = backend->name();
-    Engine engine(points, std::move(backend), EngineOptions{false});
+    BasicEngine<Point> engine(points, std::move(backend), EngineOptions{false});
     double h = 0, d = 0, u = 0;
     const auto t0 = Clock::now();
     engine.run([&](const IterationRecord& rec) {
@@ -272,6 +328,7 @@ int run_bench(const BenchOptions& o) {
                    {"hull_vertices", hull.vertex_ids.size()},
                    {"backend", backend_name},
                    {"device", device},
+                   {"precision", precision_name(precision)},
                    {"repeat", o.repeat},
                    {"total_ms", median(total)},
                    {"host_ms", median(host)},
@@ -284,7 +341,7 @@ int run_bench(const BenchOptions& o) {
     std::vector<double> q;
     QhullResult ref;
     for (int r = 0; r < o.repeat; ++r) {
-      ref = run_qhull(points, "Qt");
+      ref = run_qhull(points, "Qt");  // the same coordinates: doubles go to Qhull unrounded
       q.push_back(ref.milliseconds);
     }
     qhull_ms = median(q);
@@ -308,8 +365,20 @@ int run_bench(const BenchOptions& o) {
       o.versus.empty() ? "-" : (std::to_string(qhull_ms / t).substr(0, 6) + "x").c_str(), median(upload),
       hull.vertex_ids.size(),
       o.versus.empty() ? "" : (same ? " (same vertices as Qhull)" : " (DIFFERENT vertices from Qhull)"));
-  std::printf("backend: %s\n", backend_name.c_str());
+  std::printf("backend: %s, precision: %s\n", backend_name.c_str(), precision_name(precision));
   return kExitOk;
+}
+
+}  // namespace
+
+int run_hull(const HullOptions& o) {
+  return resolve_precision(o.precision, o.input) == Precision::kDouble ? hull_in<Point3d>(o)
+                                                                       : hull_in<Point3>(o);
+}
+
+int run_bench(const BenchOptions& o) {
+  return resolve_precision(o.precision, o.input) == Precision::kDouble ? bench_in<Point3d>(o)
+                                                                       : bench_in<Point3>(o);
 }
 
 }  // namespace cudahull::cli

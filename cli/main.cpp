@@ -16,6 +16,10 @@ const char* kExitCodes =
     "Exit codes: 0 ok; 1 cannot write output; 2 usage; 3 unreadable or invalid input; 4 out of memory or\n"
     "device failure; 5 --verify found the hull wrong.";
 
+const char* kPrecisionHelp =
+    "auto (the file's: double for .xyz .txt .obj .off and ascii or double PLY, float for binary float PLY "
+    "and generated points), float or double";
+
 int fail(int code, const std::string& message) {
   return cudahull::report_error("cudahull", code, message);
 }
@@ -27,7 +31,7 @@ int main(int argc, char** argv) {
   cli::use_huge_pages(argv);
   CLI::App app{
       "cudahull: exact 3D convex hulls with the CudaHull algorithm (Stein, Geva, El-Sana 2012).\n"
-      "Points are read and computed as float32; the hull is exact for those values."};
+      "Points are read and computed as float32 or double (--precision); the hull is exact for those values."};
   app.footer(kExitCodes);
   app.require_subcommand(1);
   app.set_version_flag("--version", "cudahull 0.1.0");
@@ -60,6 +64,9 @@ int main(int argc, char** argv) {
   hull_cmd->add_option("--backend", hull.backend, "auto (CUDA when a GPU is usable, else CPU), cuda or cpu")
       ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
       ->capture_default_str();
+  hull_cmd->add_option("--precision", hull.precision, kPrecisionHelp)
+      ->check(CLI::IsMember({"auto", "float", "double"}))
+      ->capture_default_str();
   hull_cmd->add_flag("--verify", hull.verify,
                      "Check the result with the independent exact checker (exit 5 if wrong)");
   hull_cmd->add_option("--stats", hull.stats, "Write counts and times as JSON to FILE, or - for stdout");
@@ -77,6 +84,9 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--seed", bench.seed, "Random seed")->capture_default_str();
   bench_cmd->add_option("--backend", bench.backend, "auto, cuda or cpu")
       ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
+      ->capture_default_str();
+  bench_cmd->add_option("--precision", bench.precision, kPrecisionHelp)
+      ->check(CLI::IsMember({"auto", "float", "double"}))
       ->capture_default_str();
   bench_cmd->add_option("--repeat", bench.repeat, "Runs to take the median of")
       ->check(CLI::Range(1, 1000))

@@ -177,11 +177,16 @@ TEST(CliBadInput, BinaryNanAndMissingFile) {
 // exit 3 (the code `cudahull --help` documents for "unreadable or invalid input") with one stderr line that
 // names the file, the place and the problem, quickly and in little memory even when a header claims
 // billions of vertices, and must leave nothing in the output folder: no -o file, no --vertices-out or
-// --stats file, no temporary file.
+// --stats file, no temporary file.  Each case runs under every --precision it is bad in (float, and auto,
+// which reads text formats and double PLY as doubles).
 struct BadInput {
   std::string file;                   // its name; the message must mention it
   std::string bytes;                  // its contents
   std::vector<std::string> mentions;  // what else the message must mention: place and problem
+  // The --precision values under which it is bad: a value beyond float range is a fine double (text formats
+  // and double PLY are read as doubles under auto), and one outside the double range computed exactly
+  // (README, "Precision") is bad in double only.
+  std::vector<std::string> precisions = {"float", "auto"};
 };
 
 enum class TextFormat { kXyz, kObj, kOff, kPly };
@@ -256,15 +261,17 @@ std::vector<BadInput> bad_inputs() {
   struct Value {
     const char* text;
     const char* problem;
+    std::vector<std::string> precisions = {"float", "auto"};
   };
   const Value values[] = {{"inf", "infinite"},
                           {"-inf", "infinite"},
                           {"+Infinity", "infinite"},
                           {"nan", "NaN"},
                           {"-NaN", "NaN"},
-                          {"1e39", "beyond float range"},
-                          {"-1e39", "beyond float range"},
-                          {"3.5e38", "beyond float range"}};
+                          {"1e39", "beyond float range", {"float"}},
+                          {"-1e39", "beyond float range", {"float"}},
+                          {"3.5e38", "beyond float range", {"float"}},
+                          {"1e309", "beyond double range", {"auto", "double"}}};
   int k = 0;
   for (TextFormat f : kTextFormats) {
     for (const Value& v : values) {
@@ -278,7 +285,27 @@ std::vector<BadInput> bad_inputs() {
       cases.push_back({name,
                        bytes,
                        {name + ":" + std::to_string(first + 2) + ": ", v.problem,
-                        std::string(axes[axis]) + " coordinate '" + v.text + "'"}});
+                        std::string(axes[axis]) + " coordinate '" + v.text + "'"},
+                       v.precisions});
+    }
+  }
+  // Doubles outside the range computed exactly, nonzero magnitudes in [2^-250, 2^250] (check_double_range):
+  // the message names the point by its 0-based index.  In float, 1e-300 is 0 and 1e300 beyond float range.
+  for (TextFormat f : kTextFormats) {
+    for (const auto& [text, shortest] : std::vector<std::pair<std::string, std::string>>{
+             {"1e-300", "1e-300"}, {"-1E300", "-1e+300"}, {"5e-76", "5e-76"}}) {  // 2^-250 = 5.53e-76
+      const int axis = k++ % 3;
+      std::string row[3] = {"7", "8", "9"};
+      row[axis] = text;
+      int first = 0;
+      const std::string name = "bad_" + std::to_string(k) + extension(f);
+      const std::string bytes =
+          text_file(f, {"0 0 0", "1 2 3", row[0] + " " + row[1] + " " + row[2], "4 5 6"}, "4", false, &first);
+      cases.push_back({name,
+                       bytes,
+                       {name + ": point 2: " + axes[axis] + " coordinate " + shortest +
+                        " is outside the range of exact double arithmetic"},
+                       {"auto", "double"}});
     }
   }
   // A line with only 2 coordinates; a file cut in the middle of a line or of a number; OFF and PLY files
@@ -335,10 +362,20 @@ std::vector<BadInput> bad_inputs() {
                      {"vertex 0: NaN y coordinate"}});
     cases.push_back({"big_double" + e + ".ply",
                      ply_header(fmt, "3", "double") + binary<double>({0, 0, 0, 1, 1e39, 3, 4, 5, 6}, be),
-                     {"vertex 1: y coordinate is beyond float range"}});
+                     {"vertex 1: y coordinate is beyond float range"},
+                     {"float"}});
     cases.push_back({"neg_big_double" + e + ".ply",
                      ply_header(fmt, "3", "double") + binary<double>({0, 0, 0, 1, 2, 3, 4, 5, -1e39}, be),
-                     {"vertex 2: z coordinate is beyond float range"}});
+                     {"vertex 2: z coordinate is beyond float range"},
+                     {"float"}});
+    cases.push_back({"tiny_double" + e + ".ply",
+                     ply_header(fmt, "3", "double") + binary<double>({0, 0, 0, 1, 2, 3, 4, -1e-300, 6}, be),
+                     {"point 2: y coordinate -1e-300 is outside the range of exact double arithmetic"},
+                     {"auto", "double"}});
+    cases.push_back({"huge_double" + e + ".ply",
+                     ply_header(fmt, "3", "double") + binary<double>({0x1p251, 0, 0, 1, 2, 3, 4, 5, 6}, be),
+                     {"point 0: x coordinate", "is outside the range of exact double arithmetic"},
+                     {"auto", "double"}});
     cases.push_back({"truncated" + e + ".ply",
                      ply_header(fmt, "1000") + binary<float>(ramp<float>(10), be),
                      {"vertex 10: truncated", "header says 1000 vertices"}});
@@ -369,31 +406,37 @@ TEST(CliBadInput, HullExitsThreeWithOneLineAndLeavesNoFile) {
   fs::create_directories(dir / "out");
   fs::create_directories(dir / "logs");
   std::vector<BadInput> cases = bad_inputs();
-  for (const fs::path& f : malformed_files())
+  for (const fs::path& f : malformed_files()) {
+    // too_big.xyz's 1e39 is beyond float range only.
     cases.push_back({f.filename().string(), slurp(f), {}});
+    if (f.filename() == "too_big.xyz") cases.back().precisions = {"float"};
+  }
   ASSERT_GE(cases.size(), 90u);
   for (const BadInput& c : cases) {
-    SCOPED_TRACE(c.file);
-    const fs::path input = dir / "in" / c.file;
-    std::ofstream(input, std::ios::binary) << c.bytes;
-    const CliProcess p = start_cli({"hull", input.string(), "-o", (dir / "out" / "out.obj").string(),
-                                    "--vertices-out", (dir / "out" / "v.txt").string(), "--stats",
-                                    (dir / "out" / "stats.json").string(), "--backend", "cpu"},
-                                   dir / "logs");
-    const CliEnd e = wait_cli(p);
-    ASSERT_TRUE(e.exited()) << describe(e);  // not killed, not crashed
-    EXPECT_EQ(e.exit_code(), cudahull::kExitBadInput) << describe(e);
-    const CliRun r{e.exit_code(), e.out, e.err};
-    expect_one_error_line(r, c.file);
-    for (const std::string& m : c.mentions)
-      EXPECT_THAT(e.err, HasSubstr(m));
-    // A header's count never makes the reader allocate for it: a few points' worth of time and memory.
-    EXPECT_LT(e.seconds, 3.0) << describe(e);
-    EXPECT_LT(e.max_rss_kb, 512 * 1024) << describe(e);
-    const std::vector<std::string> left = TempDir::files_in(dir / "out");
-    EXPECT_TRUE(left.empty()) << "left behind: " << left.front();
-    for (const std::string& name : left)
-      fs::remove(dir / "out" / name);
+    for (const std::string& precision : c.precisions) {
+      SCOPED_TRACE(c.file + " --precision " + precision);
+      const fs::path input = dir / "in" / c.file;
+      std::ofstream(input, std::ios::binary) << c.bytes;
+      const CliProcess p =
+          start_cli({"hull", input.string(), "-o", (dir / "out" / "out.obj").string(), "--vertices-out",
+                     (dir / "out" / "v.txt").string(), "--stats", (dir / "out" / "stats.json").string(),
+                     "--backend", "cpu", "--precision", precision},
+                    dir / "logs");
+      const CliEnd e = wait_cli(p);
+      ASSERT_TRUE(e.exited()) << describe(e);  // not killed, not crashed
+      EXPECT_EQ(e.exit_code(), cudahull::kExitBadInput) << describe(e);
+      const CliRun r{e.exit_code(), e.out, e.err};
+      expect_one_error_line(r, c.file);
+      for (const std::string& m : c.mentions)
+        EXPECT_THAT(e.err, HasSubstr(m));
+      // A header's count never makes the reader allocate for it: a few points' worth of time and memory.
+      EXPECT_LT(e.seconds, 3.0) << describe(e);
+      EXPECT_LT(e.max_rss_kb, 512 * 1024) << describe(e);
+      const std::vector<std::string> left = TempDir::files_in(dir / "out");
+      EXPECT_TRUE(left.empty()) << "left behind: " << left.front();
+      for (const std::string& name : left)
+        fs::remove(dir / "out" / name);
+    }
   }
 }
 

@@ -1,4 +1,5 @@
-// Hull writers (OBJ, OFF, ascii PLY), the vertex list writer and the atomic file writer.
+// Hull writers (OBJ, OFF, ascii PLY), the vertex list writer and the atomic file writer.  The writers are
+// templates on the point type, instantiated for Point3 (float, %.9g) and Point3d (double, %.17g).
 #include "cudahull/mesh_io.hpp"
 
 #include <fcntl.h>
@@ -18,6 +19,7 @@
 #include <numeric>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "cudahull/errors.hpp"
@@ -152,7 +154,17 @@ class TextOut {
     buf_.append(tmp, static_cast<std::size_t>(n));
     return *this;
   }
-  TextOut& point(const Point3& p) { return coord(p.x).str(" ").coord(p.y).str(" ").coord(p.z); }
+  // %.17g: seventeen significant digits read back as the same double.
+  TextOut& coord(double v) {
+    char tmp[40];
+    const int n = std::snprintf(tmp, sizeof tmp, "%.17g", v);
+    buf_.append(tmp, static_cast<std::size_t>(n));
+    return *this;
+  }
+  template <class Point>
+  TextOut& point(const Point& p) {
+    return coord(p.x).str(" ").coord(p.y).str(" ").coord(p.z);
+  }
   void flush() {
     out_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
     buf_.clear();
@@ -199,9 +211,10 @@ MeshFormat mesh_format(const std::string& path) {
 }
 
 // The faces to write: the triangles, the one polygon of a planar hull, or none for a segment or a point.
+template <class Point>
 class Faces {
  public:
-  Faces(const HullMesh& hull, const std::string& path) : hull_(hull) {
+  Faces(const BasicHullMesh<Point>& hull, const std::string& path) : hull_(hull) {
     if (hull.dimension == 3) {
       count_ = hull.triangles.size();
     } else if (hull.dimension == 2 && hull.polygon.size() >= 3) {
@@ -224,15 +237,16 @@ class Faces {
   std::size_t longest() const { return count_ == 0 ? 0 : hull_.dimension == 3 ? 3 : hull_.polygon.size(); }
 
  private:
-  const HullMesh& hull_;
+  const BasicHullMesh<Point>& hull_;
   std::size_t count_ = 0;
 };
 
-void write_obj(std::ostream& os, const HullMesh& hull, const Faces& faces) {
+template <class Point>
+void write_obj(std::ostream& os, const BasicHullMesh<Point>& hull, const Faces<Point>& faces) {
   TextOut out(os);
   out.str("# cudahull convex hull: ").uint(hull.vertices.size()).str(" vertices, ").uint(faces.size());
   out.str(" faces\n");
-  for (const Point3& p : hull.vertices)
+  for (const Point& p : hull.vertices)
     out.str("v ").point(p).str("\n");
   for (std::size_t i = 0; i < faces.size(); ++i) {
     const auto f = faces[i];
@@ -245,8 +259,9 @@ void write_obj(std::ostream& os, const HullMesh& hull, const Faces& faces) {
 }
 
 // The part OFF and ASCII PLY share: one vertex per line, then each face as "count i j k ...".
-void write_counted_body(TextOut& out, const HullMesh& hull, const Faces& faces) {
-  for (const Point3& p : hull.vertices)
+template <class Point>
+void write_counted_body(TextOut& out, const BasicHullMesh<Point>& hull, const Faces<Point>& faces) {
+  for (const Point& p : hull.vertices)
     out.point(p).str("\n");
   for (std::size_t i = 0; i < faces.size(); ++i) {
     const auto f = faces[i];
@@ -258,17 +273,22 @@ void write_counted_body(TextOut& out, const HullMesh& hull, const Faces& faces) 
   out.flush();
 }
 
-void write_off(std::ostream& os, const HullMesh& hull, const Faces& faces) {
+template <class Point>
+void write_off(std::ostream& os, const BasicHullMesh<Point>& hull, const Faces<Point>& faces) {
   TextOut out(os);
   out.str("OFF\n").uint(hull.vertices.size()).str(" ").uint(faces.size()).str(" 0\n");
   write_counted_body(out, hull, faces);
 }
 
-void write_ply(std::ostream& os, const HullMesh& hull, const Faces& faces) {
+template <class Point>
+void write_ply(std::ostream& os, const BasicHullMesh<Point>& hull, const Faces<Point>& faces) {
   const std::size_t longest = faces.longest();
   TextOut out(os);
   out.str("ply\nformat ascii 1.0\ncomment cudahull convex hull\nelement vertex ").uint(hull.vertices.size());
-  out.str("\nproperty float x\nproperty float y\nproperty float z\nelement face ").uint(faces.size());
+  // The coordinates' own type: a reader that honours it keeps every digit written.
+  out.str(std::is_same_v<Point, Point3d> ? "\nproperty double x\nproperty double y\nproperty double z"
+                                         : "\nproperty float x\nproperty float y\nproperty float z");
+  out.str("\nelement face ").uint(faces.size());
   // uchar counts are what most readers expect; a polygon of more than 255 corners needs a wider one.
   out.str(longest > 255 ? "\nproperty list uint int vertex_indices\n"
                         : "\nproperty list uchar int vertex_indices\n");
@@ -284,9 +304,10 @@ std::string mesh_path_problem(const std::string& path) {
   return find_mesh_format(path, &format, &why) ? std::string() : why;
 }
 
-void write_mesh(const std::string& path, const HullMesh& hull) {
+template <class Point>
+void write_mesh(const std::string& path, const BasicHullMesh<Point>& hull) {
   const MeshFormat format = mesh_format(path);
-  const Faces faces(hull, path);
+  const Faces<Point> faces(hull, path);
   write_file_atomically(path, [&](std::ostream& os) {
     switch (format) {
       case MeshFormat::kObj:
@@ -302,7 +323,8 @@ void write_mesh(const std::string& path, const HullMesh& hull) {
   });
 }
 
-void write_vertices(const std::string& path, const HullMesh& hull) {
+template <class Point>
+void write_vertices(const std::string& path, const BasicHullMesh<Point>& hull) {
   if (hull.vertex_ids.size() != hull.vertices.size()) {
     fail_output(path, "invalid hull: " + std::to_string(hull.vertex_ids.size()) + " vertex ids for " +
                           std::to_string(hull.vertices.size()) + " vertices");
@@ -318,6 +340,11 @@ void write_vertices(const std::string& path, const HullMesh& hull) {
     out.flush();
   });
 }
+
+template void write_mesh(const std::string&, const HullMesh&);
+template void write_mesh(const std::string&, const HullMeshd&);
+template void write_vertices(const std::string&, const HullMesh&);
+template void write_vertices(const std::string&, const HullMeshd&);
 
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write_body) {
   if (path == "-") {

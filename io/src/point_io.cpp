@@ -989,6 +989,22 @@ DoublePoints read_points_double(std::istream& in, PointFormat format, const std:
   return result;
 }
 
+void check_double_range(const std::vector<Point3d>& points, const std::string& name) {
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double v[3] = {points[i].x, points[i].y, points[i].z};
+    for (int axis = 0; axis < 3; ++axis) {
+      const double m = std::fabs(v[axis]);
+      if (m == 0 || (m >= kMinDoubleMagnitude && m <= kMaxDoubleMagnitude)) continue;
+      char value[32];
+      const auto end = std::to_chars(value, value + sizeof value, v[axis]).ptr;  // shortest round trip
+      throw InputError(name + ": point " + std::to_string(i) + ": " + axis_name(axis) + " coordinate " +
+                       std::string(value, end) +
+                       " is outside the range of exact double arithmetic (nonzero magnitudes from 2^-250 to "
+                       "2^250)");
+    }
+  }
+}
+
 Precision auto_precision(const std::string& path) {
   if (path == "-") return Precision::kDouble;
   const PointFormat format = point_format_from_path(path);

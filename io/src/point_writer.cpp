@@ -1,16 +1,42 @@
 #include "cudahull/point_writer.hpp"
 
 #include <bit>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <type_traits>
 
 #include "cudahull/errors.hpp"
 #include "cudahull/mesh_io.hpp"
 #include "cudahull/point_io.hpp"
 
 namespace cudahull {
+namespace {
 
-void write_points(const std::string& path, const std::vector<Point3>& points) {
+// The text and PLY spelling of a coordinate type: float as today (%.9g, `float`), double with 17 digits.
+template <class Point>
+struct Coordinate;
+template <>
+struct Coordinate<Point3> {
+  using Bits = std::uint32_t;
+  static constexpr const char* kLine = "%s%.9g %.9g %.9g\n";
+  static constexpr const char* kPlyType = "float";
+  static Bits swapped(float v) { return __builtin_bswap32(std::bit_cast<Bits>(v)); }
+};
+template <>
+struct Coordinate<Point3d> {
+  using Bits = std::uint64_t;
+  static constexpr const char* kLine = "%s%.17g %.17g %.17g\n";
+  static constexpr const char* kPlyType = "double";
+  static Bits swapped(double v) { return __builtin_bswap64(std::bit_cast<Bits>(v)); }
+};
+
+}  // namespace
+
+template <class Point>
+void write_points(const std::string& path, const std::vector<Point>& points) {
+  using C = Coordinate<Point>;
+  using Scalar = decltype(Point{}.x);
   PointFormat format;
   try {
     format = point_format_from_path(path);
@@ -18,26 +44,29 @@ void write_points(const std::string& path, const std::vector<Point3>& points) {
     throw OutputError(path + ": unknown point-set extension (use .ply, .xyz, .txt, .obj or .off)");
   }
   write_file_atomically(path, [&](std::ostream& out) {
-    char line[96];
+    char line[160];
     auto write_lines = [&](const char* prefix) {
-      for (const Point3& p : points) {
-        const int n = std::snprintf(line, sizeof line, "%s%.9g %.9g %.9g\n", prefix, p.x, p.y, p.z);
+      for (const Point& p : points) {
+        const int n = std::snprintf(line, sizeof line, C::kLine, prefix, static_cast<double>(p.x),
+                                    static_cast<double>(p.y), static_cast<double>(p.z));
         out.write(line, n);
       }
     };
     switch (format) {
       case PointFormat::kPly: {
+        const std::string type = C::kPlyType;
         out << "ply\nformat binary_little_endian 1.0\ncomment cudahull gen\nelement vertex " << points.size()
-            << "\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
-        static_assert(sizeof(Point3) == 12);
+            << "\nproperty " << type << " x\nproperty " << type << " y\nproperty " << type
+            << " z\nend_header\n";
+        static_assert(sizeof(Point) == 3 * sizeof(Scalar));
         if constexpr (std::endian::native == std::endian::little) {
           out.write(reinterpret_cast<const char*>(points.data()),
-                    static_cast<std::streamsize>(points.size() * sizeof(Point3)));
+                    static_cast<std::streamsize>(points.size() * sizeof(Point)));
         } else {
-          for (const Point3& p : points) {
-            for (float v : {p.x, p.y, p.z}) {
-              std::uint32_t bits = __builtin_bswap32(std::bit_cast<std::uint32_t>(v));
-              out.write(reinterpret_cast<const char*>(&bits), 4);
+          for (const Point& p : points) {
+            for (Scalar v : {p.x, p.y, p.z}) {
+              const typename C::Bits bits = C::swapped(v);
+              out.write(reinterpret_cast<const char*>(&bits), sizeof bits);
             }
           }
         }
@@ -57,5 +86,8 @@ void write_points(const std::string& path, const std::vector<Point3>& points) {
     }
   });
 }
+
+template void write_points(const std::string&, const std::vector<Point3>&);
+template void write_points(const std::string&, const std::vector<Point3d>&);
 
 }  // namespace cudahull
