@@ -443,7 +443,25 @@ TEST(EngineRestart, RepeatsTheRunWithoutUploadingAgain) {
   EXPECT_EQ(calls.uploads, 1);
 }
 
-// Batched swap rounds (engine.cpp, batched_swaps()) make many swaps at once; their sequence numbers must
+// With batched swap rounds (from 8 candidates) the edge claims' hash table grows with the rounds a run has
+// seen, and its collisions delay swaps: a restart must start from a fresh table to repeat the records.
+TEST(EngineRestart, RepeatsABatchedRun) {
+  const auto points = generate_points(Distribution::kSphere, 20000, 31);
+  EngineOptions batched;
+  batched.batched_swaps_from = 8;
+  Engine engine(points, make_cpu_backend(2), batched);
+  const std::vector<IterationRecord> first = step_to_end(engine);
+  engine.restart();
+  const std::vector<IterationRecord> second = step_to_end(engine);
+  EXPECT_EQ(first_difference(first, second), "");
+  EXPECT_EQ(engine.result().triangles, [&] {
+    Engine fresh(points, make_cpu_backend(2), batched);
+    fresh.run();
+    return fresh.result().triangles;
+  }());
+}
+
+// Batched swap rounds (phases/swaps.cpp, swap_edges()) make many swaps at once; their sequence numbers must
 // still be an order in which one swap at a time gives the same mesh (the viewer's sub-steps replay them so).
 // The same points, batched and not, give the same hull; the batched run needs no repair either.
 std::vector<std::array<PointIndex, 3>> face_set(const Mesh& mesh) {

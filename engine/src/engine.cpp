@@ -71,6 +71,9 @@ void BasicEngine<Point>::restart() {
   result_ = BasicHullMesh<Point>{};
   last_record_ = IterationRecord{};
   tables_.clear();
+  // The swap rounds' hashed edge claims collide by the table's size, which grows with the rounds seen: a
+  // table kept from the last run would delay other swaps than a fresh one and change the records.
+  swap_scratch_.reset();
   if (uploaded_) backend_->restart();
 }
 
