@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <cuda_runtime_api.h>
@@ -83,7 +84,8 @@ void expect_same_record(const IterationRecord& c, const IterationRecord& g) {
   }
 }
 
-void expect_same_hull(const HullMesh& c, const HullMesh& g) {
+template <class Point>
+void expect_same_hull(const BasicHullMesh<Point>& c, const BasicHullMesh<Point>& g) {
   EXPECT_EQ(g.dimension, c.dimension);
   EXPECT_EQ(g.vertex_ids, c.vertex_ids);
   EXPECT_EQ(g.vertices, c.vertices);
@@ -94,14 +96,18 @@ void expect_same_hull(const HullMesh& c, const HullMesh& g) {
 struct CompareOptions {
   bool point_faces = false;  // compare every point's face after every step (O(points) copies)
   bool check_hull = false;   // run the exact checker on the result too
+  bool restart = false;      // then restart the CUDA engine and compare its records again
 };
 
-// Runs the engine on both backends in lockstep and compares after every step.  Returns the CUDA records.
-std::vector<IterationRecord> compare_backends(const std::vector<Point3>& points, const std::string& what,
+// Runs the engine on both backends in lockstep and compares after every step, in float or double (both
+// backends run the same routing.hpp code on the same points: everything must agree exactly).  Returns the
+// CUDA records.
+template <class Point = Point3>
+std::vector<IterationRecord> compare_backends(const std::vector<Point>& points, const std::string& what,
                                               CompareOptions options = {}) {
-  SCOPED_TRACE(what);
-  Engine cpu(points, make_cpu_backend());
-  Engine gpu(points, make_cuda_backend());
+  SCOPED_TRACE(what + (std::is_same_v<Point, Point3d> ? " (double)" : ""));
+  BasicEngine<Point> cpu(points, make_cpu_backend<Point>());
+  BasicEngine<Point> gpu(points, make_cuda_backend<Point>());
   std::vector<IterationRecord> records;
   while (!cpu.done()) {
     EXPECT_FALSE(gpu.done());
@@ -131,12 +137,32 @@ std::vector<IterationRecord> compare_backends(const std::vector<Point3>& points,
     if (::testing::Test::HasFatalFailure()) break;
   }
   EXPECT_TRUE(gpu.done());
-  expect_same_hull(cpu.result(), gpu.result());
+  const BasicHullMesh<Point>& ch = cpu.result();
+  const BasicHullMesh<Point>& gh = gpu.result();
+  expect_same_hull(ch, gh);
   if (options.check_hull) {
-    const CheckResult check = check_hull(points, gpu.result());
+    const CheckResult check = check_hull(points, gh);
     EXPECT_TRUE(check.ok) << (check.failures.empty() ? "" : check.failures.front());
   }
+  if (!options.restart || ::testing::Test::HasFatalFailure()) return records;
+  // Backend::restart(): the CUDA backend keeps its double points and repeats every step.
+  gpu.restart();
+  std::size_t k = 0;
+  while (!gpu.done() && k < records.size()) {
+    const IterationRecord g = gpu.step();
+    expect_same_record(records[k++], g);
+    if (::testing::Test::HasFatalFailure()) break;
+  }
+  EXPECT_TRUE(gpu.done()) << "after restart()";
+  EXPECT_EQ(k, records.size()) << "after restart()";
+  EXPECT_EQ(gpu.result().vertex_ids, ch.vertex_ids) << "after restart()";
   return records;
+}
+
+std::vector<IterationRecord> compare_double_backends(const std::vector<Point3d>& points,
+                                                     const std::string& what, CompareOptions options = {}) {
+  options.restart = true;
+  return compare_backends(points, what, options);
 }
 
 // --- The backend's own queries ------------------------------------------------------------------------
@@ -356,68 +382,6 @@ TEST_F(Cuda, OutOfDeviceMemoryIsADeviceErrorThenRecovers) {
 }
 
 // --- Double coordinates (BasicEngine<Point3d>, make_*_backend<Point3d>) ------------------------------------
-
-// The double backends run the same routing.hpp code on the same double points: everything must agree exactly,
-// as in compare_backends.  Returns the CUDA records.
-std::vector<IterationRecord> compare_double_backends(const std::vector<Point3d>& points,
-                                                     const std::string& what, CompareOptions options = {}) {
-  SCOPED_TRACE(what + " (double)");
-  BasicEngine<Point3d> cpu(points, make_cpu_backend<Point3d>());
-  BasicEngine<Point3d> gpu(points, make_cuda_backend<Point3d>());
-  std::vector<IterationRecord> records;
-  while (!cpu.done()) {
-    EXPECT_FALSE(gpu.done());
-    if (gpu.done()) break;
-    const IterationRecord c = cpu.step();
-    const IterationRecord g = gpu.step();
-    expect_same_record(c, g);
-    records.push_back(g);
-    const auto& ce = cpu.face_extremes();
-    const auto& ge = gpu.face_extremes();
-    EXPECT_EQ(ge.size(), ce.size()) << describe(c);
-    if (ge.size() == ce.size()) {
-      std::size_t differing = 0, first = 0;
-      for (std::size_t f = 0; f < ce.size(); ++f) {
-        if (ce[f].count != ge[f].count || ce[f].furthest != ge[f].furthest) {
-          if (differing++ == 0) first = f;
-        }
-      }
-      EXPECT_EQ(differing, 0u) << describe(c) << ": first differing face " << first << " (cpu count "
-                               << ce[first].count << " furthest " << ce[first].furthest << ", cuda count "
-                               << ge[first].count << " furthest " << ge[first].furthest << ")";
-    }
-    if (options.point_faces && cpu.dimension() == 3) {
-      const auto cf = cpu.point_faces(), gf = gpu.point_faces();
-      EXPECT_EQ(gf, cf) << describe(c) << ": per-point faces differ";
-    }
-    if (::testing::Test::HasFatalFailure()) break;
-  }
-  EXPECT_TRUE(gpu.done());
-  const HullMeshd& ch = cpu.result();
-  const HullMeshd& gh = gpu.result();
-  EXPECT_EQ(gh.dimension, ch.dimension);
-  EXPECT_EQ(gh.vertex_ids, ch.vertex_ids);
-  EXPECT_EQ(gh.vertices, ch.vertices);
-  EXPECT_EQ(gh.triangles, ch.triangles);
-  EXPECT_EQ(gh.polygon, ch.polygon);
-  if (options.check_hull) {
-    const CheckResult check = check_hull(points, gh);
-    EXPECT_TRUE(check.ok) << (check.failures.empty() ? "" : check.failures.front());
-  }
-  if (::testing::Test::HasFatalFailure()) return records;
-  // Backend::restart(): the CUDA backend keeps its double points and repeats every step.
-  gpu.restart();
-  std::size_t k = 0;
-  while (!gpu.done() && k < records.size()) {
-    const IterationRecord g = gpu.step();
-    expect_same_record(records[k++], g);
-    if (::testing::Test::HasFatalFailure()) break;
-  }
-  EXPECT_TRUE(gpu.done()) << "after restart()";
-  EXPECT_EQ(k, records.size()) << "after restart()";
-  EXPECT_EQ(gpu.result().vertex_ids, ch.vertex_ids) << "after restart()";
-  return records;
-}
 
 std::vector<Point3d> to_double(const std::vector<Point3>& p) {
   std::vector<Point3d> d(p.size());
