@@ -44,6 +44,21 @@ struct SwapScratch;  // swaps.hpp: the batched rounds' buffers, kept from one it
 // entries, record, dropped vertices), and their work lists.
 template <class Point>
 struct LocalEdits {
+  LocalEdits(const std::vector<Point>& points, const Vec3d& interior, std::size_t batched_swaps_from,
+             Mesh& mesh, PointMap<std::uint8_t>& vertex_flags, DecisionArrayBuilder& decisions,
+             IterationRecord& record, std::vector<PointIndex>& dropped, std::vector<PointIndex>& dropped_near,
+             SwapScratch& scratch)
+      : points(points),
+        interior(interior),
+        batched_swaps_from(batched_swaps_from),
+        mesh(mesh),
+        vertex_flags(vertex_flags),
+        decisions(decisions),
+        record(record),
+        dropped(dropped),
+        dropped_near(dropped_near),
+        scratch(scratch) {}
+
   const std::vector<Point>& points;
   const Vec3d& interior;  // c: every foldover test and every "proven inside" is relative to it
   std::size_t batched_swaps_from;
