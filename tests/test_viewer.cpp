@@ -572,6 +572,51 @@ TEST(ViewerHeadless, ErrorsHaveTheCliExitCodes) {
   EXPECT_EQ(w.exit_code, 1) << describe(w);
 }
 
+// --precision: the cube [-1,1]^3's corners plus a point 1e-12 outside each face's centre.  In double every
+// one of those six is a hull vertex (14 vertices); in float they round onto the faces (8); auto is double for
+// .xyz.  A bad value exits 2.
+TEST(ViewerHeadless, PrecisionDoubleKeepsPointsThatFloatRoundsAway) {
+  TempDir dir;
+  std::string text;
+  auto add = [&text](double x, double y, double z) {
+    char line[128];
+    std::snprintf(line, sizeof line, "%.17g %.17g %.17g\n", x, y, z);
+    text += line;
+  };
+  for (int k = 0; k < 8; ++k)
+    add(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1);
+  const double out = 1 + 1e-12;
+  add(out, 0.1, 0.2);
+  add(-out, 0.2, 0.1);
+  add(0.1, out, 0.2);
+  add(0.2, -out, 0.1);
+  add(0.1, 0.2, out);
+  add(0.2, 0.1, -out);
+  const std::string input = dir.write("cube.xyz", text);
+  auto vertices = [&](const std::vector<std::string>& precision, const std::string& name) {
+    const std::string mesh = dir / (name + ".obj");
+    std::vector<std::string> args{input, "--headless", "--script",
+                                  dir.write(name + ".txt", "run\nexport-mesh " + mesh + "\n")};
+    args.insert(args.end(), precision.begin(), precision.end());
+    const ViewerRun r = run_viewer(args);
+    EXPECT_EQ(r.exit_code, 0) << describe(r);
+    EXPECT_THAT(r.err, HasSubstr("; precision " + (precision.empty() ? std::string("double (auto)")
+                                                                     : precision[1] + " (as requested)")));
+    int count = 0;
+    for (const std::string& line : lines_of(mesh))
+      count += line.rfind("v ", 0) == 0;
+    return count;
+  };
+  EXPECT_EQ(vertices({"--precision", "double"}, "double"), 14);
+  EXPECT_EQ(vertices({"--precision", "float"}, "float"), 8);
+  EXPECT_EQ(vertices({}, "auto"), 14);
+
+  const ViewerRun bad =
+      run_viewer({input, "--headless", "--script", dir / "auto.txt", "--precision", "half"});
+  EXPECT_EQ(bad.exit_code, 2) << describe(bad);
+  EXPECT_THAT(bad.err, HasSubstr("--precision"));
+}
+
 TEST(ViewerWindow, StepsScreenshotAndCloseAfterFrames) {
   if (!has_display()) GTEST_SKIP() << "no display (run under xvfb-run, as scripts/test does)";
   TempDir dir;

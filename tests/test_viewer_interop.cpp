@@ -92,7 +92,7 @@ TEST(ViewerInterop, SamePictureAsTheCpuUploadAndNoPerPointReadback) {
   std::uint64_t per_iteration = 0;
   for (const IterationRecord& r : interop.scene()->history())
     per_iteration += r.bytes_from_backend;
-  EXPECT_EQ(interop.scene()->engine().backend().bytes_from_backend(), per_iteration);
+  EXPECT_EQ(interop.scene()->engine().bytes_from_backend(), per_iteration);
 }
 
 }  // namespace

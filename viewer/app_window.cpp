@@ -140,7 +140,7 @@ void AppWindow::log(const std::string& line) {
 
 void AppWindow::start_load(const PointSource& source) {
   running_ = false;
-  load_ = std::make_unique<BackgroundLoad>(source);
+  load_ = std::make_unique<BackgroundLoad>(source, o_.precision);
   status_ = "loading " + source.label() + " ...";
 }
 
@@ -151,7 +151,8 @@ void AppWindow::poll_load() {
     auto points = load_->take();
     load_.reset();
     session_->set_scene(std::make_unique<Scene>(points, backend_, source.label()), true);
-    log(source.label() + ": " + std::to_string(points->size()) + " points; backend " + backend_note_ +
+    log(source.label() + ": " + std::to_string(points.positions->size()) + " points; backend " +
+        backend_note_ + "; precision " + precision_note(o_.precision, points.precision()) +
         "; per-point state: " + session_->upload_path());
   } catch (const std::exception& e) {
     load_.reset();
@@ -257,6 +258,8 @@ void AppWindow::panel_main() {
     ImGui::Text("Per-point bytes read back: %s",
                 format_bytes(session_->scene()->point_readback_bytes()).c_str());
   ImGui::TextWrapped("Backend: %s", backend_note_.c_str());
+  ImGui::Text("Precision: %s", scene ? precision_note(o_.precision, scene->precision()).c_str()
+                                     : precision_name(o_.precision));
   ImGui::Text("%.0f fps", static_cast<double>(ImGui::GetIO().Framerate));
 
   if (ImGui::CollapsingHeader("Data", ImGuiTreeNodeFlags_DefaultOpen)) {

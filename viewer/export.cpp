@@ -25,31 +25,52 @@ std::string number(double x) {
   return text;
 }
 
-}  // namespace
-
-void export_mesh(const Scene& scene, const std::string& path) {
-  const Engine& engine = scene.engine();
-  if (scene.position() == 0) throw OutputError(path + ": nothing to export before the first step");
-  if (engine.done() && scene.substep() < 0) {
-    write_mesh(path, engine.result());
-    return;
-  }
-  // The polyhedron shown: the step's mesh, or the sub-step's.
-  const auto faces = scene.displayed_faces();
-  HullMesh hull;
+// The polyhedron `faces` (outward triangles of input indices), with the engine's coordinates in Point's
+// precision (point() widens them exactly, so the cast back is exact).
+template <class Point>
+void write_faces(const SteppingEngine& engine, const std::vector<std::array<PointIndex, 3>>& faces,
+                 const std::string& path) {
+  BasicHullMesh<Point> hull;
   hull.dimension = 3;
   for (const auto& f : faces)
     hull.vertex_ids.insert(hull.vertex_ids.end(), f.begin(), f.end());
   std::sort(hull.vertex_ids.begin(), hull.vertex_ids.end());
   hull.vertex_ids.erase(std::unique(hull.vertex_ids.begin(), hull.vertex_ids.end()), hull.vertex_ids.end());
   std::unordered_map<PointIndex, std::uint32_t> local;
+  using Coordinate = decltype(Point::x);
   for (std::uint32_t k = 0; k < hull.vertex_ids.size(); ++k) {
     local[hull.vertex_ids[k]] = k;
-    hull.vertices.push_back(engine.points()[hull.vertex_ids[k]]);
+    const Vec3d p = engine.point(hull.vertex_ids[k]);
+    hull.vertices.push_back(
+        {static_cast<Coordinate>(p.x), static_cast<Coordinate>(p.y), static_cast<Coordinate>(p.z)});
   }
   for (const auto& f : faces)
     hull.triangles.push_back({local[f[0]], local[f[1]], local[f[2]]});
   write_mesh(path, hull);
+}
+
+}  // namespace
+
+void export_mesh(const Scene& scene, const std::string& path) {
+  const SteppingEngine& engine = scene.engine();
+  if (scene.position() == 0) throw OutputError(path + ": nothing to export before the first step");
+  if (engine.done() && scene.substep() < 0) {
+    // The engine's result itself (any dimension), in its precision.
+    if (const auto* e = dynamic_cast<const BasicEngine<Point3d>*>(&engine)) {
+      write_mesh(path, e->result());
+      return;
+    }
+    if (const auto* e = dynamic_cast<const Engine*>(&engine)) {
+      write_mesh(path, e->result());
+      return;
+    }
+  }
+  // The polyhedron shown: the step's mesh, or the sub-step's.
+  if (engine.precision() == Precision::kDouble) {
+    write_faces<Point3d>(engine, scene.displayed_faces(), path);
+  } else {
+    write_faces<Point3>(engine, scene.displayed_faces(), path);
+  }
 }
 
 void export_trace(const Scene& scene, const std::string& path) {

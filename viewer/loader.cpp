@@ -15,12 +15,39 @@ std::string PointSource::label() const {
   return distribution + " " + std::to_string(count) + " seed " + std::to_string(seed);
 }
 
-std::shared_ptr<const std::vector<Point3>> load_points(const PointSource& source,
-                                                       const ProgressFn& progress) {
+Precision resolve_precision(Precision requested, const PointSource& source) {
+  if (requested != Precision::kAuto) return requested;
+  return source.path.empty() ? Precision::kFloat : auto_precision(source.path);
+}
+
+std::string precision_note(Precision requested, Precision used) {
+  return std::string(precision_name(used)) + (requested == Precision::kAuto ? " (auto)" : " (as requested)");
+}
+
+ScenePoints load_points(const PointSource& source, Precision precision, const ProgressFn& progress) {
+  precision = resolve_precision(precision, source);
+  if (precision == Precision::kDouble) {
+    std::vector<Point3d> exact;
+    if (!source.path.empty()) {
+      exact = read_points_double(source.path, progress).points;
+      check_double_range(exact, source.path);
+    } else {
+      for (const Point3& p :
+           generate_points(distribution_from_name(source.distribution), source.count, source.seed))
+        exact.push_back({p.x, p.y, p.z});
+    }
+    std::vector<Point3> positions;
+    positions.reserve(exact.size());
+    for (const Point3d& p : exact)
+      positions.push_back({static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)});
+    return {std::make_shared<const std::vector<Point3>>(std::move(positions)),
+            std::make_shared<const std::vector<Point3d>>(std::move(exact))};
+  }
   if (!source.path.empty())
-    return std::make_shared<const std::vector<Point3>>(read_points(source.path, progress));
-  return std::make_shared<const std::vector<Point3>>(
-      generate_points(distribution_from_name(source.distribution), source.count, source.seed));
+    return {std::make_shared<const std::vector<Point3>>(read_points(source.path, progress)), nullptr};
+  return {std::make_shared<const std::vector<Point3>>(
+              generate_points(distribution_from_name(source.distribution), source.count, source.seed)),
+          nullptr};
 }
 
 Scene::BackendFactory backend_factory(const std::string& requested, std::string* note) {
@@ -29,20 +56,22 @@ Scene::BackendFactory backend_factory(const std::string& requested, std::string*
     if (info.usable) {
       *note =
           "cuda, " + info.name + (requested == "auto" ? " (auto: a usable CUDA device)" : " (as requested)");
-      return [] { return make_cuda_backend(); };
+      return {[] { return make_cuda_backend<Point3>(); }, [] { return make_cuda_backend<Point3d>(); }};
     }
     if (requested == "cuda") throw DeviceError("--backend cuda: no usable CUDA device: " + info.reason);
     *note = "cpu (auto: no usable CUDA device: " + info.reason + ")";
   } else {
     *note = "cpu (as requested)";
   }
-  return [] { return make_cpu_backend(); };
+  return {[] { return make_cpu_backend<Point3>(); }, [] { return make_cpu_backend<Point3d>(); }};
 }
 
-BackgroundLoad::BackgroundLoad(PointSource source) : source_(std::move(source)) {
+BackgroundLoad::BackgroundLoad(PointSource source, Precision precision)
+    : source_(std::move(source)), precision_(precision) {
   worker_ = std::thread([this] {
     try {
-      points_ = load_points(source_, [this](double f) { progress_.store(f, std::memory_order_relaxed); });
+      points_ = load_points(source_, precision_,
+                            [this](double f) { progress_.store(f, std::memory_order_relaxed); });
     } catch (...) {
       error_ = std::current_exception();
     }
@@ -54,7 +83,7 @@ BackgroundLoad::~BackgroundLoad() {
   if (worker_.joinable()) worker_.join();
 }
 
-std::shared_ptr<const std::vector<Point3>> BackgroundLoad::take() {
+ScenePoints BackgroundLoad::take() {
   if (worker_.joinable()) worker_.join();
   if (error_) std::rethrow_exception(error_);
   return points_;

@@ -26,18 +26,25 @@ struct PointSource {
   std::string label() const;  // "bun_zipper.ply" or "ball 20000 seed 1"
 };
 
-// Throws InputError (unreadable or invalid file) or std::invalid_argument (unknown distribution).
-std::shared_ptr<const std::vector<Point3>> load_points(const PointSource& source,
-                                                       const ProgressFn& progress = {});
+// --precision: kAuto is the file's auto_precision() (as `cudahull hull --precision auto`), float for
+// generated points.  Throws InputError as auto_precision() does.
+Precision resolve_precision(Precision requested, const PointSource& source);
+// For the log and the UI: "double (auto)" or "float (as requested)".
+std::string precision_note(Precision requested, Precision used);
+
+// Loads in `precision` (resolved first when kAuto): float as read_points() rounds the file; double as the
+// file gives it (read_points_double(), range-checked), plus the float render positions made from it.  Throws
+// InputError (unreadable or invalid file) or std::invalid_argument (unknown distribution).
+ScenePoints load_points(const PointSource& source, Precision precision, const ProgressFn& progress = {});
 
 // --backend: "cpu", "cuda", or "auto" (CUDA when a usable device is present, else the CPU).  Throws
 // DeviceError for "cuda" without a usable device.  `note` says what was chosen and why.
 Scene::BackendFactory backend_factory(const std::string& requested, std::string* note);
 
-// Loads on a worker thread.  The destructor waits for it.
+// Loads on a worker thread (load_points(), precision resolved there).  The destructor waits for it.
 class BackgroundLoad {
  public:
-  explicit BackgroundLoad(PointSource source);
+  BackgroundLoad(PointSource source, Precision precision);
   ~BackgroundLoad();
   BackgroundLoad(const BackgroundLoad&) = delete;
   BackgroundLoad& operator=(const BackgroundLoad&) = delete;
@@ -46,13 +53,14 @@ class BackgroundLoad {
   bool ready() const { return ready_.load(std::memory_order_acquire); }
   double progress() const { return progress_.load(std::memory_order_relaxed); }  // < 0: unknown
   // Once ready(): the points, or the loader's exception rethrown.
-  std::shared_ptr<const std::vector<Point3>> take();
+  ScenePoints take();
 
  private:
   PointSource source_;
+  Precision precision_;
   std::atomic<bool> ready_{false};
   std::atomic<double> progress_{-1.0};
-  std::shared_ptr<const std::vector<Point3>> points_;
+  ScenePoints points_;
   std::exception_ptr error_;
   std::thread worker_;
 };

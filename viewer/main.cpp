@@ -23,15 +23,16 @@ void log_line(const ViewerOptions& options, const std::string& line) {
 int run_headless(const ViewerOptions& o) {
   std::string backend_note;
   auto factory = backend_factory(o.backend, &backend_note);
-  auto points = load_points(o.source);
+  auto points = load_points(o.source, o.precision);
   auto context = HeadlessContext::create();
   log_line(o, "headless: " + context->description() + ": " + gl_description());
   {
     Session session;
     session.allow_interop(!o.no_interop);
     session.set_scene(std::make_unique<Scene>(points, factory, o.source.label()), true);
-    log_line(o, o.source.label() + ": " + std::to_string(points->size()) + " points; backend " +
-                    backend_note + "; per-point state: " + session.upload_path());
+    log_line(o, o.source.label() + ": " + std::to_string(points.positions->size()) + " points; backend " +
+                    backend_note + "; precision " + precision_note(o.precision, points.precision()) +
+                    "; per-point state: " + session.upload_path());
     RunPlan plan({o.steps, o.script, o.screenshot, o.width, o.height});
     std::string line;
     while (plan.next(session, line))
@@ -123,6 +124,13 @@ int main(int argc, char** argv) {
          "auto (CUDA when a usable device is present, else the CPU), cuda (exit 4 without a device) or cpu")
       ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
       ->capture_default_str();
+  std::string precision = "auto";
+  app.add_option(
+         "--precision", precision,
+         "auto (as `cudahull hull`: the file's format decides, float for --gen), float or double: the "
+         "coordinates the engine computes on")
+      ->check(CLI::IsMember({"auto", "float", "double"}))
+      ->capture_default_str();
   app.add_flag("--headless", o.headless, "Render offscreen with no window (EGL)");
   auto* width_opt = app.add_option("--width", o.width, "Window or image width")->check(CLI::Range(16, 16384));
   auto* height_opt =
@@ -157,6 +165,8 @@ int main(int argc, char** argv) {
         throw CLI::ValidationError("--gen: N must be a number of points, not '" + gen[1] + "'");
       }
     }
+    if (precision == "float") o.precision = Precision::kFloat;
+    if (precision == "double") o.precision = Precision::kDouble;
     if (*steps_opt) o.steps = steps;
     if (*frames_opt) o.frames = frames;
     o.size_given = *width_opt || *height_opt;

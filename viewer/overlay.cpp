@@ -7,8 +7,8 @@ namespace cudahull::viewer {
 
 namespace {
 
-glm::dvec3 at(const Engine& engine, PointIndex i) {
-  const Point3& p = engine.points()[i];
+glm::dvec3 at(const SteppingEngine& engine, PointIndex i) {
+  const Vec3d p = engine.point(i);
   return {p.x, p.y, p.z};
 }
 
@@ -16,10 +16,10 @@ glm::dvec3 plane_normal(const SeparatingPlane& p) {
   return {p.nx, p.ny, p.nz};
 }
 
-// The direction the engine's separating plane of edge i of face f (Engine::face_cell(), `cell`) rises along
-// from the edge: the unit direction in that plane perpendicular to the edge, pointing outward (with the
+// The direction the engine's separating plane of edge i of face f (SteppingEngine::face_cell(), `cell`) rises
+// along from the edge: the unit direction in that plane perpendicular to the edge, pointing outward (with the
 // face's outward normal).
-glm::dvec3 wall_direction(const Engine& engine, const FaceCell& cell, FaceId f, int i) {
+glm::dvec3 wall_direction(const SteppingEngine& engine, const FaceCell& cell, FaceId f, int i) {
   const MeshFace& face = engine.mesh().face(f);
   const glm::dvec3 e = at(engine, face.v[(i + 1) % 3]) - at(engine, face.v[i]);
   glm::dvec3 up = glm::cross(plane_normal(cell.edge_plane[i]), e);
@@ -32,7 +32,7 @@ void push(std::vector<OverlayVertex>& out, const glm::dvec3& p, std::uint32_t rg
   out.push_back({static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z), rgba});
 }
 
-bool has_mesh(const Engine& engine) {
+bool has_mesh(const SteppingEngine& engine) {
   return engine.dimension() == 3 && engine.mesh().live_faces() > 0;
 }
 
@@ -56,7 +56,7 @@ void triangle_outline(std::vector<OverlayVertex>& out, const glm::dvec3& a, cons
 }
 
 // A marker size for the whole step: a fraction of the points' extent.
-double marker_size(const Engine& engine) {
+double marker_size(const SteppingEngine& engine) {
   glm::dvec3 lo(HUGE_VAL), hi(-HUGE_VAL);
   const std::vector<PointIndex> vertices = engine.mesh().vertices();
   for (PointIndex v : vertices) {
@@ -67,7 +67,7 @@ double marker_size(const Engine& engine) {
   return 0.012 * std::max({extent.x, extent.y, extent.z, 1e-30});
 }
 
-void refinement_overlay(const Engine& engine, double r, Overlay& out) {
+void refinement_overlay(const SteppingEngine& engine, double r, Overlay& out) {
   const IterationRecord& record = engine.last_record();
   const std::uint32_t parent = pack_rgba(1.0f, 1.0f, 1.0f, 0.9f), spoke = pack_rgba(1.0f, 0.62f, 0.16f, 1.0f);
   for (std::size_t k = 0; k < record.refined_apexes.size(); ++k) {
@@ -82,7 +82,7 @@ void refinement_overlay(const Engine& engine, double r, Overlay& out) {
   }
 }
 
-void swaps_overlay(const Engine& engine, double r, int limit, Overlay& out) {
+void swaps_overlay(const SteppingEngine& engine, double r, int limit, Overlay& out) {
   const IterationRecord& record = engine.last_record();
   for (const SwapRecord& s : record.swaps) {
     if (s.sequence > limit) continue;
@@ -118,7 +118,8 @@ void swaps_overlay(const Engine& engine, double r, int limit, Overlay& out) {
 
 }  // namespace
 
-void build_overlay(const Engine& engine, long long selected, const OverlayLayers& layers, Overlay& out) {
+void build_overlay(const SteppingEngine& engine, long long selected, const OverlayLayers& layers,
+                   Overlay& out) {
   out.triangles.clear();
   out.lines.clear();
   out.labels.clear();
@@ -181,7 +182,7 @@ void build_overlay(const Engine& engine, long long selected, const OverlayLayers
   }
 }
 
-long long pick_face(const Engine& engine, const glm::dvec3& origin, const glm::dvec3& direction) {
+long long pick_face(const SteppingEngine& engine, const glm::dvec3& origin, const glm::dvec3& direction) {
   if (!has_mesh(engine)) return -1;
   const Mesh& mesh = engine.mesh();
   long long best = -1;

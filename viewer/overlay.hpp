@@ -31,7 +31,8 @@ struct OverlayLayers {
   bool cells = false, normals = false, refinement = false, swaps = false;
   int sequence_limit = 1 << 30;  // swaps: only those up to this sequence number (sub-steps)
 };
-void build_overlay(const Engine& engine, long long selected, const OverlayLayers& layers, Overlay& out);
+void build_overlay(const SteppingEngine& engine, long long selected, const OverlayLayers& layers,
+                   Overlay& out);
 
 // The palette of the swaps layer, shared with the tests that look for it.
 inline constexpr std::uint32_t kRegularSwapRgba = 0xff40d050u;        // green
@@ -42,6 +43,6 @@ inline constexpr std::uint32_t kBeneathRgba = 0xffff40ffu;            // magenta
 inline constexpr std::uint32_t kRemovalRgba = 0xffd050a0u;            // purple
 
 // The nearest face of the current mesh hit by the ray origin + t * direction (t > 0), or -1.
-long long pick_face(const Engine& engine, const glm::dvec3& origin, const glm::dvec3& direction);
+long long pick_face(const SteppingEngine& engine, const glm::dvec3& origin, const glm::dvec3& direction);
 
 }  // namespace cudahull::viewer

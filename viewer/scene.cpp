@@ -1,6 +1,7 @@
 #include "scene.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 #include <unordered_set>
 #include <utility>
 
@@ -28,26 +29,35 @@ std::array<PointIndex, 3> sorted(std::array<PointIndex, 3> k) {
 
 }  // namespace
 
-Scene::Scene(std::shared_ptr<const std::vector<Point3>> points, BackendFactory make_backend,
-             std::string label)
-    : points_(std::move(points)), make_backend_(std::move(make_backend)), label_(std::move(label)) {
+Scene::Scene(ScenePoints points, BackendFactory make_backend, std::string label)
+    : points_(std::move(points.positions)),
+      exact_(std::move(points.exact)),
+      make_backend_(std::move(make_backend)),
+      label_(std::move(label)) {
+  if (exact_ && exact_->size() != points_->size())
+    throw std::invalid_argument("Scene: the double points and the render positions differ in number");
   restart();
   render_.positions = points_;
   render_.dirty = kDirtyAll;
 }
 
-Engine& Scene::restarted_replay() const {
+std::unique_ptr<SteppingEngine> Scene::make_engine() const {
+  if (exact_) return std::make_unique<BasicEngine<Point3d>>(*exact_, make_backend_.make_double());
+  return std::make_unique<Engine>(*points_, make_backend_.make_float());
+}
+
+SteppingEngine& Scene::restarted_replay() const {
   if (replay_) {
     replay_->restart();
   } else {
-    replay_ = std::make_unique<Engine>(*points_, make_backend_());
+    replay_ = make_engine();
   }
   return *replay_;
 }
 
 std::vector<IterationRecord> Scene::replay_records() const {
   std::vector<IterationRecord> records;
-  Engine& replay = restarted_replay();
+  SteppingEngine& replay = restarted_replay();
   for (int k = 0; k < position_ && !replay.done(); ++k)
     records.push_back(replay.step());
   return records;
@@ -57,8 +67,8 @@ std::vector<std::string> Scene::explain_point(PointIndex point) const {
   if (point >= points_->size())
     return {"no point " + std::to_string(point) + " (there are " + std::to_string(points_->size()) + ")"};
   if (position_ == 0) return {"position 0: no step yet"};
-  Engine& replay = restarted_replay();
-  const std::uint64_t bytes_before = replay.backend().bytes_from_backend();  // cumulative per backend
+  SteppingEngine& replay = restarted_replay();
+  const std::uint64_t bytes_before = replay.bytes_from_backend();  // cumulative per backend
   for (int k = 0; k + 1 < position_ && !replay.done(); ++k)
     replay.step();
   std::int32_t before = 0;
@@ -69,7 +79,7 @@ std::vector<std::string> Scene::explain_point(PointIndex point) const {
   replay.step();
   std::vector<std::string> lines = replay.explain_route(point, before);
   const std::vector<std::int32_t> after = replay.point_faces();
-  point_readback_bytes_ += replay.backend().bytes_from_backend() - bytes_before;  // the replay's
+  point_readback_bytes_ += replay.bytes_from_backend() - bytes_before;  // the replay's
   const bool verdict = !lines.empty() && (lines.back() == "internal" || lines.back() == "vertex" ||
                                           lines.back().rfind("face ", 0) == 0);
   if (verdict && point < after.size()) {
@@ -86,7 +96,7 @@ void Scene::restart() {
   if (engine_) {
     engine_->restart();  // the backend keeps its points
   } else {
-    engine_ = std::make_unique<Engine>(*points_, make_backend_());
+    engine_ = make_engine();
   }
   position_ = 0;
   born_.clear();
@@ -153,13 +163,13 @@ void Scene::build_substeps() {
   substep_point_state_.clear();
   if (position_ < 2 || engine_->dimension() != 3) return;
   // The mesh and the points as they were before the step.
-  Engine& before = restarted_replay();
-  const std::uint64_t bytes_before = before.backend().bytes_from_backend();  // cumulative per backend
+  SteppingEngine& before = restarted_replay();
+  const std::uint64_t bytes_before = before.bytes_from_backend();  // cumulative per backend
   for (int k = 0; k + 1 < position_ && !before.done(); ++k)
     before.step();
   if (before.done()) return;
   substep_point_state_ = before.point_faces();
-  point_readback_bytes_ += before.backend().bytes_from_backend() - bytes_before;  // the replay's
+  point_readback_bytes_ += before.bytes_from_backend() - bytes_before;  // the replay's
   substep_point_state_.resize(points_->size(), kPointInternal);
   for (PointIndex v : before.mesh().vertices())
     substep_point_state_[v] = kPointVertex;
@@ -273,9 +283,9 @@ void Scene::current_faces(std::vector<FaceKey>& faces) const {
     return;
   }
   if (engine_->done()) {
-    const HullMesh& hull = engine_->result();
-    for (const Triangle& t : hull.triangles)
-      faces.push_back(rotated(hull.vertex_ids[t[0]], hull.vertex_ids[t[1]], hull.vertex_ids[t[2]]));
+    const std::vector<PointIndex>& ids = engine_->result_vertex_ids();
+    for (const Triangle& t : engine_->result_triangles())
+      faces.push_back(rotated(ids[t[0]], ids[t[1]], ids[t[2]]));
     return;
   }
   const Mesh& mesh = engine_->mesh();
@@ -323,7 +333,7 @@ void Scene::refresh_render_data() {
     render_.hull_vertex_ids.erase(std::unique(render_.hull_vertex_ids.begin(), render_.hull_vertex_ids.end()),
                                   render_.hull_vertex_ids.end());
   } else if (engine_->done()) {
-    render_.hull_vertex_ids = engine_->result().vertex_ids;
+    render_.hull_vertex_ids = engine_->result_vertex_ids();
   } else if (position_ > 0) {
     render_.hull_vertex_ids = engine_->mesh().vertices();
   }
@@ -339,9 +349,9 @@ void Scene::refresh_render_data() {
     render_.point_state.clear();
     state_bit = kDirtyDeviceState;
   } else {
-    const std::uint64_t before = engine_->backend().bytes_from_backend();
+    const std::uint64_t before = engine_->bytes_from_backend();
     render_.point_state = engine_->point_faces();
-    point_readback_bytes_ += engine_->backend().bytes_from_backend() - before;
+    point_readback_bytes_ += engine_->bytes_from_backend() - before;
     if (render_.point_state.size() != n) render_.point_state.assign(n, kPointInternal);
     for (PointIndex v : render_.hull_vertex_ids)
       render_.point_state[v] = kPointVertex;

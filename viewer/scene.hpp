@@ -3,15 +3,20 @@
 //
 // Positions on the timeline count engine steps: 0 is before the first step (the bare point set), 1 is after
 // iteration 0 (the tetrahedron and the first distribution, section 3.1), k after iteration k - 1.  Rewinding
-// replays deterministically from the start: the engine restarted (Engine::restart(): the same points and
-// backend, nothing uploaded again) and stepped k times (the engine is deterministic, so the replay passes
+// replays deterministically from the start: the engine restarted (SteppingEngine::restart(): the same points
+// and backend, nothing uploaded again) and stepped k times (the engine is deterministic, so the replay passes
 // through the same meshes).  The debugger's replays (sub-steps, explain point, trace export) restart a
 // second engine the scene keeps, so the main one stays where it is.  The history keeps one record per
 // position reached, without the O(faces) vectors, for the plots (cf. Fig. 9).
 //
+// Precision: the engine computes on float (Engine) or double (BasicEngine<Point3d>) coordinates, seen through
+// SteppingEngine either way.  The render positions are always float (GL).  In float precision there is one
+// host copy of the points: the render positions, which the engine borrows.  In double precision the scene
+// keeps two: the double points the engine borrows, and float positions (the same points rounded) to draw.
+//
 // render_data() is derived lazily, once per position shown, not once per step of a replay or a run.
-// Per-point state comes from Engine::point_faces() (the "CPU upload" path, O(points) per refresh), or, with
-// device point states on, the backend writes it into the GL buffer (CUDA-GL interop, no readback).
+// Per-point state comes from SteppingEngine::point_faces() (the "CPU upload" path, O(points) per refresh),
+// or, with device point states on, the backend writes it into the GL buffer (CUDA-GL interop, no readback).
 #pragma once
 
 #include <array>
@@ -28,16 +33,36 @@
 
 namespace cudahull::viewer {
 
+// The points of a scene: `positions` (float, what the renderer draws) always, and in double precision
+// `exact`, the points the engine computes on (`positions` are then those rounded to float).
+struct ScenePoints {
+  std::shared_ptr<const std::vector<Point3>> positions;
+  std::shared_ptr<const std::vector<Point3d>> exact;  // null: float precision
+  Precision precision() const { return exact ? Precision::kDouble : Precision::kFloat; }
+};
+
+// Makes a backend (one per engine: the scene's and the replay one) in either precision.
+struct BackendFactory {
+  std::function<std::unique_ptr<BasicBackend<Point3>>()> make_float;
+  std::function<std::unique_ptr<BasicBackend<Point3d>>()> make_double;
+};
+
 class Scene {
  public:
-  using BackendFactory = std::function<std::unique_ptr<Backend>()>;
+  using BackendFactory = viewer::BackendFactory;
 
-  // `label` names the data in the UI and logs (a file name, or "ball 20000 seed 1").
-  Scene(std::shared_ptr<const std::vector<Point3>> points, BackendFactory make_backend, std::string label);
+  // `label` names the data in the UI and logs (a file name, or "ball 20000 seed 1").  The precision is the
+  // points': double when `points.exact` is set, else float.
+  Scene(ScenePoints points, BackendFactory make_backend, std::string label);
+  // Float precision: the engine borrows the render positions.
+  Scene(std::shared_ptr<const std::vector<Point3>> points, BackendFactory make_backend, std::string label)
+      : Scene(ScenePoints{std::move(points), nullptr}, std::move(make_backend), std::move(label)) {}
 
   const std::string& label() const { return label_; }
+  // The render positions (float; in double precision the engine's points rounded).
   const std::vector<Point3>& points() const { return *points_; }
-  std::string backend_name() const { return engine_->backend().name(); }
+  Precision precision() const { return engine_->precision(); }
+  std::string backend_name() const { return engine_->backend_name(); }
 
   int position() const { return position_; }
   // The last position known: the end of the timeline when final_known(), else the furthest reached.
@@ -55,12 +80,12 @@ class Scene {
   const std::vector<IterationRecord>& history() const { return history_; }
   // The full record of the step that led to the current position; nullptr at position 0.
   const IterationRecord* current_record() const { return position_ > 0 ? &engine_->last_record() : nullptr; }
-  const Engine& engine() const { return *engine_; }
+  const SteppingEngine& engine() const { return *engine_; }
 
   // CUDA-GL interop (issue 5): when on, render_data() leaves point_state empty and sets kDirtyDeviceState,
   // and the session maps the GL buffer and calls write_device_point_states().  Only for a backend with
   // device point states (the CUDA backend).
-  bool backend_has_device_point_states() const { return engine_->backend().has_device_point_states(); }
+  bool backend_has_device_point_states() const { return engine_->has_device_point_states(); }
   void set_device_point_states(bool on) {
     device_point_states_ = on;
     render_stale_ = true;
@@ -77,8 +102,8 @@ class Scene {
   // deterministic replay on the replay engine (the history keeps only the counters): for the trace export.
   std::vector<IterationRecord> replay_records() const;
   // The debugger's "explain point" for the step that led here: the point's face before the step, its path
-  // through refinement[] and decision[] to a face or "internal" (Engine::explain_route), and whether that
-  // matches where the backend put it.  By replay, like rewinding.
+  // through refinement[] and decision[] to a face or "internal" (SteppingEngine::explain_route), and whether
+  // that matches where the backend put it.  By replay, like rewinding.
   std::vector<std::string> explain_point(PointIndex point) const;
 
   // Sub-steps (issue 6, teaching): the step that led here, played phase by phase on a copy of the mesh
@@ -112,18 +137,20 @@ class Scene {
 
   void restart();
   // The replay engine, made on first use (with a backend of its own) or restarted: before its first step.
-  Engine& restarted_replay() const;
+  SteppingEngine& restarted_replay() const;
+  std::unique_ptr<SteppingEngine> make_engine() const;  // in the points' precision, with a new backend
   void step_once();
   void current_faces(std::vector<FaceKey>& faces) const;  // the polyhedron shown now, input indices
   void refresh_render_data();
 
-  std::shared_ptr<const std::vector<Point3>> points_;
+  std::shared_ptr<const std::vector<Point3>> points_;  // render positions (the engine's in float precision)
+  std::shared_ptr<const std::vector<Point3d>> exact_;  // the engine's in double precision, else null
   BackendFactory make_backend_;
   std::string label_;
-  std::unique_ptr<Engine> engine_;
+  std::unique_ptr<SteppingEngine> engine_;
   // The debugger's replays (sub-steps, explain_point, replay_records): kept between them so that its
   // backend keeps its points, and restarted before each.
-  mutable std::unique_ptr<Engine> replay_;
+  mutable std::unique_ptr<SteppingEngine> replay_;
   int position_ = 0;
   bool final_known_ = false;
   std::vector<IterationRecord> history_;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
+#include <type_traits>
 
 #include "cudahull/exact_hull.hpp"
 #include "cudahull/parallel.hpp"
@@ -53,6 +54,46 @@ BasicEngine<Point>::BasicEngine(const std::vector<Point>& points,
 
 template <class Point>
 BasicEngine<Point>::~BasicEngine() = default;
+
+template <class Point>
+std::size_t BasicEngine<Point>::point_count() const {
+  return points_->size();
+}
+
+template <class Point>
+Vec3d BasicEngine<Point>::point(PointIndex i) const {
+  return to_vec3d((*points_)[i]);
+}
+
+template <class Point>
+Precision BasicEngine<Point>::precision() const {
+  return std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
+}
+
+template <class Point>
+std::string BasicEngine<Point>::backend_name() const {
+  return backend_->name();
+}
+
+template <class Point>
+std::uint64_t BasicEngine<Point>::bytes_from_backend() const {
+  return backend_->bytes_from_backend();
+}
+
+template <class Point>
+bool BasicEngine<Point>::has_device_point_states() const {
+  return backend_->has_device_point_states();
+}
+
+template <class Point>
+const std::vector<PointIndex>& BasicEngine<Point>::result_vertex_ids() const {
+  return result_.vertex_ids;
+}
+
+template <class Point>
+const std::vector<Triangle>& BasicEngine<Point>::result_triangles() const {
+  return result_.triangles;
+}
 
 template <class Point>
 void BasicEngine<Point>::restart() {
