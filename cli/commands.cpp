@@ -73,15 +73,6 @@ std::unique_ptr<BasicBackend<Point>> choose_backend(const std::string& requested
   return backend;
 }
 
-// --precision: what a run computes in.  `auto` is the file's auto_precision() (double for text formats and
-// double PLY, float for binary float PLY) and float for a generated distribution (`input` empty).
-Precision resolve_precision(const std::string& requested, const std::string& input) {
-  if (requested == "float") return Precision::kFloat;
-  if (requested == "double") return Precision::kDouble;
-  if (input.empty()) return Precision::kFloat;
-  return auto_precision(input);
-}
-
 template <class Point>
 constexpr Precision precision_of() {
   return std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
@@ -372,13 +363,15 @@ int bench_in(const BenchOptions& o) {
 }  // namespace
 
 int run_hull(const HullOptions& o) {
-  return resolve_precision(o.precision, o.input) == Precision::kDouble ? hull_in<Point3d>(o)
-                                                                       : hull_in<Point3>(o);
+  return resolve_precision(precision_from_name(o.precision), o.input) == Precision::kDouble
+             ? hull_in<Point3d>(o)
+             : hull_in<Point3>(o);
 }
 
 int run_bench(const BenchOptions& o) {
-  return resolve_precision(o.precision, o.input) == Precision::kDouble ? bench_in<Point3d>(o)
-                                                                       : bench_in<Point3>(o);
+  return resolve_precision(precision_from_name(o.precision), o.input) == Precision::kDouble
+             ? bench_in<Point3d>(o)
+             : bench_in<Point3>(o);
 }
 
 }  // namespace cudahull::cli

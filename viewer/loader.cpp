@@ -15,17 +15,12 @@ std::string PointSource::label() const {
   return distribution + " " + std::to_string(count) + " seed " + std::to_string(seed);
 }
 
-Precision resolve_precision(Precision requested, const PointSource& source) {
-  if (requested != Precision::kAuto) return requested;
-  return source.path.empty() ? Precision::kFloat : auto_precision(source.path);
-}
-
 std::string precision_note(Precision requested, Precision used) {
   return std::string(precision_name(used)) + (requested == Precision::kAuto ? " (auto)" : " (as requested)");
 }
 
 ScenePoints load_points(const PointSource& source, Precision precision, const ProgressFn& progress) {
-  precision = resolve_precision(precision, source);
+  precision = resolve_precision(precision, source.path);
   if (precision == Precision::kDouble) {
     std::vector<Point3d> exact;
     if (!source.path.empty()) {

@@ -26,9 +26,6 @@ struct PointSource {
   std::string label() const;  // "bun_zipper.ply" or "ball 20000 seed 1"
 };
 
-// --precision: kAuto is the file's auto_precision() (as `cudahull hull --precision auto`), float for
-// generated points.  Throws InputError as auto_precision() does.
-Precision resolve_precision(Precision requested, const PointSource& source);
 // For the log and the UI: "double (auto)" or "float (as requested)".
 std::string precision_note(Precision requested, Precision used);
 

@@ -165,8 +165,7 @@ int main(int argc, char** argv) {
         throw CLI::ValidationError("--gen: N must be a number of points, not '" + gen[1] + "'");
       }
     }
-    if (precision == "float") o.precision = Precision::kFloat;
-    if (precision == "double") o.precision = Precision::kDouble;
+    o.precision = precision_from_name(precision);
     if (*steps_opt) o.steps = steps;
     if (*frames_opt) o.frames = frames;
     o.size_given = *width_opt || *height_opt;

@@ -1013,6 +1013,11 @@ Precision auto_precision(const std::string& path) {
   return auto_precision(in, format, path);
 }
 
+Precision resolve_precision(Precision requested, const std::string& path) {
+  if (requested != Precision::kAuto) return requested;
+  return path.empty() ? Precision::kFloat : auto_precision(path);
+}
+
 Precision auto_precision(std::istream& in, PointFormat format, const std::string& name) {
   if (format != PointFormat::kPly) return Precision::kDouble;
   Source src(in, name);

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace cudahull {
@@ -42,6 +43,13 @@ inline const char* precision_name(Precision p) {
     default:
       return "auto";
   }
+}
+
+// The inverse of precision_name(): "float" or "double", anything else (the command lines validate it) auto.
+inline Precision precision_from_name(const std::string& name) {
+  if (name == "float") return Precision::kFloat;
+  if (name == "double") return Precision::kDouble;
+  return Precision::kAuto;
 }
 
 using PointIndex = std::uint32_t;

@@ -66,6 +66,9 @@ void check_double_range(const std::vector<Point3d>& points, const std::string& n
 // The precision `auto` picks for `path` (DoublePoints::precision), from the format and, for PLY, the header
 // alone: no point is read.  Throws InputError for an unknown extension, a missing file or a bad PLY header.
 Precision auto_precision(const std::string& path);
+// What --precision means for an input (`cudahull hull`, `bench`, the viewer): `requested` unless kAuto; kAuto
+// is the file's auto_precision(), and float for generated points (`path` empty).
+Precision resolve_precision(Precision requested, const std::string& path);
 Precision auto_precision(std::istream& in, PointFormat format, const std::string& name);
 
 }  // namespace cudahull
