@@ -33,12 +33,13 @@ struct SwapScratch {
   };
   static constexpr std::size_t kNumberingBlock = 4096;
 
-  std::vector<SwapTrial> trials;             // per candidate
-  std::vector<std::pair<FaceId, int>> made;  // per winner: face and edge
-  std::vector<std::size_t> candidate_of;     // per winner: its candidate
-  std::vector<std::size_t> rejected_at;      // per rejection: its candidate
-  std::vector<std::size_t> wins_before;      // per rejection: the winners before it
-  std::vector<std::size_t> recorded;         // the candidates of the recorded rejections
+  std::vector<SwapTrial> trials;               // per candidate
+  std::vector<std::pair<FaceId, int>> made;    // per winner: face and edge
+  std::vector<std::pair<FaceId, int>> single;  // try_swap()'s batch of one (kept: no allocation a swap)
+  std::vector<std::size_t> candidate_of;       // per winner: its candidate
+  std::vector<std::size_t> rejected_at;        // per rejection: its candidate
+  std::vector<std::size_t> wins_before;        // per rejection: the winners before it
+  std::vector<std::size_t> recorded;           // the candidates of the recorded rejections
   std::vector<BlockCount> counts;
   BlockCount totals;  // the round's, from number_outcomes()
   // Claims, (round << 32 | candidate): per face id, and per hashed new edge (used through atomic_ref).
