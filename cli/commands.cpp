@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <type_traits>
 
@@ -22,9 +23,11 @@
 #include "cudahull/phase_times.hpp"
 #include "cudahull/point_io.hpp"
 #include "cudahull/point_writer.hpp"
+#include "cudahull/resident.hpp"
 #include "cudahull/trace.hpp"
 #include "device_info.hpp"
 #include "qhull_reference.hpp"
+#include "resident_cuda.hpp"
 
 namespace cudahull::cli {
 
@@ -71,6 +74,51 @@ std::unique_ptr<BasicBackend<Point>> choose_backend(const std::string& requested
   }
   *device = "cpu";
   return backend;
+}
+
+// --engine resident (issue 15): the whole run where the points are, the GPU's when --backend allows one.
+template <class Point>
+struct ResidentRun {
+  BasicHullMesh<Point> hull;
+  ResidentStats stats;
+  std::string backend_name, device;
+  double upload_ms = 0, run_ms = 0;
+};
+
+template <class Point>
+ResidentRun<Point> run_resident(const std::vector<Point>& points, const std::string& requested, bool quiet) {
+  ResidentRun<Point> r;
+  std::string why = "as requested";
+  if (requested != "cpu") {
+    const CudaDeviceInfo info = query_cuda_device();
+    if (info.usable) {
+      r.device = info.name;
+      if (requested == "auto") why = "auto: a usable CUDA device";
+    } else if (requested == "cuda") {
+      throw DeviceError("--backend cuda: no usable CUDA device: " + info.reason);
+    } else {
+      why = "auto: no usable CUDA device: " + info.reason;
+    }
+  }
+  if (!r.device.empty()) {
+    r.backend_name = "cuda-resident";
+    ResidentCudaHull<Point> resident;
+    const auto t_upload = Clock::now();
+    resident.upload(points);
+    r.upload_ms = ms_since(t_upload);
+    const auto t_run = Clock::now();
+    r.hull = resident.run(&r.stats);
+    r.run_ms = ms_since(t_run);
+  } else {
+    r.backend_name = "cpu-resident";
+    r.device = "cpu";
+    const auto t_run = Clock::now();
+    r.hull = resident_hull_host(points, &r.stats);
+    r.run_ms = ms_since(t_run);
+  }
+  if (!quiet) std::fprintf(stderr, "backend: %s (%s)\n", r.backend_name.c_str(), why.c_str());
+  if (!quiet && r.stats.exact_finish) std::fprintf(stderr, "note: exact finish: %s\n", r.stats.note.c_str());
+  return r;
 }
 
 template <class Point>
@@ -183,12 +231,24 @@ int hull_in(const HullOptions& o) {
   const auto t_read = Clock::now();
   const std::vector<Point> points = read_input<Point>(o.input, o.quiet);
   const double read_ms = ms_since(t_read);
-  std::string device;
-  auto backend = choose_backend<Point>(o.backend, o.quiet, &device);
-  const std::string backend_name = backend->name();
+  if (o.engine == "resident" && (!o.trace.empty() || o.table)) {
+    std::fprintf(stderr,
+                 "cudahull: error: --trace and --table need --engine stepping (the resident engine "
+                 "keeps no per-iteration records yet)\n");
+    return kExitUsage;
+  }
+  const bool resident = o.engine == "resident";
+  std::string device, backend_name;
+  std::unique_ptr<BasicBackend<Point>> backend;
+  if (!resident) {
+    backend = choose_backend<Point>(o.backend, o.quiet, &device);
+    backend_name = backend->name();
+  }
   const std::size_t point_count = points.size();
 
-  BasicEngine<Point> engine(points, std::move(backend));  // borrows the points
+  std::optional<BasicEngine<Point>> engine;
+  if (!resident) engine.emplace(points, std::move(backend));  // borrows the points
+  ResidentRun<Point> resident_run;
   std::ostringstream trace;
   double host_ms = 0, backend_ms = 0;
   std::size_t repairs = 0, swaps = 0, rejected = 0, removed = 0;
@@ -199,27 +259,38 @@ int hull_in(const HullOptions& o) {
                 "compl", "reject", "removed", "entries", "ext before", "ext after", "host ms", "back ms");
   }
   const auto t_run = Clock::now();
-  engine.run([&](const IterationRecord& r) {
-    ++iterations;
-    host_ms += r.host_ms;
-    backend_ms += r.backend_ms;
-    repairs += r.repairs;
-    swaps += r.swaps_regular + r.swaps_complementary;
-    rejected += r.swaps_rejected;
-    removed += r.vertices_removed;
-    bytes_to += r.bytes_to_backend;
-    bytes_from += r.bytes_from_backend;
-    if (!o.trace.empty()) trace << iteration_to_json(r).dump() << "\n";
-    if (o.table) {
-      std::printf("%4d %9zu %9zu %8zu %7zu %7zu %7zu %7zu %11zu %11zu %9.3f %9.3f\n", r.iteration,
-                  r.faces_after, r.faces_refined, r.swaps_regular, r.swaps_complementary, r.swaps_rejected,
-                  r.vertices_removed, r.decision_entries, r.external_before, r.external_after, r.host_ms,
-                  r.backend_ms);
-    }
-    if (!o.quiet && !r.note.empty()) std::fprintf(stderr, "note: %s\n", r.note.c_str());
-  });
+  if (resident) {
+    resident_run = run_resident(points, o.backend, o.quiet);
+    backend_name = resident_run.backend_name;
+    device = resident_run.device;
+    iterations = static_cast<int>(resident_run.stats.iterations);
+    swaps = resident_run.stats.edits;
+    repairs = resident_run.stats.faults;
+    bytes_to = resident_run.stats.bytes_to_device;
+    bytes_from = resident_run.stats.bytes_from_device;
+    backend_ms = resident_run.upload_ms + resident_run.run_ms;
+  } else
+    engine->run([&](const IterationRecord& r) {
+      ++iterations;
+      host_ms += r.host_ms;
+      backend_ms += r.backend_ms;
+      repairs += r.repairs;
+      swaps += r.swaps_regular + r.swaps_complementary;
+      rejected += r.swaps_rejected;
+      removed += r.vertices_removed;
+      bytes_to += r.bytes_to_backend;
+      bytes_from += r.bytes_from_backend;
+      if (!o.trace.empty()) trace << iteration_to_json(r).dump() << "\n";
+      if (o.table) {
+        std::printf("%4d %9zu %9zu %8zu %7zu %7zu %7zu %7zu %11zu %11zu %9.3f %9.3f\n", r.iteration,
+                    r.faces_after, r.faces_refined, r.swaps_regular, r.swaps_complementary, r.swaps_rejected,
+                    r.vertices_removed, r.decision_entries, r.external_before, r.external_after, r.host_ms,
+                    r.backend_ms);
+      }
+      if (!o.quiet && !r.note.empty()) std::fprintf(stderr, "note: %s\n", r.note.c_str());
+    });
   const double run_ms = ms_since(t_run);
-  const BasicHullMesh<Point>& hull = engine.result();
+  const BasicHullMesh<Point>& hull = resident ? resident_run.hull : engine->result();
   if (!o.quiet && hull.dimension < 3) {
     std::fprintf(stderr, "warning: the input is %d-dimensional; its hull is %s\n", hull.dimension,
                  dimension_name(hull.dimension));
@@ -229,7 +300,7 @@ int hull_in(const HullOptions& o) {
   double verify_ms = 0;
   if (o.verify) {
     const auto t_verify = Clock::now();
-    const CheckResult check = check_hull(engine.points(), hull);
+    const CheckResult check = check_hull(points, hull);
     verify_ms = ms_since(t_verify);
     if (!check.ok) {
       for (const auto& line : check.failures)
@@ -257,6 +328,7 @@ int hull_in(const HullOptions& o) {
                      {"vertices_removed", removed},
                      {"repairs", repairs},
                      {"backend", backend_name},
+                     {"engine", o.engine},
                      {"device", device},
                      {"precision", precision_name(precision)},
                      {"read_ms", read_ms},
@@ -267,6 +339,10 @@ int hull_in(const HullOptions& o) {
                      {"bytes_from_backend", bytes_from},
                      {"verified", verified}};
     if (o.verify) j["verify_ms"] = verify_ms;
+    if (resident) {
+      j["host_syncs"] = resident_run.stats.host_syncs;
+      j["exact_finish"] = resident_run.stats.exact_finish;
+    }
     if (o.stats == "-") {
       std::cout << j.dump(2) << "\n";
     } else {
@@ -292,17 +368,35 @@ int bench_in(const BenchOptions& o) {
   std::string backend_name;
   std::vector<double> total, host, dev, upload;
   BasicHullMesh<Point> hull;
-  for (int r = 0; r < o.repeat; ++r) {
+  std::uint64_t host_syncs = 0, bytes_from_device = 0;
+  for (int r = 0; r < o.repeat && o.engine == "resident"; ++r) {
+    // The resident engine: uploaded once per run, the upload listed apart (as below).
+    ResidentRun<Point> run = run_resident(points, o.backend, o.json || r > 0);
+    backend_name = run.backend_name;
+    device = run.device;
+    const bool on_host = run.device == "cpu";
+    total.push_back(run.run_ms);
+    host.push_back(on_host ? run.run_ms : 0);
+    dev.push_back(on_host ? 0 : run.run_ms);
+    upload.push_back(run.upload_ms);
+    host_syncs = run.stats.host_syncs;
+    bytes_from_device = run.stats.bytes_from_device;
+    hull = std::move(run.hull);
+  }
+  for (int r = 0; r < o.repeat && o.engine != "resident"; ++r) {
     auto backend = choose_backend<Point>(o.backend, o.json || r > 0, &device);
     backend_name = backend->name();
     BasicEngine<Point> engine(points, std::move(backend), EngineOptions{false});
     double h = 0, d = 0, u = 0;
     const auto t0 = Clock::now();
+    std::uint64_t from = 0;
     engine.run([&](const IterationRecord& rec) {
       h += rec.host_ms;
       d += rec.backend_ms;
       u += rec.upload_ms;
+      from += rec.bytes_from_backend;
     });
+    bytes_from_device = from;
     // The headline is device-resident: the upload is listed on its own and not counted.
     total.push_back(ms_since(t0) - u);
     host.push_back(h);
@@ -318,14 +412,19 @@ int bench_in(const BenchOptions& o) {
                    {"points", points.size()},
                    {"hull_vertices", hull.vertex_ids.size()},
                    {"backend", backend_name},
+                   {"engine", o.engine},
                    {"device", device},
                    {"precision", precision_name(precision)},
                    {"repeat", o.repeat},
+                   {"bytes_from_device", bytes_from_device},
                    {"total_ms", median(total)},
                    {"host_ms", median(host)},
                    {"device_ms", median(dev)},
                    {"upload_ms", median(upload)},
                    {"host_huge_pages", huge_pages_in_use()}};
+  // Waits for the device with a value coming back, counted by the resident engine (the stepping engine
+  // waits a fixed few times an iteration, reading its O(faces) extremes).
+  if (o.engine == "resident") j["host_syncs"] = host_syncs;
   double qhull_ms = 0;
   bool same = false;
   if (o.versus == "qhull") {

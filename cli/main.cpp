@@ -20,6 +20,10 @@ const char* kPrecisionHelp =
     "auto (the file's: double for .xyz .txt .obj .off and ascii or double PLY, float for binary float PLY "
     "and generated points), float or double";
 
+const char* kEngineHelp =
+    "stepping (Algorithm 1 an iteration at a time with its records; the host edits the mesh) or resident "
+    "(the whole iteration where the points are: on the GPU with a CUDA backend; no records yet)";
+
 int fail(int code, const std::string& message) {
   return cudahull::report_error("cudahull", code, message);
 }
@@ -64,6 +68,9 @@ int main(int argc, char** argv) {
   hull_cmd->add_option("--backend", hull.backend, "auto (CUDA when a GPU is usable, else CPU), cuda or cpu")
       ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
       ->capture_default_str();
+  hull_cmd->add_option("--engine", hull.engine, kEngineHelp)
+      ->check(CLI::IsMember({"stepping", "resident"}))
+      ->capture_default_str();
   hull_cmd->add_option("--precision", hull.precision, kPrecisionHelp)
       ->check(CLI::IsMember({"auto", "float", "double"}))
       ->capture_default_str();
@@ -84,6 +91,9 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--seed", bench.seed, "Random seed")->capture_default_str();
   bench_cmd->add_option("--backend", bench.backend, "auto, cuda or cpu")
       ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
+      ->capture_default_str();
+  bench_cmd->add_option("--engine", bench.engine, kEngineHelp)
+      ->check(CLI::IsMember({"stepping", "resident"}))
       ->capture_default_str();
   bench_cmd->add_option("--precision", bench.precision, kPrecisionHelp)
       ->check(CLI::IsMember({"auto", "float", "double"}))

@@ -335,6 +335,28 @@ TEST(CliHull, BackendAutoSaysWhichAndCudaNeedsADevice) {
   }
 }
 
+// --engine resident (issue 15): the same vertices as Qhull, verified, with its counts in --stats; records
+// (--table, --trace) are the stepping engine's, so asking for them with it is a usage error.
+TEST(CliHull, ResidentEngineMatchesQhullAndRefusesRecords) {
+  for (Distribution dist : {Distribution::kBall, Distribution::kSphere, Distribution::kCylinder}) {
+    const auto points = generate_points(dist, 20000, 7);
+    const HullRun r = hull_of(points, {"--engine", "resident"});
+    EXPECT_EQ(r.ids, run_qhull(points).vertex_ids) << distribution_name(dist);
+    const nlohmann::json& stats = r.stats;
+    EXPECT_EQ(stats.at("engine"), "resident");
+    EXPECT_EQ(stats.at("backend"), "cpu-resident");
+    EXPECT_EQ(stats.at("verified"), true);
+    EXPECT_GT(stats.at("host_syncs").get<int>(), 0);
+  }
+  TempDir dir;
+  write_points((dir / "in.xyz").string(), generate_points(Distribution::kCube, 100, 1));
+  const CliRun table = run_cli({"hull", (dir / "in.xyz").string(), "--engine", "resident", "--table"});
+  EXPECT_EQ(table.exit_code, kExitUsage) << describe(table);
+  EXPECT_THAT(table.err, HasSubstr("need --engine stepping"));
+  const CliRun bad = run_cli({"hull", (dir / "in.xyz").string(), "--engine", "fast"});
+  EXPECT_EQ(bad.exit_code, kExitUsage) << describe(bad);
+}
+
 // CUDAHULL_THREADS sets the host threads (README); the hull and the trace do not depend on their number.
 TEST(CliHull, ThreadCountFromTheEnvironmentChangesNothingButTheThreads) {
   TempDir dir;

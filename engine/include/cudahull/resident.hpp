@@ -1,0 +1,37 @@
+// The resident engine (issue 15): Algorithm 1 with the mesh, the edits and the routing all where the points
+// are, the host hearing O(1) bytes a step until the result.  resident_hull_host() runs it on the host (one
+// thread, the reference for the device); cuda/resident_cuda.hpp runs the same operations on the GPU.
+// docs/architecture.md, "The resident engine", says how it differs from the stepping Engine.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cudahull/types.hpp"
+
+namespace cudahull {
+
+// What a resident run did, and what it cost in traffic between host and executor.
+struct ResidentStats {
+  std::uint64_t iterations = 0;
+  std::uint64_t refined_faces = 0;
+  std::uint64_t rounds = 0;             // flip and flop rounds over all iterations
+  std::uint64_t edits = 0;              // flips and flops made
+  std::uint64_t work_items = 0;         // faces the rounds looked at, summed over the rounds
+  std::uint64_t faults = 0;             // edges not strictly convex at the end (then the exact finish)
+  bool exact_finish = false;            // the result came from the exact reference hull of the candidates
+  std::string note;                     // why, for lower-dimensional input or the exact finish
+  std::uint64_t host_syncs = 0;         // waits for the executor with a value coming back
+  std::uint64_t bytes_to_device = 0;    // host -> executor, after the points
+  std::uint64_t bytes_from_device = 0;  // executor -> host, the result included
+  // Where the time went (host clock; each phase ends in a wait for a count, so these are wall times).
+  double setup_ms = 0, refine_ms = 0, rounds_ms = 0, route_ms = 0, finish_ms = 0;
+};
+
+// The exact hull (vertices are exactly the strictly extreme points), computed by the resident engine's
+// operations on the host.  Point3 or Point3d.
+template <class Point>
+BasicHullMesh<Point> resident_hull_host(const std::vector<Point>& points, ResidentStats* stats = nullptr);
+
+}  // namespace cudahull

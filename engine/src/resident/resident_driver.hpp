@@ -1,0 +1,361 @@
+// The resident engine's driver: Algorithm 1 with every phase on one executor, the host hearing O(1) bytes
+// per step (counts from the prefix sums) until the result.  `Exec` is HostExec (host_exec.hpp: loops on
+// the host, for the CPU tests and as the reference) or CudaExec (cuda/resident_cuda.cu: kernels on the
+// device); both run the same operations (resident_ops.hpp) in the same order and give the same mesh.
+//
+// design:
+//   tetrahedron       section 3.1 through the executor's reductions, confirmed exactly on the host
+//   first distribution each point to a face's cone, kept when above it
+//   per iteration     furthest point per face; refine every face that has one (Fig. 3a); flip and flop
+//                     rounds until no candidate is left (Figs. 3b, 4, 5); route every kept point through
+//                     the entries; compact faces and points
+//   finish            no external point left: count the edges that are not strictly convex; none, and the
+//                     mesh is the exact hull.  Otherwise (coplanar or cospherical input where the local
+//                     edits stop short), or on a stall, the exact reference hull of the mesh's vertices and
+//                     the points still outside: every other point was dropped inside a tetrahedron of c and
+//                     mesh vertices, so these hold every extreme point.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cudahull/backend.hpp"
+#include "cudahull/exact_hull.hpp"
+#include "cudahull/mesh.hpp"
+#include "cudahull/resident.hpp"
+#include "phases/initial_tetrahedron.hpp"
+#include "resident/resident_ops.hpp"
+
+namespace cudahull::resident {
+
+CUDAHULL_HD inline u64 ordered_bits(double v) {
+#if defined(__CUDA_ARCH__)
+  u64 bits = static_cast<u64>(__double_as_longlong(v));
+#else
+  u64 bits;
+  std::memcpy(&bits, &v, sizeof bits);
+#endif
+  return (bits >> 63) ? ~bits : (bits | (u64{1} << 63));
+}
+
+// Section 3.1's rankings, one value per point (larger is better): -x, x, the squared distance from a
+// line, the distance from a plane.
+template <class Point>
+struct TetrahedronValue {
+  const Point* points;
+  int what;  // 0: -x, 1: x, 2: from line (a, b), 3: from plane (a, b, d)
+  Vec3d a, b, d;
+  CUDAHULL_HD double operator()(std::size_t i) const {
+    const Vec3d p = to_vec3d(points[i]);
+    switch (what) {
+      case 0:
+        return -p.x;
+      case 1:
+        return p.x;
+      case 2: {
+        const Vec3d u{b.x - a.x, b.y - a.y, b.z - a.z}, w{p.x - a.x, p.y - a.y, p.z - a.z};
+        const Vec3d n{u.y * w.z - u.z * w.y, u.z * w.x - u.x * w.z, u.x * w.y - u.y * w.x};
+        return n.x * n.x + n.y * n.y + n.z * n.z;
+      }
+      default: {
+        const double h = orient3d_fast(a, b, d, p);
+        return h < 0 ? -h : h;
+      }
+    }
+  }
+};
+template <class Point>
+struct BestValueKey {
+  TetrahedronValue<Point> value;
+  CUDAHULL_HD u64 operator()(std::size_t i) const { return ordered_bits(value(i)); }
+};
+template <class Point>
+struct LowestIndexWith {
+  TetrahedronValue<Point> value;
+  u64 best;
+  CUDAHULL_HD u64 operator()(std::size_t i) const {
+    return ordered_bits(value(i)) == best ? static_cast<u64>(~static_cast<u32>(i)) : 0;
+  }
+};
+
+// The Backend queries of section 3.1 on the executor, so that phases::find_initial_tetrahedron (which
+// confirms every answer exactly) serves both engines.  Nothing else of the Backend is used.
+template <class Point, class Exec>
+class TetrahedronQueries final : public BasicBackend<Point> {
+ public:
+  TetrahedronQueries(Exec& exec, const std::vector<Point>& host_points, const Point* points)
+      : exec_(exec), host_(host_points), points_(points), n_(host_points.size()) {}
+  std::string name() const override { return "resident"; }
+  void upload_points(const std::vector<Point>&) override {}
+  void restart() override {}
+  std::array<PointIndex, 2> extremes_x() override { return {best(0, {}, {}, {}), best(1, {}, {}, {})}; }
+  PointIndex furthest_from_line(PointIndex a, PointIndex b) override { return best(2, at(a), at(b), {}); }
+  PointIndex furthest_from_plane(PointIndex a, PointIndex b, PointIndex c) override {
+    return best(3, at(a), at(b), at(c));
+  }
+  void distribute_points(const typename BasicBackend<Point>::Tables&) override { unused(); }
+  std::size_t compact_index_array() override { unused(); }
+  void get_extreme_points(std::vector<FaceExtreme>&) override { unused(); }
+  void point_faces(std::vector<std::int32_t>&) override { unused(); }
+
+ private:
+  [[noreturn]] static void unused() { throw std::logic_error("resident engine: backend call not used"); }
+  Vec3d at(PointIndex i) const { return to_vec3d(host_[i]); }
+  // The point of largest value, ties to the lowest index: two exact reductions.
+  PointIndex best(int what, Vec3d a, Vec3d b, Vec3d d) {
+    const TetrahedronValue<Point> value{points_, what, a, b, d};
+    const u64 top = exec_.reduce_max(n_, BestValueKey<Point>{value});
+    return ~static_cast<u32>(exec_.reduce_max(n_, LowestIndexWith<Point>{value, top}));
+  }
+  Exec& exec_;
+  const std::vector<Point>& host_;
+  const Point* points_;
+  std::size_t n_;
+};
+
+template <class Point, class Exec>
+class ResidentHull {
+ public:
+  template <class T>
+  using Buffer = typename Exec::template Buffer<T>;
+
+  // `points` lives where the executor computes (the host vector itself for HostExec, a device copy for
+  // CudaExec); `host_points` is the same data on the host, for the exact checks of the tetrahedron and
+  // the result's coordinates.
+  ResidentHull(Exec& exec, const std::vector<Point>& host_points, const Point* points)
+      : exec_(exec), host_(host_points), points_(points) {}
+
+  BasicHullMesh<Point> run(ResidentStats& stats) {
+    stats = ResidentStats{};
+    lap();
+    const std::size_t n = host_.size();
+    if (n == 0) return exact_hull(host_);
+    TetrahedronQueries<Point, Exec> queries(exec_, host_, points_);
+    const phases::InitialTetrahedron tetrahedron = phases::find_initial_tetrahedron(host_, queries);
+    if (tetrahedron.dimension < 3) return lower_dimensional(stats, tetrahedron.note);
+    Mesh mesh;
+    if (!phases::make_initial_tetrahedron(host_, tetrahedron.corners, mesh, c_))
+      return lower_dimensional(stats, "tetrahedron too flat for an interior point");
+
+    // The tetrahedron, and the first distribution (section 3.1).
+    faces_ = 4;
+    grow_faces(64);
+    std::vector<u32> fv(12), fn(12);
+    for (u32 f = 0; f < 4; ++f) {
+      for (int k = 0; k < 3; ++k) {
+        fv[3 * f + k] = mesh.face(f).v[k];
+        fn[3 * f + k] = mesh.face(f).n[k];
+      }
+    }
+    exec_.upload(fv_.data(), fv.data(), 12);
+    exec_.upload(fn_.data(), fn.data(), 12);
+    exec_.fill(killer_.data(), 4, kAlive);
+    exec_.fill(pending_.data(), 4, u32{0});
+    for (auto* b : {&index_[0], &index_[1], &face_of_[0], &face_of_[1], &keep_, &point_rank_})
+      b->grow(n);
+    exec_.for_each(n, AssignFirst<Point>{view(), index_[0].data(), face_of_[0].data(), keep_.data()});
+    active_ = n;
+    compact();
+    stats.setup_ms = lap();
+
+    while (active_ > 0) {
+      if (!iterate(stats)) return exact_finish(stats, "stalled: no face could refine");
+      ++stats.iterations;
+    }
+    lap();
+    BasicHullMesh<Point> out = finish(stats);
+    stats.finish_ms = lap();
+    return out;
+  }
+
+ private:
+  // Milliseconds since the last lap.
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - lap_start_).count();
+    lap_start_ = now;
+    return ms;
+  }
+
+  MeshView<Point> view() {
+    return MeshView<Point>{points_, c_, fv_.data(), fn_.data(), killer_.data(), entries_.data()};
+  }
+
+  // Room for `count` faces, keeping the current ones; new claim slots hold no claim.
+  void grow_faces(std::size_t count) {
+    if (count <= capacity_) return;
+    const std::size_t old = capacity_;
+    capacity_ = std::max(count, capacity_ + capacity_ / 2);
+    fv_.grow(3 * capacity_, 3 * faces_);
+    fn_.grow(3 * capacity_, 3 * faces_);
+    killer_.grow(capacity_, faces_);
+    pending_.grow(capacity_, faces_);
+    claim_.grow(capacity_, old);
+    exec_.fill(claim_.data() + old, capacity_ - old, u64{0});
+    for (auto* b : {&fv_out_, &fn_out_})
+      b->grow(3 * capacity_);
+    // The prefix sums and the work list may be in use (a round grows the mesh between them and Apply).
+    for (auto* b : {&flags_, &face_rank_, &work_list_})
+      b->grow(capacity_ + 1, old + (old != 0));
+  }
+  void grow_entries(std::size_t count) {
+    if (count > entry_capacity_) {
+      entry_capacity_ = std::max(count, entry_capacity_ + entry_capacity_ / 2);
+      entries_.grow(entry_capacity_, entries_used_);
+    }
+  }
+
+  // One iteration; false when no face could refine.
+  bool iterate(ResidentStats& stats) {
+    // The furthest point per face, then refinement (Fig. 3a).
+    extreme_.grow(capacity_);
+    exec_.fill(extreme_.data(), faces_, u64{0});
+    exec_.segmented_max(
+        active_, FurthestPerFace<Point>{view(), index_[0].data(), face_of_[0].data(), extreme_.data()});
+    exec_.for_each(faces_, MarkRefined<Point>{view(), extreme_.data(), flags_.data()});
+    const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
+    if (refined == 0) return false;
+    stats.refined_faces += refined;
+    const std::size_t first = faces_;
+    grow_faces(faces_ + 3 * std::size_t{refined});
+    grow_entries(refined);
+    exec_.for_each(faces_, SplitFaces<Point>{view(), extreme_.data(), flags_.data(), face_rank_.data(),
+                                             static_cast<u32>(first), 0});
+    faces_ += 3 * std::size_t{refined};
+    entries_used_ = refined;
+    exec_.fill(pending_.data() + first, faces_ - first, u32{0});
+    stats.refine_ms += lap();
+
+    // Flip and flop rounds until no candidate is left (Figs. 3b, 4, 5).
+    std::size_t fresh_from = first;
+    while (true) {
+      exec_.for_each(faces_,
+                     MarkWork<Point>{view(), pending_.data(), static_cast<u32>(fresh_from), flags_.data()});
+      const u32 work = exec_.select(flags_.data(), face_rank_.data(), work_list_.data(), faces_);
+      if (work == 0) break;
+      stats.work_items += work;
+      ++round_;
+      ++stats.rounds;
+      won_.grow(work + 1);
+      slot_.grow(work);
+      won_rank_.grow(work + 1);
+      const FindCandidate<Point> find{view()};
+      exec_.for_each(
+          work, Claim<Point>{find, work_list_.data(), round_, claim_.data(), pending_.data(), slot_.data()});
+      exec_.for_each(work,
+                     Won<Point>{find, work_list_.data(), slot_.data(), round_, claim_.data(), won_.data()});
+      const u32 winners = exec_.exclusive_scan(won_.data(), won_rank_.data(), work);
+      if (winners == 0) break;  // cannot happen: the lowest candidate holds all its claims
+      stats.edits += winners;
+      grow_faces(faces_ + 2 * std::size_t{winners});
+      grow_entries(entries_used_ + winners);
+      exec_.for_each(
+          work, Apply<Point>{FindCandidate<Point>{view()}, work_list_.data(), won_.data(), won_rank_.data(),
+                             static_cast<u32>(faces_), static_cast<u32>(entries_used_), pending_.data()});
+      fresh_from = faces_;
+      faces_ += 2 * std::size_t{winners};
+      entries_used_ += winners;
+    }
+
+    stats.rounds_ms += lap();
+
+    // Algorithm 2: every kept point to its new face; then compaction.
+    exec_.for_each(active_, RoutePoints<Point>{view(), index_[0].data(), face_of_[0].data(), keep_.data()});
+    compact();
+    stats.route_ms += lap();
+    return true;
+  }
+
+  // Live faces renumbered 0..F-1; kept points compacted, their faces renumbered.
+  void compact() {
+    exec_.for_each(faces_, MarkLive<Point>{view(), flags_.data()});
+    const u32 live = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
+    exec_.for_each(faces_,
+                   MoveLive<Point>{view(), flags_.data(), face_rank_.data(), fv_out_.data(), fn_out_.data()});
+    fv_.swap(fv_out_);
+    fn_.swap(fn_out_);
+    faces_ = live;
+    exec_.fill(killer_.data(), faces_, kAlive);
+    exec_.fill(pending_.data(), faces_, u32{0});
+    const u32 kept = exec_.exclusive_scan(keep_.data(), point_rank_.data(), active_);
+    exec_.for_each(active_, MovePoints{keep_.data(), point_rank_.data(), face_rank_.data(), index_[0].data(),
+                                       face_of_[0].data(), index_[1].data(), face_of_[1].data()});
+    index_[0].swap(index_[1]);
+    face_of_[0].swap(face_of_[1]);
+    active_ = kept;
+  }
+
+  BasicHullMesh<Point> lower_dimensional(ResidentStats& stats, const std::string& why) {
+    stats.note = why;
+    return exact_hull(host_);
+  }
+
+  // The mesh's faces, read back once.
+  std::vector<u32> corners() {
+    std::vector<u32> fv(3 * faces_);
+    exec_.download(fv.data(), fv_.data(), fv.size());
+    return fv;
+  }
+
+  BasicHullMesh<Point> finish(ResidentStats& stats) {
+    Buffer<u32> faults;
+    faults.grow(1);
+    exec_.fill(faults.data(), 1, u32{0});
+    exec_.for_each(faces_, CountFaults<Point>{view(), faults.data()});
+    u32 count = 0;
+    exec_.download(&count, faults.data(), 1);
+    if (count != 0) {
+      stats.faults = count;
+      return exact_finish(stats, std::to_string(count) + " edges not strictly convex");
+    }
+    // The vertices are the flagged points in index order (ascending, as exact_hull gives them); the
+    // corners become their ranks.  Only the result comes back.
+    const std::size_t n = host_.size();
+    exec_.fill(keep_.data(), n, u32{0});
+    exec_.for_each(3 * faces_, FlagCorners{fv_.data(), keep_.data()});
+    const u32 vertices = exec_.select(keep_.data(), point_rank_.data(), index_[1].data(), n);
+    exec_.for_each(3 * faces_, RenumberCorners{fv_.data(), point_rank_.data(), fv_out_.data()});
+    BasicHullMesh<Point> out;
+    out.vertex_ids.resize(vertices);
+    exec_.download(out.vertex_ids.data(), index_[1].data(), vertices);
+    out.triangles.resize(faces_);
+    static_assert(sizeof(Triangle) == 3 * sizeof(u32));
+    exec_.download(reinterpret_cast<u32*>(out.triangles.data()), fv_out_.data(), 3 * faces_);
+    out.vertices.resize(vertices);
+    for (std::size_t k = 0; k < vertices; ++k)
+      out.vertices[k] = host_[out.vertex_ids[k]];
+    return out;
+  }
+
+  // The exact reference hull of the mesh's vertices and the points still outside (see the design).
+  BasicHullMesh<Point> exact_finish(ResidentStats& stats, const std::string& why) {
+    stats.note = why;
+    stats.exact_finish = true;
+    std::vector<PointIndex> candidates = corners();
+    const std::size_t mesh_part = candidates.size();
+    candidates.resize(mesh_part + active_);
+    exec_.download(candidates.data() + mesh_part, index_[0].data(), active_);
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    return exact_hull(host_, candidates);
+  }
+
+  Exec& exec_;
+  const std::vector<Point>& host_;
+  const Point* points_;
+  std::chrono::steady_clock::time_point lap_start_;
+  Vec3d c_{};
+  std::size_t faces_ = 0, capacity_ = 0, entries_used_ = 0, entry_capacity_ = 0, active_ = 0;
+  u32 round_ = 0;
+  Buffer<u32> fv_, fn_, fv_out_, fn_out_, killer_, pending_, flags_, face_rank_, work_list_;
+  Buffer<u64> claim_, extreme_;
+  Buffer<Entry> entries_;
+  Buffer<u32> won_, won_rank_, slot_;
+  Buffer<u32> index_[2], face_of_[2], keep_, point_rank_;
+};
+
+}  // namespace cudahull::resident

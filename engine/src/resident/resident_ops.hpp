@@ -1,0 +1,551 @@
+// The resident engine's per-element operations: every step of an iteration of Algorithm 1 as a function of
+// one face or one point, over flat arrays, compiled for the host (HostExec, loops) and the device
+// (CudaExec, one thread each).  resident_driver.hpp runs them in order; the executor decides where.
+//
+// design:
+//   The mesh is star-shaped from the interior point c: every face (a, b, d) has orient3d(c, a, b, d) > 0,
+//   so the radial cones from c over the faces tile space.  Each external point belongs to the face whose
+//   closed cone holds it; a point below (or on) its face is inside the tetrahedron (c, a, b, d), so inside
+//   the hull, and is dropped.  Every edit keeps the cones a tiling, and appends a decision entry (Fig. 7)
+//   that says, by one or two exact orient3d with c, which new face a point of a killed face belongs to:
+//     refine (Fig. 3a)  face (a, b, d) at its furthest point p, strictly inside the cone: children
+//                       (a, b, p), (b, d, p), (d, a, p), each written with its own links (gathers)
+//     flip (Fig. 3b)    concave edge u - v of f = (u, v, x), g = (v, u, y) into x - y: n1 = (x, u, y),
+//                       n2 = (y, v, x); only when both new faces keep c strictly below (the foldover test
+//                       of Fig. 5, seen from c)
+//     flop (Fig. 4)     a vertex v of degree 3 that is concave or flat: its three faces become (a, b, d)
+//   Flips and flops run in conflict-free rounds: each candidate claims the six (flip) or six (flop) faces
+//   it reads or rewrites with a 64-bit atomicMax of (round, ~candidate id); the holders of all their claims
+//   apply at once, numbered by a prefix sum, so the result is the same on any executor and thread count.
+//   Face ids only grow within an iteration (killed faces keep their corners for the routing); compaction
+//   renumbers between iterations.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+
+#include "cudahull/host_device.hpp"
+#include "cudahull/predicates.hpp"
+
+namespace cudahull::resident {
+
+using u32 = std::uint32_t;
+using u64 = std::uint64_t;
+
+inline constexpr u32 kAlive = 0xffffffffu;     // killer[] of a live face
+inline constexpr u32 kDeadSlot = 0xfffffffeu;  // killer[] of a face slot a flop left unused
+inline constexpr u32 kNone = 0xffffffffu;
+
+enum EntryKind : u32 { kRefine = 0, kFlip = 1, kFlop = 2 };
+
+// A decision entry (Fig. 7).  refine: p = apex, out = children; flip: p = x, q = y, out = n1, n2; flop:
+// out[0] = the new face.
+struct Entry {
+  u32 kind, p, q;
+  u32 out[3];
+};
+
+// ---------------------------------------------------------------------------------------------------------
+// Atomics: the device's, or plain operations for the host's sequential loops (the same final values).
+
+CUDAHULL_HD inline void atomic_max_u64(u64* at, u64 value) {
+#if defined(__CUDA_ARCH__)
+  atomicMax(reinterpret_cast<unsigned long long*>(at), static_cast<unsigned long long>(value));
+#else
+  if (value > *at) *at = value;
+#endif
+}
+
+CUDAHULL_HD inline u32 atomic_add_u32(u32* at, u32 value) {
+#if defined(__CUDA_ARCH__)
+  return atomicAdd(at, value);
+#else
+  const u32 old = *at;
+  *at += value;
+  return old;
+#endif
+}
+
+CUDAHULL_HD inline u32 float_bits(float f) {
+#if defined(__CUDA_ARCH__)
+  return __float_as_uint(f);
+#else
+  u32 u;
+  std::memcpy(&u, &f, sizeof u);
+  return u;
+#endif
+}
+
+// A key whose unsigned order is the order of v (rounded to float), with ties to the lowest index: the upper
+// half is v's float bits made monotone, the lower half ~index.  Ranking only; decisions are exact.
+CUDAHULL_HD inline u64 rank_key(double v, u32 index) {
+  u32 bits = float_bits(static_cast<float>(v));
+  bits = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u);
+  return (static_cast<u64>(bits) << 32) | static_cast<u64>(~index);
+}
+CUDAHULL_HD inline u32 rank_key_index(u64 key) {
+  return ~static_cast<u32>(key);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// The mesh as the operations see it.  Face f: corners fv[3f..3f+2] counter-clockwise from outside,
+// fn[3f+i] the face across the directed edge fv[3f+i] -> fv[3f+(i+1)%3].
+
+template <class Point>
+struct MeshView {
+  const Point* points;
+  Vec3d c;  // the interior point
+  u32* fv;
+  u32* fn;
+  u32* killer;  // kAlive, kDeadSlot, or the entry that killed the face this iteration
+  Entry* entries;
+
+  CUDAHULL_HD Vec3d P(u32 i) const { return to_vec3d(points[i]); }
+  // The slot s of face f holding the directed edge a -> b, or -1.
+  CUDAHULL_HD int edge_slot(u32 f, u32 a, u32 b) const {
+    for (int s = 0; s < 3; ++s) {
+      if (fv[3 * f + s] == a && fv[3 * f + (s + 1) % 3] == b) return s;
+    }
+    return -1;
+  }
+  CUDAHULL_HD int corner_slot(u32 f, u32 v) const {
+    for (int s = 0; s < 3; ++s) {
+      if (fv[3 * f + s] == v) return s;
+    }
+    return -1;
+  }
+  // Is q in the closed cone from c over face f?  Exact.
+  CUDAHULL_HD bool in_cone(u32 f, const Vec3d& q) const {
+    const Vec3d a = P(fv[3 * f]), b = P(fv[3 * f + 1]), d = P(fv[3 * f + 2]);
+    return orient3d(c, a, b, q) >= 0 && orient3d(c, b, d, q) >= 0 && orient3d(c, d, a, q) >= 0;
+  }
+  CUDAHULL_HD int above(u32 f, const Vec3d& q) const {
+    return orient3d(P(fv[3 * f]), P(fv[3 * f + 1]), P(fv[3 * f + 2]), q);
+  }
+};
+
+// ---------------------------------------------------------------------------------------------------------
+// Points: the first distribution (section 3.1), the routing through the entries (Algorithm 2), and the
+// furthest point per face.
+
+// Each point to the first of the tetrahedron's four faces whose closed cone holds it; kept when above.
+template <class Point>
+struct AssignFirst {
+  MeshView<Point> m;
+  u32* point_index;
+  u32* point_face;
+  u32* keep;
+  CUDAHULL_HD void operator()(std::size_t i) const {
+    const Vec3d q = m.P(static_cast<u32>(i));
+    u32 face = 3;
+    for (u32 f = 0; f < 3; ++f) {
+      if (m.in_cone(f, q)) {
+        face = f;
+        break;
+      }
+    }
+    point_index[i] = static_cast<u32>(i);
+    point_face[i] = face;
+    keep[i] = m.above(face, q) > 0 ? 1u : 0u;
+  }
+};
+
+// Follows the entries from a point's face to the live face whose cone holds it; kept when above.
+template <class Point>
+struct RoutePoints {
+  MeshView<Point> m;
+  const u32* point_index;
+  u32* point_face;
+  u32* keep;
+  CUDAHULL_HD void operator()(std::size_t j) const {
+    const Vec3d q = m.P(point_index[j]);
+    u32 f = point_face[j];
+    for (u32 e = m.killer[f]; e != kAlive; e = m.killer[f]) {
+      const Entry& entry = m.entries[e];
+      if (entry.kind == kRefine) {
+        // Child k = (v_k, v_k+1, p) holds q when q is left of p -> v_k+1 and right of p -> v_k.
+        const Vec3d p = m.P(entry.p);
+        int s[3];
+        for (int k = 0; k < 3; ++k)
+          s[k] = orient3d(m.c, m.P(m.fv[3 * f + k]), p, q);
+        const int k = (s[1] >= 0 && s[0] <= 0) ? 0 : (s[2] >= 0 && s[1] <= 0) ? 1 : 2;
+        f = entry.out[k];
+      } else if (entry.kind == kFlip) {
+        f = orient3d(m.c, m.P(entry.p), m.P(entry.q), q) >= 0 ? entry.out[1] : entry.out[0];
+      } else {
+        f = entry.out[0];
+      }
+    }
+    point_face[j] = f;
+    keep[j] = m.above(f, q) > 0 ? 1u : 0u;
+  }
+};
+
+// Per face, the furthest external point (rank_key: largest height, ties to the lowest index).  `extreme`
+// is zeroed first; a face with no external point keeps 0.
+template <class Point>
+struct FurthestPerFace {
+  MeshView<Point> m;
+  const u32* point_index;
+  const u32* point_face;
+  u64* extreme;
+  CUDAHULL_HD u32 segment(std::size_t j) const { return point_face[j]; }
+  CUDAHULL_HD u64 key(std::size_t j) const {
+    const u32 f = point_face[j], i = point_index[j];
+    const double h = orient3d_fast(m.P(m.fv[3 * f]), m.P(m.fv[3 * f + 1]), m.P(m.fv[3 * f + 2]), m.P(i));
+    return rank_key(h > 0 ? h : 0, i);
+  }
+  CUDAHULL_HD void operator()(std::size_t j) const { atomic_max_u64(&extreme[segment(j)], key(j)); }
+};
+
+// ---------------------------------------------------------------------------------------------------------
+// Refinement (Fig. 3a).
+
+// A face refines when it has an external point strictly inside its cone (on a side of the cone the child
+// would be flat; the face waits, and a stall ends in the exact finish).
+template <class Point>
+struct MarkRefined {
+  MeshView<Point> m;
+  const u64* extreme;
+  u32* refine;
+  CUDAHULL_HD void operator()(std::size_t fi) const {
+    const u32 f = static_cast<u32>(fi);
+    u32 flag = 0;
+    if (extreme[f] != 0) {
+      const Vec3d p = m.P(rank_key_index(extreme[f]));
+      const Vec3d a = m.P(m.fv[3 * f]), b = m.P(m.fv[3 * f + 1]), d = m.P(m.fv[3 * f + 2]);
+      flag = orient3d(m.c, a, b, p) > 0 && orient3d(m.c, b, d, p) > 0 && orient3d(m.c, d, a, p) > 0;
+    }
+    refine[f] = flag;
+  }
+};
+
+// Splits each marked face into three children at first + 3 rank[f] (rank: the prefix sum of the marks);
+// every face writes only its own links, gathered from the neighbours' marks.
+template <class Point>
+struct SplitFaces {
+  MeshView<Point> m;
+  const u64* extreme;
+  const u32* refine;
+  const u32* rank;
+  u32 first_face, first_entry;
+  // The face across edge (a -> b) of f after the split: nb itself, or nb's child on that edge.
+  CUDAHULL_HD u32 across(u32 nb, u32 a, u32 b) const {
+    if (!refine[nb]) return nb;
+    return first_face + 3 * rank[nb] + static_cast<u32>(m.edge_slot(nb, b, a));
+  }
+  CUDAHULL_HD void operator()(std::size_t fi) const {
+    const u32 f = static_cast<u32>(fi);
+    if (!refine[f]) {
+      for (int k = 0; k < 3; ++k) {
+        const u32 a = m.fv[3 * f + k], b = m.fv[3 * f + (k + 1) % 3];
+        m.fn[3 * f + k] = across(m.fn[3 * f + k], a, b);
+      }
+      return;
+    }
+    const u32 p = rank_key_index(extreme[f]);
+    const u32 kids = first_face + 3 * rank[f], e = first_entry + rank[f];
+    for (int k = 0; k < 3; ++k) {
+      const u32 child = kids + static_cast<u32>(k);
+      const u32 a = m.fv[3 * f + k], b = m.fv[3 * f + (k + 1) % 3];
+      m.fv[3 * child] = a;
+      m.fv[3 * child + 1] = b;
+      m.fv[3 * child + 2] = p;
+      m.fn[3 * child] = across(m.fn[3 * f + k], a, b);
+      m.fn[3 * child + 1] = kids + static_cast<u32>((k + 1) % 3);
+      m.fn[3 * child + 2] = kids + static_cast<u32>((k + 2) % 3);
+      m.killer[child] = kAlive;
+    }
+    m.entries[e] = Entry{kRefine, p, kNone, {kids, kids + 1, kids + 2}};
+    m.killer[f] = e;
+  }
+};
+
+// ---------------------------------------------------------------------------------------------------------
+// Flip and flop rounds (Figs. 3b, 4, 5).
+
+// A candidate edit and the six faces it reads or rewrites.
+struct Candidate {
+  u32 kind = kNone;    // kFlip or kFlop, or kNone
+  u32 faces[6] = {};   // flip: f, g, A (across x->u), B (u->y), C (y->v), D (v->x); flop: f, h, t, the
+                       // outer faces across a->b, b->d, d->a
+  u32 vertex[4] = {};  // flip: u, v, x, y; flop: v, a, b, d
+};
+
+// What a candidate's id claims with in round `round`: later rounds win over stale claims, and within a
+// round the lowest id.
+CUDAHULL_HD inline u64 claim_key(u32 round, u32 candidate) {
+  return (static_cast<u64>(round) << 32) | static_cast<u64>(~candidate);
+}
+
+template <class Point>
+struct FindCandidate {
+  MeshView<Point> m;
+
+  // Edge i of f, owned by f when f is the lower of its two faces: a concave edge whose flip keeps both new
+  // faces' cones proper.
+  CUDAHULL_HD bool flip(u32 f, int i, Candidate& out) const {
+    const u32 g = m.fn[3 * f + i];
+    if (g < f) return false;
+    const u32 u = m.fv[3 * f + i], v = m.fv[3 * f + (i + 1) % 3], x = m.fv[3 * f + (i + 2) % 3];
+    const int j = m.edge_slot(g, v, u);
+    if (j < 0) return false;
+    const u32 y = m.fv[3 * g + (j + 2) % 3];
+    const Vec3d pu = m.P(u), pv = m.P(v), px = m.P(x), py = m.P(y);
+    if (orient3d(pu, pv, px, py) <= 0) return false;                                     // convex or flat
+    if (orient3d(m.c, px, pu, py) <= 0 || orient3d(m.c, py, pv, px) <= 0) return false;  // a foldover
+    const u32 A = m.fn[3 * f + (i + 2) % 3], D = m.fn[3 * f + (i + 1) % 3];
+    const u32 B = m.fn[3 * g + (j + 1) % 3], C = m.fn[3 * g + (j + 2) % 3];
+    if (A == B || C == D || A == g || B == f || C == f || D == g) return false;  // not a 2-manifold
+    out = Candidate{kFlip, {f, g, A, B, C, D}, {u, v, x, y}};
+    return true;
+  }
+
+  // Corner k of f: a vertex v of degree 3 (faces f = (v, a, b), h = (v, d, a), t = (v, b, d)), owned by
+  // the lowest of its faces, concave or flat, whose removal keeps the new face's cone proper.
+  CUDAHULL_HD bool flop(u32 f, int k, Candidate& out) const {
+    const u32 v = m.fv[3 * f + k], a = m.fv[3 * f + (k + 1) % 3], b = m.fv[3 * f + (k + 2) % 3];
+    const u32 h = m.fn[3 * f + k], t = m.fn[3 * f + (k + 2) % 3];
+    if (h < f || t < f) return false;
+    const int hv = m.corner_slot(h, v), tv = m.corner_slot(t, v);
+    if (hv < 0 || tv < 0) return false;
+    const u32 d = m.fv[3 * h + (hv + 1) % 3];
+    if (m.fv[3 * h + (hv + 2) % 3] != a || m.fv[3 * t + (tv + 1) % 3] != b || m.fv[3 * t + (tv + 2) % 3] != d)
+      return false;
+    if (m.fn[3 * h + hv] != t || m.fn[3 * t + tv] != f) return false;  // degree above 3
+    const Vec3d pv = m.P(v), pa = m.P(a), pb = m.P(b), pd = m.P(d);
+    if (orient3d(pa, pb, pd, pv) > 0) return false;  // v is strictly extreme here
+    if (orient3d(m.c, pa, pb, pd) <= 0) return false;
+    const u32 ab = m.fn[3 * f + (k + 1) % 3], da = m.fn[3 * h + (hv + 1) % 3],
+              bd = m.fn[3 * t + (tv + 1) % 3];
+    if (ab == da || ab == bd || da == bd || ab == h || ab == t || da == f || da == t || bd == f || bd == h)
+      return false;
+    out = Candidate{kFlop, {f, h, t, ab, bd, da}, {v, a, b, d}};
+    return true;
+  }
+
+  // The first candidate of face f: its three edges, then its three corners.  slot receives 0..5.
+  CUDAHULL_HD bool operator()(u32 f, Candidate& out, int& slot) const {
+    for (int i = 0; i < 3; ++i) {
+      if (flip(f, i, out)) {
+        slot = i;
+        return true;
+      }
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (flop(f, k, out)) {
+        slot = 3 + k;
+        return true;
+      }
+    }
+    return false;
+  }
+};
+
+// The faces a round looks at: live ones made in the previous round (id >= fresh_from), their neighbours
+// (the lower face of an edge owns it, and a flop belongs to the lowest of three faces), and those whose
+// candidate lost a claim.
+template <class Point>
+struct MarkWork {
+  MeshView<Point> m;
+  const u32* pending;
+  u32 fresh_from;
+  u32* work;
+  CUDAHULL_HD void operator()(std::size_t fi) const {
+    const u32 f = static_cast<u32>(fi);
+    u32 flag = 0;
+    if (m.killer[f] == kAlive) {
+      flag = f >= fresh_from || pending[f] || m.fn[3 * f] >= fresh_from || m.fn[3 * f + 1] >= fresh_from ||
+             m.fn[3 * f + 2] >= fresh_from;
+    }
+    work[f] = flag;
+  }
+};
+
+// Each work face finds its first candidate and claims the candidate's faces.
+template <class Point>
+struct Claim {
+  FindCandidate<Point> find;
+  const u32* work_list;
+  u32 round;
+  u64* claim;
+  u32* pending;
+  u32* slot_of;  // per work item: the candidate's slot, or kNone
+  CUDAHULL_HD void operator()(std::size_t w) const {
+    const u32 f = work_list[w];
+    Candidate cand;
+    int slot = 0;
+    if (!find(f, cand, slot)) {
+      pending[f] = 0;
+      slot_of[w] = kNone;
+      return;
+    }
+    pending[f] = 1;
+    slot_of[w] = static_cast<u32>(slot);
+    const u64 key = claim_key(round, 6 * f + static_cast<u32>(slot));
+    for (u32 h : cand.faces)
+      atomic_max_u64(&claim[h], key);
+  }
+};
+
+// Did the work item's candidate hold all its claims?
+template <class Point>
+struct Won {
+  FindCandidate<Point> find;
+  const u32* work_list;
+  const u32* slot_of;
+  u32 round;
+  const u64* claim;
+  u32* won;
+  CUDAHULL_HD void operator()(std::size_t w) const {
+    won[w] = 0;
+    if (slot_of[w] == kNone) return;
+    const u32 f = work_list[w];
+    Candidate cand;
+    int slot = 0;
+    find(f, cand, slot);
+    const u64 key = claim_key(round, 6 * f + slot_of[w]);
+    for (u32 h : cand.faces) {
+      if (claim[h] != key) return;
+    }
+    won[w] = 1;
+  }
+};
+
+// The winners apply: two new face slots and one entry each, by the prefix sum of the wins; each rewrites
+// only the faces it claimed and its new ones.
+template <class Point>
+struct Apply {
+  FindCandidate<Point> find;
+  const u32* work_list;
+  const u32* won;
+  const u32* rank;
+  u32 first_face, first_entry;
+  u32* pending;
+
+  CUDAHULL_HD void relink(u32 face, u32 a, u32 b, u32 to) const {
+    const int s = find.m.edge_slot(face, a, b);
+    if (s >= 0) find.m.fn[3 * face + s] = to;
+  }
+  CUDAHULL_HD void set_face(u32 f, u32 a, u32 b, u32 d, u32 na, u32 nb, u32 nd) const {
+    u32* fv = find.m.fv + 3 * f;
+    u32* fn = find.m.fn + 3 * f;
+    fv[0] = a, fv[1] = b, fv[2] = d;
+    fn[0] = na, fn[1] = nb, fn[2] = nd;
+    find.m.killer[f] = kAlive;
+    pending[f] = 0;
+  }
+  CUDAHULL_HD void operator()(std::size_t w) const {
+    if (!won[w]) return;
+    const u32 f = work_list[w];
+    Candidate cand;
+    int slot = 0;
+    find(f, cand, slot);
+    const u32 n1 = first_face + 2 * rank[w], n2 = n1 + 1, e = first_entry + rank[w];
+    const MeshView<Point>& m = find.m;
+    if (cand.kind == kFlip) {
+      const u32 u = cand.vertex[0], v = cand.vertex[1], x = cand.vertex[2], y = cand.vertex[3];
+      const u32 A = cand.faces[2], B = cand.faces[3], C = cand.faces[4], D = cand.faces[5];
+      set_face(n1, x, u, y, A, B, n2);
+      set_face(n2, y, v, x, C, D, n1);
+      relink(A, u, x, n1);
+      relink(B, y, u, n1);
+      relink(C, v, y, n2);
+      relink(D, x, v, n2);
+      m.entries[e] = Entry{kFlip, x, y, {n1, n2, kNone}};
+      m.killer[cand.faces[0]] = e;
+      m.killer[cand.faces[1]] = e;
+    } else {
+      const u32 a = cand.vertex[1], b = cand.vertex[2], d = cand.vertex[3];
+      const u32 ab = cand.faces[3], bd = cand.faces[4], da = cand.faces[5];
+      set_face(n1, a, b, d, ab, bd, da);
+      relink(ab, b, a, n1);
+      relink(bd, d, b, n1);
+      relink(da, a, d, n1);
+      m.killer[n2] = kDeadSlot;
+      for (int k = 0; k < 3; ++k)
+        m.fv[3 * n2 + k] = m.fn[3 * n2 + k] = kNone;
+      pending[n2] = 0;
+      m.entries[e] = Entry{kFlop, kNone, kNone, {n1, kNone, kNone}};
+      for (int k = 0; k < 3; ++k)
+        m.killer[cand.faces[k]] = e;
+    }
+  }
+};
+
+// ---------------------------------------------------------------------------------------------------------
+// Compaction between iterations, and the final exact check.
+
+template <class Point>
+struct MarkLive {
+  MeshView<Point> m;
+  u32* live;
+  CUDAHULL_HD void operator()(std::size_t f) const { live[f] = m.killer[f] == kAlive ? 1u : 0u; }
+};
+
+// Live face f moves to rank[f] in (fv_out, fn_out), its links renumbered.
+template <class Point>
+struct MoveLive {
+  MeshView<Point> m;
+  const u32* live;
+  const u32* rank;
+  u32* fv_out;
+  u32* fn_out;
+  CUDAHULL_HD void operator()(std::size_t fi) const {
+    if (!live[fi]) return;
+    const u32 to = rank[fi];
+    for (int k = 0; k < 3; ++k) {
+      fv_out[3 * to + k] = m.fv[3 * fi + k];
+      fn_out[3 * to + k] = rank[m.fn[3 * fi + k]];
+    }
+  }
+};
+
+// Kept point j moves to rank[j], its face renumbered.
+struct MovePoints {
+  const u32* keep;
+  const u32* rank;
+  const u32* face_rank;
+  const u32* index_in;
+  const u32* face_in;
+  u32* index_out;
+  u32* face_out;
+  CUDAHULL_HD void operator()(std::size_t j) const {
+    if (!keep[j]) return;
+    index_out[rank[j]] = index_in[j];
+    face_out[rank[j]] = face_rank[face_in[j]];
+  }
+};
+
+// The result, renumbered where it is: each vertex flagged (every corner writes 1), then corners to ranks.
+struct FlagCorners {
+  const u32* fv;
+  u32* used;
+  CUDAHULL_HD void operator()(std::size_t k) const { used[fv[k]] = 1; }
+};
+struct RenumberCorners {
+  const u32* fv;
+  const u32* rank;
+  u32* out;
+  CUDAHULL_HD void operator()(std::size_t k) const { out[k] = rank[fv[k]]; }
+};
+
+// Counts the edges that are not strictly convex (each once, from its lower face): zero means the mesh is
+// the exact hull of its vertices, with every vertex strictly extreme.
+template <class Point>
+struct CountFaults {
+  MeshView<Point> m;
+  u32* faults;
+  CUDAHULL_HD void operator()(std::size_t fi) const {
+    const u32 f = static_cast<u32>(fi);
+    const Vec3d a = m.P(m.fv[3 * f]), b = m.P(m.fv[3 * f + 1]), d = m.P(m.fv[3 * f + 2]);
+    for (int i = 0; i < 3; ++i) {
+      const u32 g = m.fn[3 * f + i];
+      if (g < f) continue;
+      const int j = m.edge_slot(g, m.fv[3 * f + (i + 1) % 3], m.fv[3 * f + i]);
+      if (j < 0 || orient3d(a, b, d, m.P(m.fv[3 * g + (j + 2) % 3])) >= 0) atomic_add_u32(faults, 1);
+    }
+  }
+};
+
+}  // namespace cudahull::resident

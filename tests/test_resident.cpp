@@ -1,0 +1,144 @@
+// The resident engine (issue 15) on the host executor: the same operations the GPU runs, checked against the
+// exact reference hull (exact_hull) and the independent checker on generated distributions, models and
+// degenerate sets, in float and in double.  The gpu label runs the device executor against this one.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cudahull/exact_hull.hpp"
+#include "cudahull/generators.hpp"
+#include "cudahull/hull_checker.hpp"
+#include "cudahull/point_io.hpp"
+#include "cudahull/resident.hpp"
+#include "support/rng.hpp"
+
+namespace cudahull {
+namespace {
+
+template <class Point>
+void expect_exact(const std::vector<Point>& points, const std::string& what,
+                  ResidentStats* stats_out = nullptr) {
+  ResidentStats stats;
+  const BasicHullMesh<Point> hull = resident_hull_host(points, &stats);
+  const BasicHullMesh<Point> oracle = exact_hull(points);
+  ASSERT_EQ(hull.dimension, oracle.dimension) << what;
+  EXPECT_EQ(hull.vertex_ids, oracle.vertex_ids) << what << " (" << stats.note << ")";
+  if (hull.dimension == 3) {
+    const CheckResult check = check_hull(points, hull, 3);
+    EXPECT_TRUE(check.ok) << what << ": " << (check.failures.empty() ? "" : check.failures.front());
+  }
+  if (stats_out) *stats_out = stats;
+}
+
+std::vector<Point3d> widened(const std::vector<Point3>& p) {
+  std::vector<Point3d> out(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i)
+    out[i] = {p[i].x, p[i].y, p[i].z};
+  return out;
+}
+
+// General position: the local edits alone reach the exact hull (no exact finish), in few host round trips.
+TEST(Resident, GeneratedDistributionsInGeneralPosition) {
+  for (const char* name : {"cube", "ball", "sphere", "gauss", "paraboloid"}) {
+    for (std::size_t n : {50, 2000, 30000}) {
+      const std::vector<Point3> points = generate_points(distribution_from_name(name), n, 7 + n);
+      const std::string what = std::string(name) + " " + std::to_string(n);
+      ResidentStats stats;
+      expect_exact(points, what, &stats);
+      EXPECT_FALSE(stats.exact_finish) << what << ": " << stats.note;
+      EXPECT_GT(stats.iterations, 0u) << what;
+      ResidentStats wide;
+      expect_exact(widened(points), what + " in double", &wide);
+      EXPECT_FALSE(wide.exact_finish) << what << " in double: " << wide.note;
+    }
+  }
+}
+
+// Degenerate distributions (coplanar rings, lattices): exact through the exact finish when the local edits
+// stop short on flat faces.
+TEST(Resident, DegenerateDistributions) {
+  for (const char* name : {"cylinder", "grid"}) {
+    for (std::size_t n : {8, 1000, 20000}) {
+      const std::vector<Point3> points = generate_points(distribution_from_name(name), n, 3);
+      expect_exact(points, std::string(name) + " " + std::to_string(n));
+    }
+  }
+}
+
+TEST(Resident, LowerDimensionalAndTinyInputs) {
+  expect_exact(std::vector<Point3>{}, "no points");
+  expect_exact(std::vector<Point3>{{1, 2, 3}}, "one point");
+  expect_exact(std::vector<Point3>{{1, 2, 3}, {1, 2, 3}, {1, 2, 3}}, "one point three times");
+  expect_exact(std::vector<Point3>{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {0.5f, 0.5f, 0.5f}}, "collinear");
+  expect_exact(std::vector<Point3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0.5f, 0.5f, 0}}, "square");
+  expect_exact(std::vector<Point3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, "tetrahedron");
+  expect_exact(std::vector<Point3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {0.1f, 0.1f, 0.1f}},
+               "tetrahedron and an inner point");
+  std::vector<Point3> cube;
+  for (int i = 0; i < 8; ++i)
+    cube.push_back({float(i & 1), float((i >> 1) & 1), float((i >> 2) & 1)});
+  expect_exact(cube, "cube corners");
+}
+
+// Duplicates: the vertex is the lowest index of each repeated extreme point.
+TEST(Resident, DuplicatesKeepTheLowestIndex) {
+  std::vector<Point3> points = generate_points(Distribution::kSphere, 3000, 11);
+  const std::size_t n = points.size();
+  for (std::size_t i = 0; i < n; i += 3)
+    points.push_back(points[i]);
+  for (std::size_t i = 0; i < n; i += 7)
+    points.insert(points.begin(), points[n - 1 - i]);
+  expect_exact(points, "sphere with repeats");
+}
+
+// Seeded random sets of every kind the property test has, small enough for a quick loop.
+TEST(Resident, SeededClustersJitterAndRanges) {
+  testing::Rng r(99);
+  for (int t = 0; t < 60; ++t) {
+    const std::size_t n = 4 + r.below(3000);
+    std::vector<Point3d> p(n);
+    const int kind = t % 4;
+    for (auto& q : p) {
+      if (kind == 0) q = {r.unit(), r.unit(), r.unit()};
+      if (kind == 1) q = {double(int(r.below(5))), double(int(r.below(5))), double(int(r.below(5)))};
+      if (kind == 2) q = {1e9 + r.unit() * 1e-3, -2e9 + r.unit() * 1e-3, 3e9 + r.unit() * 1e-3};
+      if (kind == 3) {
+        const double s = r.below(2) ? 1e-6 : 1;
+        q = {s * r.unit(), s * r.unit(), (r.below(2) ? 1e6 : 0) + s * r.unit()};
+      }
+    }
+    expect_exact(p, "case " + std::to_string(t) + " kind " + std::to_string(kind));
+  }
+}
+
+// The bundled models, at their known vertex counts (the exact hull agrees).
+TEST(Resident, BundledModels) {
+  for (const char* name : {"bun_zipper.ply", "teapot.obj"}) {
+    const std::vector<Point3> points = read_points(std::string(CUDAHULL_ASSETS_DIR) + "/" + name);
+    expect_exact(points, name);
+  }
+}
+
+// The shared scans, at the exact extreme-point counts of ../shared/models/README.md (float coordinates).
+TEST(Resident, SharedModelsAtTheirKnownCounts) {
+  const char* env = std::getenv("CUDAHULL_MODELS_DIR");
+  const std::filesystem::path dir = env && *env ? env : CUDAHULL_MODELS_DIR;
+  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no models folder " << dir;
+  const std::pair<const char*, std::size_t> models[] = {
+      {"bun_zipper.ply", 1564},  {"stanford-bunny.obj", 1562}, {"dragonStandRight_0.ply", 439},
+      {"dragon_scans.ply", 207}, {"teapot.obj", 878},          {"spot.obj", 305}};
+  for (const auto& [name, count] : models) {
+    const std::vector<Point3> points = read_points((dir / name).string());
+    ResidentStats stats;
+    const HullMesh hull = resident_hull_host(points, &stats);
+    EXPECT_EQ(hull.vertex_ids.size(), count) << name << " (" << stats.note << ")";
+    const CheckResult check = check_hull(points, hull, 3);
+    EXPECT_TRUE(check.ok) << name << ": " << (check.failures.empty() ? "" : check.failures.front());
+  }
+}
+
+}  // namespace
+}  // namespace cudahull

@@ -1,0 +1,129 @@
+// The resident engine on the GPU (issue 15, gpu label): the device executor must build the very mesh the
+// host executor builds (the same operations, claims and prefix sums), and both the exact hull: against
+// exact_hull on generated and seeded sets, the stepping engine on the CPU backend at a million points, and
+// the known counts of the shared models.  Run on the GPU machine (docs/benchmarks.md says how).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cudahull/cpu_backend.hpp"
+#include "cudahull/engine.hpp"
+#include "cudahull/exact_hull.hpp"
+#include "cudahull/generators.hpp"
+#include "cudahull/hull_checker.hpp"
+#include "cudahull/point_io.hpp"
+#include "cudahull/resident.hpp"
+#include "device_info.hpp"
+#include "resident_cuda.hpp"
+#include "support/rng.hpp"
+
+namespace cudahull {
+namespace {
+
+template <class Point>
+BasicHullMesh<Point> on_device(const std::vector<Point>& points, ResidentStats* stats) {
+  ResidentCudaHull<Point> hull;
+  hull.upload(points);
+  return hull.run(stats);
+}
+
+// Device and host executors: the same mesh and the same counts; `oracle` true also checks exact_hull.
+template <class Point>
+void expect_same_as_host(const std::vector<Point>& points, const std::string& what, bool oracle = true) {
+  ResidentStats device_stats, host_stats;
+  const BasicHullMesh<Point> device = on_device(points, &device_stats);
+  const BasicHullMesh<Point> host = resident_hull_host(points, &host_stats);
+  EXPECT_EQ(device.vertex_ids, host.vertex_ids) << what;
+  EXPECT_EQ(device.triangles, host.triangles) << what;
+  EXPECT_EQ(device_stats.iterations, host_stats.iterations) << what;
+  EXPECT_EQ(device_stats.rounds, host_stats.rounds) << what;
+  EXPECT_EQ(device_stats.edits, host_stats.edits) << what;
+  EXPECT_EQ(device_stats.exact_finish, host_stats.exact_finish) << what;
+  if (oracle) {
+    const BasicHullMesh<Point> exact = exact_hull(points);
+    EXPECT_EQ(device.vertex_ids, exact.vertex_ids) << what;
+  }
+  if (device.dimension == 3) {
+    const CheckResult check = check_hull(points, device, 3);
+    EXPECT_TRUE(check.ok) << what << ": " << (check.failures.empty() ? "" : check.failures.front());
+  }
+}
+
+std::vector<Point3d> widened(const std::vector<Point3>& p) {
+  std::vector<Point3d> out(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i)
+    out[i] = {p[i].x, p[i].y, p[i].z};
+  return out;
+}
+
+class ResidentCuda : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const CudaDeviceInfo info = query_cuda_device();
+    if (!info.usable) GTEST_SKIP() << "no usable CUDA device: " << info.reason;
+  }
+};
+
+TEST_F(ResidentCuda, GeneratedDistributionsMatchTheHostExecutor) {
+  for (const char* name : {"cube", "ball", "sphere", "gauss", "paraboloid", "cylinder", "grid"}) {
+    for (std::size_t n : {10, 3000, 100000}) {
+      const std::vector<Point3> points = generate_points(distribution_from_name(name), n, 5 + n);
+      const std::string what = std::string(name) + " " + std::to_string(n);
+      expect_same_as_host(points, what);
+      expect_same_as_host(widened(points), what + " in double");
+    }
+  }
+}
+
+TEST_F(ResidentCuda, SeededSetsMatchTheHostExecutor) {
+  testing::Rng r(2026);
+  for (int t = 0; t < 200; ++t) {
+    const std::size_t n = 4 + r.below(5000);
+    std::vector<Point3d> p(n);
+    const int kind = t % 5;
+    for (auto& q : p) {
+      if (kind == 0) q = {r.unit(), r.unit(), r.unit()};
+      if (kind == 1) q = {double(int(r.below(6))), double(int(r.below(6))), double(int(r.below(6)))};
+      if (kind == 2) q = {1e9 + r.unit() * 1e-3, -2e9 + r.unit() * 1e-3, 3e9 + r.unit() * 1e-3};
+      if (kind == 3) q = {r.unit(), r.unit(), r.below(3) ? 0.0 : r.unit()};
+      if (kind == 4) q = p[r.below(static_cast<std::size_t>(&q - p.data()) + 1)];
+    }
+    if (kind == 4) p[0] = {0, 0, 0}, p.push_back({1, 0, 0}), p.push_back({0, 1, 0}), p.push_back({0, 0, 1});
+    expect_same_as_host(p, "seeded case " + std::to_string(t));
+  }
+}
+
+// A million points: the stepping engine on the CPU backend is the independent answer.
+TEST_F(ResidentCuda, MillionPointsMatchTheSteppingEngine) {
+  for (const char* name : {"ball", "sphere", "cube"}) {
+    const std::vector<Point3> points = generate_points(distribution_from_name(name), 1000000, 1);
+    Engine engine(points, make_cpu_backend());
+    engine.run();
+    ResidentStats stats;
+    const HullMesh device = on_device(points, &stats);
+    EXPECT_EQ(device.vertex_ids, engine.result().vertex_ids) << name;
+    EXPECT_FALSE(stats.exact_finish) << name << ": " << stats.note;
+  }
+}
+
+TEST_F(ResidentCuda, SharedModelsAtTheirKnownCounts) {
+  const char* env = std::getenv("CUDAHULL_MODELS_DIR");
+  const std::filesystem::path dir = env && *env ? env : CUDAHULL_MODELS_DIR;
+  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no models folder " << dir;
+  const std::pair<const char*, std::size_t> models[] = {
+      {"bun_zipper.ply", 1564},  {"stanford-bunny.obj", 1562}, {"dragonStandRight_0.ply", 439},
+      {"dragon_scans.ply", 207}, {"teapot.obj", 878},          {"spot.obj", 305}};
+  for (const auto& [name, count] : models) {
+    const std::vector<Point3> points = read_points((dir / name).string());
+    ResidentStats stats;
+    const HullMesh hull = on_device(points, &stats);
+    EXPECT_EQ(hull.vertex_ids.size(), count) << name;
+    expect_same_as_host(points, name, false);
+  }
+}
+
+}  // namespace
+}  // namespace cudahull
