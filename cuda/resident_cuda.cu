@@ -3,6 +3,9 @@
 // bytes, one wait): the host sizes the next step by it.
 #include <cuda_runtime.h>
 
+#include <cooperative_groups.h>
+
+#include <cub/block/block_scan.cuh>
 #include <cub/device/device_scan.cuh>
 #include <string>
 
@@ -83,9 +86,117 @@ __global__ void fill_kernel(T* at, std::size_t n, T value) {
   if (i < n) at[i] = value;
 }
 
+// The flip and flop rounds of one iteration in one cooperative launch (the device-side loop of issue 15):
+// the same steps as the driver's stepped rounds, with grid-wide barriers instead of the host's waits.
+// Candidates are found and claimed with the faces spread over every thread; the winners are then numbered
+// in face order (each block a contiguous tile, as the stepped rounds' prefix sum numbers them) and apply.
+template <class Point>
+__global__ void __launch_bounds__(kBlock)
+    fused_rounds_kernel(FindCandidate<Point> find, u64* claim, u32* look, Candidate* cands, u32* won,
+                        u32* block_offset, RoundsState* st) {
+  namespace cg = cooperative_groups;
+  cg::grid_group grid = cg::this_grid();
+  using Scan = cub::BlockScan<u32, kBlock>;
+  __shared__ typename Scan::TempStorage scan_storage;
+  const u32 threads = gridDim.x * blockDim.x, tid = blockIdx.x * blockDim.x + threadIdx.x;
+  while (true) {
+    const u32 faces = st->faces, fresh = st->fresh_from, entries = st->entries, round = st->round + 1;
+    // 1. Every work face finds its candidate and claims (Claim).
+    const MarkWork<Point> work_rule{find.m, look, fresh, round, nullptr};
+    const Claim<Point> claimer{find, nullptr, round, claim, look, nullptr};
+    u32 work = 0;
+    for (u32 f = tid; f < faces; f += threads) {
+      if (work_rule.is_work(f)) {
+        ++work;
+        claimer.claim_for(f, cands[f]);
+      }
+    }
+    u32 ignored = 0, block_sum = 0;
+    Scan(scan_storage).ExclusiveSum(work, ignored, block_sum);
+    if (threadIdx.x == 0 && block_sum != 0) atomicAdd(&st->round_work, block_sum);
+    grid.sync();
+    const u32 round_work = st->round_work;
+    if (round_work == 0) return;
+
+    // 2. Who holds all its claims (Won), counted per block tile.
+    const Won judge{round, claim, nullptr, nullptr};
+    const u32 tile = ((faces + gridDim.x - 1) / gridDim.x + kBlock - 1) / kBlock * kBlock;
+    const u32 tile_begin = min(faces, blockIdx.x * tile), tile_end = min(faces, tile_begin + tile);
+    u32 count = 0;
+    for (u32 f = tile_begin + threadIdx.x; f < tile_end; f += kBlock) {
+      // A face with a candidate this round is stamped for the next (Claim); no other stamp is newer yet.
+      const u32 w = look[f] == round + 1 && judge.holds(cands[f]) ? 1u : 0u;
+      won[f] = w;
+      count += w;
+    }
+    __syncthreads();
+    Scan(scan_storage).ExclusiveSum(count, ignored, block_sum);
+    if (threadIdx.x == 0) block_offset[blockIdx.x] = block_sum;
+    grid.sync();
+    if (blockIdx.x == 0) {
+      u32 carry = 0;
+      for (u32 base = 0; base < gridDim.x; base += kBlock) {
+        const u32 k = base + threadIdx.x;
+        const u32 value = k < gridDim.x ? block_offset[k] : 0;
+        u32 before = 0, sum = 0;
+        __syncthreads();
+        Scan(scan_storage).ExclusiveSum(value, before, sum);
+        if (k < gridDim.x) block_offset[k] = carry + before;
+        carry += sum;
+      }
+      if (threadIdx.x == 0) st->round_winners = carry;
+    }
+    grid.sync();
+    const u32 winners = st->round_winners;
+    if (winners == 0) {
+      if (tid == 0) {
+        ++st->rounds;
+        st->work_items += round_work;
+        st->round = round;
+        st->round_work = 0;
+      }
+      return;
+    }
+    if (faces + 2 * winners > st->face_capacity || entries + winners > st->entry_capacity) {
+      if (tid == 0) {
+        st->overflow = 1;
+        st->round_work = 0;
+      }
+      return;
+    }
+
+    // 3. The winners apply, numbered in face order (Apply).
+    const Apply<Point> applier{find.m, nullptr, nullptr, nullptr, faces, entries, look, round};
+    u32 carry = block_offset[blockIdx.x];
+    for (u32 base = tile_begin; base < tile_end; base += kBlock) {
+      const u32 f = base + threadIdx.x;
+      const u32 w = f < tile_end ? won[f] : 0u;
+      u32 before = 0, sum = 0;
+      __syncthreads();
+      Scan(scan_storage).ExclusiveSum(w, before, sum);
+      if (w) applier.apply(cands[f], carry + before);
+      carry += sum;
+    }
+    grid.sync();
+    if (tid == 0) {
+      st->fresh_from = faces;
+      st->faces = faces + 2 * winners;
+      st->entries = entries + winners;
+      st->round = round;
+      ++st->rounds;
+      st->edits += winners;
+      st->work_items += round_work;
+      st->round_work = 0;
+    }
+    grid.sync();
+  }
+}
+
 }  // namespace
 
 struct CudaExec {
+  static constexpr bool kFusedRounds = true;  // fused_rounds_kernel loops the rounds on the device
+
   template <class T>
   class Buffer {
    public:
@@ -184,6 +295,32 @@ struct CudaExec {
     read(to, from, n);
   }
 
+  // The rounds of an iteration in one cooperative launch; `state` in and out (one read-back).
+  template <class Point>
+  void fused_rounds(const FindCandidate<Point>& find, u64* claim, u32* look, Candidate* cands, u32* won,
+                    RoundsState& state) {
+    auto* kernel = fused_rounds_kernel<Point>;
+    if (cooperative_blocks_ == 0) {
+      int device = 0, sms = 0, per_sm = 0;
+      check(cudaGetDevice(&device), "querying the device");
+      check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), "querying the SMs");
+      check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, kernel, kBlock, 0), "the occupancy");
+      cooperative_blocks_ = static_cast<unsigned>(std::max(1, sms * per_sm));
+    }
+    // A thread per face up to what fits at once: a grid barrier costs more the more blocks wait at it.
+    const unsigned blocks = std::max(1u, std::min(cooperative_blocks_, blocks_for(state.faces)));
+    block_offset_.grow(blocks);
+    rounds_state_.grow(1);
+    check(cudaMemcpy(rounds_state_.data(), &state, sizeof state, cudaMemcpyHostToDevice), "the round state");
+    bytes_to_device += sizeof state;
+    RoundsState* st = rounds_state_.data();
+    u32* offsets = block_offset_.data();
+    void* args[] = {const_cast<FindCandidate<Point>*>(&find), &claim, &look, &cands, &won, &offsets, &st};
+    check(cudaLaunchCooperativeKernel(reinterpret_cast<void*>(kernel), blocks, kBlock, args, 0, nullptr),
+          "launching the rounds");
+    read(&state, rounds_state_.data(), 1);
+  }
+
   std::uint64_t host_syncs = 0, bytes_to_device = 0, bytes_from_device = 0;
 
  private:
@@ -196,6 +333,9 @@ struct CudaExec {
   Buffer<u64> scalar64_;
   Buffer<u32> scalar32_;
   Buffer<unsigned char> scratch_;
+  Buffer<u32> block_offset_;
+  Buffer<RoundsState> rounds_state_;
+  unsigned cooperative_blocks_ = 0;
 };
 
 }  // namespace resident

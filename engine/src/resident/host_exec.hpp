@@ -10,6 +10,7 @@
 namespace cudahull::resident {
 
 struct HostExec {
+  static constexpr bool kFusedRounds = false;  // the driver steps the rounds
   template <class T>
   class Buffer {
    public:

@@ -154,7 +154,7 @@ class ResidentHull {
     exec_.upload(fv_.data(), fv.data(), 12);
     exec_.upload(fn_.data(), fn.data(), 12);
     exec_.fill(killer_.data(), 4, kAlive);
-    exec_.fill(pending_.data(), 4, u32{0});
+    exec_.fill(look_.data(), 4, u32{0});
     for (auto* b : {&index_[0], &index_[1], &face_of_[0], &face_of_[1], &keep_, &point_rank_})
       b->grow(n);
     exec_.for_each(n, AssignFirst<Point>{view(), index_[0].data(), face_of_[0].data(), keep_.data()});
@@ -193,7 +193,7 @@ class ResidentHull {
     fv_.grow(3 * capacity_, 3 * faces_);
     fn_.grow(3 * capacity_, 3 * faces_);
     killer_.grow(capacity_, faces_);
-    pending_.grow(capacity_, faces_);
+    look_.grow(capacity_, faces_);
     claim_.grow(capacity_, old);
     exec_.fill(claim_.data() + old, capacity_ - old, u64{0});
     for (auto* b : {&fv_out_, &fn_out_})
@@ -224,43 +224,18 @@ class ResidentHull {
     grow_faces(faces_ + 3 * std::size_t{refined});
     grow_entries(refined);
     exec_.for_each(faces_, SplitFaces<Point>{view(), extreme_.data(), flags_.data(), face_rank_.data(),
-                                             static_cast<u32>(first), 0});
+                                             static_cast<u32>(first), 0, look_.data(), round_ + 1});
     faces_ += 3 * std::size_t{refined};
     entries_used_ = refined;
-    exec_.fill(pending_.data() + first, faces_ - first, u32{0});
+    exec_.fill(look_.data() + first, faces_ - first, u32{0});
     stats.refine_ms += lap();
 
     // Flip and flop rounds until no candidate is left (Figs. 3b, 4, 5).
-    std::size_t fresh_from = first;
-    while (true) {
-      exec_.for_each(faces_,
-                     MarkWork<Point>{view(), pending_.data(), static_cast<u32>(fresh_from), flags_.data()});
-      const u32 work = exec_.select(flags_.data(), face_rank_.data(), work_list_.data(), faces_);
-      if (work == 0) break;
-      stats.work_items += work;
-      ++round_;
-      ++stats.rounds;
-      won_.grow(work + 1);
-      slot_.grow(work);
-      won_rank_.grow(work + 1);
-      const FindCandidate<Point> find{view()};
-      exec_.for_each(
-          work, Claim<Point>{find, work_list_.data(), round_, claim_.data(), pending_.data(), slot_.data()});
-      exec_.for_each(work,
-                     Won<Point>{find, work_list_.data(), slot_.data(), round_, claim_.data(), won_.data()});
-      const u32 winners = exec_.exclusive_scan(won_.data(), won_rank_.data(), work);
-      if (winners == 0) break;  // cannot happen: the lowest candidate holds all its claims
-      stats.edits += winners;
-      grow_faces(faces_ + 2 * std::size_t{winners});
-      grow_entries(entries_used_ + winners);
-      exec_.for_each(
-          work, Apply<Point>{FindCandidate<Point>{view()}, work_list_.data(), won_.data(), won_rank_.data(),
-                             static_cast<u32>(faces_), static_cast<u32>(entries_used_), pending_.data()});
-      fresh_from = faces_;
-      faces_ += 2 * std::size_t{winners};
-      entries_used_ += winners;
+    if constexpr (Exec::kFusedRounds) {
+      fused_rounds(stats, first);
+    } else {
+      stepped_rounds(stats, first);
     }
-
     stats.rounds_ms += lap();
 
     // Algorithm 2: every kept point to its new face; then compaction.
@@ -268,6 +243,66 @@ class ResidentHull {
     compact();
     stats.route_ms += lap();
     return true;
+  }
+
+  // The rounds on an executor that loops them itself (one launch, no wait per round), growing the buffers
+  // whenever a round would not fit.  The same rounds, claims and numbering as stepped_rounds().
+  void fused_rounds(ResidentStats& stats, std::size_t fresh_from) {
+    while (true) {
+      // A round kills two faces per winner at least and makes two: room for as many faces again.
+      grow_faces(2 * faces_ + 64);
+      grow_entries(entries_used_ + faces_ + 64);
+      cands_.grow(capacity_);
+      won_.grow(capacity_);
+      RoundsState state{};
+      state.faces = static_cast<u32>(faces_);
+      state.fresh_from = static_cast<u32>(fresh_from);
+      state.entries = static_cast<u32>(entries_used_);
+      state.round = round_;
+      state.face_capacity = static_cast<u32>(capacity_);
+      state.entry_capacity = static_cast<u32>(entry_capacity_);
+      exec_.fused_rounds(FindCandidate<Point>{view()}, claim_.data(), look_.data(), cands_.data(),
+                         won_.data(), state);
+      faces_ = state.faces;
+      fresh_from = state.fresh_from;
+      entries_used_ = state.entries;
+      round_ = state.round;
+      stats.rounds += state.rounds;
+      stats.edits += state.edits;
+      stats.work_items += state.work_items;
+      if (!state.overflow) return;
+    }
+  }
+
+  // The rounds one step at a time, the host sizing each by the counts of the last.
+  void stepped_rounds(ResidentStats& stats, std::size_t fresh_from) {
+    while (true) {
+      const u32 round = round_ + 1;
+      exec_.for_each(
+          faces_, MarkWork<Point>{view(), look_.data(), static_cast<u32>(fresh_from), round, flags_.data()});
+      const u32 work = exec_.select(flags_.data(), face_rank_.data(), work_list_.data(), faces_);
+      if (work == 0) break;
+      stats.work_items += work;
+      round_ = round;
+      ++stats.rounds;
+      won_.grow(work + 1);
+      cands_.grow(work);
+      won_rank_.grow(work + 1);
+      exec_.for_each(work, Claim<Point>{FindCandidate<Point>{view()}, work_list_.data(), round_,
+                                        claim_.data(), look_.data(), cands_.data()});
+      exec_.for_each(work, Won{round_, claim_.data(), cands_.data(), won_.data()});
+      const u32 winners = exec_.exclusive_scan(won_.data(), won_rank_.data(), work);
+      if (winners == 0) break;  // cannot happen: the lowest candidate holds all its claims
+      stats.edits += winners;
+      grow_faces(faces_ + 2 * std::size_t{winners});
+      grow_entries(entries_used_ + winners);
+      exec_.for_each(
+          work, Apply<Point>{view(), cands_.data(), won_.data(), won_rank_.data(), static_cast<u32>(faces_),
+                             static_cast<u32>(entries_used_), look_.data(), round_});
+      fresh_from = faces_;
+      faces_ += 2 * std::size_t{winners};
+      entries_used_ += winners;
+    }
   }
 
   // Live faces renumbered 0..F-1; kept points compacted, their faces renumbered.
@@ -280,7 +315,7 @@ class ResidentHull {
     fn_.swap(fn_out_);
     faces_ = live;
     exec_.fill(killer_.data(), faces_, kAlive);
-    exec_.fill(pending_.data(), faces_, u32{0});
+    exec_.fill(look_.data(), faces_, u32{0});
     const u32 kept = exec_.exclusive_scan(keep_.data(), point_rank_.data(), active_);
     exec_.for_each(active_, MovePoints{keep_.data(), point_rank_.data(), face_rank_.data(), index_[0].data(),
                                        face_of_[0].data(), index_[1].data(), face_of_[1].data()});
@@ -351,10 +386,11 @@ class ResidentHull {
   Vec3d c_{};
   std::size_t faces_ = 0, capacity_ = 0, entries_used_ = 0, entry_capacity_ = 0, active_ = 0;
   u32 round_ = 0;
-  Buffer<u32> fv_, fn_, fv_out_, fn_out_, killer_, pending_, flags_, face_rank_, work_list_;
+  Buffer<u32> fv_, fn_, fv_out_, fn_out_, killer_, look_, flags_, face_rank_, work_list_;
   Buffer<u64> claim_, extreme_;
   Buffer<Entry> entries_;
-  Buffer<u32> won_, won_rank_, slot_;
+  Buffer<u32> won_, won_rank_;
+  Buffer<Candidate> cands_;  // per work item (stepped rounds) or per face (fused rounds)
   Buffer<u32> index_[2], face_of_[2], keep_, point_rank_;
 };
 

@@ -229,6 +229,8 @@ struct SplitFaces {
   const u32* refine;
   const u32* rank;
   u32 first_face, first_entry;
+  u32* look;  // an unrefined face next to a refined one is looked at in the first round
+  u32 first_round;
   // The face across edge (a -> b) of f after the split: nb itself, or nb's child on that edge.
   CUDAHULL_HD u32 across(u32 nb, u32 a, u32 b) const {
     if (!refine[nb]) return nb;
@@ -237,10 +239,13 @@ struct SplitFaces {
   CUDAHULL_HD void operator()(std::size_t fi) const {
     const u32 f = static_cast<u32>(fi);
     if (!refine[f]) {
+      bool touched = false;
       for (int k = 0; k < 3; ++k) {
-        const u32 a = m.fv[3 * f + k], b = m.fv[3 * f + (k + 1) % 3];
-        m.fn[3 * f + k] = across(m.fn[3 * f + k], a, b);
+        const u32 a = m.fv[3 * f + k], b = m.fv[3 * f + (k + 1) % 3], nb = m.fn[3 * f + k];
+        touched = touched || refine[nb];
+        m.fn[3 * f + k] = across(nb, a, b);
       }
+      if (touched) look[f] = first_round;
       return;
     }
     const u32 p = rank_key_index(extreme[f]);
@@ -267,6 +272,7 @@ struct SplitFaces {
 // A candidate edit and the six faces it reads or rewrites.
 struct Candidate {
   u32 kind = kNone;    // kFlip or kFlop, or kNone
+  u32 id = 0;          // 6 f + slot: what it claims with
   u32 faces[6] = {};   // flip: f, g, A (across x->u), B (u->y), C (y->v), D (v->x); flop: f, h, t, the
                        // outer faces across a->b, b->d, d->a
   u32 vertex[4] = {};  // flip: u, v, x, y; flop: v, a, b, d
@@ -297,7 +303,7 @@ struct FindCandidate {
     const u32 A = m.fn[3 * f + (i + 2) % 3], D = m.fn[3 * f + (i + 1) % 3];
     const u32 B = m.fn[3 * g + (j + 1) % 3], C = m.fn[3 * g + (j + 2) % 3];
     if (A == B || C == D || A == g || B == f || C == f || D == g) return false;  // not a 2-manifold
-    out = Candidate{kFlip, {f, g, A, B, C, D}, {u, v, x, y}};
+    out = Candidate{kFlip, 0, {f, g, A, B, C, D}, {u, v, x, y}};
     return true;
   }
 
@@ -320,7 +326,7 @@ struct FindCandidate {
               bd = m.fn[3 * t + (tv + 1) % 3];
     if (ab == da || ab == bd || da == bd || ab == h || ab == t || da == f || da == t || bd == f || bd == h)
       return false;
-    out = Candidate{kFlop, {f, h, t, ab, bd, da}, {v, a, b, d}};
+    out = Candidate{kFlop, 0, {f, h, t, ab, bd, da}, {v, a, b, d}};
     return true;
   }
 
@@ -342,107 +348,94 @@ struct FindCandidate {
   }
 };
 
-// The faces a round looks at: live ones made in the previous round (id >= fresh_from), their neighbours
-// (the lower face of an edge owns it, and a flop belongs to the lowest of three faces), and those whose
-// candidate lost a claim.
+// The faces round `round` looks at: live ones made in the previous round (id >= fresh_from), and those
+// stamped for it (look[f] == round): the faces next to the previous round's new ones (the lower face of an
+// edge owns it, and a flop belongs to the lowest of three faces), and those whose candidate lost a claim.
 template <class Point>
 struct MarkWork {
   MeshView<Point> m;
-  const u32* pending;
-  u32 fresh_from;
+  const u32* look;
+  u32 fresh_from, round;
   u32* work;
-  CUDAHULL_HD void operator()(std::size_t fi) const {
-    const u32 f = static_cast<u32>(fi);
-    u32 flag = 0;
-    if (m.killer[f] == kAlive) {
-      flag = f >= fresh_from || pending[f] || m.fn[3 * f] >= fresh_from || m.fn[3 * f + 1] >= fresh_from ||
-             m.fn[3 * f + 2] >= fresh_from;
-    }
-    work[f] = flag;
+  CUDAHULL_HD bool is_work(u32 f) const {
+    return m.killer[f] == kAlive && (f >= fresh_from || look[f] == round);
   }
+  CUDAHULL_HD void operator()(std::size_t f) const { work[f] = is_work(static_cast<u32>(f)) ? 1u : 0u; }
 };
 
-// Each work face finds its first candidate and claims the candidate's faces.
+// Each work face finds its first candidate, keeps it, and claims the candidate's faces.
 template <class Point>
 struct Claim {
   FindCandidate<Point> find;
   const u32* work_list;
   u32 round;
   u64* claim;
-  u32* pending;
-  u32* slot_of;  // per work item: the candidate's slot, or kNone
-  CUDAHULL_HD void operator()(std::size_t w) const {
-    const u32 f = work_list[w];
-    Candidate cand;
+  u32* look;
+  Candidate* cands;  // per work item
+  CUDAHULL_HD void claim_for(u32 f, Candidate& cand) const {
     int slot = 0;
     if (!find(f, cand, slot)) {
-      pending[f] = 0;
-      slot_of[w] = kNone;
+      cand.kind = kNone;
       return;
     }
-    pending[f] = 1;
-    slot_of[w] = static_cast<u32>(slot);
-    const u64 key = claim_key(round, 6 * f + static_cast<u32>(slot));
+    look[f] = round + 1;  // won (then killed) or lost (then tried again)
+    cand.id = 6 * f + static_cast<u32>(slot);
+    const u64 key = claim_key(round, cand.id);
     for (u32 h : cand.faces)
       atomic_max_u64(&claim[h], key);
   }
+  CUDAHULL_HD void operator()(std::size_t w) const { claim_for(work_list[w], cands[w]); }
 };
 
 // Did the work item's candidate hold all its claims?
-template <class Point>
 struct Won {
-  FindCandidate<Point> find;
-  const u32* work_list;
-  const u32* slot_of;
   u32 round;
   const u64* claim;
+  const Candidate* cands;
   u32* won;
-  CUDAHULL_HD void operator()(std::size_t w) const {
-    won[w] = 0;
-    if (slot_of[w] == kNone) return;
-    const u32 f = work_list[w];
-    Candidate cand;
-    int slot = 0;
-    find(f, cand, slot);
-    const u64 key = claim_key(round, 6 * f + slot_of[w]);
+  CUDAHULL_HD bool holds(const Candidate& cand) const {
+    if (cand.kind == kNone) return false;
+    const u64 key = claim_key(round, cand.id);
     for (u32 h : cand.faces) {
-      if (claim[h] != key) return;
+      if (claim[h] != key) return false;
     }
-    won[w] = 1;
+    return true;
   }
+  CUDAHULL_HD void operator()(std::size_t w) const { won[w] = holds(cands[w]) ? 1u : 0u; }
 };
 
 // The winners apply: two new face slots and one entry each, by the prefix sum of the wins; each rewrites
 // only the faces it claimed and its new ones.
 template <class Point>
 struct Apply {
-  FindCandidate<Point> find;
-  const u32* work_list;
+  MeshView<Point> m;
+  const Candidate* cands;
   const u32* won;
   const u32* rank;
   u32 first_face, first_entry;
-  u32* pending;
+  u32* look;
+  u32 round;
 
+  // An outer face: claimed by this winner alone, relinked to a new face, looked at in the next round.
   CUDAHULL_HD void relink(u32 face, u32 a, u32 b, u32 to) const {
-    const int s = find.m.edge_slot(face, a, b);
-    if (s >= 0) find.m.fn[3 * face + s] = to;
+    const int s = m.edge_slot(face, a, b);
+    if (s >= 0) m.fn[3 * face + s] = to;
+    look[face] = round + 1;
   }
   CUDAHULL_HD void set_face(u32 f, u32 a, u32 b, u32 d, u32 na, u32 nb, u32 nd) const {
-    u32* fv = find.m.fv + 3 * f;
-    u32* fn = find.m.fn + 3 * f;
+    u32* fv = m.fv + 3 * f;
+    u32* fn = m.fn + 3 * f;
     fv[0] = a, fv[1] = b, fv[2] = d;
     fn[0] = na, fn[1] = nb, fn[2] = nd;
-    find.m.killer[f] = kAlive;
-    pending[f] = 0;
+    m.killer[f] = kAlive;
+    look[f] = 0;
   }
   CUDAHULL_HD void operator()(std::size_t w) const {
-    if (!won[w]) return;
-    const u32 f = work_list[w];
-    Candidate cand;
-    int slot = 0;
-    find(f, cand, slot);
-    const u32 n1 = first_face + 2 * rank[w], n2 = n1 + 1, e = first_entry + rank[w];
-    const MeshView<Point>& m = find.m;
+    if (won[w]) apply(cands[w], rank[w]);
+  }
+  // A winning candidate, the r-th winner of its round.
+  CUDAHULL_HD void apply(const Candidate& cand, u32 r) const {
+    const u32 n1 = first_face + 2 * r, n2 = n1 + 1, e = first_entry + r;
     if (cand.kind == kFlip) {
       const u32 u = cand.vertex[0], v = cand.vertex[1], x = cand.vertex[2], y = cand.vertex[3];
       const u32 A = cand.faces[2], B = cand.faces[3], C = cand.faces[4], D = cand.faces[5];
@@ -465,12 +458,22 @@ struct Apply {
       m.killer[n2] = kDeadSlot;
       for (int k = 0; k < 3; ++k)
         m.fv[3 * n2 + k] = m.fn[3 * n2 + k] = kNone;
-      pending[n2] = 0;
+      look[n2] = 0;
       m.entries[e] = Entry{kFlop, kNone, kNone, {n1, kNone, kNone}};
       for (int k = 0; k < 3; ++k)
         m.killer[cand.faces[k]] = e;
     }
   }
+};
+
+// The state of a fused run of rounds (an executor that loops the rounds itself, CudaExec): what the host
+// sets before and reads after.  The rounds stop when no candidate is left, or before a round that would not
+// fit the capacities (overflow: the host grows the buffers and runs again).
+struct RoundsState {
+  u32 faces, fresh_from, entries, round;    // as the driver keeps them
+  u32 face_capacity, entry_capacity;        // in
+  u32 rounds, edits, work_items, overflow;  // out
+  u32 round_work, round_winners;            // scratch, zero
 };
 
 // ---------------------------------------------------------------------------------------------------------
