@@ -341,6 +341,7 @@ int hull_in(const HullOptions& o) {
     if (o.verify) j["verify_ms"] = verify_ms;
     if (resident) {
       j["host_syncs"] = resident_run.stats.host_syncs;
+      j["device_bytes_peak"] = resident_run.stats.device_bytes_peak;
       j["exact_finish"] = resident_run.stats.exact_finish;
     }
     if (o.stats == "-") {
@@ -368,7 +369,7 @@ int bench_in(const BenchOptions& o) {
   std::string backend_name;
   std::vector<double> total, host, dev, upload;
   BasicHullMesh<Point> hull;
-  std::uint64_t host_syncs = 0, bytes_from_device = 0;
+  std::uint64_t host_syncs = 0, bytes_from_device = 0, device_bytes_peak = 0;
   for (int r = 0; r < o.repeat && o.engine == "resident"; ++r) {
     // The resident engine: uploaded once per run, the upload listed apart (as below).
     ResidentRun<Point> run = run_resident(points, o.backend, o.json || r > 0);
@@ -381,6 +382,7 @@ int bench_in(const BenchOptions& o) {
     upload.push_back(run.upload_ms);
     host_syncs = run.stats.host_syncs;
     bytes_from_device = run.stats.bytes_from_device;
+    device_bytes_peak = run.stats.device_bytes_peak;
     hull = std::move(run.hull);
   }
   for (int r = 0; r < o.repeat && o.engine != "resident"; ++r) {
@@ -424,7 +426,10 @@ int bench_in(const BenchOptions& o) {
                    {"host_huge_pages", huge_pages_in_use()}};
   // Waits for the device with a value coming back, counted by the resident engine (the stepping engine
   // waits a fixed few times an iteration, reading its O(faces) extremes).
-  if (o.engine == "resident") j["host_syncs"] = host_syncs;
+  if (o.engine == "resident") {
+    j["host_syncs"] = host_syncs;
+    j["device_bytes_peak"] = device_bytes_peak;
+  }
   double qhull_ms = 0;
   bool same = false;
   if (o.versus == "qhull") {

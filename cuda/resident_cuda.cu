@@ -26,6 +26,16 @@ void check(cudaError_t e, const char* what) {
 
 constexpr int kBlock = 256;
 
+// Device memory the engine holds now and at most (the points included), for the stats.
+struct DeviceBytes {
+  std::size_t now = 0, peak = 0;
+  void add(std::size_t bytes) {
+    now += bytes;
+    peak = std::max(peak, now);
+  }
+};
+DeviceBytes device_bytes;
+
 unsigned blocks_for(std::size_t n) {
   return static_cast<unsigned>((n + kBlock - 1) / kBlock);
 }
@@ -203,7 +213,10 @@ struct CudaExec {
     Buffer() = default;
     Buffer(const Buffer&) = delete;
     Buffer& operator=(const Buffer&) = delete;
-    ~Buffer() { cudaFree(ptr_); }
+    ~Buffer() {
+      cudaFree(ptr_);
+      device_bytes.now -= capacity_ * sizeof(T);
+    }
     void grow(std::size_t n, std::size_t keep = 0) {
       if (n <= capacity_) return;
       T* fresh = nullptr;
@@ -220,7 +233,9 @@ struct CudaExec {
       if (keep > 0 && ptr_)
         check(cudaMemcpy(fresh, ptr_, std::min(keep, capacity_) * sizeof(T), cudaMemcpyDeviceToDevice),
               "growing a buffer");
+      device_bytes.add(n * sizeof(T));
       cudaFree(ptr_);
+      device_bytes.now -= capacity_ * sizeof(T);
       ptr_ = fresh;
       capacity_ = n;
     }
@@ -368,6 +383,7 @@ BasicHullMesh<Point> ResidentCudaHull<Point>::run(ResidentStats* stats) {
   if (!impl_->host) throw std::logic_error("ResidentCudaHull::run() before upload()");
   resident::CudaExec& exec = impl_->exec;
   exec.host_syncs = exec.bytes_to_device = exec.bytes_from_device = 0;
+  resident::device_bytes.peak = resident::device_bytes.now;
   resident::ResidentHull<Point, resident::CudaExec> hull(exec, *impl_->host, impl_->points.data());
   ResidentStats local;
   ResidentStats& out = stats ? *stats : local;
@@ -375,6 +391,7 @@ BasicHullMesh<Point> ResidentCudaHull<Point>::run(ResidentStats* stats) {
   out.host_syncs = exec.host_syncs;
   out.bytes_to_device = exec.bytes_to_device;
   out.bytes_from_device = exec.bytes_from_device;
+  out.device_bytes_peak = resident::device_bytes.peak;
   return result;
 }
 

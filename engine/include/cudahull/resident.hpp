@@ -25,6 +25,7 @@ struct ResidentStats {
   std::uint64_t host_syncs = 0;         // waits for the executor with a value coming back
   std::uint64_t bytes_to_device = 0;    // host -> executor, after the points
   std::uint64_t bytes_from_device = 0;  // executor -> host, the result included
+  std::uint64_t device_bytes_peak = 0;  // device memory held at most, the points included (0 on the host)
   // Where the time went (host clock; each phase ends in a wait for a count, so these are wall times).
   double setup_ms = 0, refine_ms = 0, rounds_ms = 0, route_ms = 0, finish_ms = 0;
 };

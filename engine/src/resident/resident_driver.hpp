@@ -198,9 +198,11 @@ class ResidentHull {
     exec_.fill(claim_.data() + old, capacity_ - old, u64{0});
     for (auto* b : {&fv_out_, &fn_out_})
       b->grow(3 * capacity_);
-    // The prefix sums and the work list may be in use (a round grows the mesh between them and Apply).
-    for (auto* b : {&flags_, &face_rank_, &work_list_})
-      b->grow(capacity_ + 1, old + (old != 0));
+    // The refinement marks and their prefix sum (one per face) and the stepped rounds' work list may be in
+    // use: those entries move along, and only those (nothing unwritten is copied).
+    flags_.grow(capacity_ + 1, marks_in_use_);
+    face_rank_.grow(capacity_ + 1, marks_in_use_);
+    work_list_.grow(capacity_ + 1, work_in_use_);
   }
   void grow_entries(std::size_t count) {
     if (count > entry_capacity_) {
@@ -218,6 +220,7 @@ class ResidentHull {
         active_, FurthestPerFace<Point>{view(), index_[0].data(), face_of_[0].data(), extreme_.data()});
     exec_.for_each(faces_, MarkRefined<Point>{view(), extreme_.data(), flags_.data()});
     const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
+    marks_in_use_ = faces_;
     if (refined == 0) return false;
     stats.refined_faces += refined;
     const std::size_t first = faces_;
@@ -225,6 +228,7 @@ class ResidentHull {
     grow_entries(refined);
     exec_.for_each(faces_, SplitFaces<Point>{view(), extreme_.data(), flags_.data(), face_rank_.data(),
                                              static_cast<u32>(first), 0, look_.data(), round_ + 1});
+    marks_in_use_ = 0;
     faces_ += 3 * std::size_t{refined};
     entries_used_ = refined;
     exec_.fill(look_.data() + first, faces_ - first, u32{0});
@@ -294,7 +298,9 @@ class ResidentHull {
       const u32 winners = exec_.exclusive_scan(won_.data(), won_rank_.data(), work);
       if (winners == 0) break;  // cannot happen: the lowest candidate holds all its claims
       stats.edits += winners;
+      work_in_use_ = work;
       grow_faces(faces_ + 2 * std::size_t{winners});
+      work_in_use_ = 0;
       grow_entries(entries_used_ + winners);
       exec_.for_each(
           work, Apply<Point>{view(), cands_.data(), won_.data(), won_rank_.data(), static_cast<u32>(faces_),
@@ -384,6 +390,8 @@ class ResidentHull {
   const Point* points_;
   std::chrono::steady_clock::time_point lap_start_;
   Vec3d c_{};
+  std::size_t work_in_use_ = 0;   // entries of work_list_ that grow_faces() keeps
+  std::size_t marks_in_use_ = 0;  // entries of flags_ and face_rank_ that grow_faces() keeps
   std::size_t faces_ = 0, capacity_ = 0, entries_used_ = 0, entry_capacity_ = 0, active_ = 0;
   u32 round_ = 0;
   Buffer<u32> fv_, fn_, fv_out_, fn_out_, killer_, look_, flags_, face_rank_, work_list_;

@@ -284,46 +284,84 @@ CUDAHULL_HD inline u64 claim_key(u32 round, u32 candidate) {
   return (static_cast<u64>(round) << 32) | static_cast<u64>(~candidate);
 }
 
+// Face f and its three neighbours, read in three waves (f's corners and links, the neighbours' corners
+// and links, the six points) so that a thread waits for three loads in a row rather than one per test.
+template <class Point>
+struct Around {
+  u32 f;
+  u32 v[3], n[3];          // f
+  u32 gv[3][3], gn[3][3];  // neighbour i = n[i]: corners and links
+  int j[3];                // the slot of edge v[i+1] -> v[i] in neighbour i, or -1
+  Vec3d p[3], y[3];        // f's corners; neighbour i's corner opposite the shared edge (when j[i] >= 0)
+
+  CUDAHULL_HD void gather(const MeshView<Point>& m, u32 face) {
+    f = face;
+    for (int k = 0; k < 3; ++k) {
+      v[k] = m.fv[3 * f + k];
+      n[k] = m.fn[3 * f + k];
+    }
+    for (int i = 0; i < 3; ++i) {
+      for (int k = 0; k < 3; ++k) {
+        gv[i][k] = m.fv[3 * n[i] + k];
+        gn[i][k] = m.fn[3 * n[i] + k];
+      }
+    }
+    for (int i = 0; i < 3; ++i) {
+      j[i] = -1;
+      for (int s = 0; s < 3; ++s) {
+        if (gv[i][s] == v[(i + 1) % 3] && gv[i][(s + 1) % 3] == v[i]) j[i] = s;
+      }
+    }
+    for (int k = 0; k < 3; ++k)
+      p[k] = m.P(v[k]);
+    for (int i = 0; i < 3; ++i) {
+      if (j[i] >= 0) y[i] = m.P(gv[i][(j[i] + 2) % 3]);
+    }
+  }
+  CUDAHULL_HD u32 apex(int i) const { return gv[i][(j[i] + 2) % 3]; }
+};
+
 template <class Point>
 struct FindCandidate {
   MeshView<Point> m;
 
   // Edge i of f, owned by f when f is the lower of its two faces: a concave edge whose flip keeps both new
   // faces' cones proper.
-  CUDAHULL_HD bool flip(u32 f, int i, Candidate& out) const {
-    const u32 g = m.fn[3 * f + i];
-    if (g < f) return false;
-    const u32 u = m.fv[3 * f + i], v = m.fv[3 * f + (i + 1) % 3], x = m.fv[3 * f + (i + 2) % 3];
-    const int j = m.edge_slot(g, v, u);
-    if (j < 0) return false;
-    const u32 y = m.fv[3 * g + (j + 2) % 3];
-    const Vec3d pu = m.P(u), pv = m.P(v), px = m.P(x), py = m.P(y);
+  CUDAHULL_HD bool flip(const Around<Point>& a, int i, Candidate& out) const {
+    const u32 f = a.f, g = a.n[i];
+    const int j = a.j[i];
+    if (g < f || j < 0) return false;
+    const int iv = (i + 1) % 3, ix = (i + 2) % 3;
+    const Vec3d &pu = a.p[i], &pv = a.p[iv], &px = a.p[ix], &py = a.y[i];
     if (orient3d(pu, pv, px, py) <= 0) return false;                                     // convex or flat
     if (orient3d(m.c, px, pu, py) <= 0 || orient3d(m.c, py, pv, px) <= 0) return false;  // a foldover
-    const u32 A = m.fn[3 * f + (i + 2) % 3], D = m.fn[3 * f + (i + 1) % 3];
-    const u32 B = m.fn[3 * g + (j + 1) % 3], C = m.fn[3 * g + (j + 2) % 3];
+    const u32 A = a.n[ix], D = a.n[iv], B = a.gn[i][(j + 1) % 3], C = a.gn[i][(j + 2) % 3];
     if (A == B || C == D || A == g || B == f || C == f || D == g) return false;  // not a 2-manifold
-    out = Candidate{kFlip, 0, {f, g, A, B, C, D}, {u, v, x, y}};
+    out = Candidate{kFlip, 0, {f, g, A, B, C, D}, {a.v[i], a.v[iv], a.v[ix], a.apex(i)}};
     return true;
   }
 
   // Corner k of f: a vertex v of degree 3 (faces f = (v, a, b), h = (v, d, a), t = (v, b, d)), owned by
-  // the lowest of its faces, concave or flat, whose removal keeps the new face's cone proper.
-  CUDAHULL_HD bool flop(u32 f, int k, Candidate& out) const {
-    const u32 v = m.fv[3 * f + k], a = m.fv[3 * f + (k + 1) % 3], b = m.fv[3 * f + (k + 2) % 3];
-    const u32 h = m.fn[3 * f + k], t = m.fn[3 * f + (k + 2) % 3];
-    if (h < f || t < f) return false;
-    const int hv = m.corner_slot(h, v), tv = m.corner_slot(t, v);
+  // the lowest of its faces, concave or flat, whose removal keeps the new face's cone proper.  h is
+  // neighbour k and t neighbour k + 2; d is h's apex over the edge a -> v.
+  CUDAHULL_HD bool flop(const Around<Point>& r, int k, Candidate& out) const {
+    const int ka = (k + 1) % 3, kb = (k + 2) % 3;
+    const u32 f = r.f, v = r.v[k], a = r.v[ka], b = r.v[kb], h = r.n[k], t = r.n[kb];
+    if (h < f || t < f || r.j[k] < 0) return false;
+    int hv = -1, tv = -1;
+    for (int s = 0; s < 3; ++s) {
+      if (r.gv[k][s] == v) hv = s;
+      if (r.gv[kb][s] == v) tv = s;
+    }
     if (hv < 0 || tv < 0) return false;
-    const u32 d = m.fv[3 * h + (hv + 1) % 3];
-    if (m.fv[3 * h + (hv + 2) % 3] != a || m.fv[3 * t + (tv + 1) % 3] != b || m.fv[3 * t + (tv + 2) % 3] != d)
+    const u32 d = r.gv[k][(hv + 1) % 3];
+    if (r.gv[k][(hv + 2) % 3] != a || r.gv[kb][(tv + 1) % 3] != b || r.gv[kb][(tv + 2) % 3] != d)
       return false;
-    if (m.fn[3 * h + hv] != t || m.fn[3 * t + tv] != f) return false;  // degree above 3
-    const Vec3d pv = m.P(v), pa = m.P(a), pb = m.P(b), pd = m.P(d);
+    if (r.gn[k][hv] != t || r.gn[kb][tv] != f) return false;  // degree above 3
+    const Vec3d &pv = r.p[k], &pa = r.p[ka], &pb = r.p[kb], &pd = r.y[k];
     if (orient3d(pa, pb, pd, pv) > 0) return false;  // v is strictly extreme here
     if (orient3d(m.c, pa, pb, pd) <= 0) return false;
-    const u32 ab = m.fn[3 * f + (k + 1) % 3], da = m.fn[3 * h + (hv + 1) % 3],
-              bd = m.fn[3 * t + (tv + 1) % 3];
+    const u32 ab = r.n[ka], da = r.gn[k][(hv + 1) % 3], bd = r.gn[kb][(tv + 1) % 3];
     if (ab == da || ab == bd || da == bd || ab == h || ab == t || da == f || da == t || bd == f || bd == h)
       return false;
     out = Candidate{kFlop, 0, {f, h, t, ab, bd, da}, {v, a, b, d}};
@@ -332,14 +370,16 @@ struct FindCandidate {
 
   // The first candidate of face f: its three edges, then its three corners.  slot receives 0..5.
   CUDAHULL_HD bool operator()(u32 f, Candidate& out, int& slot) const {
+    Around<Point> around;
+    around.gather(m, f);
     for (int i = 0; i < 3; ++i) {
-      if (flip(f, i, out)) {
+      if (flip(around, i, out)) {
         slot = i;
         return true;
       }
     }
     for (int k = 0; k < 3; ++k) {
-      if (flop(f, k, out)) {
+      if (flop(around, k, out)) {
         slot = 3 + k;
         return true;
       }
