@@ -36,6 +36,32 @@ struct DeviceBytes {
 };
 DeviceBytes device_bytes;
 
+// The device's default memory pool, told once to keep what is freed (the default threshold hands it back
+// to the driver at every synchronisation, and the next iteration would allocate it again).
+void pool() {
+  static const bool once = [] {
+    int device = 0;
+    cudaMemPool_t pool = nullptr;
+    if (cudaGetDevice(&device) == cudaSuccess && cudaDeviceGetDefaultMemPool(&pool, device) == cudaSuccess) {
+      std::uint64_t keep = UINT64_MAX;
+      cudaMemPoolSetAttribute(pool, cudaMemPoolAttrReleaseThreshold, &keep);
+    }
+    cudaGetLastError();
+    return true;
+  }();
+  (void)once;
+}
+
+// Hands the pool's free memory back to the driver (after a run: the process may do other things).
+void trim_pool() {
+  int device = 0;
+  cudaMemPool_t pool = nullptr;
+  if (cudaStreamSynchronize(0) == cudaSuccess && cudaGetDevice(&device) == cudaSuccess &&
+      cudaDeviceGetDefaultMemPool(&pool, device) == cudaSuccess)
+    cudaMemPoolTrimTo(pool, 0);
+  cudaGetLastError();
+}
+
 unsigned blocks_for(std::size_t n) {
   return static_cast<unsigned>((n + kBlock - 1) / kBlock);
 }
@@ -100,6 +126,12 @@ __global__ void fill_kernel(T* at, std::size_t n, T value) {
 // the same steps as the driver's stepped rounds, with grid-wide barriers instead of the host's waits.
 // Candidates are found and claimed with the faces spread over every thread; the winners are then numbered
 // in face order (each block a contiguous tile, as the stepped rounds' prefix sum numbers them) and apply.
+__device__ inline u64 now_ns() {
+  u64 t;
+  asm volatile("mov.u64 %0, %%globaltimer;" : "=l"(t));
+  return t;
+}
+
 template <class Point>
 __global__ void __launch_bounds__(kBlock)
     fused_rounds_kernel(FindCandidate<Point> find, u64* claim, u32* look, Candidate* cands, u32* won,
@@ -109,6 +141,15 @@ __global__ void __launch_bounds__(kBlock)
   using Scan = cub::BlockScan<u32, kBlock>;
   __shared__ typename Scan::TempStorage scan_storage;
   const u32 threads = gridDim.x * blockDim.x, tid = blockIdx.x * blockDim.x + threadIdx.x;
+  u64 t0 = tid == 0 ? now_ns() : 0;
+  // Thread 0 times each phase up to the barrier after it (so the slowest block's time).
+  auto stamp = [&](int phase) {
+    if (tid == 0) {
+      const u64 t = now_ns();
+      st->phase_ns[phase] += t - t0;
+      t0 = t;
+    }
+  };
   while (true) {
     const u32 faces = st->faces, fresh = st->fresh_from, entries = st->entries, round = st->round + 1;
     // 1. Every work face finds its candidate and claims (Claim).
@@ -125,6 +166,7 @@ __global__ void __launch_bounds__(kBlock)
     Scan(scan_storage).ExclusiveSum(work, ignored, block_sum);
     if (threadIdx.x == 0 && block_sum != 0) atomicAdd(&st->round_work, block_sum);
     grid.sync();
+    stamp(0);
     const u32 round_work = st->round_work;
     if (round_work == 0) return;
 
@@ -143,6 +185,7 @@ __global__ void __launch_bounds__(kBlock)
     Scan(scan_storage).ExclusiveSum(count, ignored, block_sum);
     if (threadIdx.x == 0) block_offset[blockIdx.x] = block_sum;
     grid.sync();
+    stamp(1);
     if (blockIdx.x == 0) {
       u32 carry = 0;
       for (u32 base = 0; base < gridDim.x; base += kBlock) {
@@ -157,6 +200,7 @@ __global__ void __launch_bounds__(kBlock)
       if (threadIdx.x == 0) st->round_winners = carry;
     }
     grid.sync();
+    stamp(2);
     const u32 winners = st->round_winners;
     if (winners == 0) {
       if (tid == 0) {
@@ -188,6 +232,7 @@ __global__ void __launch_bounds__(kBlock)
       carry += sum;
     }
     grid.sync();
+    stamp(3);
     if (tid == 0) {
       st->fresh_from = faces;
       st->faces = faces + 2 * winners;
@@ -214,13 +259,16 @@ struct CudaExec {
     Buffer(const Buffer&) = delete;
     Buffer& operator=(const Buffer&) = delete;
     ~Buffer() {
-      cudaFree(ptr_);
+      if (ptr_) cudaFreeAsync(ptr_, 0);
       device_bytes.now -= capacity_ * sizeof(T);
     }
+    // Stream-ordered allocation from a pool that keeps freed memory (see pool()): growing between
+    // iterations neither waits for the device nor returns memory to the driver.
     void grow(std::size_t n, std::size_t keep = 0) {
       if (n <= capacity_) return;
+      pool();
       T* fresh = nullptr;
-      const cudaError_t e = cudaMalloc(&fresh, n * sizeof(T));
+      const cudaError_t e = cudaMallocAsync(reinterpret_cast<void**>(&fresh), n * sizeof(T), 0);
       if (e != cudaSuccess) {
         std::size_t free_bytes = 0, total_bytes = 0;
         cudaGetLastError();
@@ -231,10 +279,11 @@ struct CudaExec {
                           " MiB free of " + std::to_string(total_bytes >> 20) + ")");
       }
       if (keep > 0 && ptr_)
-        check(cudaMemcpy(fresh, ptr_, std::min(keep, capacity_) * sizeof(T), cudaMemcpyDeviceToDevice),
-              "growing a buffer");
+        check(
+            cudaMemcpyAsync(fresh, ptr_, std::min(keep, capacity_) * sizeof(T), cudaMemcpyDeviceToDevice, 0),
+            "growing a buffer");
       device_bytes.add(n * sizeof(T));
-      cudaFree(ptr_);
+      if (ptr_) cudaFreeAsync(ptr_, 0);
       device_bytes.now -= capacity_ * sizeof(T);
       ptr_ = fresh;
       capacity_ = n;
@@ -384,10 +433,14 @@ BasicHullMesh<Point> ResidentCudaHull<Point>::run(ResidentStats* stats) {
   resident::CudaExec& exec = impl_->exec;
   exec.host_syncs = exec.bytes_to_device = exec.bytes_from_device = 0;
   resident::device_bytes.peak = resident::device_bytes.now;
-  resident::ResidentHull<Point, resident::CudaExec> hull(exec, *impl_->host, impl_->points.data());
   ResidentStats local;
   ResidentStats& out = stats ? *stats : local;
-  BasicHullMesh<Point> result = hull.run(out);
+  BasicHullMesh<Point> result;
+  {
+    resident::ResidentHull<Point, resident::CudaExec> hull(exec, *impl_->host, impl_->points.data());
+    result = hull.run(out);
+  }
+  resident::trim_pool();
   out.host_syncs = exec.host_syncs;
   out.bytes_to_device = exec.bytes_to_device;
   out.bytes_from_device = exec.bytes_from_device;

@@ -28,6 +28,9 @@ struct ResidentStats {
   std::uint64_t device_bytes_peak = 0;  // device memory held at most, the points included (0 on the host)
   // Where the time went (host clock; each phase ends in a wait for a count, so these are wall times).
   double setup_ms = 0, refine_ms = 0, rounds_ms = 0, route_ms = 0, finish_ms = 0;
+  // Inside the device's rounds (device clock, the slowest block): finding and claiming, judging the
+  // claims, numbering the winners, applying.  Zero on the host.
+  double round_phase_ms[4] = {0, 0, 0, 0};
 };
 
 // The exact hull (vertices are exactly the strictly extreme points), computed by the resident engine's

@@ -189,7 +189,7 @@ class ResidentHull {
   void grow_faces(std::size_t count) {
     if (count <= capacity_) return;
     const std::size_t old = capacity_;
-    capacity_ = std::max(count, capacity_ + capacity_ / 2);
+    capacity_ = std::max(count, 2 * capacity_);
     fv_.grow(3 * capacity_, 3 * faces_);
     fn_.grow(3 * capacity_, 3 * faces_);
     killer_.grow(capacity_, faces_);
@@ -274,6 +274,8 @@ class ResidentHull {
       stats.rounds += state.rounds;
       stats.edits += state.edits;
       stats.work_items += state.work_items;
+      for (int k = 0; k < 4; ++k)
+        stats.round_phase_ms[k] += static_cast<double>(state.phase_ns[k]) * 1e-6;
       if (!state.overflow) return;
     }
   }

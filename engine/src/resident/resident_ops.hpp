@@ -514,6 +514,7 @@ struct RoundsState {
   u32 face_capacity, entry_capacity;        // in
   u32 rounds, edits, work_items, overflow;  // out
   u32 round_work, round_winners;            // scratch, zero
+  u64 phase_ns[4];                          // out, device only: claim, judge, number, apply (profiling)
 };
 
 // ---------------------------------------------------------------------------------------------------------
