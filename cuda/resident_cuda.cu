@@ -122,25 +122,31 @@ __global__ void fill_kernel(T* at, std::size_t n, T value) {
   if (i < n) at[i] = value;
 }
 
-// The flip and flop rounds of one iteration in one cooperative launch (the device-side loop of issue 15):
-// the same steps as the driver's stepped rounds, with grid-wide barriers instead of the host's waits.
-// Candidates are found and claimed with the faces spread over every thread; the winners are then numbered
-// in face order (each block a contiguous tile, as the stepped rounds' prefix sum numbers them) and apply.
 __device__ inline u64 now_ns() {
   u64 t;
   asm volatile("mov.u64 %0, %%globaltimer;" : "=l"(t));
   return t;
 }
 
+// The flip and flop rounds of one iteration in one cooperative launch (the device-side loop of issue 15):
+// the same steps as the driver's stepped rounds, with grid-wide barriers instead of the host's waits.
+//   1. find:   a coalesced sweep lists the work faces (any order: claims do not depend on it); then every
+//              thread takes listed faces, finds their candidates and claims (Claim)
+//   2. judge:  each block, over a contiguous tile of faces, records who holds all its claims as one bit
+//              per face (a warp's ballot per 32 faces) and counts them
+//   3. number: the blocks' counts, prefix-summed by block 0
+//   4. apply:  each winner, numbered in face order (block offset, then bits in order) as the stepped
+//              rounds' prefix sum numbers them, applies (Apply)
 template <class Point>
 __global__ void __launch_bounds__(kBlock)
-    fused_rounds_kernel(FindCandidate<Point> find, u64* claim, u32* look, Candidate* cands, u32* won,
-                        u32* block_offset, RoundsState* st) {
+    fused_rounds_kernel(FindCandidate<Point> find, u64* claim, u32* look, Candidate* cands, u32* list,
+                        u32* win_mask, u32* block_offset, RoundsState* st) {
   namespace cg = cooperative_groups;
   cg::grid_group grid = cg::this_grid();
   using Scan = cub::BlockScan<u32, kBlock>;
   __shared__ typename Scan::TempStorage scan_storage;
   const u32 threads = gridDim.x * blockDim.x, tid = blockIdx.x * blockDim.x + threadIdx.x;
+  const u32 lane = threadIdx.x & 31, below = (1u << lane) - 1;
   u64 t0 = tid == 0 ? now_ns() : 0;
   // Thread 0 times each phase up to the barrier after it (so the slowest block's time).
   auto stamp = [&](int phase) {
@@ -152,40 +158,50 @@ __global__ void __launch_bounds__(kBlock)
   };
   while (true) {
     const u32 faces = st->faces, fresh = st->fresh_from, entries = st->entries, round = st->round + 1;
-    // 1. Every work face finds its candidate and claims (Claim).
+    // 1. The work faces, listed (a warp appends its ballot at once), then found and claimed.
     const MarkWork<Point> work_rule{find.m, look, fresh, round, nullptr};
-    const Claim<Point> claimer{find, nullptr, round, claim, look, nullptr};
-    u32 work = 0;
-    for (u32 f = tid; f < faces; f += threads) {
-      if (work_rule.is_work(f)) {
-        ++work;
-        claimer.claim_for(f, cands[f]);
-      }
+    for (u32 warp_first = tid - lane; warp_first < faces; warp_first += threads) {
+      const u32 f = warp_first + lane;
+      const unsigned mask = __ballot_sync(0xffffffffu, f < faces && work_rule.is_work(f));
+      if (mask == 0) continue;
+      u32 at = 0;
+      if (lane == 0) at = atomicAdd(&st->round_work, static_cast<u32>(__popc(mask)));
+      at = __shfl_sync(0xffffffffu, at, 0);
+      if (mask & (1u << lane)) list[at + __popc(mask & below)] = f;
     }
-    u32 ignored = 0, block_sum = 0;
-    Scan(scan_storage).ExclusiveSum(work, ignored, block_sum);
-    if (threadIdx.x == 0 && block_sum != 0) atomicAdd(&st->round_work, block_sum);
     grid.sync();
-    stamp(0);
     const u32 round_work = st->round_work;
     if (round_work == 0) return;
+    const Claim<Point> claimer{find, nullptr, round, claim, look, nullptr};
+    for (u32 i = tid; i < round_work; i += threads) {
+      const u32 f = list[i];
+      claimer.claim_for(f, cands[f]);
+    }
+    grid.sync();
+    stamp(0);
 
-    // 2. Who holds all its claims (Won), counted per block tile.
+    // 2. Who holds all its claims: a bit per face of the block's tile (a multiple of 256 faces).
     const Won judge{round, claim, nullptr, nullptr};
     const u32 tile = ((faces + gridDim.x - 1) / gridDim.x + kBlock - 1) / kBlock * kBlock;
-    const u32 tile_begin = min(faces, blockIdx.x * tile), tile_end = min(faces, tile_begin + tile);
-    u32 count = 0;
-    for (u32 f = tile_begin + threadIdx.x; f < tile_end; f += kBlock) {
+    const u32 tile_begin = blockIdx.x * tile, masks = tile / 32, first_mask = tile_begin / 32;
+    for (u32 j = threadIdx.x; j < tile; j += kBlock) {
+      const u32 f = tile_begin + j;
       // A face with a candidate this round is stamped for the next (Claim); no other stamp is newer yet.
-      const u32 w = look[f] == round + 1 && judge.holds(cands[f]) ? 1u : 0u;
-      won[f] = w;
-      count += w;
+      const bool w = f < faces && look[f] == round + 1 && judge.holds(cands[f]);
+      const unsigned mask = __ballot_sync(0xffffffffu, w);
+      if (lane == 0) win_mask[first_mask + j / 32] = mask;
     }
     __syncthreads();
+    u32 count = 0;
+    for (u32 k = threadIdx.x; k < masks; k += kBlock)
+      count += __popc(win_mask[first_mask + k]);
+    u32 ignored = 0, block_sum = 0;
     Scan(scan_storage).ExclusiveSum(count, ignored, block_sum);
     if (threadIdx.x == 0) block_offset[blockIdx.x] = block_sum;
     grid.sync();
     stamp(1);
+
+    // 3. The blocks' offsets.
     if (blockIdx.x == 0) {
       u32 carry = 0;
       for (u32 base = 0; base < gridDim.x; base += kBlock) {
@@ -219,16 +235,27 @@ __global__ void __launch_bounds__(kBlock)
       return;
     }
 
-    // 3. The winners apply, numbered in face order (Apply).
+    // 4. The winners apply, numbered in face order: per 256 masks (8192 faces) of the tile, the masks'
+    // offsets in shared memory, then a thread per face.
     const Apply<Point> applier{find.m, nullptr, nullptr, nullptr, faces, entries, look, round};
+    __shared__ u32 mask_of[kBlock], rank_of[kBlock];
     u32 carry = block_offset[blockIdx.x];
-    for (u32 base = tile_begin; base < tile_end; base += kBlock) {
-      const u32 f = base + threadIdx.x;
-      const u32 w = f < tile_end ? won[f] : 0u;
+    for (u32 base = 0; base < masks; base += kBlock) {
+      const u32 k = base + threadIdx.x;
+      const u32 mask = k < masks ? win_mask[first_mask + k] : 0u;
       u32 before = 0, sum = 0;
       __syncthreads();
-      Scan(scan_storage).ExclusiveSum(w, before, sum);
-      if (w) applier.apply(cands[f], carry + before);
+      Scan(scan_storage).ExclusiveSum(static_cast<u32>(__popc(mask)), before, sum);
+      mask_of[threadIdx.x] = mask;
+      rank_of[threadIdx.x] = carry + before;
+      __syncthreads();
+      if (sum != 0) {
+        for (u32 j = threadIdx.x; j < 32 * kBlock; j += kBlock) {
+          const u32 word = mask_of[j / 32], bit = 1u << (j % 32);
+          if (word & bit)
+            applier.apply(cands[tile_begin + 32 * base + j], rank_of[j / 32] + __popc(word & (bit - 1)));
+        }
+      }
       carry += sum;
     }
     grid.sync();
@@ -374,12 +401,16 @@ struct CudaExec {
     // A thread per face up to what fits at once: a grid barrier costs more the more blocks wait at it.
     const unsigned blocks = std::max(1u, std::min(cooperative_blocks_, blocks_for(state.faces)));
     block_offset_.grow(blocks);
+    // One bit per face of every block's tile (the tiles cover the capacity, each a multiple of 256).
+    win_mask_.grow((static_cast<std::size_t>(state.face_capacity) / blocks + kBlock) * blocks / 32 + 8);
     rounds_state_.grow(1);
     check(cudaMemcpy(rounds_state_.data(), &state, sizeof state, cudaMemcpyHostToDevice), "the round state");
     bytes_to_device += sizeof state;
     RoundsState* st = rounds_state_.data();
     u32* offsets = block_offset_.data();
-    void* args[] = {const_cast<FindCandidate<Point>*>(&find), &claim, &look, &cands, &won, &offsets, &st};
+    u32* masks = win_mask_.data();
+    void* args[] = {
+        const_cast<FindCandidate<Point>*>(&find), &claim, &look, &cands, &won, &masks, &offsets, &st};
     check(cudaLaunchCooperativeKernel(reinterpret_cast<void*>(kernel), blocks, kBlock, args, 0, nullptr),
           "launching the rounds");
     read(&state, rounds_state_.data(), 1);
@@ -397,7 +428,7 @@ struct CudaExec {
   Buffer<u64> scalar64_;
   Buffer<u32> scalar32_;
   Buffer<unsigned char> scratch_;
-  Buffer<u32> block_offset_;
+  Buffer<u32> block_offset_, win_mask_;
   Buffer<RoundsState> rounds_state_;
   unsigned cooperative_blocks_ = 0;
 };
