@@ -172,6 +172,10 @@ __global__ void __launch_bounds__(kBlock)
     grid.sync();
     const u32 round_work = st->round_work;
     if (round_work == 0) return;
+    const FixLinks<Point> fixer{find.m, nullptr};
+    for (u32 i = tid; i < round_work; i += threads)
+      fixer.fix(list[i]);
+    grid.sync();
     const Claim<Point> claimer{find, nullptr, round, claim, look, nullptr};
     for (u32 i = tid; i < round_work; i += threads) {
       const u32 f = list[i];

@@ -291,6 +291,7 @@ class ResidentHull {
       stats.work_items += work;
       round_ = round;
       ++stats.rounds;
+      exec_.for_each(work, FixLinks<Point>{view(), work_list_.data()});
       won_.grow(work + 1);
       cands_.grow(work);
       won_rank_.grow(work + 1);

@@ -14,9 +14,13 @@
 //                       n2 = (y, v, x); only when both new faces keep c strictly below (the foldover test
 //                       of Fig. 5, seen from c)
 //     flop (Fig. 4)     a vertex v of degree 3 that is concave or flat: its three faces become (a, b, d)
-//   Flips and flops run in conflict-free rounds: each candidate claims the six (flip) or six (flop) faces
-//   it reads or rewrites with a 64-bit atomicMax of (round, ~candidate id); the holders of all their claims
-//   apply at once, numbered by a prefix sum, so the result is the same on any executor and thread count.
+//   Flips and flops run in conflict-free rounds: each candidate claims the faces it kills (two for a
+//   flip, three for a flop) with a 64-bit atomicMax of (round, ~candidate id); the holders of all their
+//   claims apply at once, numbered by a prefix sum, so the result is the same on any executor and thread
+//   count.  A winner writes only its new faces and the killed faces' entries; the faces around it keep
+//   links to killed faces until the next round's FixLinks gathers the new ones from the entries (as the
+//   refinement's gathers do).  Disjoint flips cannot make the same edge: in the radial view each new edge
+//   lies inside its own quadrilateral.
 //   Face ids only grow within an iteration (killed faces keep their corners for the routing); compaction
 //   renumbers between iterations.
 #pragma once
@@ -273,6 +277,7 @@ struct SplitFaces {
 struct Candidate {
   u32 kind = kNone;    // kFlip or kFlop, or kNone
   u32 id = 0;          // 6 f + slot: what it claims with
+  u32 claims = 0;      // faces[0..claims): the faces it kills, claimed; the rest are the faces around
   u32 faces[6] = {};   // flip: f, g, A (across x->u), B (u->y), C (y->v), D (v->x); flop: f, h, t, the
                        // outer faces across a->b, b->d, d->a
   u32 vertex[4] = {};  // flip: u, v, x, y; flop: v, a, b, d
@@ -337,7 +342,7 @@ struct FindCandidate {
     if (orient3d(m.c, px, pu, py) <= 0 || orient3d(m.c, py, pv, px) <= 0) return false;  // a foldover
     const u32 A = a.n[ix], D = a.n[iv], B = a.gn[i][(j + 1) % 3], C = a.gn[i][(j + 2) % 3];
     if (A == B || C == D || A == g || B == f || C == f || D == g) return false;  // not a 2-manifold
-    out = Candidate{kFlip, 0, {f, g, A, B, C, D}, {a.v[i], a.v[iv], a.v[ix], a.apex(i)}};
+    out = Candidate{kFlip, 0, 2, {f, g, A, B, C, D}, {a.v[i], a.v[iv], a.v[ix], a.apex(i)}};
     return true;
   }
 
@@ -364,7 +369,7 @@ struct FindCandidate {
     const u32 ab = r.n[ka], da = r.gn[k][(hv + 1) % 3], bd = r.gn[kb][(tv + 1) % 3];
     if (ab == da || ab == bd || da == bd || ab == h || ab == t || da == f || da == t || bd == f || bd == h)
       return false;
-    out = Candidate{kFlop, 0, {f, h, t, ab, bd, da}, {v, a, b, d}};
+    out = Candidate{kFlop, 0, 3, {f, h, t, ab, bd, da}, {v, a, b, d}};
     return true;
   }
 
@@ -403,6 +408,26 @@ struct MarkWork {
   CUDAHULL_HD void operator()(std::size_t f) const { work[f] = is_work(static_cast<u32>(f)) ? 1u : 0u; }
 };
 
+// A work face's links to faces the previous round killed, pointed at the new faces that hold the edges
+// (the entry of the edit that killed them names those).  Every face writes only its own links.
+template <class Point>
+struct FixLinks {
+  MeshView<Point> m;
+  const u32* work_list;
+  CUDAHULL_HD void fix(u32 f) const {
+    for (int k = 0; k < 3; ++k) {
+      const u32 nb = m.fn[3 * f + k], e = m.killer[nb];
+      if (e == kAlive) continue;
+      const Entry& entry = m.entries[e];
+      const u32 a = m.fv[3 * f + k], b = m.fv[3 * f + (k + 1) % 3];
+      for (int o = 0; o < (entry.kind == kFlip ? 2 : 1); ++o) {
+        if (m.edge_slot(entry.out[o], b, a) >= 0) m.fn[3 * f + k] = entry.out[o];
+      }
+    }
+  }
+  CUDAHULL_HD void operator()(std::size_t w) const { fix(work_list[w]); }
+};
+
 // Each work face finds its first candidate, keeps it, and claims the candidate's faces.
 template <class Point>
 struct Claim {
@@ -421,8 +446,8 @@ struct Claim {
     look[f] = round + 1;  // won (then killed) or lost (then tried again)
     cand.id = 6 * f + static_cast<u32>(slot);
     const u64 key = claim_key(round, cand.id);
-    for (u32 h : cand.faces)
-      atomic_max_u64(&claim[h], key);
+    for (u32 k = 0; k < cand.claims; ++k)
+      atomic_max_u64(&claim[cand.faces[k]], key);
   }
   CUDAHULL_HD void operator()(std::size_t w) const { claim_for(work_list[w], cands[w]); }
 };
@@ -436,8 +461,8 @@ struct Won {
   CUDAHULL_HD bool holds(const Candidate& cand) const {
     if (cand.kind == kNone) return false;
     const u64 key = claim_key(round, cand.id);
-    for (u32 h : cand.faces) {
-      if (claim[h] != key) return false;
+    for (u32 k = 0; k < cand.claims; ++k) {
+      if (claim[cand.faces[k]] != key) return false;
     }
     return true;
   }
@@ -456,12 +481,9 @@ struct Apply {
   u32* look;
   u32 round;
 
-  // An outer face: claimed by this winner alone, relinked to a new face, looked at in the next round.
-  CUDAHULL_HD void relink(u32 face, u32 a, u32 b, u32 to) const {
-    const int s = m.edge_slot(face, a, b);
-    if (s >= 0) m.fn[3 * face + s] = to;
-    look[face] = round + 1;
-  }
+  // An outer face: it links to a face killed here until FixLinks, in the next round, points it at the new
+  // one (another winner may be killing it this round).  Every winner that touches it writes the same stamp.
+  CUDAHULL_HD void touch(u32 face) const { look[face] = round + 1; }
   CUDAHULL_HD void set_face(u32 f, u32 a, u32 b, u32 d, u32 na, u32 nb, u32 nd) const {
     u32* fv = m.fv + 3 * f;
     u32* fn = m.fn + 3 * f;
@@ -481,10 +503,10 @@ struct Apply {
       const u32 A = cand.faces[2], B = cand.faces[3], C = cand.faces[4], D = cand.faces[5];
       set_face(n1, x, u, y, A, B, n2);
       set_face(n2, y, v, x, C, D, n1);
-      relink(A, u, x, n1);
-      relink(B, y, u, n1);
-      relink(C, v, y, n2);
-      relink(D, x, v, n2);
+      touch(A);
+      touch(B);
+      touch(C);
+      touch(D);
       m.entries[e] = Entry{kFlip, x, y, {n1, n2, kNone}};
       m.killer[cand.faces[0]] = e;
       m.killer[cand.faces[1]] = e;
@@ -492,9 +514,9 @@ struct Apply {
       const u32 a = cand.vertex[1], b = cand.vertex[2], d = cand.vertex[3];
       const u32 ab = cand.faces[3], bd = cand.faces[4], da = cand.faces[5];
       set_face(n1, a, b, d, ab, bd, da);
-      relink(ab, b, a, n1);
-      relink(bd, d, b, n1);
-      relink(da, a, d, n1);
+      touch(ab);
+      touch(bd);
+      touch(da);
       m.killer[n2] = kDeadSlot;
       for (int k = 0; k < 3; ++k)
         m.fv[3 * n2 + k] = m.fn[3 * n2 + k] = kNone;
