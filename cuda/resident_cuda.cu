@@ -353,6 +353,19 @@ struct CudaExec {
     read(&out, scalar64_.data(), 1);
     return out;
   }
+  // The same, the total left on the device in *total (no wait).
+  void exclusive_scan_to(const u32* in, u32* out, std::size_t n, u32* total) {
+    if (n == 0) {
+      fill(total, 1, u32{0});
+      return;
+    }
+    std::size_t bytes = 0;
+    check(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, static_cast<int>(n)), "sizing a scan");
+    scratch_.grow(bytes);
+    check(cub::DeviceScan::ExclusiveSum(scratch_.data(), bytes, in, out, static_cast<int>(n)), "a scan");
+    scan_total_kernel<<<1, 1>>>(in, out, n, total);
+    check(cudaGetLastError(), "launching a scan total");
+  }
   u32 exclusive_scan(const u32* in, u32* out, std::size_t n) {
     if (n == 0) return 0;
     std::size_t bytes = 0;

@@ -55,6 +55,11 @@ struct HostExec {
     ++host_syncs;
     return sum;
   }
+  // The same, the total written to *total where the executor computes (no wait for it).
+  void exclusive_scan_to(const std::uint32_t* in, std::uint32_t* out, std::size_t n, std::uint32_t* total) {
+    *total = exclusive_scan(in, out, n);
+    --host_syncs;
+  }
   // The indices i with flags[i] != 0, in order, into list; returns how many (rank is scratch).
   std::uint32_t select(const std::uint32_t* flags, std::uint32_t* rank, std::uint32_t* list, std::size_t n) {
     const std::uint32_t count = exclusive_scan(flags, rank, n);

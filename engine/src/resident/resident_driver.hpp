@@ -21,6 +21,7 @@
 #include <chrono>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "cudahull/backend.hpp"
@@ -74,6 +75,11 @@ struct BestValueKey {
   CUDAHULL_HD u64 operator()(std::size_t i) const { return ordered_bits(value(i)); }
 };
 template <class Point>
+struct RankedValue {
+  TetrahedronValue<Point> value;
+  CUDAHULL_HD u64 operator()(std::size_t i) const { return rank_key(value(i), static_cast<u32>(i)); }
+};
+template <class Point>
 struct LowestIndexWith {
   TetrahedronValue<Point> value;
   u64 best;
@@ -105,9 +111,13 @@ class TetrahedronQueries final : public BasicBackend<Point> {
  private:
   [[noreturn]] static void unused() { throw std::logic_error("resident engine: backend call not used"); }
   Vec3d at(PointIndex i) const { return to_vec3d(host_[i]); }
-  // The point of largest value, ties to the lowest index: two exact reductions.
+  // The point of largest value, ties to the lowest index.  One reduction of rank_key() (the value rounded
+  // to float, then ~index) where that rounding keeps the order exact or where the order need not be exact
+  // (the distances: find_initial_tetrahedron confirms them); two exact ones for a double x.
   PointIndex best(int what, Vec3d a, Vec3d b, Vec3d d) {
     const TetrahedronValue<Point> value{points_, what, a, b, d};
+    if (what >= 2 || std::is_same_v<Point, Point3>)
+      return rank_key_index(exec_.reduce_max(n_, RankedValue<Point>{value}));
     const u64 top = exec_.reduce_max(n_, BestValueKey<Point>{value});
     return ~static_cast<u32>(exec_.reduce_max(n_, LowestIndexWith<Point>{value, top}));
   }
@@ -316,21 +326,25 @@ class ResidentHull {
 
   // Live faces renumbered 0..F-1; kept points compacted, their faces renumbered.
   void compact() {
+    // Both counts come back in one read at the end.
+    counts_.grow(2);
     exec_.for_each(faces_, MarkLive<Point>{view(), flags_.data()});
-    const u32 live = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
+    exec_.exclusive_scan_to(flags_.data(), face_rank_.data(), faces_, counts_.data());
     exec_.for_each(faces_,
                    MoveLive<Point>{view(), flags_.data(), face_rank_.data(), fv_out_.data(), fn_out_.data()});
     fv_.swap(fv_out_);
     fn_.swap(fn_out_);
-    faces_ = live;
-    exec_.fill(killer_.data(), faces_, kAlive);
-    exec_.fill(look_.data(), faces_, u32{0});
-    const u32 kept = exec_.exclusive_scan(keep_.data(), point_rank_.data(), active_);
+    exec_.exclusive_scan_to(keep_.data(), point_rank_.data(), active_, counts_.data() + 1);
     exec_.for_each(active_, MovePoints{keep_.data(), point_rank_.data(), face_rank_.data(), index_[0].data(),
                                        face_of_[0].data(), index_[1].data(), face_of_[1].data()});
     index_[0].swap(index_[1]);
     face_of_[0].swap(face_of_[1]);
-    active_ = kept;
+    u32 counts[2] = {0, 0};
+    exec_.download(counts, counts_.data(), 2);
+    faces_ = counts[0];
+    active_ = counts[1];
+    exec_.fill(killer_.data(), faces_, kAlive);
+    exec_.fill(look_.data(), faces_, u32{0});
   }
 
   BasicHullMesh<Point> lower_dimensional(ResidentStats& stats, const std::string& why) {
@@ -399,6 +413,7 @@ class ResidentHull {
   u32 round_ = 0;
   Buffer<u32> fv_, fn_, fv_out_, fn_out_, killer_, look_, flags_, face_rank_, work_list_;
   Buffer<u64> claim_, extreme_;
+  Buffer<u32> counts_;  // compact()'s live faces and kept points
   Buffer<Entry> entries_;
   Buffer<u32> won_, won_rank_;
   Buffer<Candidate> cands_;  // per work item (stepped rounds) or per face (fused rounds)
