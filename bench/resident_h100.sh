@@ -26,5 +26,8 @@ for a in "--dist sphere --n 100000 --repeat 5" "--dist sphere --n 1000000 --repe
   run resident $a --vs qhull
   run stepping $a
 done
+echo "== double (the same points), resident"
+run resident --dist ball --n 10000000 --repeat 3 --precision double
+run resident --dist sphere --n 1000000 --repeat 3 --precision double
 echo "== sphere 10M (a 20M-face hull), resident only"
-run resident --dist sphere --n 10000000 --repeat 1
+run resident --dist sphere --n 10000000 --repeat 3
