@@ -14,6 +14,7 @@
 #include "cudahull/point_io.hpp"
 #include "cudahull/resident.hpp"
 #include "support/rng.hpp"
+#include "support/shared_models.hpp"
 
 namespace cudahull {
 namespace {
@@ -124,13 +125,9 @@ TEST(Resident, BundledModels) {
 
 // The shared scans, at the exact extreme-point counts of ../shared/models/README.md (float coordinates).
 TEST(Resident, SharedModelsAtTheirKnownCounts) {
-  const char* env = std::getenv("CUDAHULL_MODELS_DIR");
-  const std::filesystem::path dir = env && *env ? env : CUDAHULL_MODELS_DIR;
+  const std::filesystem::path dir = testing::shared_models_dir();
   if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no models folder " << dir;
-  const std::pair<const char*, std::size_t> models[] = {
-      {"bun_zipper.ply", 1564},  {"stanford-bunny.obj", 1562}, {"dragonStandRight_0.ply", 439},
-      {"dragon_scans.ply", 207}, {"teapot.obj", 878},          {"spot.obj", 305}};
-  for (const auto& [name, count] : models) {
+  for (const auto& [name, count] : testing::kSharedModelCounts) {
     const std::vector<Point3> points = read_points((dir / name).string());
     ResidentStats stats;
     const HullMesh hull = resident_hull_host(points, &stats);

@@ -1,7 +1,8 @@
 // The resident engine on the GPU (issue 15, gpu label): the device executor must build the very mesh the
 // host executor builds (the same operations, claims and prefix sums), and both the exact hull: against
-// exact_hull on generated and seeded sets, the stepping engine on the CPU backend at a million points, and
-// the known counts of the shared models.  Run on the GPU machine (docs/benchmarks.md says how).
+// exact_hull on generated and seeded sets and the property test's adversarial sets, the stepping engine on
+// the CPU backend at a million points, and the known counts of the shared models.  Run on the GPU machine
+// (docs/benchmarks.md says how).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -18,7 +19,9 @@
 #include "cudahull/resident.hpp"
 #include "device_info.hpp"
 #include "resident_cuda.hpp"
+#include "support/property_cases.hpp"
 #include "support/rng.hpp"
+#include "support/shared_models.hpp"
 
 namespace cudahull {
 namespace {
@@ -109,14 +112,24 @@ TEST_F(ResidentCuda, MillionPointsMatchTheSteppingEngine) {
   }
 }
 
+// The property test's adversarial sets (tests/support/property_cases.hpp) on the device, float and double:
+// cases 0..N-1, N = CUDAHULL_PROPERTY_CASES or 1000.
+TEST_F(ResidentCuda, PropertyCasesMatchTheHostExecutorAndTheExactHull) {
+  const char* env = std::getenv("CUDAHULL_PROPERTY_CASES");
+  const std::uint64_t cases = env ? std::strtoull(env, nullptr, 10) : 1000;
+  for (std::uint64_t id = 0; id < cases; ++id) {
+    const testing::Case c = testing::make_case(id);
+    expect_same_as_host(c.points, "property case " + std::to_string(id) + " (" + c.kind + ")");
+    const testing::DoubleCase d = testing::make_double_case(id);
+    expect_same_as_host(d.points, "property case " + std::to_string(id) + " (" + d.kind + ", double)");
+    if (HasFailure()) break;
+  }
+}
+
 TEST_F(ResidentCuda, SharedModelsAtTheirKnownCounts) {
-  const char* env = std::getenv("CUDAHULL_MODELS_DIR");
-  const std::filesystem::path dir = env && *env ? env : CUDAHULL_MODELS_DIR;
+  const std::filesystem::path dir = testing::shared_models_dir();
   if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no models folder " << dir;
-  const std::pair<const char*, std::size_t> models[] = {
-      {"bun_zipper.ply", 1564},  {"stanford-bunny.obj", 1562}, {"dragonStandRight_0.ply", 439},
-      {"dragon_scans.ply", 207}, {"teapot.obj", 878},          {"spot.obj", 305}};
-  for (const auto& [name, count] : models) {
+  for (const auto& [name, count] : testing::kSharedModelCounts) {
     const std::vector<Point3> points = read_points((dir / name).string());
     ResidentStats stats;
     const HullMesh hull = on_device(points, &stats);
