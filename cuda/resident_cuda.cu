@@ -172,6 +172,16 @@ __global__ void __launch_bounds__(kBlock)
     grid.sync();
     const u32 round_work = st->round_work;
     if (round_work == 0) return;
+    // Room for the round, before it changes anything (a winner is a work face: two new faces, one entry
+    // each at most).  Otherwise the host grows the buffers and launches again, and the round runs afresh.
+    if (faces + 2 * round_work > st->face_capacity || entries + round_work > st->entry_capacity) {
+      if (tid == 0) {
+        st->overflow = 1;
+        st->needed_faces = faces + 2 * round_work;
+        st->needed_entries = entries + round_work;
+      }
+      return;
+    }
     const FixLinks<Point> fixer{find.m, nullptr};
     for (u32 i = tid; i < round_work; i += threads)
       fixer.fix(list[i]);
@@ -227,13 +237,6 @@ __global__ void __launch_bounds__(kBlock)
         ++st->rounds;
         st->work_items += round_work;
         st->round = round;
-        st->round_work = 0;
-      }
-      return;
-    }
-    if (faces + 2 * winners > st->face_capacity || entries + winners > st->entry_capacity) {
-      if (tid == 0) {
-        st->overflow = 1;
         st->round_work = 0;
       }
       return;

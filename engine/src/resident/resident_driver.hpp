@@ -287,6 +287,8 @@ class ResidentHull {
       for (int k = 0; k < 4; ++k)
         stats.round_phase_ms[k] += static_cast<double>(state.phase_ns[k]) * 1e-6;
       if (!state.overflow) return;
+      grow_faces(state.needed_faces);
+      grow_entries(state.needed_entries);
     }
   }
 

@@ -529,12 +529,14 @@ struct Apply {
 };
 
 // The state of a fused run of rounds (an executor that loops the rounds itself, CudaExec): what the host
-// sets before and reads after.  The rounds stop when no candidate is left, or before a round that would not
-// fit the capacities (overflow: the host grows the buffers and runs again).
+// sets before and reads after.  The rounds stop when no candidate is left, or before a round that might
+// not fit the capacities, before it changes anything (overflow: the host grows the buffers and runs
+// again).
 struct RoundsState {
   u32 faces, fresh_from, entries, round;    // as the driver keeps them
   u32 face_capacity, entry_capacity;        // in
   u32 rounds, edits, work_items, overflow;  // out
+  u32 needed_faces, needed_entries;         // out, on overflow: what the next round needs
   u32 round_work, round_winners;            // scratch, zero
   u64 phase_ns[4];                          // out, device only: claim, judge, number, apply (profiling)
 };
