@@ -273,7 +273,7 @@ struct SplitFaces {
 // ---------------------------------------------------------------------------------------------------------
 // Flip and flop rounds (Figs. 3b, 4, 5).
 
-// A candidate edit and the six faces it reads or rewrites.
+// A candidate edit: the faces it kills (claimed) and the faces around them (stamped for the next round).
 struct Candidate {
   u32 kind = kNone;    // kFlip or kFlop, or kNone
   u32 id = 0;          // 6 f + slot: what it claims with
