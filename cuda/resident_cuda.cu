@@ -1,6 +1,7 @@
 // The resident engine's device executor: the operations of engine/src/resident/resident_ops.hpp as
-// kernels, one thread per face or point; prefix sums from CUB.  Each prefix sum brings its total back (4
-// bytes, one wait): the host sizes the next step by it.
+// kernels, one thread per face or point; prefix sums from CUB.  A prefix sum brings its total back (4
+// bytes, one wait) where the host sizes the next step by it (exclusive_scan), or leaves it on the device
+// to be read with others (exclusive_scan_to).
 #include <cuda_runtime.h>
 
 #include <cooperative_groups.h>

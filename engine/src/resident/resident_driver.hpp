@@ -311,7 +311,9 @@ class ResidentHull {
                                         claim_.data(), look_.data(), cands_.data()});
       exec_.for_each(work, Won{round_, claim_.data(), cands_.data(), won_.data()});
       const u32 winners = exec_.exclusive_scan(won_.data(), won_rank_.data(), work);
-      if (winners == 0) break;  // cannot happen: the lowest candidate holds all its claims
+      // The normal end: no work face has a candidate (a round with candidates always has a winner, the
+      // lowest).  This round's FixLinks has left every link at a live face for compaction.
+      if (winners == 0) break;
       stats.edits += winners;
       work_in_use_ = work;
       grow_faces(faces_ + 2 * std::size_t{winners});

@@ -17,7 +17,8 @@
 //   Flips and flops run in conflict-free rounds: each candidate claims the faces it kills (two for a
 //   flip, three for a flop) with a 64-bit atomicMax of (round, ~candidate id); the holders of all their
 //   claims apply at once, numbered by a prefix sum, so the result is the same on any executor and thread
-//   count.  A winner writes only its new faces and the killed faces' entries; the faces around it keep
+//   count.  A winner writes only its new faces and the killed faces' entries, and stamps the faces around it
+//   for the next round (every winner that touches one writes the same stamp); those faces keep
 //   links to killed faces until the next round's FixLinks gathers the new ones from the entries (as the
 //   refinement's gathers do).  Disjoint flips cannot make the same edge: in the radial view each new edge
 //   lies inside its own quadrilateral.
@@ -205,8 +206,9 @@ struct FurthestPerFace {
 // ---------------------------------------------------------------------------------------------------------
 // Refinement (Fig. 3a).
 
-// A face refines when it has an external point strictly inside its cone (on a side of the cone the child
-// would be flat; the face waits, and a stall ends in the exact finish).
+// A face refines when its furthest point lies strictly inside its cone (on a side of the cone a child would
+// be flat: the face waits, even if other points of it are strictly inside, and a stall ends in the exact
+// finish).
 template <class Point>
 struct MarkRefined {
   MeshView<Point> m;
@@ -470,7 +472,7 @@ struct Won {
 };
 
 // The winners apply: two new face slots and one entry each, by the prefix sum of the wins; each rewrites
-// only the faces it claimed and its new ones.
+// only the faces it claimed and its new ones (and stamps the faces around).
 template <class Point>
 struct Apply {
   MeshView<Point> m;
