@@ -1,0 +1,92 @@
+// The one-call API (issue 16): the exact convex hull of a point array, with what callers of Qhull expect
+// from it (vertices, outward faces, neighbours, planes, volume, area) and an answer for flat input.
+//
+//   #include <cudahull/convex_hull.hpp>
+//   std::vector<cudahull::Point3d> points = ...;
+//   cudahull::ConvexHull hull = cudahull::convex_hull(points);             // backend and precision: auto
+//   for (const auto& face : hull.faces) ...                                // input indices, outward CCW
+//
+// The stepping Engine (engine.hpp) stays public beside it; make_backend() gives it the same backends.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cudahull/backend.hpp"
+#include "cudahull/types.hpp"
+
+namespace cudahull {
+
+// kAuto: the CUDA backend when a usable device is present, else the CPU (as `cudahull --backend auto`).
+enum class BackendChoice { kAuto, kCpu, kCuda };
+// kStepping: Algorithm 1 an iteration at a time, the host editing the mesh (the command line's default);
+// kResident: every phase where the points are (issue 15, `cudahull --engine resident`).
+enum class EngineChoice { kStepping, kResident };
+
+struct ConvexHullOptions {
+  BackendChoice backend = BackendChoice::kAuto;
+  EngineChoice engine = EngineChoice::kStepping;
+  // The coordinates the hull is computed in.  kAuto: the input's own type (float stays float, double is
+  // exact in double); kFloat rounds double input to float once; kDouble widens float input exactly.
+  Precision precision = Precision::kAuto;
+};
+
+struct ConvexHull {
+  // The input's affine dimension: 3, or 2 (a convex polygon), 1 (a segment), 0 (one point), -1 (no points).
+  int dimension = -1;
+  Precision precision = Precision::kFloat;  // what it was computed in (never kAuto)
+  std::string backend;                      // the backend that ran, e.g. "cpu" or "cuda"
+  // Input indices of the hull's vertices, ascending: exactly the strictly extreme points (a point inside a
+  // face or an edge is not one; among duplicate points the lowest index is).
+  std::vector<PointIndex> vertices;
+  // Dimension 3: triangles of input indices, counter-clockwise seen from outside.  Empty otherwise.
+  std::vector<std::array<PointIndex, 3>> faces;
+  // neighbors[f][k]: the face across the edge opposite faces[f][k] (scipy's convention).
+  std::vector<std::array<std::int32_t, 3>> neighbors;
+  // Per face: unit outward normal (nx, ny, nz) and offset d, so that n . x + d <= 0 inside (up to the
+  // rounding of the normal, computed in double from the exact corners).
+  std::vector<std::array<double, 4>> planes;
+  // Dimension 2: the polygon's corners (input indices) in counter-clockwise order seen from the side its
+  // normal points to (exact_hull.hpp).  Empty otherwise.
+  std::vector<PointIndex> polygon;
+  // Dimension 3: the solid's volume and surface area.  Dimension 2: volume 0, area both sides of the
+  // polygon (the surface area of the flat solid, twice the polygon's area).  Lower: 0 and 0.
+  double volume = 0, area = 0;
+};
+
+// The exact convex hull of `points`.  Throws InputError (one line naming the point index) for a NaN or
+// infinite coordinate, a double coordinate outside exact double arithmetic's range (nonzero magnitudes from
+// 2^-250 to 2^250, as `cudahull hull`), a double that does not fit in float with kFloat, or 2^32 - 1 points
+// or more; DeviceError for kCuda without a usable GPU, or a failure on the device.
+ConvexHull convex_hull(const std::vector<Point3>& points, const ConvexHullOptions& options = {});
+ConvexHull convex_hull(const std::vector<Point3d>& points, const ConvexHullOptions& options = {});
+// The same on `count` points given as x, y, z triples in one contiguous array (e.g. a NumPy array).
+ConvexHull convex_hull(const float* xyz, std::size_t count, const ConvexHullOptions& options = {});
+ConvexHull convex_hull(const double* xyz, std::size_t count, const ConvexHullOptions& options = {});
+
+// The points convex_hull() computes on: `count` x, y, z triples as Point (Point3 rounds a double once,
+// Point3d widens a float exactly), with the same checks and errors.  Scalar is float or double.
+template <class Point, class Scalar>
+std::vector<Point> checked_points(const Scalar* xyz, std::size_t count);
+
+// What convex_hull() returns, for an exact hull that the Engine (result()) or exact_hull() computed.
+template <class Point>
+ConvexHull hull_from_mesh(const BasicHullMesh<Point>& mesh, std::string backend);
+
+// A backend for the stepping Engine, as ConvexHullOptions::backend picks it; `chosen_because` (if given)
+// gets the reason in words ("as requested", "auto: no usable CUDA device: ...").  Point3 or Point3d.
+template <class Point>
+std::unique_ptr<BasicBackend<Point>> make_backend(BackendChoice choice,
+                                                  std::string* chosen_because = nullptr);
+
+// "auto", "cpu", "cuda" and back; throws std::invalid_argument for another name.
+BackendChoice backend_from_name(const std::string& name);
+EngineChoice engine_from_name(const std::string& name);  // "stepping" or "resident"
+// "auto", "float", "double"; unlike precision_from_name() (types.hpp), a bad name throws.
+Precision precision_from_name_strict(const std::string& name);
+
+}  // namespace cudahull

@@ -1,0 +1,309 @@
+// convex_hull(): the input checked, the engine run, and the hull's faces, neighbours, planes and measures
+// derived from the exact mesh (in double, from the coordinates it was computed on).
+#include "cudahull/convex_hull.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+#include <type_traits>
+
+#include "cuda_backend.hpp"
+#include "cudahull/cpu_backend.hpp"
+#include "cudahull/engine.hpp"
+#include "cudahull/errors.hpp"
+#include "cudahull/resident.hpp"
+#include "device_info.hpp"
+#include "resident_cuda.hpp"
+
+namespace cudahull {
+
+namespace {
+
+// The range of double coordinates the exact predicates are exact on, as io's check_double_range()
+// (point_io.hpp) enforces it for files; the package does not link the file readers.
+constexpr double kMinExactMagnitude = 0x1p-250;
+constexpr double kMaxExactMagnitude = 0x1p+250;
+
+const char* axis_name(int axis) {
+  return axis == 0 ? "x" : axis == 1 ? "y" : "z";
+}
+
+std::string shortest(double value) {
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof text, value).ptr;
+  return std::string(text, end);
+}
+
+[[noreturn]] void bad_coordinate(std::size_t point, int axis, double value, const std::string& why) {
+  throw InputError("point " + std::to_string(point) + ": " + axis_name(axis) + " coordinate " +
+                   shortest(value) + " " + why);
+}
+
+// Copies `count` points into Point (float or double), refusing what the exact hull cannot take;
+// `coordinate(i, axis)` reads the input.
+template <class Point, class Coordinate>
+std::vector<Point> copy_checked(std::size_t count, Coordinate coordinate) {
+  // PointIndex is 32 bits and the engine keeps 0xffffffff as "no point".
+  if (count >= 0xffffffffu)
+    throw InputError("too many points: " + std::to_string(count) + " (at most 2^32 - 2)");
+  std::vector<Point> points(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    double widened[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      widened[axis] = coordinate(i, axis);
+      if (!std::isfinite(widened[axis])) bad_coordinate(i, axis, widened[axis], "is not finite");
+    }
+    if constexpr (std::is_same_v<Point, Point3d>) {
+      for (int axis = 0; axis < 3; ++axis) {
+        const double m = std::fabs(widened[axis]);
+        if (m != 0 && (m < kMinExactMagnitude || m > kMaxExactMagnitude)) {
+          bad_coordinate(i, axis, widened[axis],
+                         "is outside the range of exact double arithmetic (nonzero magnitudes from 2^-250 to "
+                         "2^250)");
+        }
+      }
+      points[i] = Point3d{widened[0], widened[1], widened[2]};
+    } else {
+      // Rounded once to float (a float input is unchanged); a double beyond float's range cannot be.
+      const float rounded[3] = {static_cast<float>(widened[0]), static_cast<float>(widened[1]),
+                                static_cast<float>(widened[2])};
+      for (int axis = 0; axis < 3; ++axis) {
+        if (!std::isfinite(rounded[axis])) bad_coordinate(i, axis, widened[axis], "does not fit in float");
+      }
+      points[i] = Point3{rounded[0], rounded[1], rounded[2]};
+    }
+  }
+  return points;
+}
+
+struct Vec {
+  double x, y, z;
+};
+Vec operator-(Vec a, Vec b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+Vec cross(Vec a, Vec b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+double dot(Vec a, Vec b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+double norm(Vec a) {
+  return std::sqrt(dot(a, a));
+}
+
+template <class Point>
+Vec as_vec(const Point& p) {
+  return {static_cast<double>(p.x), static_cast<double>(p.y), static_cast<double>(p.z)};
+}
+
+// neighbors[f][k] = the face holding the reverse of the edge opposite corner k, found by sorting the
+// directed edges (each appears once in a closed 2-manifold with consistent orientation).
+std::vector<std::array<std::int32_t, 3>> face_neighbors(const std::vector<std::array<PointIndex, 3>>& faces) {
+  struct DirectedEdge {
+    std::uint64_t key;  // from << 32 | to
+    std::int32_t face;
+  };
+  std::vector<DirectedEdge> edges;
+  edges.reserve(faces.size() * 3);
+  auto key = [](PointIndex from, PointIndex to) { return std::uint64_t{from} << 32 | to; };
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      edges.push_back({key(faces[f][k], faces[f][(k + 1) % 3]), static_cast<std::int32_t>(f)});
+    }
+  }
+  std::sort(edges.begin(), edges.end(),
+            [](const DirectedEdge& a, const DirectedEdge& b) { return a.key < b.key; });
+  std::vector<std::array<std::int32_t, 3>> neighbors(faces.size(), {-1, -1, -1});
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      // The edge opposite corner k runs from corner k+1 to corner k+2; its neighbour holds it reversed.
+      const std::uint64_t wanted = key(faces[f][(k + 2) % 3], faces[f][(k + 1) % 3]);
+      const auto it = std::lower_bound(edges.begin(), edges.end(), wanted,
+                                       [](const DirectedEdge& e, std::uint64_t k2) { return e.key < k2; });
+      if (it == edges.end() || it->key != wanted)
+        throw std::logic_error("convex_hull: the mesh is not closed");
+      neighbors[f][k] = it->face;
+    }
+  }
+  return neighbors;
+}
+
+template <class Point>
+ConvexHull describe(const BasicHullMesh<Point>& mesh, std::string backend) {
+  ConvexHull hull;
+  hull.dimension = mesh.dimension;
+  hull.precision = std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
+  hull.backend = std::move(backend);
+  hull.vertices = mesh.vertex_ids;
+  std::sort(hull.vertices.begin(), hull.vertices.end());
+  if (mesh.dimension == 2) {
+    for (std::uint32_t corner : mesh.polygon)
+      hull.polygon.push_back(mesh.vertex_ids[corner]);
+    // The flat solid's surface: both sides of the polygon, each a fan of triangles from corner 0.
+    Vec twice_area{0, 0, 0};
+    for (std::size_t k = 1; k + 1 < mesh.polygon.size(); ++k) {
+      const Vec origin = as_vec(mesh.vertices[mesh.polygon[0]]);
+      const Vec c = cross(as_vec(mesh.vertices[mesh.polygon[k]]) - origin,
+                          as_vec(mesh.vertices[mesh.polygon[k + 1]]) - origin);
+      twice_area = {twice_area.x + c.x, twice_area.y + c.y, twice_area.z + c.z};
+    }
+    hull.area = norm(twice_area);
+    return hull;
+  }
+  if (mesh.dimension != 3) return hull;
+
+  // Volumes of tetrahedra from the vertices' centroid, which lies inside: every term is positive, so the
+  // sum loses nothing to cancellation.
+  Vec centroid{0, 0, 0};
+  for (const Point& p : mesh.vertices) {
+    const Vec v = as_vec(p);
+    centroid = {centroid.x + v.x, centroid.y + v.y, centroid.z + v.z};
+  }
+  const double n = static_cast<double>(mesh.vertices.size());
+  centroid = {centroid.x / n, centroid.y / n, centroid.z / n};
+
+  hull.faces.reserve(mesh.triangles.size());
+  hull.planes.reserve(mesh.triangles.size());
+  double six_volume = 0, twice_area = 0;
+  for (const Triangle& t : mesh.triangles) {
+    hull.faces.push_back({mesh.vertex_ids[t[0]], mesh.vertex_ids[t[1]], mesh.vertex_ids[t[2]]});
+    const Vec a = as_vec(mesh.vertices[t[0]]), b = as_vec(mesh.vertices[t[1]]),
+              c = as_vec(mesh.vertices[t[2]]);
+    const Vec normal = cross(b - a, c - a);
+    const double length = norm(normal);
+    twice_area += length;
+    six_volume += dot(cross(b - centroid, c - centroid), a - centroid);
+    const Vec unit{normal.x / length, normal.y / length, normal.z / length};
+    // The offset from the three corners' mean: the plane's rounding error shared out evenly.
+    const double offset = -(dot(unit, a) + dot(unit, b) + dot(unit, c)) / 3;
+    hull.planes.push_back({unit.x, unit.y, unit.z, offset});
+  }
+  hull.volume = six_volume / 6;
+  hull.area = twice_area / 2;
+  hull.neighbors = face_neighbors(hull.faces);
+  return hull;
+}
+
+template <class Point>
+ConvexHull hull_in(const std::vector<Point>& points, const ConvexHullOptions& options) {
+  if (options.engine == EngineChoice::kResident) {
+    if (options.backend != BackendChoice::kCpu) {
+      const CudaDeviceInfo device = query_cuda_device();
+      if (device.usable) {
+        ResidentCudaHull<Point> resident;
+        resident.upload(points);
+        return describe(resident.run(), "cuda-resident");
+      }
+      if (options.backend == BackendChoice::kCuda)
+        throw DeviceError("backend cuda: no usable CUDA device: " + device.reason);
+    }
+    return describe(resident_hull_host(points), "cpu-resident");
+  }
+  std::unique_ptr<BasicBackend<Point>> backend = make_backend<Point>(options.backend);
+  std::string name = backend->name();
+  BasicEngine<Point> engine(points, std::move(backend), EngineOptions{.keep_decisions = false});
+  engine.run();
+  return describe(engine.result(), std::move(name));
+}
+
+// The hull of `count` points read by `coordinate(i, axis)`, whose own precision is `own`.
+template <class Coordinate>
+ConvexHull checked_hull(std::size_t count, Coordinate coordinate, Precision own,
+                        const ConvexHullOptions& options) {
+  const Precision precision = options.precision == Precision::kAuto ? own : options.precision;
+  if (precision == Precision::kDouble) return hull_in(copy_checked<Point3d>(count, coordinate), options);
+  return hull_in(copy_checked<Point3>(count, coordinate), options);
+}
+
+template <class Point>
+auto vector_coordinate(const std::vector<Point>& points) {
+  return [&points](std::size_t i, int axis) -> double {
+    return axis == 0 ? points[i].x : axis == 1 ? points[i].y : points[i].z;
+  };
+}
+
+template <class Scalar>
+auto array_coordinate(const Scalar* xyz) {
+  return [xyz](std::size_t i, int axis) -> double { return xyz[3 * i + axis]; };
+}
+
+}  // namespace
+
+template <class Point>
+std::unique_ptr<BasicBackend<Point>> make_backend(BackendChoice choice, std::string* chosen_because) {
+  auto say = [&](const std::string& why) {
+    if (chosen_because) *chosen_because = why;
+  };
+  if (choice == BackendChoice::kCpu) {
+    say("as requested");
+    return make_cpu_backend<Point>();
+  }
+  const CudaDeviceInfo device = query_cuda_device();
+  if (device.usable) {
+    say(choice == BackendChoice::kAuto ? "auto: a usable CUDA device" : "as requested");
+    return make_cuda_backend<Point>();
+  }
+  if (choice == BackendChoice::kCuda)
+    throw DeviceError("backend cuda: no usable CUDA device: " + device.reason);
+  say("auto: no usable CUDA device: " + device.reason);
+  return make_cpu_backend<Point>();
+}
+
+template <class Point, class Scalar>
+std::vector<Point> checked_points(const Scalar* xyz, std::size_t count) {
+  return copy_checked<Point>(count, array_coordinate(xyz));
+}
+
+template std::vector<Point3> checked_points<Point3>(const float*, std::size_t);
+template std::vector<Point3> checked_points<Point3>(const double*, std::size_t);
+template std::vector<Point3d> checked_points<Point3d>(const float*, std::size_t);
+template std::vector<Point3d> checked_points<Point3d>(const double*, std::size_t);
+
+template <class Point>
+ConvexHull hull_from_mesh(const BasicHullMesh<Point>& mesh, std::string backend) {
+  return describe(mesh, std::move(backend));
+}
+
+template ConvexHull hull_from_mesh(const HullMesh&, std::string);
+template ConvexHull hull_from_mesh(const HullMeshd&, std::string);
+
+template std::unique_ptr<BasicBackend<Point3>> make_backend(BackendChoice, std::string*);
+template std::unique_ptr<BasicBackend<Point3d>> make_backend(BackendChoice, std::string*);
+
+ConvexHull convex_hull(const std::vector<Point3>& points, const ConvexHullOptions& options) {
+  return checked_hull(points.size(), vector_coordinate(points), Precision::kFloat, options);
+}
+
+ConvexHull convex_hull(const std::vector<Point3d>& points, const ConvexHullOptions& options) {
+  return checked_hull(points.size(), vector_coordinate(points), Precision::kDouble, options);
+}
+
+ConvexHull convex_hull(const float* xyz, std::size_t count, const ConvexHullOptions& options) {
+  return checked_hull(count, array_coordinate(xyz), Precision::kFloat, options);
+}
+
+ConvexHull convex_hull(const double* xyz, std::size_t count, const ConvexHullOptions& options) {
+  return checked_hull(count, array_coordinate(xyz), Precision::kDouble, options);
+}
+
+BackendChoice backend_from_name(const std::string& name) {
+  if (name == "auto") return BackendChoice::kAuto;
+  if (name == "cpu") return BackendChoice::kCpu;
+  if (name == "cuda") return BackendChoice::kCuda;
+  throw std::invalid_argument("backend must be auto, cpu or cuda, not '" + name + "'");
+}
+
+EngineChoice engine_from_name(const std::string& name) {
+  if (name == "stepping") return EngineChoice::kStepping;
+  if (name == "resident") return EngineChoice::kResident;
+  throw std::invalid_argument("engine must be stepping or resident, not '" + name + "'");
+}
+
+Precision precision_from_name_strict(const std::string& name) {
+  if (name == "auto" || name == "float" || name == "double") return precision_from_name(name);
+  throw std::invalid_argument("precision must be auto, float or double, not '" + name + "'");
+}
+
+}  // namespace cudahull

@@ -1,0 +1,32 @@
+# The Python module (issue 16, python/) is built when the Python named by Python_EXECUTABLE has nanobind:
+# scripts/build names build-venv's (scripts/setup fills it), and `pip install .` sets CUDAHULL_PYTHON=ON.
+# A module is a shared object, so every library it links is then compiled as position-independent code.
+set(CUDAHULL_PYTHON AUTO CACHE STRING "Build the Python module: AUTO (when nanobind is found), ON or OFF")
+set(CUDAHULL_WITH_PYTHON OFF)
+if(NOT CUDAHULL_PYTHON STREQUAL "OFF")
+  if(CUDAHULL_SANITIZE)
+    # An ASan-instrumented module would need the sanitizer runtime preloaded into the interpreter.
+    message(STATUS "Python module: off in a sanitizer build")
+  else()
+    find_package(Python 3.9 COMPONENTS Interpreter Development.Module)
+    if(Python_FOUND)
+      execute_process(COMMAND "${Python_EXECUTABLE}" -m nanobind --cmake_dir
+                      OUTPUT_VARIABLE _nanobind_dir OUTPUT_STRIP_TRAILING_WHITESPACE
+                      RESULT_VARIABLE _nanobind_result ERROR_QUIET)
+      if(_nanobind_result EQUAL 0)
+        set(nanobind_ROOT "${_nanobind_dir}")
+        set(CUDAHULL_WITH_PYTHON ON)
+      endif()
+    endif()
+    if(NOT CUDAHULL_WITH_PYTHON)
+      if(CUDAHULL_PYTHON STREQUAL "ON")
+        message(FATAL_ERROR "CUDAHULL_PYTHON=ON, but ${Python_EXECUTABLE} has no nanobind (pip install nanobind)")
+      endif()
+      message(STATUS "Python module: off (no nanobind for ${Python_EXECUTABLE}; scripts/setup prepares build-venv)")
+    endif()
+  endif()
+endif()
+if(CUDAHULL_WITH_PYTHON)
+  message(STATUS "Python module: on (${Python_EXECUTABLE})")
+  set(CMAKE_POSITION_INDEPENDENT_CODE ON)
+endif()

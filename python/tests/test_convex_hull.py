@@ -1,0 +1,261 @@
+"""cudahull.ConvexHull against scipy.spatial.ConvexHull (Qhull) and against geometry known by construction."""
+
+import subprocess
+
+import numpy as np
+import pytest
+import scipy.spatial
+
+import cudahull
+
+CUBE = np.array([[x, y, z] for x in (0.0, 1.0) for y in (0.0, 1.0) for z in (0.0, 1.0)])
+
+
+def random_sets():
+    rng = np.random.default_rng(16)
+    sphere = rng.normal(size=(500, 3))
+    sphere /= np.linalg.norm(sphere, axis=1, keepdims=True)
+    return {
+        "gauss": rng.normal(size=(3000, 3)),
+        "cube": rng.uniform(-1, 1, size=(3000, 3)),
+        "sphere": sphere,  # every point a vertex
+        "ball_shifted": rng.uniform(-1, 1, size=(2000, 3)) * [1e3, 1, 1e-3] + [1e6, -5, 7],
+        "few": rng.normal(size=(12, 3)),
+    }
+
+
+RANDOM_SETS = random_sets()
+
+
+def oriented_triangles(simplices):
+    """Each triangle as its rotation starting at its smallest index (orientation kept), as a set."""
+    out = set()
+    for t in simplices.tolist():
+        k = t.index(min(t))
+        out.add(tuple(t[k:] + t[:k]))
+    return out
+
+
+def unordered_triangles(simplices):
+    return {tuple(sorted(t)) for t in simplices.tolist()}
+
+
+def assert_consistent(hull):
+    """Closed, consistently oriented, outward triangles; neighbours opposite their vertex; every point below
+    or on every plane; vertices exactly the corners used."""
+    s, n, eq = hull.simplices, hull.neighbors, hull.equations
+    assert s.dtype == np.int32 and n.dtype == np.int32 and s.shape == n.shape == (hull.nsimplex, 3)
+    assert eq.shape == (hull.nsimplex, 4)
+    assert np.array_equal(np.unique(s), hull.vertices)
+    directed = {}
+    for f, (a, b, c) in enumerate(s.tolist()):
+        for edge in ((a, b), (b, c), (c, a)):
+            assert edge not in directed, f"directed edge {edge} twice: not a consistently oriented 2-manifold"
+            directed[edge] = f
+    assert all((b, a) in directed for a, b in directed), "an edge with one face: not closed"
+    v, e, f = len(hull.vertices), len(directed) // 2, hull.nsimplex
+    assert v - e + f == 2
+    for f, tri in enumerate(s.tolist()):
+        for k in range(3):
+            g = n[f, k]
+            opposite_edge = {tri[(k + 1) % 3], tri[(k + 2) % 3]}
+            assert opposite_edge <= set(s[g].tolist()), f"neighbour {k} of face {f} does not share its edge"
+            assert tri[k] not in s[g]
+            # ... and g's neighbour opposite its third vertex is f.
+            third = [x for x in s[g].tolist() if x not in opposite_edge][0]
+            assert n[g, s[g].tolist().index(third)] == f
+    pts = hull.points.astype(np.float64)
+    a, b, c = pts[s[:, 0]], pts[s[:, 1]], pts[s[:, 2]]
+    # Counter-clockwise from outside: the corners' cross product points along the outward normal.
+    assert np.all(np.einsum("ij,ij->i", np.cross(b - a, c - a), eq[:, :3]) > 0)
+    assert np.allclose(np.linalg.norm(eq[:, :3], axis=1), 1, atol=1e-14)
+    scale = np.abs(pts).max()
+    heights = pts @ eq[:, :3].T + eq[:, 3]
+    assert heights.max() <= 1e-12 * scale, "a point above a face's plane"
+    centroid = pts[hull.vertices].mean(axis=0)
+    assert np.all(centroid @ eq[:, :3].T + eq[:, 3] < 0), "a plane facing inward"
+
+
+def test_unit_cube():
+    for dtype in (np.float64, np.float32):
+        hull = cudahull.ConvexHull(CUBE.astype(dtype), backend="cpu")
+        assert hull.volume == 1.0 and hull.area == 6.0
+        assert hull.vertices.tolist() == list(range(8)) and hull.vertices.dtype == np.int32
+        assert hull.nsimplex == 12 and hull.npoints == 8 and hull.ndim == 3 and hull.dimension == 3
+        assert hull.min_bound.tolist() == [0, 0, 0] and hull.max_bound.tolist() == [1, 1, 1]
+        assert hull.coplanar.shape == (0, 3) and hull.coplanar.dtype.kind == "i"
+        assert hull.good is None
+        assert_consistent(hull)
+
+
+@pytest.mark.parametrize("name", sorted(RANDOM_SETS))
+def test_random_sets_match_scipy(name):
+    points = RANDOM_SETS[name]
+    ours = cudahull.ConvexHull(points, backend="cpu")
+    theirs = scipy.spatial.ConvexHull(points)
+    assert ours.precision == "double"
+    assert np.array_equal(ours.vertices, theirs.vertices)
+    assert ours.volume == pytest.approx(theirs.volume, rel=1e-12)
+    assert ours.area == pytest.approx(theirs.area, rel=1e-12)
+    # General position: the same triangles (scipy's are not oriented, so compared as vertex sets).
+    assert unordered_triangles(ours.simplices) == unordered_triangles(theirs.simplices)
+    assert_consistent(ours)
+
+
+def test_float32_stays_float():
+    points = RANDOM_SETS["gauss"].astype(np.float32)
+    ours = cudahull.ConvexHull(points, backend="cpu")
+    assert ours.precision == "float" and ours.points.dtype == np.float32
+    # Qhull computes in double on the same values, widened exactly.
+    theirs = scipy.spatial.ConvexHull(points.astype(np.float64))
+    assert np.array_equal(ours.vertices, theirs.vertices)
+    assert ours.volume == pytest.approx(theirs.volume, rel=1e-12)
+    assert_consistent(ours)
+
+
+def test_double_is_exact_where_float_is_not():
+    # A point 1e-12 above the cube's top face is a vertex in double; rounded to float it lies on the face.
+    points = np.vstack([CUBE, [[0.5, 0.5, 1 + 1e-12]]])
+    in_double = cudahull.ConvexHull(points, backend="cpu")
+    in_float = cudahull.ConvexHull(points, backend="cpu", precision="float")
+    assert in_double.precision == "double" and 8 in in_double.vertices and len(in_double.vertices) == 9
+    assert in_float.precision == "float" and in_float.vertices.tolist() == list(range(8))
+    assert_consistent(in_double)
+
+
+def test_add_points_equals_one_run():
+    points = RANDOM_SETS["gauss"]
+    whole = cudahull.ConvexHull(points, backend="cpu")
+    for restart in (False, True):
+        growing = cudahull.ConvexHull(points[:1000], backend="cpu", incremental=True)
+        growing.add_points(points[1000:2000], restart=restart)
+        growing.add_points(points[2000:], restart=restart)
+        assert growing.npoints == whole.npoints and np.array_equal(growing.points, points)
+        assert np.array_equal(growing.vertices, whole.vertices)
+        assert oriented_triangles(growing.simplices) == oriented_triangles(whole.simplices)
+        assert growing.volume == pytest.approx(whole.volume, rel=1e-14)
+        assert_consistent(growing)
+    growing.close()
+    with pytest.raises(RuntimeError, match="closed"):
+        growing.add_points(points[:10])
+
+
+def test_add_points_to_flat_hull():
+    square = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0.5, 0.5, 0]], dtype=float)
+    hull = cudahull.ConvexHull(square, backend="cpu")
+    assert hull.dimension == 2
+    hull.add_points([[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]])
+    assert hull.dimension == 3 and hull.vertices.tolist() == [0, 1, 2, 3, 5, 6, 7, 8]
+    assert hull.volume == 1.0 and hull.area == 6.0
+
+
+def test_flat_input_gives_a_polygon():
+    rng = np.random.default_rng(3)
+    uv = rng.uniform(-1, 1, size=(400, 2))
+    # The plane z = 2x - 3y + 1: exact for these dyadic values.
+    uv = np.round(uv * 1024) / 1024
+    points = np.column_stack([uv, 2 * uv[:, 0] - 3 * uv[:, 1] + 1])
+    with pytest.raises(scipy.spatial.QhullError):
+        scipy.spatial.ConvexHull(points)  # QH6154: what cudahull answers instead
+    hull = cudahull.ConvexHull(points, backend="cpu")
+    flat = scipy.spatial.ConvexHull(uv)  # the oracle: the 2-D hull of the projection onto x, y
+    assert hull.dimension == 2
+    assert np.array_equal(hull.vertices, np.sort(flat.vertices))
+    assert sorted(hull.polygon.tolist()) == hull.vertices.tolist()
+    # The polygon goes round in order: the same cycle as Qhull's (either direction).
+    ring = hull.polygon.tolist()
+    start = ring.index(flat.vertices[0])
+    ring = ring[start:] + ring[:start]
+    assert ring == flat.vertices.tolist() or ring[:1] + ring[1:][::-1] == flat.vertices.tolist()
+    # Both sides of the polygon; its area in the plane is the projected area times |n| / |n_z|.
+    assert hull.area == pytest.approx(2 * flat.volume * np.sqrt(1 + 4 + 9), rel=1e-12)
+    assert hull.volume == 0 and hull.nsimplex == 0 and hull.simplices.shape == (0, 3)
+    assert hull.equations.shape == (0, 4)
+
+
+def test_collinear_input_gives_a_segment():
+    t = np.random.default_rng(5).permutation(np.arange(-50, 50)) / 8.0
+    points = np.column_stack([t, 2 * t + 1, -t])
+    hull = cudahull.ConvexHull(points, backend="cpu")
+    assert hull.dimension == 1
+    assert hull.vertices.tolist() == sorted([int(np.argmin(t)), int(np.argmax(t))])
+    assert hull.volume == 0 and hull.area == 0 and hull.nsimplex == 0
+
+
+def test_duplicates_keep_the_lowest_index():
+    rng = np.random.default_rng(9)
+    inside = rng.uniform(0.1, 0.9, size=(200, 3))
+    points = np.vstack([inside, CUBE, CUBE[::-1], inside[:10]])  # every corner twice
+    hull = cudahull.ConvexHull(points, backend="cpu")
+    assert hull.vertices.tolist() == list(range(200, 208))
+    assert hull.volume == 1.0 and hull.area == 6.0
+    assert_consistent(hull)
+    same = cudahull.ConvexHull(np.repeat([[1.5, -2.0, 3.0]], 5, axis=0), backend="cpu")
+    assert same.dimension == 0 and same.vertices.tolist() == [0]
+
+
+@pytest.mark.parametrize("count", [0, 1, 2, 3, 4])
+def test_fewer_than_four_points(count):
+    points = np.array([[0, 0, 0], [2, 0, 0], [0, 3, 0], [0, 0, 4]], dtype=float)[:count]
+    hull = cudahull.ConvexHull(points, backend="cpu")
+    assert hull.dimension == count - 1
+    assert hull.vertices.tolist() == list(range(count))
+    if count == 4:
+        assert hull.volume == 4.0 and hull.nsimplex == 4  # 2 * 3 * 4 / 6
+        assert_consistent(hull)
+    else:
+        assert hull.volume == 0 and hull.nsimplex == 0
+    if count == 3:
+        assert hull.area == 2 * 3.0  # both sides of the triangle of area 3
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_non_finite_input_is_a_value_error(bad):
+    points = np.array(RANDOM_SETS["few"])
+    points[3, 1] = bad
+    with pytest.raises(ValueError, match=r"^point 3: y coordinate .* is not finite$"):
+        cudahull.ConvexHull(points)
+    with pytest.raises(ValueError, match="point 3"):
+        cudahull.ConvexHull(points.astype(np.float32))
+
+
+def test_other_bad_input():
+    with pytest.raises(ValueError, match=r"\(n, 3\)"):
+        cudahull.ConvexHull(np.zeros((5, 2)))
+    with pytest.raises(ValueError, match="outside the range of exact double arithmetic"):
+        cudahull.ConvexHull(np.vstack([CUBE, [[1e300, 0, 0]]]))
+    with pytest.raises(ValueError, match="does not fit in float"):
+        cudahull.ConvexHull(np.vstack([CUBE, [[1e39, 0, 0]]]), precision="float")
+    with pytest.raises(ValueError, match="precision must be auto, float or double, not 'half'"):
+        cudahull.ConvexHull(CUBE, precision="half")
+    with pytest.raises(ValueError, match="backend must be auto, cpu or cuda"):
+        cudahull.ConvexHull(CUBE, backend="gpu")
+
+
+def gpu_present():
+    try:
+        return subprocess.run(["nvidia-smi", "-L"], capture_output=True).returncode == 0
+    except FileNotFoundError:
+        return False
+
+
+def test_cuda_backend_request():
+    points = RANDOM_SETS["gauss"]
+    if gpu_present():
+        on_gpu = cudahull.ConvexHull(points, backend="cuda")
+        assert on_gpu.backend.startswith("cuda")
+        assert np.array_equal(on_gpu.vertices, cudahull.ConvexHull(points, backend="cpu").vertices)
+    else:
+        with pytest.raises(cudahull.DeviceError, match="^backend cuda: no usable CUDA device: "):
+            cudahull.ConvexHull(points, backend="cuda")
+        assert issubclass(cudahull.DeviceError, RuntimeError)
+        assert cudahull.ConvexHull(points).backend.startswith("cpu")  # auto falls back
+
+
+def test_resident_engine_gives_the_same_hull():
+    points = RANDOM_SETS["gauss"]
+    resident = cudahull.convex_hull(points, backend="cpu", engine="resident")
+    stepping = cudahull.convex_hull(points, backend="cpu")
+    assert resident["backend"] == "cpu-resident"
+    assert np.array_equal(resident["vertices"], stepping["vertices"])
+    assert resident["volume"] == pytest.approx(stepping["volume"], rel=1e-14)

@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# The installed C++ package as a user gets it: `cmake --install` of BUILD_DIR into a temporary prefix, then
+# examples/consumer configured against that prefix alone (find_package(cudahull)), built and run.  The
+# example's hull is a unit cube's: its output must name the 8 corners (input indices 1000-1007), volume 1 and
+# area 6 exactly (every term of the sums is exact for these coordinates).
+set -euo pipefail
+build_dir=$1
+source_dir=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cmake --install "$build_dir" --prefix "$work/prefix" --component library >/dev/null
+cmake -S "$source_dir/examples/consumer" -B "$work/build" -G Ninja -DCMAKE_PREFIX_PATH="$work/prefix" \
+  -DCMAKE_FIND_USE_PACKAGE_REGISTRY=OFF >/dev/null
+cmake --build "$work/build" >/dev/null
+output=$("$work/build/cube_hull")
+echo "$output"
+expected="dimension 3, 8 vertices, 12 faces, volume 1, area 6
+vertices: 1000 1001 1002 1003 1004 1005 1006 1007
+engine: "
+if [[ "$output" != "$expected"* ]] || ! grep -q "^engine: [0-9]* iterations, 8 vertices$" <<<"$output"; then
+  echo "install test: unexpected output from the example (expected the unit cube's 8 corners, volume 1, area 6)" >&2
+  exit 1
+fi
+echo "install test: the installed package builds and runs the example"
