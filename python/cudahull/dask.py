@@ -1,0 +1,54 @@
+"""The hull of a Dask array of points: each chunk's hull on its worker (on its GPU with backend "auto" where
+the worker has one), then the hull of the chunk hulls' vertices.
+
+It is exact: the hull of a union is the hull of its parts' hull vertices, and a point that is not a vertex
+of its chunk's hull is not one of the whole.  The candidates go in ascending input order, so that among
+duplicate points the lowest index stays the vertex, as in a one-shot hull.
+"""
+
+import dask
+import dask.array
+import numpy as np
+
+from . import _as_points, _cudahull
+
+__all__ = ["convex_hull"]
+
+
+def _chunk_vertices(block, offset, backend, precision, engine):
+    """One chunk's hull vertices: their indices in the whole array and their coordinates."""
+    points = _as_points(block)
+    vertices = _cudahull.convex_hull(points, backend, precision, engine)["vertices"]
+    return vertices.astype(np.int64) + offset, points[vertices]
+
+
+def _hull_of_candidates(parts, backend, precision, engine):
+    indices = np.concatenate([part[0] for part in parts])
+    points = np.ascontiguousarray(np.concatenate([part[1] for part in parts]))
+    result = _cudahull.convex_hull(points, backend, precision, engine)
+    for key in ("vertices", "simplices", "polygon"):
+        result[key] = indices[result[key].astype(np.int64)]
+    result["vertex_points"] = points[np.searchsorted(indices, result["vertices"])]
+    result["candidates"] = len(indices)
+    return result
+
+
+def convex_hull(array, backend="auto", precision="auto", engine="stepping"):
+    """The exact hull of an (n, 3) Dask array, computed with the current Dask scheduler (a
+    ``distributed.Client`` when one is active).
+
+    Returns a dict as ``cudahull.convex_hull`` does, with indices into the whole array (int64), plus
+    ``vertex_points`` (the vertices' coordinates, in the order of ``vertices``) and ``candidates`` (how
+    many chunk-hull vertices the last hull was computed on).
+    """
+    array = dask.array.asarray(array)
+    if array.ndim != 2 or array.shape[1] != 3:
+        raise ValueError(f"points must be an (n, 3) array of 3-D points, not one of shape {array.shape}")
+    if array.numblocks[1] != 1:
+        array = array.rechunk({1: 3})  # each chunk holds whole points
+    offsets = np.concatenate([[0], np.cumsum(array.chunks[0])[:-1]]).astype(np.int64)
+    parts = [
+        dask.delayed(_chunk_vertices)(block, int(offset), backend, precision, engine)
+        for block, offset in zip(array.to_delayed()[:, 0], offsets)
+    ]
+    return dask.delayed(_hull_of_candidates)(parts, backend, precision, engine).compute()
