@@ -370,6 +370,7 @@ int bench_in(const BenchOptions& o) {
   std::vector<double> total, host, dev, upload;
   BasicHullMesh<Point> hull;
   std::uint64_t host_syncs = 0, bytes_from_device = 0, device_bytes_peak = 0;
+  ResidentStats resident_stats;  // the last run's
   for (int r = 0; r < o.repeat && o.engine == "resident"; ++r) {
     // The resident engine: uploaded once per run, the upload listed apart (as below).
     ResidentRun<Point> run = run_resident(points, o.backend, o.json || r > 0);
@@ -383,6 +384,7 @@ int bench_in(const BenchOptions& o) {
     host_syncs = run.stats.host_syncs;
     bytes_from_device = run.stats.bytes_from_device;
     device_bytes_peak = run.stats.device_bytes_peak;
+    resident_stats = run.stats;
     hull = std::move(run.hull);
   }
   for (int r = 0; r < o.repeat && o.engine != "resident"; ++r) {
@@ -429,6 +431,22 @@ int bench_in(const BenchOptions& o) {
   if (o.engine == "resident") {
     j["host_syncs"] = host_syncs;
     j["device_bytes_peak"] = device_bytes_peak;
+    // Where the last run's time went, for profiling: host-clock laps (on the GPU the phases are queued
+    // without a wait between them, so a lap is where the host waited), and the device clock inside the
+    // rounds (finding and claiming, judging, numbering, applying).
+    const ResidentStats& s = resident_stats;
+    j["resident"] = {{"iterations", s.iterations},
+                     {"refined_faces", s.refined_faces},
+                     {"rounds", s.rounds},
+                     {"edits", s.edits},
+                     {"work_items", s.work_items},
+                     {"exact_finish", s.exact_finish},
+                     {"setup_ms", s.setup_ms},
+                     {"refine_ms", s.refine_ms},
+                     {"rounds_ms", s.rounds_ms},
+                     {"route_ms", s.route_ms},
+                     {"finish_ms", s.finish_ms},
+                     {"round_phase_ms", std::vector<double>(s.round_phase_ms, s.round_phase_ms + 4)}};
   }
   double qhull_ms = 0;
   bool same = false;

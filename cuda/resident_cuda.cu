@@ -1,11 +1,12 @@
 // The resident engine's device executor: the operations of engine/src/resident/resident_ops.hpp as
 // kernels, one thread per face or point; prefix sums from CUB.  A prefix sum brings its total back (4
-// bytes, one wait) where the host sizes the next step by it (exclusive_scan), or leaves it on the device
-// to be read with others (exclusive_scan_to).
+// bytes, one wait) where the host sizes the next step by it (exclusive_scan), or not at all (scan: the
+// operation after it writes the total into the state, which the host reads once an iteration).
 #include <cuda_runtime.h>
 
 #include <cooperative_groups.h>
 
+#include <cstdlib>
 #include <cub/block/block_scan.cuh>
 #include <cub/device/device_scan.cuh>
 #include <string>
@@ -138,16 +139,39 @@ __device__ inline u64 now_ns() {
 //   3. number: the blocks' counts, prefix-summed by block 0
 //   4. apply:  each winner, numbered in face order (block offset, then bits in order) as the stepped
 //              rounds' prefix sum numbers them, applies (Apply)
+// A launch of one block (a mesh of a few thousand faces) waits at __syncthreads() instead of the grid
+// barrier, which costs microseconds a round.
 template <class Point>
 __global__ void __launch_bounds__(kBlock)
     fused_rounds_kernel(FindCandidate<Point> find, u64* claim, u32* look, Candidate* cands, u32* list,
-                        u32* win_mask, u32* block_offset, RoundsState* st) {
+                        u32* win_mask, u32* block_offset, RoundsState* st, RoundsLaunch launch) {
   namespace cg = cooperative_groups;
   cg::grid_group grid = cg::this_grid();
+  const bool one_block = gridDim.x == 1;
+  auto barrier = [&] {
+    if (one_block) {
+      __syncthreads();
+    } else {
+      grid.sync();
+    }
+  };
   using Scan = cub::BlockScan<u32, kBlock>;
   __shared__ typename Scan::TempStorage scan_storage;
   const u32 threads = gridDim.x * blockDim.x, tid = blockIdx.x * blockDim.x + threadIdx.x;
   const u32 lane = threadIdx.x & 31, below = (1u << lane) - 1;
+  // The iteration's counts from the refinement's, or those the last launch stopped at.
+  if (tid == 0) {
+    if (launch.begin) {
+      st->fresh_from = launch.fresh_from;
+      st->faces = launch.fresh_from + 3 * st->refined;
+      st->entries = st->refined;
+    }
+    st->face_capacity = launch.face_capacity;
+    st->entry_capacity = launch.entry_capacity;
+    st->overflow = 0;
+    st->round_work = 0;  // a launch that overflowed left its count
+  }
+  barrier();
   u64 t0 = tid == 0 ? now_ns() : 0;
   // Thread 0 times each phase up to the barrier after it (so the slowest block's time).
   auto stamp = [&](int phase) {
@@ -170,7 +194,7 @@ __global__ void __launch_bounds__(kBlock)
       at = __shfl_sync(0xffffffffu, at, 0);
       if (mask & (1u << lane)) list[at + __popc(mask & below)] = f;
     }
-    grid.sync();
+    barrier();
     const u32 round_work = st->round_work;
     if (round_work == 0) return;
     // Room for the round, before it changes anything (a winner is a work face: two new faces, one entry
@@ -186,13 +210,13 @@ __global__ void __launch_bounds__(kBlock)
     const FixLinks<Point> fixer{find.m, nullptr};
     for (u32 i = tid; i < round_work; i += threads)
       fixer.fix(list[i]);
-    grid.sync();
+    barrier();
     const Claim<Point> claimer{find, nullptr, round, claim, look, nullptr};
     for (u32 i = tid; i < round_work; i += threads) {
       const u32 f = list[i];
       claimer.claim_for(f, cands[f]);
     }
-    grid.sync();
+    barrier();
     stamp(0);
 
     // 2. Who holds all its claims: a bit per face of the block's tile (a multiple of 256 faces).
@@ -213,7 +237,7 @@ __global__ void __launch_bounds__(kBlock)
     u32 ignored = 0, block_sum = 0;
     Scan(scan_storage).ExclusiveSum(count, ignored, block_sum);
     if (threadIdx.x == 0) block_offset[blockIdx.x] = block_sum;
-    grid.sync();
+    barrier();
     stamp(1);
 
     // 3. The blocks' offsets.
@@ -230,7 +254,7 @@ __global__ void __launch_bounds__(kBlock)
       }
       if (threadIdx.x == 0) st->round_winners = carry;
     }
-    grid.sync();
+    barrier();
     stamp(2);
     const u32 winners = st->round_winners;
     if (winners == 0) {
@@ -266,7 +290,7 @@ __global__ void __launch_bounds__(kBlock)
       }
       carry += sum;
     }
-    grid.sync();
+    barrier();
     stamp(3);
     if (tid == 0) {
       st->fresh_from = faces;
@@ -278,11 +302,18 @@ __global__ void __launch_bounds__(kBlock)
       st->work_items += round_work;
       st->round_work = 0;
     }
-    grid.sync();
+    barrier();
   }
 }
 
 }  // namespace
+
+// Meshes of up to this many faces run their rounds in one block (CUDAHULL_ONE_BLOCK_FACES overrides
+// it, for tuning).
+std::size_t one_block_faces() {
+  const char* env = std::getenv("CUDAHULL_ONE_BLOCK_FACES");
+  return env ? std::strtoull(env, nullptr, 10) : 4096;
+}
 
 struct CudaExec {
   static constexpr bool kFusedRounds = true;  // fused_rounds_kernel loops the rounds on the device
@@ -357,18 +388,13 @@ struct CudaExec {
     read(&out, scalar64_.data(), 1);
     return out;
   }
-  // The same, the total left on the device in *total (no wait).
-  void exclusive_scan_to(const u32* in, u32* out, std::size_t n, u32* total) {
-    if (n == 0) {
-      fill(total, 1, u32{0});
-      return;
-    }
+  // The same, the total not brought back.
+  void scan(const u32* in, u32* out, std::size_t n) {
+    if (n == 0) return;
     std::size_t bytes = 0;
     check(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, static_cast<int>(n)), "sizing a scan");
     scratch_.grow(bytes);
     check(cub::DeviceScan::ExclusiveSum(scratch_.data(), bytes, in, out, static_cast<int>(n)), "a scan");
-    scan_total_kernel<<<1, 1>>>(in, out, n, total);
-    check(cudaGetLastError(), "launching a scan total");
   }
   u32 exclusive_scan(const u32* in, u32* out, std::size_t n) {
     if (n == 0) return 0;
@@ -407,10 +433,10 @@ struct CudaExec {
     read(to, from, n);
   }
 
-  // The rounds of an iteration in one cooperative launch; `state` in and out (one read-back).
+  // The rounds of an iteration in one cooperative launch; the state stays on the device (no wait).
   template <class Point>
   void fused_rounds(const FindCandidate<Point>& find, u64* claim, u32* look, Candidate* cands, u32* won,
-                    RoundsState& state) {
+                    RoundsState* st, RoundsLaunch launch) {
     auto* kernel = fused_rounds_kernel<Point>;
     if (cooperative_blocks_ == 0) {
       int device = 0, sms = 0, per_sm = 0;
@@ -419,22 +445,28 @@ struct CudaExec {
       check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, kernel, kBlock, 0), "the occupancy");
       cooperative_blocks_ = static_cast<unsigned>(std::max(1, sms * per_sm));
     }
-    // A thread per face up to what fits at once: a grid barrier costs more the more blocks wait at it.
-    const unsigned blocks = std::max(1u, std::min(cooperative_blocks_, blocks_for(state.faces)));
+    // A thread per face up to what fits at once, and one block for a small mesh: a grid barrier costs
+    // more the more blocks wait at it.  The count is on the device; the driver leaves room for twice the
+    // faces there may be.
+    const std::size_t capacity = launch.face_capacity, faces = capacity / 2;
+    const unsigned blocks =
+        faces <= one_block_faces_ ? 1u : std::max(1u, std::min(cooperative_blocks_, blocks_for(faces)));
     block_offset_.grow(blocks);
     // One bit per face of every block's tile (the tiles cover the capacity, each a multiple of 256).
-    win_mask_.grow((static_cast<std::size_t>(state.face_capacity) / blocks + kBlock) * blocks / 32 + 8);
-    rounds_state_.grow(1);
-    check(cudaMemcpy(rounds_state_.data(), &state, sizeof state, cudaMemcpyHostToDevice), "the round state");
-    bytes_to_device += sizeof state;
-    RoundsState* st = rounds_state_.data();
+    win_mask_.grow((capacity / blocks + kBlock) * blocks / 32 + 8);
     u32* offsets = block_offset_.data();
     u32* masks = win_mask_.data();
-    void* args[] = {
-        const_cast<FindCandidate<Point>*>(&find), &claim, &look, &cands, &won, &masks, &offsets, &st};
+    void* args[] = {const_cast<FindCandidate<Point>*>(&find),
+                    &claim,
+                    &look,
+                    &cands,
+                    &won,
+                    &masks,
+                    &offsets,
+                    &st,
+                    &launch};
     check(cudaLaunchCooperativeKernel(reinterpret_cast<void*>(kernel), blocks, kBlock, args, 0, nullptr),
           "launching the rounds");
-    read(&state, rounds_state_.data(), 1);
   }
 
   std::uint64_t host_syncs = 0, bytes_to_device = 0, bytes_from_device = 0;
@@ -450,8 +482,8 @@ struct CudaExec {
   Buffer<u32> scalar32_;
   Buffer<unsigned char> scratch_;
   Buffer<u32> block_offset_, win_mask_;
-  Buffer<RoundsState> rounds_state_;
   unsigned cooperative_blocks_ = 0;
+  std::size_t one_block_faces_ = one_block_faces();
 };
 
 }  // namespace resident

@@ -31,6 +31,15 @@ void expect_exact(const std::vector<Point>& points, const std::string& what,
     const CheckResult check = check_hull(points, hull, 3);
     EXPECT_TRUE(check.ok) << what << ": " << (check.failures.empty() ? "" : check.failures.front());
   }
+  // Stepped the GPU's way (the counts in the executor's state, the rounds looped as the fused kernel loops
+  // them), the same mesh, edit for edit.
+  ResidentStats fused_stats;
+  const BasicHullMesh<Point> fused = resident_hull_host(points, &fused_stats, ResidentRounds::kFused);
+  EXPECT_EQ(fused.vertex_ids, hull.vertex_ids) << what << " (fused)";
+  EXPECT_TRUE(fused.triangles == hull.triangles) << what << " (fused)";
+  EXPECT_EQ(fused_stats.rounds, stats.rounds) << what << " (fused)";
+  EXPECT_EQ(fused_stats.edits, stats.edits) << what << " (fused)";
+  EXPECT_EQ(fused_stats.iterations, stats.iterations) << what << " (fused)";
   if (stats_out) *stats_out = stats;
 }
 

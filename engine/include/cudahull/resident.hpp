@@ -33,9 +33,15 @@ struct ResidentStats {
   double round_phase_ms[4] = {0, 0, 0, 0};
 };
 
+// How the host executor steps an iteration: kStepped, each round sized by the counts of the last (the
+// reference); kFused, as the GPU does (the counts stay in the executor's state, read once an iteration,
+// the rounds looped as one launch loops them).  Both give the same mesh; the tests compare them.
+enum class ResidentRounds { kStepped, kFused };
+
 // The exact hull (vertices are exactly the strictly extreme points), computed by the resident engine's
 // operations on the host.  Point3 or Point3d.
 template <class Point>
-BasicHullMesh<Point> resident_hull_host(const std::vector<Point>& points, ResidentStats* stats = nullptr);
+BasicHullMesh<Point> resident_hull_host(const std::vector<Point>& points, ResidentStats* stats = nullptr,
+                                        ResidentRounds rounds = ResidentRounds::kStepped);
 
 }  // namespace cudahull

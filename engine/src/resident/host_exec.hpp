@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "resident/resident_ops.hpp"
+
 namespace cudahull::resident {
 
 struct HostExec {
@@ -55,9 +57,9 @@ struct HostExec {
     ++host_syncs;
     return sum;
   }
-  // The same, the total written to *total where the executor computes (no wait for it).
-  void exclusive_scan_to(const std::uint32_t* in, std::uint32_t* out, std::size_t n, std::uint32_t* total) {
-    *total = exclusive_scan(in, out, n);
+  // The same, the total not wanted (an operation after it writes what it needs of it).
+  void scan(const std::uint32_t* in, std::uint32_t* out, std::size_t n) {
+    exclusive_scan(in, out, n);
     --host_syncs;
   }
   // The indices i with flags[i] != 0, in order, into list; returns how many (rank is scratch).
@@ -88,6 +90,67 @@ struct HostExec {
   }
 
   std::uint64_t host_syncs = 0, bytes_to_device = 0, bytes_from_device = 0;
+};
+
+// The host executor running the driver's fused path: the iteration with its counts in the state
+// (RoundsState) and one read at its end, and the rounds looped as cuda/resident_cuda.cu's
+// fused_rounds_kernel loops them (work listed, room checked before anything changes, links fixed, claims,
+// every claim judged before any winner applies, winners numbered in face order).  The CPU tests compare its
+// mesh with the stepped rounds' (HostExec) and so check the driver's device path without a GPU.
+struct FusedHostExec : HostExec {
+  static constexpr bool kFusedRounds = true;
+
+  template <class Point>
+  void fused_rounds(const FindCandidate<Point>& find, u64* claim, u32* look, Candidate* cands, u32* list,
+                    RoundsState* st, RoundsLaunch launch) {
+    if (launch.begin) {
+      st->fresh_from = launch.fresh_from;
+      st->faces = launch.fresh_from + 3 * st->refined;
+      st->entries = st->refined;
+    }
+    st->face_capacity = launch.face_capacity;
+    st->entry_capacity = launch.entry_capacity;
+    st->overflow = 0;
+    std::vector<u32> winners;
+    while (true) {
+      const u32 faces = st->faces, fresh = st->fresh_from, entries = st->entries, round = st->round + 1;
+      const MarkWork<Point> work_rule{find.m, look, fresh, round, nullptr};
+      u32 work = 0;
+      for (u32 f = 0; f < faces; ++f) {
+        if (work_rule.is_work(f)) list[work++] = f;
+      }
+      if (work == 0) return;
+      if (faces + 2 * work > st->face_capacity || entries + work > st->entry_capacity) {
+        st->overflow = 1;
+        st->needed_faces = faces + 2 * work;
+        st->needed_entries = entries + work;
+        return;
+      }
+      const FixLinks<Point> fixer{find.m, nullptr};
+      for (u32 i = 0; i < work; ++i)
+        fixer.fix(list[i]);
+      const Claim<Point> claimer{find, nullptr, round, claim, look, nullptr};
+      for (u32 i = 0; i < work; ++i)
+        claimer.claim_for(list[i], cands[list[i]]);
+      const Won judge{round, claim, nullptr, nullptr};
+      winners.clear();
+      for (u32 f = 0; f < faces; ++f) {
+        if (look[f] == round + 1 && judge.holds(cands[f])) winners.push_back(f);
+      }
+      ++st->rounds;
+      st->work_items += work;
+      st->round = round;
+      if (winners.empty()) return;
+      const Apply<Point> applier{find.m, nullptr, nullptr, nullptr, faces, entries, look, round};
+      for (u32 r = 0; r < winners.size(); ++r)
+        applier.apply(cands[winners[r]], r);
+      const u32 won = static_cast<u32>(winners.size());
+      st->fresh_from = faces;
+      st->faces = faces + 2 * won;
+      st->entries = entries + won;
+      st->edits += won;
+    }
+  }
 };
 
 }  // namespace cudahull::resident

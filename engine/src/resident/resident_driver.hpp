@@ -164,16 +164,24 @@ class ResidentHull {
     exec_.upload(fv_.data(), fv.data(), 12);
     exec_.upload(fn_.data(), fn.data(), 12);
     exec_.fill(killer_.data(), 4, kAlive);
-    exec_.fill(look_.data(), 4, u32{0});
+    state_.grow(1);
+    const RoundsState zero{};
+    exec_.upload(state_.data(), &zero, 1);
     for (auto* b : {&index_[0], &index_[1], &face_of_[0], &face_of_[1], &keep_, &point_rank_})
       b->grow(n);
     exec_.for_each(n, AssignFirst<Point>{view(), index_[0].data(), face_of_[0].data(), keep_.data()});
     active_ = n;
-    compact();
+    compact(faces_);
     stats.setup_ms = lap();
 
     while (active_ > 0) {
-      if (!iterate(stats)) return exact_finish(stats, "stalled: no face could refine");
+      bool refined = false;
+      if constexpr (Exec::kFusedRounds) {
+        refined = iterate_fused(stats);
+      } else {
+        refined = iterate(stats);
+      }
+      if (!refined) return exact_finish(stats, "stalled: no face could refine");
       ++stats.iterations;
     }
     lap();
@@ -204,6 +212,7 @@ class ResidentHull {
     fn_.grow(3 * capacity_, 3 * faces_);
     killer_.grow(capacity_, faces_);
     look_.grow(capacity_, faces_);
+    extreme_.grow(capacity_, marks_in_use_);
     claim_.grow(capacity_, old);
     exec_.fill(claim_.data() + old, capacity_ - old, u64{0});
     for (auto* b : {&fv_out_, &fn_out_})
@@ -222,74 +231,134 @@ class ResidentHull {
   }
 
   // One iteration; false when no face could refine.
-  bool iterate(ResidentStats& stats) {
-    // The furthest point per face, then refinement (Fig. 3a).
-    extreme_.grow(capacity_);
-    exec_.fill(extreme_.data(), faces_, u64{0});
+  // The furthest point per face (extreme_ is zero), and the faces that refine (flags_).
+  void mark_refined() {
     exec_.segmented_max(
         active_, FurthestPerFace<Point>{view(), index_[0].data(), face_of_[0].data(), extreme_.data()});
     exec_.for_each(faces_, MarkRefined<Point>{view(), extreme_.data(), flags_.data()});
-    const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
     marks_in_use_ = faces_;
+  }
+  // Refinement (Fig. 3a) of the marked faces, their children from face `faces_` on; the count of refined
+  // faces goes to the state where the executor computes.
+  void split() {
+    exec_.for_each(faces_, SplitFaces<Point>{view(), extreme_.data(), flags_.data(), face_rank_.data(),
+                                             static_cast<u32>(faces_), 0, look_.data(), round_ + 1,
+                                             &state_.data()->refined});
+    marks_in_use_ = 0;
+  }
+  // Algorithm 2: every kept point to its face after the iteration's edits.
+  void route() {
+    exec_.for_each(active_, RoutePoints<Point>{view(), index_[0].data(), face_of_[0].data(), keep_.data()});
+  }
+
+  // One iteration, the host stepping the rounds (HostExec); false when no face could refine.
+  bool iterate(ResidentStats& stats) {
+    mark_refined();
+    const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
     if (refined == 0) return false;
     stats.refined_faces += refined;
     const std::size_t first = faces_;
     grow_faces(faces_ + 3 * std::size_t{refined});
     grow_entries(refined);
-    exec_.for_each(faces_, SplitFaces<Point>{view(), extreme_.data(), flags_.data(), face_rank_.data(),
-                                             static_cast<u32>(first), 0, look_.data(), round_ + 1});
-    marks_in_use_ = 0;
+    split();
     faces_ += 3 * std::size_t{refined};
     entries_used_ = refined;
-    exec_.fill(look_.data() + first, faces_ - first, u32{0});
     stats.refine_ms += lap();
 
     // Flip and flop rounds until no candidate is left (Figs. 3b, 4, 5).
-    if constexpr (Exec::kFusedRounds) {
-      fused_rounds(stats, first);
-    } else {
-      stepped_rounds(stats, first);
-    }
+    stepped_rounds(stats, first);
     stats.rounds_ms += lap();
 
-    // Algorithm 2: every kept point to its new face; then compaction.
-    exec_.for_each(active_, RoutePoints<Point>{view(), index_[0].data(), face_of_[0].data(), keep_.data()});
-    compact();
+    route();
+    compact(faces_);
     stats.route_ms += lap();
     return true;
   }
 
-  // The rounds on an executor that loops them itself (one launch, no wait per round), growing the buffers
-  // whenever a round would not fit.  The same rounds, claims and numbering as stepped_rounds().
-  void fused_rounds(ResidentStats& stats, std::size_t fresh_from) {
+  // One iteration on an executor that loops the rounds itself (CudaExec), with one wait: the counts the
+  // steps need stay where the executor computes (state_), and the host reads them once, after the
+  // compaction.  A small mesh (up to kSpeculateFaces) is sized for every face refining, so that the
+  // host need not wait for the refined count; a larger one waits for it and stays tight in memory.
+  // False when no face could refine.
+  static constexpr std::size_t kSpeculateFaces = std::size_t{1} << 18;
+  bool iterate_fused(ResidentStats& stats) {
+    mark_refined();
+    const std::size_t first = faces_;
+    std::size_t bound = 4 * faces_, entry_bound = faces_;
+    if (bound <= kSpeculateFaces) {
+      exec_.scan(flags_.data(), face_rank_.data(), faces_);
+    } else {
+      const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
+      if (refined == 0) return false;
+      bound = faces_ + 3 * std::size_t{refined};
+      entry_bound = refined;
+    }
+    // Everything grows before the split: the faces in use are then more than the host knows to keep.
+    grow_for_rounds(bound, entry_bound);
+    split();
+    stats.refine_ms += lap();
+
+    // Flip and flop rounds until no candidate is left (Figs. 3b, 4, 5), the refined count taken from the
+    // state; then the routing and the compaction.  A run of rounds that stopped short of room (overflow)
+    // leaves the routing harmless (a point's route from its face through the entries goes on from where it
+    // stopped) and the compaction's output unused: the host grows the buffers and goes on with the rounds.
+    RoundsState state{};
+    bool begin = true;
     while (true) {
-      // A round kills two faces per winner at least and makes two: room for as many faces again.
-      grow_faces(2 * faces_ + 64);
-      grow_entries(entries_used_ + faces_ + 64);
-      cands_.grow(capacity_);
-      won_.grow(capacity_);
-      RoundsState state{};
-      state.faces = static_cast<u32>(faces_);
-      state.fresh_from = static_cast<u32>(fresh_from);
-      state.entries = static_cast<u32>(entries_used_);
-      state.round = round_;
-      state.face_capacity = static_cast<u32>(capacity_);
-      state.entry_capacity = static_cast<u32>(entry_capacity_);
-      exec_.fused_rounds(FindCandidate<Point>{view()}, claim_.data(), look_.data(), cands_.data(),
-                         won_.data(), state);
+      const std::size_t face_bound = fused_rounds(first, begin);
+      begin = false;
+      stats.rounds_ms += lap();
+      route();
+      compact_launch(face_bound, &state_.data()->faces);
+      exec_.download(&state, state_.data(), 1);
+      stats.route_ms += lap();
+      if (!state.overflow) break;
+      // Back to the mesh of the rounds: the compaction wrote into the spare buffers.
+      fv_.swap(fv_out_);
+      fn_.swap(fn_out_);
+      index_[0].swap(index_[1]);
+      face_of_[0].swap(face_of_[1]);
       faces_ = state.faces;
-      fresh_from = state.fresh_from;
       entries_used_ = state.entries;
-      round_ = state.round;
-      stats.rounds += state.rounds;
-      stats.edits += state.edits;
-      stats.work_items += state.work_items;
-      for (int k = 0; k < 4; ++k)
-        stats.round_phase_ms[k] += static_cast<double>(state.phase_ns[k]) * 1e-6;
-      if (!state.overflow) return;
       grow_faces(state.needed_faces);
       grow_entries(state.needed_entries);
+      grow_for_rounds(faces_, entries_used_);
     }
+    stats.refined_faces += state.refined;
+    round_ = state.round;
+    stats.rounds = state.rounds;
+    stats.edits = state.edits;
+    stats.work_items = state.work_items;
+    for (int k = 0; k < 4; ++k)
+      stats.round_phase_ms[k] = static_cast<double>(state.phase_ns[k]) * 1e-6;
+    faces_ = state.live_faces;
+    active_ = state.kept_points;
+    exec_.for_each(faces_, ResetFaces{killer_.data(), look_.data(), extreme_.data()});
+    return state.refined != 0;
+  }
+
+  // Room for a run of fused rounds from at most `faces` faces and `entries` entries in use: a round kills
+  // two faces per winner at least and makes two, so room for as many faces again.
+  void grow_for_rounds(std::size_t faces, std::size_t entries) {
+    grow_faces(2 * faces + 64);
+    grow_entries(entries + faces + 64);
+    cands_.grow(capacity_);
+    won_.grow(capacity_);
+  }
+
+  // The rounds on an executor that loops them itself (one launch, no wait per round): the same rounds,
+  // claims and numbering as stepped_rounds().  `begin`: the first launch of the iteration (its faces and
+  // entries from the refined count in the state); otherwise it goes on after an overflow.  Returns a
+  // bound of the face ids in use after it.
+  std::size_t fused_rounds(std::size_t fresh_from, bool begin) {
+    RoundsLaunch launch{};
+    launch.begin = begin ? 1u : 0u;
+    launch.fresh_from = static_cast<u32>(fresh_from);
+    launch.face_capacity = static_cast<u32>(capacity_);
+    launch.entry_capacity = static_cast<u32>(entry_capacity_);
+    exec_.fused_rounds(FindCandidate<Point>{view()}, claim_.data(), look_.data(), cands_.data(), won_.data(),
+                       state_.data(), launch);
+    return capacity_;
   }
 
   // The rounds one step at a time, the host sizing each by the counts of the last.
@@ -328,27 +397,36 @@ class ResidentHull {
     }
   }
 
-  // Live faces renumbered 0..F-1; kept points compacted, their faces renumbered.
-  void compact() {
-    // Both counts come back in one read at the end.
-    counts_.grow(2);
-    exec_.for_each(faces_, MarkLive<Point>{view(), flags_.data()});
-    exec_.exclusive_scan_to(flags_.data(), face_rank_.data(), faces_, counts_.data());
-    exec_.for_each(faces_,
-                   MoveLive<Point>{view(), flags_.data(), face_rank_.data(), fv_out_.data(), fn_out_.data()});
+  // Live faces renumbered 0..F-1; kept points compacted, their faces renumbered.  It runs over
+  // `face_bound` face ids, of which `face_count` (optional, where the executor computes) are in use; the
+  // totals go to the state (state_'s live_faces and kept_points) for the caller to read.
+  void compact_launch(std::size_t face_bound, const u32* face_count) {
+    RoundsState* st = state_.data();
+    exec_.for_each(face_bound, MarkLive<Point>{view(), flags_.data(), face_count});
+    exec_.scan(flags_.data(), face_rank_.data(), face_bound);
+    exec_.for_each(face_bound, MoveLive<Point>{view(), flags_.data(), face_rank_.data(), fv_out_.data(),
+                                               fn_out_.data(), face_bound - 1, &st->live_faces});
     fv_.swap(fv_out_);
     fn_.swap(fn_out_);
-    exec_.exclusive_scan_to(keep_.data(), point_rank_.data(), active_, counts_.data() + 1);
-    exec_.for_each(active_, MovePoints{keep_.data(), point_rank_.data(), face_rank_.data(), index_[0].data(),
-                                       face_of_[0].data(), index_[1].data(), face_of_[1].data()});
+    if (active_ == 0) {
+      exec_.fill(&st->kept_points, 1, u32{0});
+    } else {
+      exec_.scan(keep_.data(), point_rank_.data(), active_);
+      exec_.for_each(active_, MovePoints{keep_.data(), point_rank_.data(), face_rank_.data(),
+                                         index_[0].data(), face_of_[0].data(), index_[1].data(),
+                                         face_of_[1].data(), active_ - 1, &st->kept_points});
+    }
     index_[0].swap(index_[1]);
     face_of_[0].swap(face_of_[1]);
+  }
+  void compact(std::size_t face_bound) {
+    compact_launch(face_bound, nullptr);
+    // Both counts come back in one read.
     u32 counts[2] = {0, 0};
-    exec_.download(counts, counts_.data(), 2);
+    exec_.download(counts, &state_.data()->live_faces, 2);
     faces_ = counts[0];
     active_ = counts[1];
-    exec_.fill(killer_.data(), faces_, kAlive);
-    exec_.fill(look_.data(), faces_, u32{0});
+    exec_.for_each(faces_, ResetFaces{killer_.data(), look_.data(), extreme_.data()});
   }
 
   BasicHullMesh<Point> lower_dimensional(ResidentStats& stats, const std::string& why) {
@@ -417,7 +495,7 @@ class ResidentHull {
   u32 round_ = 0;
   Buffer<u32> fv_, fn_, fv_out_, fn_out_, killer_, look_, flags_, face_rank_, work_list_;
   Buffer<u64> claim_, extreme_;
-  Buffer<u32> counts_;  // compact()'s live faces and kept points
+  Buffer<RoundsState> state_;  // the counts where the executor computes (see RoundsState)
   Buffer<Entry> entries_;
   Buffer<u32> won_, won_rank_;
   Buffer<Candidate> cands_;  // per work item (stepped rounds) or per face (fused rounds)

@@ -5,11 +5,11 @@
 
 namespace cudahull {
 
-template <class Point>
-BasicHullMesh<Point> resident_hull_host(const std::vector<Point>& points, ResidentStats* stats) {
-  if (points.size() >= 0xffffffffu) throw std::invalid_argument("too many points (at most 2^32 - 2)");
-  resident::HostExec exec;
-  resident::ResidentHull<Point, resident::HostExec> hull(exec, points, points.data());
+namespace {
+template <class Exec, class Point>
+BasicHullMesh<Point> run_on(const std::vector<Point>& points, ResidentStats* stats) {
+  Exec exec;
+  resident::ResidentHull<Point, Exec> hull(exec, points, points.data());
   ResidentStats local;
   ResidentStats& out = stats ? *stats : local;
   BasicHullMesh<Point> result = hull.run(out);
@@ -18,9 +18,18 @@ BasicHullMesh<Point> resident_hull_host(const std::vector<Point>& points, Reside
   out.bytes_from_device = exec.bytes_from_device;
   return result;
 }
+}  // namespace
+
+template <class Point>
+BasicHullMesh<Point> resident_hull_host(const std::vector<Point>& points, ResidentStats* stats,
+                                        ResidentRounds rounds) {
+  if (points.size() >= 0xffffffffu) throw std::invalid_argument("too many points (at most 2^32 - 2)");
+  if (rounds == ResidentRounds::kFused) return run_on<resident::FusedHostExec>(points, stats);
+  return run_on<resident::HostExec>(points, stats);
+}
 
 // The two coordinate types (README, "Precision").
-template HullMesh resident_hull_host(const std::vector<Point3>&, ResidentStats*);
-template HullMeshd resident_hull_host(const std::vector<Point3d>&, ResidentStats*);
+template HullMesh resident_hull_host(const std::vector<Point3>&, ResidentStats*, ResidentRounds);
+template HullMeshd resident_hull_host(const std::vector<Point3d>&, ResidentStats*, ResidentRounds);
 
 }  // namespace cudahull

@@ -237,6 +237,7 @@ struct SplitFaces {
   u32 first_face, first_entry;
   u32* look;  // an unrefined face next to a refined one is looked at in the first round
   u32 first_round;
+  u32* refined_total;  // optional: the last face writes how many faces refine (no wait for the scan)
   // The face across edge (a -> b) of f after the split: nb itself, or nb's child on that edge.
   CUDAHULL_HD u32 across(u32 nb, u32 a, u32 b) const {
     if (!refine[nb]) return nb;
@@ -244,6 +245,7 @@ struct SplitFaces {
   }
   CUDAHULL_HD void operator()(std::size_t fi) const {
     const u32 f = static_cast<u32>(fi);
+    if (refined_total && f + 1 == first_face) *refined_total = rank[f] + refine[f];
     if (!refine[f]) {
       bool touched = false;
       for (int k = 0; k < 3; ++k) {
@@ -266,6 +268,7 @@ struct SplitFaces {
       m.fn[3 * child + 1] = kids + static_cast<u32>((k + 1) % 3);
       m.fn[3 * child + 2] = kids + static_cast<u32>((k + 2) % 3);
       m.killer[child] = kAlive;
+      look[child] = 0;
     }
     m.entries[e] = Entry{kRefine, p, kNone, {kids, kids + 1, kids + 2}};
     m.killer[f] = e;
@@ -534,23 +537,38 @@ struct Apply {
 // sets before and reads after.  The rounds stop when no candidate is left, or before a round that might
 // not fit the capacities, before it changes anything (overflow: the host grows the buffers and runs
 // again).
+//   The state stays where the executor computes for the whole run, and the host reads it once an
+//   iteration, after the compaction: the iteration's kernels take their counts from it (refined, faces,
+//   entries), not from the host.  The counters (rounds, edits, work_items, phase_ns) add up over the run.
 struct RoundsState {
-  u32 faces, fresh_from, entries, round;    // as the driver keeps them
-  u32 face_capacity, entry_capacity;        // in
+  u32 faces, fresh_from, entries, round;    // faces and entries in use; faces from fresh_from are new
+  u32 face_capacity, entry_capacity;        // set at each launch
   u32 rounds, edits, work_items, overflow;  // out
   u32 needed_faces, needed_entries;         // out, on overflow: what the next round needs
   u32 round_work, round_winners;            // scratch, zero
+  u32 refined;                              // faces refined this iteration (SplitFaces)
+  u32 live_faces, kept_points;              // the compaction's totals (MoveLive, MovePoints)
   u64 phase_ns[4];                          // out, device only: claim, judge, number, apply (profiling)
+};
+
+// What the host gives a fused run of rounds: `begin` (the iteration's first: faces = fresh_from + 3 refined,
+// entries = refined, from the state) or not (it goes on after an overflow), and the room there is.
+struct RoundsLaunch {
+  u32 begin, fresh_from, face_capacity, entry_capacity;
 };
 
 // ---------------------------------------------------------------------------------------------------------
 // Compaction between iterations, and the final exact check.
 
+// Run over a bound of the face ids in use; `count` (optional, where the executor computes) is the number.
 template <class Point>
 struct MarkLive {
   MeshView<Point> m;
   u32* live;
-  CUDAHULL_HD void operator()(std::size_t f) const { live[f] = m.killer[f] == kAlive ? 1u : 0u; }
+  const u32* count;
+  CUDAHULL_HD void operator()(std::size_t f) const {
+    live[f] = (!count || f < *count) && m.killer[f] == kAlive ? 1u : 0u;
+  }
 };
 
 // Live face f moves to rank[f] in (fv_out, fn_out), its links renumbered.
@@ -561,7 +579,10 @@ struct MoveLive {
   const u32* rank;
   u32* fv_out;
   u32* fn_out;
+  std::size_t last;  // the last face id it runs over: that thread writes the number of live faces
+  u32* total;
   CUDAHULL_HD void operator()(std::size_t fi) const {
+    if (fi == last) *total = rank[fi] + live[fi];
     if (!live[fi]) return;
     const u32 to = rank[fi];
     for (int k = 0; k < 3; ++k) {
@@ -580,10 +601,25 @@ struct MovePoints {
   const u32* face_in;
   u32* index_out;
   u32* face_out;
+  std::size_t last;  // the last point it runs over: that thread writes the number of kept points
+  u32* total;
   CUDAHULL_HD void operator()(std::size_t j) const {
+    if (j == last) *total = rank[j] + keep[j];
     if (!keep[j]) return;
     index_out[rank[j]] = index_in[j];
     face_out[rank[j]] = face_rank[face_in[j]];
+  }
+};
+
+// Between iterations: the compacted faces live, unstamped, with no furthest point yet.
+struct ResetFaces {
+  u32* killer;
+  u32* look;
+  u64* extreme;
+  CUDAHULL_HD void operator()(std::size_t f) const {
+    killer[f] = kAlive;
+    look[f] = 0;
+    extreme[f] = 0;
   }
 };
 
