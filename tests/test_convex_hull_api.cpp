@@ -1,0 +1,123 @@
+// The one-call API (issue 16): convex_hull() against Qhull (vertices) and the exact checker (the faces as a
+// mesh), its planes against every point, its neighbours against its faces, and its errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <set>
+#include <utility>
+
+#include "cudahull/convex_hull.hpp"
+#include "cudahull/errors.hpp"
+#include "cudahull/generators.hpp"
+#include "cudahull/hull_checker.hpp"
+#include "qhull_reference.hpp"
+
+namespace cudahull {
+namespace {
+
+ConvexHullOptions on_cpu(Precision precision = Precision::kAuto) {
+  ConvexHullOptions options;
+  options.backend = BackendChoice::kCpu;
+  options.precision = precision;
+  return options;
+}
+
+std::vector<Point3d> widened(const std::vector<Point3>& points) {
+  std::vector<Point3d> out;
+  for (const Point3& p : points)
+    out.push_back({p.x, p.y, p.z});
+  return out;
+}
+
+// The faces as the exact checker's mesh (vertices local, triangles into them), so that it judges them.
+template <class Point>
+CheckResult check_faces(const std::vector<Point>& points, const ConvexHull& hull) {
+  BasicHullMesh<Point> mesh;
+  mesh.dimension = hull.dimension;
+  mesh.vertex_ids = hull.vertices;
+  std::vector<std::uint32_t> local(points.size(), 0);
+  for (std::size_t i = 0; i < hull.vertices.size(); ++i) {
+    local[hull.vertices[i]] = static_cast<std::uint32_t>(i);
+    mesh.vertices.push_back(points[hull.vertices[i]]);
+  }
+  for (const auto& f : hull.faces)
+    mesh.triangles.push_back({local[f[0]], local[f[1]], local[f[2]]});
+  return check_hull(points, mesh);
+}
+
+template <class Point>
+void expect_planes_and_neighbors(const std::vector<Point>& points, const ConvexHull& hull) {
+  ASSERT_EQ(hull.planes.size(), hull.faces.size());
+  ASSERT_EQ(hull.neighbors.size(), hull.faces.size());
+  for (std::size_t f = 0; f < hull.faces.size(); ++f) {
+    const auto& plane = hull.planes[f];
+    EXPECT_NEAR(plane[0] * plane[0] + plane[1] * plane[1] + plane[2] * plane[2], 1.0, 1e-14);
+    for (const Point& p : points)
+      EXPECT_LE(plane[0] * p.x + plane[1] * p.y + plane[2] * p.z + plane[3], 1e-12) << "face " << f;
+    for (int k = 0; k < 3; ++k) {
+      const auto& g = hull.faces[hull.neighbors[f][k]];
+      const std::set<PointIndex> shared{g.begin(), g.end()};
+      EXPECT_TRUE(shared.count(hull.faces[f][(k + 1) % 3]) && shared.count(hull.faces[f][(k + 2) % 3]));
+      EXPECT_FALSE(shared.count(hull.faces[f][k]));
+    }
+  }
+}
+
+TEST(ConvexHullApi, BallInEitherPrecisionMatchesQhullAndTheChecker) {
+  const std::vector<Point3> points = generate_points(Distribution::kBall, 5000, 16);
+  const std::vector<Point3d> doubles = widened(points);
+  const ConvexHull in_float = convex_hull(points, on_cpu());
+  const ConvexHull in_double = convex_hull(points, on_cpu(Precision::kDouble));
+  EXPECT_EQ(in_float.precision, Precision::kFloat);
+  EXPECT_EQ(in_double.precision, Precision::kDouble);
+  EXPECT_EQ(in_float.vertices, run_qhull(points).vertex_ids);
+  EXPECT_EQ(in_double.vertices, in_float.vertices);  // the same values, widened exactly
+  EXPECT_TRUE(check_faces(points, in_float).ok);
+  EXPECT_TRUE(check_faces(doubles, in_double).ok);
+  expect_planes_and_neighbors(points, in_float);
+  // The raw-array overloads are the same call.
+  const ConvexHull from_array = convex_hull(&doubles[0].x, doubles.size(), on_cpu());
+  EXPECT_EQ(from_array.vertices, in_double.vertices);
+  EXPECT_EQ(from_array.faces, in_double.faces);
+  EXPECT_EQ(from_array.volume, in_double.volume);
+}
+
+TEST(ConvexHullApi, FlatInputGivesThePolygon) {
+  const std::vector<Point3d> square{{0, 0, 5}, {2, 0, 5}, {1, 1, 5}, {2, 2, 5}, {0, 2, 5}};
+  const ConvexHull hull = convex_hull(square, on_cpu());
+  EXPECT_EQ(hull.dimension, 2);
+  EXPECT_EQ(hull.vertices, (std::vector<PointIndex>{0, 1, 3, 4}));
+  EXPECT_EQ(std::set<PointIndex>(hull.polygon.begin(), hull.polygon.end()),
+            (std::set<PointIndex>{0, 1, 3, 4}));
+  EXPECT_EQ(hull.area, 8.0);  // both sides of the 2 x 2 square
+  EXPECT_EQ(hull.volume, 0.0);
+  EXPECT_TRUE(hull.faces.empty() && hull.planes.empty());
+}
+
+TEST(ConvexHullApi, BadInputIsOneInputError) {
+  auto message = [](auto&& call) {
+    try {
+      call();
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no InputError");
+  };
+  std::vector<Point3d> points{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  points[2].y = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(message([&] { convex_hull(points); }), "point 2: y coordinate nan is not finite");
+  points[2].y = 1e300;
+  EXPECT_EQ(
+      message([&] { convex_hull(points); }),
+      "point 2: y coordinate 1e+300 is outside the range of exact double arithmetic (nonzero magnitudes "
+      "from 2^-250 to 2^250)");
+  points[2].y = 1e39;
+  EXPECT_EQ(message([&] { convex_hull(points, on_cpu(Precision::kFloat)); }),
+            "point 2: y coordinate 1e+39 does not fit in float");
+  std::vector<Point3> floats{{0, 0, 0}, {1, 0, 0}, {0, 0, std::numeric_limits<float>::infinity()}};
+  EXPECT_EQ(message([&] { convex_hull(floats); }), "point 2: z coordinate inf is not finite");
+}
+
+}  // namespace
+}  // namespace cudahull
