@@ -6,9 +6,12 @@
 
 #include <cooperative_groups.h>
 
+#include <thrust/iterator/counting_iterator.h>
 #include <cstdlib>
 #include <cub/block/block_scan.cuh>
+#include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
+#include <cub/device/device_select.cuh>
 #include <string>
 
 #include "cudahull/errors.hpp"
@@ -27,6 +30,7 @@ void check(cudaError_t e, const char* what) {
 }
 
 constexpr int kBlock = 256;
+constexpr int kOneBlockThreads = 512;  // the rounds of a small mesh (fused_rounds_kernel)
 
 // Device memory the engine holds now and at most (the points included), for the stats.
 struct DeviceBytes {
@@ -54,13 +58,15 @@ void pool() {
   (void)once;
 }
 
-// Hands the pool's free memory back to the driver (after a run: the process may do other things).
+// Hands the pool's free memory beyond kPoolKeep back to the driver after a run (the process may do other
+// things); what it keeps lets the next run of a similar size allocate without mapping memory again.
+constexpr std::size_t kPoolKeep = std::size_t{256} << 20;
 void trim_pool() {
   int device = 0;
   cudaMemPool_t pool = nullptr;
   if (cudaStreamSynchronize(0) == cudaSuccess && cudaGetDevice(&device) == cudaSuccess &&
       cudaDeviceGetDefaultMemPool(&pool, device) == cudaSuccess)
-    cudaMemPoolTrimTo(pool, 0);
+    cudaMemPoolTrimTo(pool, kPoolKeep);
   cudaGetLastError();
 }
 
@@ -109,6 +115,40 @@ __global__ void reduce_max_kernel(std::size_t n, KeyOp key, u64* out) {
     atomicMax(reinterpret_cast<unsigned long long*>(out), static_cast<unsigned long long>(best));
 }
 
+// K maxima at once (one pass over the points for section 3.1's directions): each block reduces every key
+// (warps, then shared memory), then one atomic per key and block: few blocks, so that the atomics on the K
+// results do not queue.
+template <int K, class KeysOp>
+__global__ void __launch_bounds__(kBlock) reduce_max_many_kernel(std::size_t n, KeysOp keys, u64* out) {
+  __shared__ u64 per_warp[kBlock / 32][K];
+  u64 best[K] = {};
+  u64 mine[K];
+  for (std::size_t i = blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x; i < n;
+       i += static_cast<std::size_t>(gridDim.x) * blockDim.x) {
+    keys(i, mine);
+#pragma unroll
+    for (int k = 0; k < K; ++k)
+      best[k] = mine[k] > best[k] ? mine[k] : best[k];
+  }
+#pragma unroll
+  for (int k = 0; k < K; ++k) {
+    u64 b = best[k];
+    for (int offset = 16; offset > 0; offset /= 2) {
+      const u64 other = __shfl_down_sync(0xffffffffu, b, offset);
+      b = other > b ? other : b;
+    }
+    if ((threadIdx.x & 31) == 0) per_warp[threadIdx.x / 32][k] = b;
+  }
+  __syncthreads();
+  if (threadIdx.x < K) {
+    u64 b = 0;
+    for (int w = 0; w < kBlock / 32; ++w)
+      b = per_warp[w][threadIdx.x] > b ? per_warp[w][threadIdx.x] : b;
+    if (b != 0)
+      atomicMax(reinterpret_cast<unsigned long long*>(out + threadIdx.x), static_cast<unsigned long long>(b));
+  }
+}
+
 __global__ void scan_total_kernel(const u32* in, const u32* out, std::size_t n, u32* total) {
   *total = out[n - 1] + in[n - 1];
 }
@@ -116,6 +156,12 @@ __global__ void scan_total_kernel(const u32* in, const u32* out, std::size_t n, 
 __global__ void scatter_selected_kernel(const u32* flags, const u32* rank, u32* list, std::size_t n) {
   const std::size_t i = blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x;
   if (i < n && flags[i]) list[rank[i]] = static_cast<u32>(i);
+}
+
+template <class Pred>
+__global__ void flag_kernel(std::size_t n, Pred pred, unsigned char* flags) {
+  const std::size_t i = blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x;
+  if (i < n) flags[i] = pred(static_cast<u32>(i)) ? 1 : 0;
 }
 
 template <class T>
@@ -140,9 +186,10 @@ __device__ inline u64 now_ns() {
 //   4. apply:  each winner, numbered in face order (block offset, then bits in order) as the stepped
 //              rounds' prefix sum numbers them, applies (Apply)
 // A launch of one block (a mesh of a few thousand faces) waits at __syncthreads() instead of the grid
-// barrier, which costs microseconds a round.
-template <class Point>
-__global__ void __launch_bounds__(kBlock)
+// barrier, which costs microseconds a round, and has kOneBlockThreads threads: a round's latency is that
+// of the slowest thread's chain of dependent loads, one chain per face it takes.
+template <class Point, int Block>
+__global__ void __launch_bounds__(Block)
     fused_rounds_kernel(FindCandidate<Point> find, u64* claim, u32* look, Candidate* cands, u32* list,
                         u32* win_mask, u32* block_offset, RoundsState* st, RoundsLaunch launch) {
   namespace cg = cooperative_groups;
@@ -155,7 +202,7 @@ __global__ void __launch_bounds__(kBlock)
       grid.sync();
     }
   };
-  using Scan = cub::BlockScan<u32, kBlock>;
+  using Scan = cub::BlockScan<u32, Block>;
   __shared__ typename Scan::TempStorage scan_storage;
   const u32 threads = gridDim.x * blockDim.x, tid = blockIdx.x * blockDim.x + threadIdx.x;
   const u32 lane = threadIdx.x & 31, below = (1u << lane) - 1;
@@ -221,9 +268,9 @@ __global__ void __launch_bounds__(kBlock)
 
     // 2. Who holds all its claims: a bit per face of the block's tile (a multiple of 256 faces).
     const Won judge{round, claim, nullptr, nullptr};
-    const u32 tile = ((faces + gridDim.x - 1) / gridDim.x + kBlock - 1) / kBlock * kBlock;
+    const u32 tile = ((faces + gridDim.x - 1) / gridDim.x + Block - 1) / Block * Block;
     const u32 tile_begin = blockIdx.x * tile, masks = tile / 32, first_mask = tile_begin / 32;
-    for (u32 j = threadIdx.x; j < tile; j += kBlock) {
+    for (u32 j = threadIdx.x; j < tile; j += Block) {
       const u32 f = tile_begin + j;
       // A face with a candidate this round is stamped for the next (Claim); no other stamp is newer yet.
       const bool w = f < faces && look[f] == round + 1 && judge.holds(cands[f]);
@@ -232,7 +279,7 @@ __global__ void __launch_bounds__(kBlock)
     }
     __syncthreads();
     u32 count = 0;
-    for (u32 k = threadIdx.x; k < masks; k += kBlock)
+    for (u32 k = threadIdx.x; k < masks; k += Block)
       count += __popc(win_mask[first_mask + k]);
     u32 ignored = 0, block_sum = 0;
     Scan(scan_storage).ExclusiveSum(count, ignored, block_sum);
@@ -243,7 +290,7 @@ __global__ void __launch_bounds__(kBlock)
     // 3. The blocks' offsets.
     if (blockIdx.x == 0) {
       u32 carry = 0;
-      for (u32 base = 0; base < gridDim.x; base += kBlock) {
+      for (u32 base = 0; base < gridDim.x; base += Block) {
         const u32 k = base + threadIdx.x;
         const u32 value = k < gridDim.x ? block_offset[k] : 0;
         u32 before = 0, sum = 0;
@@ -270,9 +317,9 @@ __global__ void __launch_bounds__(kBlock)
     // 4. The winners apply, numbered in face order: per 256 masks (8192 faces) of the tile, the masks'
     // offsets in shared memory, then a thread per face.
     const Apply<Point> applier{find.m, nullptr, nullptr, nullptr, faces, entries, look, round};
-    __shared__ u32 mask_of[kBlock], rank_of[kBlock];
+    __shared__ u32 mask_of[Block], rank_of[Block];
     u32 carry = block_offset[blockIdx.x];
-    for (u32 base = 0; base < masks; base += kBlock) {
+    for (u32 base = 0; base < masks; base += Block) {
       const u32 k = base + threadIdx.x;
       const u32 mask = k < masks ? win_mask[first_mask + k] : 0u;
       u32 before = 0, sum = 0;
@@ -282,7 +329,7 @@ __global__ void __launch_bounds__(kBlock)
       rank_of[threadIdx.x] = carry + before;
       __syncthreads();
       if (sum != 0) {
-        for (u32 j = threadIdx.x; j < 32 * kBlock; j += kBlock) {
+        for (u32 j = threadIdx.x; j < 32 * Block; j += Block) {
           const u32 word = mask_of[j / 32], bit = 1u << (j % 32);
           if (word & bit)
             applier.apply(cands[tile_begin + 32 * base + j], rank_of[j / 32] + __popc(word & (bit - 1)));
@@ -388,6 +435,61 @@ struct CudaExec {
     read(&out, scalar64_.data(), 1);
     return out;
   }
+  template <int K, class KeysOp>
+  std::array<u64, K> reduce_max_many(std::size_t n, const KeysOp& keys) {
+    scalar64_.grow(K);
+    check(cudaMemsetAsync(scalar64_.data(), 0, K * sizeof(u64), 0), "clearing a reduction");
+    const unsigned blocks = std::max(1u, std::min(blocks_for(n), 512u));
+    reduce_max_many_kernel<K><<<blocks, kBlock>>>(n, keys, scalar64_.data());
+    check(cudaGetLastError(), "launching a reduction");
+    std::array<u64, K> out{};
+    read(out.data(), scalar64_.data(), K);
+    return out;
+  }
+  // The indices i < n with pred(i), in order, into out; returns how many (one wait).  The predicate runs
+  // in a kernel of its own, a byte per point (inside CUB's select it ran several times slower).
+  template <class Pred>
+  u32 select_if(std::size_t n, const Pred& pred, u32* out) {
+    if (n == 0) return 0;
+    select_flags_.grow(n);
+    flag_kernel<<<blocks_for(n), kBlock>>>(n, pred, select_flags_.data());
+    check(cudaGetLastError(), "launching a select");
+    const thrust::counting_iterator<u32> ids(0);
+    scalar32_.grow(1);
+    std::size_t bytes = 0;
+    check(cub::DeviceSelect::Flagged(nullptr, bytes, ids, select_flags_.data(), out, scalar32_.data(),
+                                     static_cast<std::int64_t>(n)),
+          "sizing a select");
+    scratch_.grow(bytes);
+    check(cub::DeviceSelect::Flagged(scratch_.data(), bytes, ids, select_flags_.data(), out, scalar32_.data(),
+                                     static_cast<std::int64_t>(n)),
+          "a select");
+    u32 count = 0;
+    read(&count, scalar32_.data(), 1);
+    return count;
+  }
+  // The distinct values of in[0..n), all below `bound`, ascending, into out; returns how many (one wait).
+  // A radix sort over the bits `bound` needs, into scratch, then the repeats dropped.
+  u32 sort_unique(const u32* in, std::size_t n, u32* out, u32* scratch, std::size_t bound) {
+    if (n == 0) return 0;
+    int bits = 1;
+    while (bits < 32 && (std::size_t{1} << bits) < bound)
+      ++bits;
+    scalar32_.grow(1);
+    std::size_t sort_bytes = 0, unique_bytes = 0;
+    const auto count = static_cast<std::int64_t>(n);
+    check(cub::DeviceRadixSort::SortKeys(nullptr, sort_bytes, in, scratch, count, 0, bits), "sizing a sort");
+    check(cub::DeviceSelect::Unique(nullptr, unique_bytes, scratch, out, scalar32_.data(), count),
+          "sizing a unique");
+    const std::size_t bytes = std::max(sort_bytes, unique_bytes);
+    scratch_.grow(bytes);
+    check(cub::DeviceRadixSort::SortKeys(scratch_.data(), sort_bytes, in, scratch, count, 0, bits), "a sort");
+    check(cub::DeviceSelect::Unique(scratch_.data(), unique_bytes, scratch, out, scalar32_.data(), count),
+          "a unique");
+    u32 distinct = 0;
+    read(&distinct, scalar32_.data(), 1);
+    return distinct;
+  }
   // The same, the total not brought back.
   void scan(const u32* in, u32* out, std::size_t n) {
     if (n == 0) return;
@@ -437,23 +539,27 @@ struct CudaExec {
   template <class Point>
   void fused_rounds(const FindCandidate<Point>& find, u64* claim, u32* look, Candidate* cands, u32* won,
                     RoundsState* st, RoundsLaunch launch) {
-    auto* kernel = fused_rounds_kernel<Point>;
     if (cooperative_blocks_ == 0) {
       int device = 0, sms = 0, per_sm = 0;
       check(cudaGetDevice(&device), "querying the device");
       check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), "querying the SMs");
-      check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, kernel, kBlock, 0), "the occupancy");
+      check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, fused_rounds_kernel<Point, kBlock>, kBlock,
+                                                          0),
+            "the occupancy");
       cooperative_blocks_ = static_cast<unsigned>(std::max(1, sms * per_sm));
     }
     // A thread per face up to what fits at once, and one block for a small mesh: a grid barrier costs
     // more the more blocks wait at it.  The count is on the device; the driver leaves room for twice the
     // faces there may be.
     const std::size_t capacity = launch.face_capacity, faces = capacity / 2;
-    const unsigned blocks =
-        faces <= one_block_faces_ ? 1u : std::max(1u, std::min(cooperative_blocks_, blocks_for(faces)));
+    const bool one_block = faces <= one_block_faces_;
+    const unsigned blocks = one_block ? 1u : std::max(1u, std::min(cooperative_blocks_, blocks_for(faces)));
+    const unsigned threads = one_block ? kOneBlockThreads : kBlock;
+    auto* kernel =
+        one_block ? fused_rounds_kernel<Point, kOneBlockThreads> : fused_rounds_kernel<Point, kBlock>;
     block_offset_.grow(blocks);
-    // One bit per face of every block's tile (the tiles cover the capacity, each a multiple of 256).
-    win_mask_.grow((capacity / blocks + kBlock) * blocks / 32 + 8);
+    // One bit per face of every block's tile (the tiles cover the capacity, each a multiple of the block).
+    win_mask_.grow((capacity / blocks + threads) * blocks / 32 + 8);
     u32* offsets = block_offset_.data();
     u32* masks = win_mask_.data();
     void* args[] = {const_cast<FindCandidate<Point>*>(&find),
@@ -465,7 +571,7 @@ struct CudaExec {
                     &offsets,
                     &st,
                     &launch};
-    check(cudaLaunchCooperativeKernel(reinterpret_cast<void*>(kernel), blocks, kBlock, args, 0, nullptr),
+    check(cudaLaunchCooperativeKernel(reinterpret_cast<void*>(kernel), blocks, threads, args, 0, nullptr),
           "launching the rounds");
   }
 
@@ -482,6 +588,7 @@ struct CudaExec {
   Buffer<u32> scalar32_;
   Buffer<unsigned char> scratch_;
   Buffer<u32> block_offset_, win_mask_;
+  Buffer<unsigned char> select_flags_;
   unsigned cooperative_blocks_ = 0;
   std::size_t one_block_faces_ = one_block_faces();
 };

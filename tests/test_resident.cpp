@@ -3,6 +3,7 @@
 // degenerate sets, in float and in double.  The gpu label runs the device executor against this one.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -64,6 +65,41 @@ TEST(Resident, GeneratedDistributionsInGeneralPosition) {
       expect_exact(widened(points), what + " in double", &wide);
       EXPECT_FALSE(wide.exact_finish) << what << " in double: " << wide.note;
     }
+  }
+}
+
+// The drop filter (P, the extremes' polytope): on a cube it proves most points inside before any exact
+// test, and points on P's faces or an ulp outside them are never dropped wrongly: the octahedron of the
+// six axis points with points on its faces, nudged an ulp in or out, and points inside.
+TEST(Resident, PolytopeFilterDropsOnlyInteriorPoints) {
+  ResidentStats cube;
+  expect_exact(generate_points(Distribution::kCube, 30000, 5), "cube 30000", &cube);
+  EXPECT_GT(cube.dropped_by_polytope, 15000u);
+  testing::Rng rng(11);
+  auto uniform = [&] { return (rng.unit() + 1) / 2; };  // in [0, 1]
+  for (int trial = 0; trial < 20; ++trial) {
+    std::vector<Point3> points = {{-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+    for (int k = 0; k < 400; ++k) {
+      // A point of the face sx x + sy y + sz z = 1, its coordinates exact in float; then an ulp in or out.
+      const float a = uniform(), b = uniform() * (1 - a);
+      const float c = 1 - a - b;
+      const float sx = uniform() < 0.5 ? -1.f : 1.f, sy = uniform() < 0.5 ? -1.f : 1.f,
+                  sz = uniform() < 0.5 ? -1.f : 1.f;
+      Point3 p{sx * a, sy * b, sz * c};
+      const float nudge = uniform();
+      if (nudge < 0.3)
+        p.z = std::nextafter(p.z, sz * 2.f);  // out
+      else if (nudge < 0.6)
+        p.z = std::nextafter(p.z, 0.f);  // in
+      points.push_back(p);
+      const float r = uniform() * 0.3f;
+      points.push_back({r * sx, r * sy, r * sz});  // well inside
+    }
+    const std::string what = "octahedron faces, trial " + std::to_string(trial);
+    ResidentStats stats;
+    expect_exact(points, what, &stats);
+    EXPECT_GT(stats.dropped_by_polytope, 0u) << what;
+    expect_exact(widened(points), what + " in double");
   }
 }
 

@@ -16,16 +16,17 @@ namespace cudahull {
 struct ResidentStats {
   std::uint64_t iterations = 0;
   std::uint64_t refined_faces = 0;
-  std::uint64_t rounds = 0;             // flip and flop rounds over all iterations
-  std::uint64_t edits = 0;              // flips and flops made
-  std::uint64_t work_items = 0;         // faces the rounds looked at, summed over the rounds
-  std::uint64_t faults = 0;             // edges not strictly convex at the end (then the exact finish)
-  bool exact_finish = false;            // the result came from the exact reference hull of the candidates
-  std::string note;                     // why, for lower-dimensional input or the exact finish
-  std::uint64_t host_syncs = 0;         // waits for the executor with a value coming back
-  std::uint64_t bytes_to_device = 0;    // host -> executor, after the points
-  std::uint64_t bytes_from_device = 0;  // executor -> host, the result included
-  std::uint64_t device_bytes_peak = 0;  // device memory held at most, the points included (0 on the host)
+  std::uint64_t rounds = 0;               // flip and flop rounds over all iterations
+  std::uint64_t edits = 0;                // flips and flops made
+  std::uint64_t work_items = 0;           // faces the rounds looked at, summed over the rounds
+  std::uint64_t dropped_by_polytope = 0;  // points proven inside P, the extremes' polytope, at the start
+  std::uint64_t faults = 0;               // edges not strictly convex at the end (then the exact finish)
+  bool exact_finish = false;              // the result came from the exact reference hull of the candidates
+  std::string note;                       // why, for lower-dimensional input or the exact finish
+  std::uint64_t host_syncs = 0;           // waits for the executor with a value coming back
+  std::uint64_t bytes_to_device = 0;      // host -> executor, after the points
+  std::uint64_t bytes_from_device = 0;    // executor -> host, the result included
+  std::uint64_t device_bytes_peak = 0;    // device memory held at most, the points included (0 on the host)
   // Where the time went (host clock; each phase ends in a wait for a count, so these are wall times).
   double setup_ms = 0, refine_ms = 0, rounds_ms = 0, route_ms = 0, finish_ms = 0;
   // Inside the device's rounds (device clock, the slowest block): finding and claiming, judging the

@@ -3,6 +3,8 @@
 // operations resolve to the same values either way, so both give the same mesh.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -45,6 +47,40 @@ struct HostExec {
     }
     ++host_syncs;
     return best;
+  }
+  // The largest of each of K keys over i < n (keys(i, out) writes point i's K keys).
+  template <int K, class KeysOp>
+  std::array<std::uint64_t, K> reduce_max_many(std::size_t n, const KeysOp& keys) {
+    std::array<std::uint64_t, K> best{};
+    std::uint64_t mine[K];
+    for (std::size_t i = 0; i < n; ++i) {
+      keys(i, mine);
+      for (int k = 0; k < K; ++k)
+        best[k] = mine[k] > best[k] ? mine[k] : best[k];
+    }
+    ++host_syncs;
+    return best;
+  }
+  // The distinct values of in[0..n), ascending, into out; returns how many (values below `bound`;
+  // scratch: n entries).
+  std::uint32_t sort_unique(const std::uint32_t* in, std::size_t n, std::uint32_t* out,
+                            std::uint32_t* /*scratch*/, std::size_t /*bound*/) {
+    std::vector<std::uint32_t> values(in, in + n);
+    std::sort(values.begin(), values.end());
+    values.erase(std::unique(values.begin(), values.end()), values.end());
+    std::copy(values.begin(), values.end(), out);
+    ++host_syncs;
+    return static_cast<std::uint32_t>(values.size());
+  }
+  // The indices i < n with pred(i), in order, into out; returns how many.
+  template <class Pred>
+  std::uint32_t select_if(std::size_t n, const Pred& pred, std::uint32_t* out) {
+    std::uint32_t count = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (pred(static_cast<std::uint32_t>(i))) out[count++] = static_cast<std::uint32_t>(i);
+    }
+    ++host_syncs;
+    return count;
   }
   // out[i] = in[0] + ... + in[i-1]; returns the total.
   std::uint32_t exclusive_scan(const std::uint32_t* in, std::uint32_t* out, std::size_t n) {

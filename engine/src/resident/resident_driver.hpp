@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -29,6 +30,7 @@
 #include "cudahull/mesh.hpp"
 #include "cudahull/resident.hpp"
 #include "phases/initial_tetrahedron.hpp"
+#include "resident/host_exec.hpp"
 #include "resident/resident_ops.hpp"
 
 namespace cudahull::resident {
@@ -144,16 +146,26 @@ class ResidentHull {
     lap();
     const std::size_t n = host_.size();
     if (n == 0) return exact_hull(host_);
-    TetrahedronQueries<Point, Exec> queries(exec_, host_, points_);
-    const phases::InitialTetrahedron tetrahedron = phases::find_initial_tetrahedron(host_, queries);
+    // P, the drop filter, and the tetrahedron: section 3.1's choice among P's vertices (no further pass
+    // over the points), or over all points when P is flat (then the input may be too).
+    const BasicHullMesh<Point> polytope = directional_polytope();
+    const DropFilter filter = drop_filter(polytope);
+    phases::InitialTetrahedron tetrahedron = tetrahedron_of(polytope);
+    if (tetrahedron.dimension < 3) {
+      TetrahedronQueries<Point, Exec> queries(exec_, host_, points_);
+      tetrahedron = phases::find_initial_tetrahedron(host_, queries);
+    }
     if (tetrahedron.dimension < 3) return lower_dimensional(stats, tetrahedron.note);
     Mesh mesh;
     if (!phases::make_initial_tetrahedron(host_, tetrahedron.corners, mesh, c_))
       return lower_dimensional(stats, "tetrahedron too flat for an interior point");
 
-    // The tetrahedron, and the first distribution (section 3.1).
+    // The tetrahedron, and the first distribution (section 3.1).  Room for a hull of a few thousand faces
+    // from the start: growing is a round of allocations and copies, most of an iteration's host time on a
+    // small hull.
     faces_ = 4;
-    grow_faces(64);
+    grow_faces(kInitialFaces);
+    grow_entries(kInitialFaces);
     std::vector<u32> fv(12), fn(12);
     for (u32 f = 0; f < 4; ++f) {
       for (int k = 0; k < 3; ++k) {
@@ -167,10 +179,22 @@ class ResidentHull {
     state_.grow(1);
     const RoundsState zero{};
     exec_.upload(state_.data(), &zero, 1);
-    for (auto* b : {&index_[0], &index_[1], &face_of_[0], &face_of_[1], &keep_, &point_rank_})
-      b->grow(n);
-    exec_.for_each(n, AssignFirst<Point>{view(), index_[0].data(), face_of_[0].data(), keep_.data()});
+    // The points not proven inside P (all, without P), listed in index order (one wait for the count).
+    const u32* list = nullptr;
     active_ = n;
+    if (filter.planes != 0) {
+      index_[1].grow(n);
+      Buffer<DropFilter> at_executor;
+      at_executor.grow(1);
+      exec_.upload(at_executor.data(), &filter, 1);
+      active_ = exec_.select_if(n, NotInsideP<Point>{points_, at_executor.data()}, index_[1].data());
+      list = index_[1].data();
+    }
+    stats.dropped_by_polytope = n - active_;
+    for (auto* b : {&index_[0], &index_[1], &face_of_[0], &face_of_[1], &keep_, &point_rank_})
+      b->grow(active_, b == &index_[1] ? active_ : 0);
+    exec_.for_each(active_,
+                   AssignFirst<Point>{view(), list, index_[0].data(), face_of_[0].data(), keep_.data()});
     compact(faces_);
     stats.setup_ms = lap();
 
@@ -191,6 +215,87 @@ class ResidentHull {
   }
 
  private:
+  // P (see DirectionKeys): the exact hull of the points extreme along kDirections, found in one pass.
+  BasicHullMesh<Point> directional_polytope() {
+    const std::array<u64, kDirections> keys =
+        exec_.template reduce_max_many<kDirections>(host_.size(), DirectionKeys<Point>{points_});
+    std::vector<PointIndex> ids;
+    for (const u64 key : keys)
+      ids.push_back(rank_key_index(key));
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    // Every coordinate is at most M in size: the axis extremes, widened for the float-rounded ranking of
+    // double coordinates (rank_key) by more than its relative error.
+    max_coordinate_ = 0;
+    for (int k = 0; k < 6; ++k) {
+      const Vec3d p = to_vec3d(host_[rank_key_index(keys[k])]);
+      const double v = k < 2 ? p.x : k < 4 ? p.y : p.z;
+      max_coordinate_ = std::max(max_coordinate_, std::fabs(v));
+    }
+    max_coordinate_ *= 1 + 0x1p-20;
+    return exact_hull(host_, ids);
+  }
+
+  // P's face planes with the bounds that make DropFilter sound.  Rounding analysis (u = 2^-53, every
+  // operation rounded once, no fused operations): for a face (a, b, c) the edge vectors, the cross product
+  // n = (b - a) x (c - a) and d = -n.a are computed with |n - n*| <= 8u (|products|) per component and
+  // |d - d*| <= |n - n*|.|a| + 4u |n|.|a|; evaluating n.p + d costs 5u (|n|.|p| + |d|).  With every
+  // |coordinate| <= M the error is at most 2 |n - n*|_1 M + 4u |n|_1 M + 5u (|n|_1 M + |d|), taken
+  // with a margin, plus an absolute 2^-1000 for the rounding of results near underflow.
+  DropFilter drop_filter(const BasicHullMesh<Point>& polytope) const {
+    DropFilter filter;
+    if (polytope.dimension != 3 || polytope.triangles.size() > static_cast<std::size_t>(kMaxDropPlanes))
+      return filter;
+    constexpr double u = 0x1p-53;
+    const double M = max_coordinate_;
+    Vec3d centre{0, 0, 0};
+    for (const Point& v : polytope.vertices) {
+      const Vec3d p = to_vec3d(v);
+      centre = {centre.x + p.x, centre.y + p.y, centre.z + p.z};
+    }
+    const double k = 1.0 / static_cast<double>(polytope.vertices.size());
+    centre = {centre.x * k, centre.y * k, centre.z * k};
+    for (const Triangle& t : polytope.triangles) {
+      const Vec3d a = to_vec3d(polytope.vertices[t[0]]), b = to_vec3d(polytope.vertices[t[1]]),
+                  c = to_vec3d(polytope.vertices[t[2]]);
+      const Vec3d e1{b.x - a.x, b.y - a.y, b.z - a.z}, e2{c.x - a.x, c.y - a.y, c.z - a.z};
+      const double n[3] = {e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x};
+      const double err_n = 8 * u *
+                           ((std::fabs(e1.y * e2.z) + std::fabs(e1.z * e2.y)) +
+                            (std::fabs(e1.z * e2.x) + std::fabs(e1.x * e2.z)) +
+                            (std::fabs(e1.x * e2.y) + std::fabs(e1.y * e2.x)));
+      const double d = -((n[0] * a.x + n[1] * a.y) + n[2] * a.z);
+      const double n1 = std::fabs(n[0]) + std::fabs(n[1]) + std::fabs(n[2]);
+      const double slack =
+          (2 * err_n * M + 4 * u * n1 * M + 5 * u * (n1 * M + std::fabs(d))) * (1 + 0x1p-10) + 0x1p-1000;
+      // Outward (exact_hull's triangles are), confirmed by P's centre lying below with room to spare;
+      // otherwise no filter at all (it is only an acceleration).
+      if (!(((n[0] * centre.x + n[1] * centre.y) + n[2] * centre.z) + d < -slack)) return DropFilter{};
+      const u32 f = filter.planes++;
+      for (int i = 0; i < 3; ++i)
+        filter.n[f][i] = n[i];
+      filter.d[f] = d;
+      filter.slack[f] = slack;
+    }
+    return filter;
+  }
+
+  // Section 3.1's tetrahedron among P's vertices (confirmed exactly there); dimension < 3 when P is flat.
+  phases::InitialTetrahedron tetrahedron_of(const BasicHullMesh<Point>& polytope) const {
+    phases::InitialTetrahedron out;
+    out.dimension = polytope.dimension < 3 ? polytope.dimension : 3;
+    if (polytope.dimension != 3) return out;
+    const std::vector<Point>& sub = polytope.vertices;
+    HostExec on_host;
+    TetrahedronQueries<Point, HostExec> queries(on_host, sub, sub.data());
+    out = phases::find_initial_tetrahedron(sub, queries);
+    if (out.dimension == 3) {
+      for (PointIndex& corner : out.corners)
+        corner = polytope.vertex_ids[corner];
+    }
+    return out;
+  }
+
   // Milliseconds since the last lap.
   double lap() {
     const auto now = std::chrono::steady_clock::now();
@@ -280,6 +385,7 @@ class ResidentHull {
   // compaction.  A small mesh (up to kSpeculateFaces) is sized for every face refining, so that the
   // host need not wait for the refined count; a larger one waits for it and stays tight in memory.
   // False when no face could refine.
+  static constexpr std::size_t kInitialFaces = std::size_t{1} << 13;
   static constexpr std::size_t kSpeculateFaces = std::size_t{1} << 18;
   bool iterate_fused(ResidentStats& stats) {
     mark_refined();
@@ -452,16 +558,32 @@ class ResidentHull {
       stats.faults = count;
       return exact_finish(stats, std::to_string(count) + " edges not strictly convex");
     }
-    // The vertices are the flagged points in index order (ascending, as exact_hull gives them); the
-    // corners become their ranks.  Only the result comes back.
-    const std::size_t n = host_.size();
-    exec_.fill(keep_.data(), n, u32{0});
-    exec_.for_each(3 * faces_, FlagCorners{fv_.data(), keep_.data()});
-    const u32 vertices = exec_.select(keep_.data(), point_rank_.data(), index_[1].data(), n);
-    exec_.for_each(3 * faces_, RenumberCorners{fv_.data(), point_rank_.data(), fv_out_.data()});
+    // The vertices in index order (ascending, as exact_hull gives them); the corners become their ranks.
+    // Only the result comes back.  Fewer corners than points (most hulls): the corners sorted, without
+    // repeats, and each corner found there by bisection; otherwise each vertex flagged among the points
+    // and the flags prefix-summed (no sort of a corner list larger than the points).
+    const std::size_t n = host_.size(), corners = 3 * faces_;
+    u32 vertices = 0;
+    const u32* vertex_list = nullptr;
+    if (corners < n) {
+      point_rank_.grow(corners);
+      index_[1].grow(corners);
+      vertices = exec_.sort_unique(fv_.data(), corners, point_rank_.data(), index_[1].data(), n);
+      exec_.for_each(corners, FindCorners{fv_.data(), point_rank_.data(), vertices, fv_out_.data()});
+      vertex_list = point_rank_.data();
+    } else {
+      keep_.grow(n);
+      point_rank_.grow(n);
+      index_[1].grow(n);
+      exec_.fill(keep_.data(), n, u32{0});
+      exec_.for_each(corners, FlagCorners{fv_.data(), keep_.data()});
+      vertices = exec_.select(keep_.data(), point_rank_.data(), index_[1].data(), n);
+      exec_.for_each(corners, RenumberCorners{fv_.data(), point_rank_.data(), fv_out_.data()});
+      vertex_list = index_[1].data();
+    }
     BasicHullMesh<Point> out;
     out.vertex_ids.resize(vertices);
-    exec_.download(out.vertex_ids.data(), index_[1].data(), vertices);
+    exec_.download(out.vertex_ids.data(), vertex_list, vertices);
     out.triangles.resize(faces_);
     static_assert(sizeof(Triangle) == 3 * sizeof(u32));
     exec_.download(reinterpret_cast<u32*>(out.triangles.data()), fv_out_.data(), 3 * faces_);
@@ -489,6 +611,7 @@ class ResidentHull {
   const Point* points_;
   std::chrono::steady_clock::time_point lap_start_;
   Vec3d c_{};
+  double max_coordinate_ = 0;     // every point's coordinates are at most this in size
   std::size_t work_in_use_ = 0;   // entries of work_list_ that grow_faces() keeps
   std::size_t marks_in_use_ = 0;  // entries of flags_ and face_rank_ that grow_faces() keeps
   std::size_t faces_ = 0, capacity_ = 0, entries_used_ = 0, entry_capacity_ = 0, active_ = 0;

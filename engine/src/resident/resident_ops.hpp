@@ -133,15 +133,75 @@ struct MeshView {
 // Points: the first distribution (section 3.1), the routing through the entries (Algorithm 2), and the
 // furthest point per face.
 
-// Each point to the first of the tetrahedron's four faces whose closed cone holds it; kept when above.
+// Section 3.1 looked at in more directions (the Akl-Toussaint throw-away): the points extreme along the
+// three axes and the eight diagonals, both ways, span a polytope P of input points.  A point strictly
+// inside P is inside the hull and never one of its vertices, so the first distribution drops it before
+// any exact test; on a uniform cube that is nearly every point.  The ranking need not be exact (any input
+// points span a P that is correct to use); the drop test is sound by its error bound (DropFilter).
+inline constexpr int kDirections = 14;
+
+// The value of p along direction k (larger is further): -x, x, -y, y, -z, z, then (+-1, +-1, +-1).
+CUDAHULL_HD inline double direction_value(int k, const Vec3d& p) {
+  if (k < 6) {
+    const double v = k < 2 ? p.x : k < 4 ? p.y : p.z;
+    return (k & 1) ? v : -v;
+  }
+  const int d = k - 6;
+  const double x = (d & 1) ? p.x : -p.x, y = (d & 2) ? p.y : -p.y, z = (d & 4) ? p.z : -p.z;
+  return (x + y) + z;
+}
+
+// The rank keys of point i along every direction (rank_key: ties to the lowest index).
+template <class Point>
+struct DirectionKeys {
+  const Point* points;
+  CUDAHULL_HD void operator()(std::size_t i, u64 (&keys)[kDirections]) const {
+    const Vec3d p = to_vec3d(points[i]);
+    for (int k = 0; k < kDirections; ++k)
+      keys[k] = rank_key(direction_value(k, p), static_cast<u32>(i));
+  }
+};
+
+// P's face planes, evaluated in double: e = n.p + d is within slack of the exact value of the plane
+// through the face's corners (the host derives the bound from the rounding of n, d and this evaluation,
+// over every point's coordinate range), so e < -slack on every plane proves p strictly inside P.  The
+// evaluation order is fixed and unfused on both executors, so both drop the same points.
+inline constexpr int kMaxDropPlanes = 2 * kDirections - 4;  // the faces of a polytope of 14 vertices
+struct DropFilter {
+  u32 planes = 0;  // 0: no polytope (lower-dimensional extremes), nothing is dropped
+  double n[kMaxDropPlanes][3] = {}, d[kMaxDropPlanes] = {}, slack[kMaxDropPlanes] = {};
+  CUDAHULL_HD bool strictly_inside(const Vec3d& p) const {
+    if (planes == 0) return false;
+    for (u32 k = 0; k < planes; ++k) {
+      const double e = ((n[k][0] * p.x + n[k][1] * p.y) + n[k][2] * p.z) + d[k];
+      if (!(e < -slack[k])) return false;
+    }
+    return true;
+  }
+};
+
+// Selects the points the first distribution looks at: those not proven strictly inside P.
+// The filter lives where the executor computes: by value it would be a kilobyte copied into every
+// thread's local memory.
+template <class Point>
+struct NotInsideP {
+  const Point* points;
+  const DropFilter* filter;
+  CUDAHULL_HD bool operator()(u32 i) const { return !filter->strictly_inside(to_vec3d(points[i])); }
+};
+
+// Each point (of `list`, or every point) to the first of the tetrahedron's four faces whose closed cone
+// holds it; kept when above.
 template <class Point>
 struct AssignFirst {
   MeshView<Point> m;
+  const u32* list;  // the points looked at (NotInsideP), or null for all
   u32* point_index;
   u32* point_face;
   u32* keep;
-  CUDAHULL_HD void operator()(std::size_t i) const {
-    const Vec3d q = m.P(static_cast<u32>(i));
+  CUDAHULL_HD void operator()(std::size_t j) const {
+    const u32 i = list ? list[j] : static_cast<u32>(j);
+    const Vec3d q = m.P(i);
     u32 face = 3;
     for (u32 f = 0; f < 3; ++f) {
       if (m.in_cone(f, q)) {
@@ -149,9 +209,9 @@ struct AssignFirst {
         break;
       }
     }
-    point_index[i] = static_cast<u32>(i);
-    point_face[i] = face;
-    keep[i] = m.above(face, q) > 0 ? 1u : 0u;
+    point_index[j] = i;
+    point_face[j] = face;
+    keep[j] = m.above(face, q) > 0 ? 1u : 0u;
   }
 };
 
@@ -628,6 +688,25 @@ struct FlagCorners {
   const u32* fv;
   u32* used;
   CUDAHULL_HD void operator()(std::size_t k) const { used[fv[k]] = 1; }
+};
+// Corner k to its vertex's rank in the sorted vertex list (bisection).
+struct FindCorners {
+  const u32* fv;
+  const u32* vertices;
+  u32 count;
+  u32* out;
+  CUDAHULL_HD void operator()(std::size_t k) const {
+    u32 lo = 0, hi = count;  // vertices[lo..hi) holds fv[k]
+    while (hi - lo > 1) {
+      const u32 mid = lo + (hi - lo) / 2;
+      if (vertices[mid] <= fv[k]) {
+        lo = mid;
+      } else {
+        hi = mid;
+      }
+    }
+    out[k] = lo;
+  }
 };
 struct RenumberCorners {
   const u32* fv;
