@@ -146,36 +146,40 @@ class ResidentHull {
     lap();
     const std::size_t n = host_.size();
     if (n == 0) return exact_hull(host_);
-    // P, the drop filter, and the tetrahedron: section 3.1's choice among P's vertices (no further pass
-    // over the points), or over all points when P is flat (then the input may be too).
+    // P, the drop filter, and the first mesh: P itself where its centre is strictly inside every face
+    // (its cones tile space from there: the star shape holds from the start, and the first iterations
+    // need not find P's vertices again); else section 3.1's tetrahedron, over all points when P is flat
+    // (then the input may be too).
     const BasicHullMesh<Point> polytope = directional_polytope();
     const DropFilter filter = drop_filter(polytope);
-    phases::InitialTetrahedron tetrahedron = tetrahedron_of(polytope);
-    if (tetrahedron.dimension < 3) {
+    std::vector<u32> fv, fn;
+    if (!polytope_mesh(polytope, fv, fn)) {
       TetrahedronQueries<Point, Exec> queries(exec_, host_, points_);
-      tetrahedron = phases::find_initial_tetrahedron(host_, queries);
-    }
-    if (tetrahedron.dimension < 3) return lower_dimensional(stats, tetrahedron.note);
-    Mesh mesh;
-    if (!phases::make_initial_tetrahedron(host_, tetrahedron.corners, mesh, c_))
-      return lower_dimensional(stats, "tetrahedron too flat for an interior point");
-
-    // The tetrahedron, and the first distribution (section 3.1).  Room for a hull of a few thousand faces
-    // from the start: growing is a round of allocations and copies, most of an iteration's host time on a
-    // small hull.
-    faces_ = 4;
-    grow_faces(kInitialFaces);
-    grow_entries(kInitialFaces);
-    std::vector<u32> fv(12), fn(12);
-    for (u32 f = 0; f < 4; ++f) {
-      for (int k = 0; k < 3; ++k) {
-        fv[3 * f + k] = mesh.face(f).v[k];
-        fn[3 * f + k] = mesh.face(f).n[k];
+      const phases::InitialTetrahedron tetrahedron = phases::find_initial_tetrahedron(host_, queries);
+      if (tetrahedron.dimension < 3) return lower_dimensional(stats, tetrahedron.note);
+      Mesh mesh;
+      if (!phases::make_initial_tetrahedron(host_, tetrahedron.corners, mesh, c_))
+        return lower_dimensional(stats, "tetrahedron too flat for an interior point");
+      fv.resize(12);
+      fn.resize(12);
+      for (u32 f = 0; f < 4; ++f) {
+        for (int k = 0; k < 3; ++k) {
+          fv[3 * f + k] = mesh.face(f).v[k];
+          fn[3 * f + k] = mesh.face(f).n[k];
+        }
       }
     }
-    exec_.upload(fv_.data(), fv.data(), 12);
-    exec_.upload(fn_.data(), fn.data(), 12);
-    exec_.fill(killer_.data(), 4, kAlive);
+
+    // The first mesh, and the first distribution (section 3.1).  Room for a hull of a few thousand faces
+    // from the start: growing is a round of allocations and copies, most of an iteration's host time on a
+    // small hull.
+    faces_ = fv.size() / 3;
+    const u32 first_faces = static_cast<u32>(faces_);
+    grow_faces(std::max(kInitialFaces, faces_));
+    grow_entries(kInitialFaces);
+    exec_.upload(fv_.data(), fv.data(), fv.size());
+    exec_.upload(fn_.data(), fn.data(), fn.size());
+    exec_.fill(killer_.data(), faces_, kAlive);
     state_.grow(1);
     const RoundsState zero{};
     exec_.upload(state_.data(), &zero, 1);
@@ -184,17 +188,14 @@ class ResidentHull {
     active_ = n;
     if (filter.planes != 0) {
       index_[1].grow(n);
-      Buffer<DropFilter> at_executor;
-      at_executor.grow(1);
-      exec_.upload(at_executor.data(), &filter, 1);
-      active_ = exec_.select_if(n, NotInsideP<Point>{points_, at_executor.data()}, index_[1].data());
+      active_ = exec_.select_if(n, NotInsideP<Point>{points_, filter}, index_[1].data());
       list = index_[1].data();
     }
     stats.dropped_by_polytope = n - active_;
     for (auto* b : {&index_[0], &index_[1], &face_of_[0], &face_of_[1], &keep_, &point_rank_})
       b->grow(active_, b == &index_[1] ? active_ : 0);
-    exec_.for_each(active_,
-                   AssignFirst<Point>{view(), list, index_[0].data(), face_of_[0].data(), keep_.data()});
+    exec_.for_each(active_, AssignFirst<Point>{view(), first_faces, list, index_[0].data(),
+                                               face_of_[0].data(), keep_.data()});
     compact(faces_);
     stats.setup_ms = lap();
 
@@ -280,20 +281,42 @@ class ResidentHull {
     return filter;
   }
 
-  // Section 3.1's tetrahedron among P's vertices (confirmed exactly there); dimension < 3 when P is flat.
-  phases::InitialTetrahedron tetrahedron_of(const BasicHullMesh<Point>& polytope) const {
-    phases::InitialTetrahedron out;
-    out.dimension = polytope.dimension < 3 ? polytope.dimension : 3;
-    if (polytope.dimension != 3) return out;
-    const std::vector<Point>& sub = polytope.vertices;
-    HostExec on_host;
-    TetrahedronQueries<Point, HostExec> queries(on_host, sub, sub.data());
-    out = phases::find_initial_tetrahedron(sub, queries);
-    if (out.dimension == 3) {
-      for (PointIndex& corner : out.corners)
-        corner = polytope.vertex_ids[corner];
+  // P as the first mesh (corners and links as the driver keeps them) with its centre as c, when the
+  // centre is exactly strictly below every face; false otherwise (or when P is flat).
+  bool polytope_mesh(const BasicHullMesh<Point>& polytope, std::vector<u32>& fv, std::vector<u32>& fn) {
+    if (polytope.dimension != 3 || polytope.triangles.size() < 4) return false;
+    Vec3d centre{0, 0, 0};
+    for (const Point& v : polytope.vertices) {
+      const Vec3d p = to_vec3d(v);
+      centre = {centre.x + p.x, centre.y + p.y, centre.z + p.z};
     }
-    return out;
+    const double k = 1.0 / static_cast<double>(polytope.vertices.size());
+    centre = {centre.x * k, centre.y * k, centre.z * k};
+    const std::size_t faces = polytope.triangles.size();
+    fv.assign(3 * faces, 0);
+    fn.assign(3 * faces, kNone);
+    for (std::size_t f = 0; f < faces; ++f) {
+      const Triangle& t = polytope.triangles[f];
+      if (orient3d(to_vec3d(polytope.vertices[t[0]]), to_vec3d(polytope.vertices[t[1]]),
+                   to_vec3d(polytope.vertices[t[2]]), centre) >= 0)
+        return false;
+      for (int i = 0; i < 3; ++i)
+        fv[3 * f + i] = polytope.vertex_ids[t[i]];
+    }
+    // Links: the face across directed edge a -> b holds b -> a (a closed 2-manifold: every edge twice).
+    for (std::size_t f = 0; f < faces; ++f) {
+      for (int i = 0; i < 3; ++i) {
+        const u32 a = fv[3 * f + i], b = fv[3 * f + (i + 1) % 3];
+        for (std::size_t g = 0; g < faces && fn[3 * f + i] == kNone; ++g) {
+          for (int j = 0; j < 3; ++j) {
+            if (fv[3 * g + j] == b && fv[3 * g + (j + 1) % 3] == a) fn[3 * f + i] = static_cast<u32>(g);
+          }
+        }
+        if (fn[3 * f + i] == kNone) return false;
+      }
+    }
+    c_ = centre;
+    return true;
   }
 
   // Milliseconds since the last lap.

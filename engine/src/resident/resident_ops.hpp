@@ -170,9 +170,15 @@ inline constexpr int kMaxDropPlanes = 2 * kDirections - 4;  // the faces of a po
 struct DropFilter {
   u32 planes = 0;  // 0: no polytope (lower-dimensional extremes), nothing is dropped
   double n[kMaxDropPlanes][3] = {}, d[kMaxDropPlanes] = {}, slack[kMaxDropPlanes] = {};
+  // Unrolled, so that on the device a filter passed by value is read as kernel-parameter operands, not
+  // loaded plane by plane.
   CUDAHULL_HD bool strictly_inside(const Vec3d& p) const {
     if (planes == 0) return false;
-    for (u32 k = 0; k < planes; ++k) {
+#if defined(__CUDA_ARCH__)
+#pragma unroll
+#endif
+    for (u32 k = 0; k < static_cast<u32>(kMaxDropPlanes); ++k) {
+      if (k == planes) break;
       const double e = ((n[k][0] * p.x + n[k][1] * p.y) + n[k][2] * p.z) + d[k];
       if (!(e < -slack[k])) return false;
     }
@@ -181,20 +187,19 @@ struct DropFilter {
 };
 
 // Selects the points the first distribution looks at: those not proven strictly inside P.
-// The filter lives where the executor computes: by value it would be a kilobyte copied into every
-// thread's local memory.
 template <class Point>
 struct NotInsideP {
   const Point* points;
-  const DropFilter* filter;
-  CUDAHULL_HD bool operator()(u32 i) const { return !filter->strictly_inside(to_vec3d(points[i])); }
+  DropFilter filter;
+  CUDAHULL_HD bool operator()(u32 i) const { return !filter.strictly_inside(to_vec3d(points[i])); }
 };
 
-// Each point (of `list`, or every point) to the first of the tetrahedron's four faces whose closed cone
-// holds it; kept when above.
+// Each point (of `list`, or every point) to the first of the first mesh's faces (P's, or the
+// tetrahedron's) whose closed cone holds it, the last face by elimination; kept when above.
 template <class Point>
 struct AssignFirst {
   MeshView<Point> m;
+  u32 faces;
   const u32* list;  // the points looked at (NotInsideP), or null for all
   u32* point_index;
   u32* point_face;
@@ -202,8 +207,8 @@ struct AssignFirst {
   CUDAHULL_HD void operator()(std::size_t j) const {
     const u32 i = list ? list[j] : static_cast<u32>(j);
     const Vec3d q = m.P(i);
-    u32 face = 3;
-    for (u32 f = 0; f < 3; ++f) {
+    u32 face = faces - 1;
+    for (u32 f = 0; f + 1 < faces; ++f) {
       if (m.in_cone(f, q)) {
         face = f;
         break;
