@@ -441,6 +441,7 @@ int bench_in(const BenchOptions& o) {
                      {"edits", s.edits},
                      {"work_items", s.work_items},
                      {"dropped_by_polytope", s.dropped_by_polytope},
+                     {"loop_iterations", s.loop_iterations},
                      {"exact_finish", s.exact_finish},
                      {"setup_ms", s.setup_ms},
                      {"refine_ms", s.refine_ms},

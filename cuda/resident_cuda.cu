@@ -12,6 +12,7 @@
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
 #include <cub/device/device_select.cuh>
+#include <cuda/std/utility>
 #include <string>
 
 #include "cudahull/errors.hpp"
@@ -185,40 +186,15 @@ __device__ inline u64 now_ns() {
 //   3. number: the blocks' counts, prefix-summed by block 0
 //   4. apply:  each winner, numbered in face order (block offset, then bits in order) as the stepped
 //              rounds' prefix sum numbers them, applies (Apply)
-// A launch of one block (a mesh of a few thousand faces) waits at __syncthreads() instead of the grid
-// barrier, which costs microseconds a round, and has kOneBlockThreads threads: a round's latency is that
-// of the slowest thread's chain of dependent loads, one chain per face it takes.
-template <class Point, int Block>
-__global__ void __launch_bounds__(Block)
-    fused_rounds_kernel(FindCandidate<Point> find, u64* claim, u32* look, Candidate* cands, u32* list,
-                        u32* win_mask, u32* block_offset, RoundsState* st, RoundsLaunch launch) {
-  namespace cg = cooperative_groups;
-  cg::grid_group grid = cg::this_grid();
-  const bool one_block = gridDim.x == 1;
-  auto barrier = [&] {
-    if (one_block) {
-      __syncthreads();
-    } else {
-      grid.sync();
-    }
-  };
+// On any barrier: the grid's in a cooperative launch, __syncthreads() in one block.  It returns when a
+// round has no winner, or before a round that would not fit (st->overflow).
+template <class Point, int Block, class Barrier>
+__device__ void run_rounds(const FindCandidate<Point>& find, u64* claim, u32* look, Candidate* cands,
+                           u32* list, u32* win_mask, u32* block_offset, RoundsState* st, Barrier barrier) {
   using Scan = cub::BlockScan<u32, Block>;
   __shared__ typename Scan::TempStorage scan_storage;
   const u32 threads = gridDim.x * blockDim.x, tid = blockIdx.x * blockDim.x + threadIdx.x;
   const u32 lane = threadIdx.x & 31, below = (1u << lane) - 1;
-  // The iteration's counts from the refinement's, or those the last launch stopped at.
-  if (tid == 0) {
-    if (launch.begin) {
-      st->fresh_from = launch.fresh_from;
-      st->faces = launch.fresh_from + 3 * st->refined;
-      st->entries = st->refined;
-    }
-    st->face_capacity = launch.face_capacity;
-    st->entry_capacity = launch.entry_capacity;
-    st->overflow = 0;
-    st->round_work = 0;  // a launch that overflowed left its count
-  }
-  barrier();
   u64 t0 = tid == 0 ? now_ns() : 0;
   // Thread 0 times each phase up to the barrier after it (so the slowest block's time).
   auto stamp = [&](int phase) {
@@ -353,13 +329,172 @@ __global__ void __launch_bounds__(Block)
   }
 }
 
+// The rounds of one iteration, one launch: the state's counts set up, then run_rounds().  A launch of one
+// block (a mesh of a few thousand faces) waits at __syncthreads() instead of the grid barrier, which costs
+// microseconds a round, and has kOneBlockThreads threads.
+template <class Point, int Block>
+__global__ void __launch_bounds__(Block)
+    fused_rounds_kernel(FindCandidate<Point> find, u64* claim, u32* look, Candidate* cands, u32* list,
+                        u32* win_mask, u32* block_offset, RoundsState* st, RoundsLaunch launch) {
+  namespace cg = cooperative_groups;
+  cg::grid_group grid = cg::this_grid();
+  const bool one_block = gridDim.x == 1;
+  auto barrier = [&] {
+    if (one_block) {
+      __syncthreads();
+    } else {
+      grid.sync();
+    }
+  };
+  const u32 tid = blockIdx.x * blockDim.x + threadIdx.x;
+  // The iteration's counts from the refinement's, or those the last launch stopped at.
+  if (tid == 0) {
+    if (launch.begin) {
+      st->fresh_from = launch.fresh_from;
+      st->faces = launch.fresh_from + 3 * st->refined;
+      st->entries = st->refined;
+    }
+    st->face_capacity = launch.face_capacity;
+    st->entry_capacity = launch.entry_capacity;
+    st->overflow = 0;
+    st->round_work = 0;  // a launch that overflowed left its count
+  }
+  barrier();
+  run_rounds<Point, Block>(find, claim, look, cands, list, win_mask, block_offset, st, barrier);
+}
+
+// An exclusive prefix sum over n values by one block (Items per thread at a time); every thread gets
+// the total.
+template <int Block, int Items>
+__device__ u32 block_exclusive_scan(const u32* in, u32* out, u32 n) {
+  using Scan = cub::BlockScan<u32, Block>;
+  __shared__ typename Scan::TempStorage storage;
+  __syncthreads();  // `in` written by the block before
+  u32 carry = 0;
+  for (u32 base = 0; base < n; base += Block * Items) {
+    u32 values[Items], ranks[Items];
+    const u32 first = base + threadIdx.x * Items;
+#pragma unroll
+    for (int k = 0; k < Items; ++k)
+      values[k] = first + k < n ? in[first + k] : 0u;
+    u32 total = 0;
+    __syncthreads();
+    Scan(storage).ExclusiveSum(values, ranks, total);
+#pragma unroll
+    for (int k = 0; k < Items; ++k) {
+      if (first + k < n) out[first + k] = carry + ranks[k];
+    }
+    carry += total;
+  }
+  __syncthreads();
+  return carry;
+}
+
+// Whole iterations of Algorithm 1 in one block (a small mesh and few points left): the driver's
+// iterate_fused() step for step with the same operations, a block-wide prefix sum where it takes CUB's,
+// and no host in the loop.  Before each iteration it checks that every face refining and the rounds
+// would fit (else kLoopRoom, nothing done); it stops at the first iteration that refines no face
+// (kLoopStall, nothing changed), or when a round does not fit (kLoopOverflow, the state as after a fused
+// launch that overflowed).  Every finished iteration swaps the face and point buffers once.
+template <class Point, int Block>
+__global__ void __launch_bounds__(Block)
+    loop_kernel(LoopBuffers<Point> b, u32 faces, u32 active, u32 face_capacity, u32 entry_capacity) {
+  constexpr int kItems = 4;
+  auto sync = [] { __syncthreads(); };
+  RoundsState* st = b.st;
+  const u32 tid = threadIdx.x;
+  if (tid == 0) {
+    st->face_capacity = face_capacity;
+    st->entry_capacity = entry_capacity;
+  }
+  sync();
+  MeshView<Point> m = b.m;
+  u32 iterations = 0, refined_total = 0, exit = kLoopDone;
+  while (active > 0) {
+    if (8 * faces + 64 > st->face_capacity || 5 * faces + 64 > st->entry_capacity) {
+      exit = kLoopRoom;
+      break;
+    }
+    // The furthest point per face, the faces that refine, their ranks; the split (Fig. 3a).
+    const FurthestPerFace<Point> furthest{m, b.index, b.face, b.extreme};
+    for (u32 j = tid; j < active; j += Block)
+      furthest(j);
+    sync();
+    const MarkRefined<Point> mark{m, b.extreme, b.flags};
+    for (u32 f = tid; f < faces; f += Block)
+      mark(f);
+    const u32 refined = block_exclusive_scan<Block, kItems>(b.flags, b.face_rank, faces);
+    if (refined == 0) {
+      exit = kLoopStall;
+      break;
+    }
+    const u32 round = st->round;
+    const SplitFaces<Point> split{m, b.extreme, b.flags, b.face_rank, faces, 0, b.look, round + 1, nullptr};
+    for (u32 f = tid; f < faces; f += Block)
+      split(f);
+    if (tid == 0) {
+      st->fresh_from = faces;
+      st->faces = faces + 3 * refined;
+      st->entries = refined;
+      st->refined = refined;
+      st->overflow = 0;
+      st->round_work = 0;
+    }
+    sync();
+    // Flips and flops (Figs. 3b, 4, 5).
+    run_rounds<Point, Block>(FindCandidate<Point>{m}, b.claim, b.look, b.cands, b.list, b.win_mask,
+                             b.block_offset, st, sync);
+    sync();
+    if (st->overflow) {
+      exit = kLoopOverflow;
+      break;
+    }
+    // Algorithm 2, then the compaction into the spares.
+    const u32 bound = st->faces;
+    const RoutePoints<Point> route{m, b.index, b.face, b.keep};
+    for (u32 j = tid; j < active; j += Block)
+      route(j);
+    const MarkLive<Point> live{m, b.flags, nullptr};
+    for (u32 f = tid; f < bound; f += Block)
+      live(f);
+    const u32 live_faces = block_exclusive_scan<Block, kItems>(b.flags, b.face_rank, bound);
+    const MoveLive<Point> move{m, b.flags, b.face_rank, b.fv_spare, b.fn_spare, ~std::size_t{0}, nullptr};
+    for (u32 f = tid; f < bound; f += Block)
+      move(f);
+    const u32 kept = block_exclusive_scan<Block, kItems>(b.keep, b.point_rank, active);
+    const MovePoints points{b.keep,        b.point_rank, b.face_rank,     b.index, b.face,
+                            b.index_spare, b.face_spare, ~std::size_t{0}, nullptr};
+    for (u32 j = tid; j < active; j += Block)
+      points(j);
+    sync();
+    cuda::std::swap(m.fv, b.fv_spare);
+    cuda::std::swap(m.fn, b.fn_spare);
+    cuda::std::swap(b.index, b.index_spare);
+    cuda::std::swap(b.face, b.face_spare);
+    faces = live_faces;
+    active = kept;
+    const ResetFaces reset{m.killer, b.look, b.extreme};
+    for (u32 f = tid; f < faces; f += Block)
+      reset(f);
+    sync();
+    ++iterations;
+    refined_total += refined;
+  }
+  if (tid == 0) {
+    st->live_faces = faces;
+    st->kept_points = active;
+    st->loop_iterations = iterations;
+    st->loop_refined = refined_total;
+    st->loop_exit = exit;
+  }
+}
+
 }  // namespace
 
-// Meshes of up to this many faces run their rounds in one block (CUDAHULL_ONE_BLOCK_FACES overrides
-// it, for tuning).
-std::size_t one_block_faces() {
-  const char* env = std::getenv("CUDAHULL_ONE_BLOCK_FACES");
-  return env ? std::strtoull(env, nullptr, 10) : 4096;
+// A size threshold of the executor, or the environment's value for it (for tuning runs).
+std::size_t tuning(const char* name, std::size_t value) {
+  const char* env = std::getenv(name);
+  return env ? std::strtoull(env, nullptr, 10) : value;
 }
 
 struct CudaExec {
@@ -494,16 +629,20 @@ struct CudaExec {
   void scan(const u32* in, u32* out, std::size_t n) {
     if (n == 0) return;
     std::size_t bytes = 0;
-    check(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, static_cast<int>(n)), "sizing a scan");
+    check(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, static_cast<std::int64_t>(n)),
+          "sizing a scan");
     scratch_.grow(bytes);
-    check(cub::DeviceScan::ExclusiveSum(scratch_.data(), bytes, in, out, static_cast<int>(n)), "a scan");
+    check(cub::DeviceScan::ExclusiveSum(scratch_.data(), bytes, in, out, static_cast<std::int64_t>(n)),
+          "a scan");
   }
   u32 exclusive_scan(const u32* in, u32* out, std::size_t n) {
     if (n == 0) return 0;
     std::size_t bytes = 0;
-    check(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, static_cast<int>(n)), "sizing a scan");
+    check(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, static_cast<std::int64_t>(n)),
+          "sizing a scan");
     scratch_.grow(bytes);
-    check(cub::DeviceScan::ExclusiveSum(scratch_.data(), bytes, in, out, static_cast<int>(n)), "a scan");
+    check(cub::DeviceScan::ExclusiveSum(scratch_.data(), bytes, in, out, static_cast<std::int64_t>(n)),
+          "a scan");
     scalar32_.grow(1);
     scan_total_kernel<<<1, 1>>>(in, out, n, scalar32_.data());
     check(cudaGetLastError(), "launching a scan total");
@@ -533,6 +672,23 @@ struct CudaExec {
   template <class T>
   void download(T* to, const T* from, std::size_t n) {
     read(to, from, n);
+  }
+
+  static constexpr bool kDeviceLoop = true;  // loop_kernel: whole iterations of a small mesh in one launch
+  // Up to this many points left, the driver hands the iterations to loop_kernel (one block: each point
+  // pass takes the points a few at a time per thread).
+  std::size_t loop_points = tuning("CUDAHULL_LOOP_POINTS", 16384);
+  template <class Point>
+  void device_loop(const LoopBuffers<Point>& b, u32 faces, u32 active, u32 face_capacity,
+                   u32 entry_capacity) {
+    block_offset_.grow(1);
+    win_mask_.grow((face_capacity + kOneBlockThreads) / 32 + 8);
+    LoopBuffers<Point> with = b;
+    with.win_mask = win_mask_.data();
+    with.block_offset = block_offset_.data();
+    loop_kernel<Point, kOneBlockThreads>
+        <<<1, kOneBlockThreads>>>(with, faces, active, face_capacity, entry_capacity);
+    check(cudaGetLastError(), "launching the device loop");
   }
 
   // The rounds of an iteration in one cooperative launch; the state stays on the device (no wait).
@@ -590,7 +746,7 @@ struct CudaExec {
   Buffer<u32> block_offset_, win_mask_;
   Buffer<unsigned char> select_flags_;
   unsigned cooperative_blocks_ = 0;
-  std::size_t one_block_faces_ = one_block_faces();
+  std::size_t one_block_faces_ = tuning("CUDAHULL_ONE_BLOCK_FACES", 4096);  // meshes with rounds in one block
 };
 
 }  // namespace resident

@@ -20,6 +20,7 @@ struct ResidentStats {
   std::uint64_t edits = 0;                // flips and flops made
   std::uint64_t work_items = 0;           // faces the rounds looked at, summed over the rounds
   std::uint64_t dropped_by_polytope = 0;  // points proven inside P, the extremes' polytope, at the start
+  std::uint64_t loop_iterations = 0;      // iterations run by the device loop of a small mesh
   std::uint64_t faults = 0;               // edges not strictly convex at the end (then the exact finish)
   bool exact_finish = false;              // the result came from the exact reference hull of the candidates
   std::string note;                       // why, for lower-dimensional input or the exact finish

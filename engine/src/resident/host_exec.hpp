@@ -15,6 +15,7 @@ namespace cudahull::resident {
 
 struct HostExec {
   static constexpr bool kFusedRounds = false;  // the driver steps the rounds
+  static constexpr bool kDeviceLoop = false;   // no loop of whole iterations of its own
   template <class T>
   class Buffer {
    public:

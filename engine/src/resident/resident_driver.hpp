@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "cudahull/backend.hpp"
+#include "cudahull/errors.hpp"
 #include "cudahull/exact_hull.hpp"
 #include "cudahull/mesh.hpp"
 #include "cudahull/resident.hpp"
@@ -200,6 +201,21 @@ class ResidentHull {
     stats.setup_ms = lap();
 
     while (active_ > 0) {
+      if constexpr (Exec::kDeviceLoop) {
+        // A small mesh with few points left: whole iterations in one launch, one wait for all of them.
+        if (active_ <= exec_.loop_points && 8 * faces_ + 64 <= capacity_ &&
+            5 * faces_ + 64 <= entry_capacity_) {
+          const u32 exit = device_loop(stats);
+          if (exit == kLoopStall) return exact_finish(stats, "stalled: no face could refine");
+          if (exit == kLoopDone) continue;
+          if (exit == kLoopOverflow) {
+            // Mid-iteration: the rounds go on here with room for them.
+            finish_fused(stats, 0, false);
+            ++stats.iterations;
+            continue;
+          }
+        }
+      }
       bool refined = false;
       if constexpr (Exec::kFusedRounds) {
         refined = iterate_fused(stats);
@@ -332,10 +348,15 @@ class ResidentHull {
   }
 
   // Room for `count` faces, keeping the current ones; new claim slots hold no claim.
+  // Face ids are u32 and a candidate claims with 6 f + slot (Claim): beyond kMaxFaces the ids would wrap.
+  static constexpr std::size_t kMaxFaces = 0xffffffffu / 6;
   void grow_faces(std::size_t count) {
     if (count <= capacity_) return;
+    if (count > kMaxFaces)
+      throw DeviceError("resident engine: the hull needs " + std::to_string(count) +
+                        " face slots, more than " + std::to_string(kMaxFaces) + " (use --engine stepping)");
     const std::size_t old = capacity_;
-    capacity_ = std::max(count, 2 * capacity_);
+    capacity_ = std::min(std::max(count, 2 * capacity_), kMaxFaces);
     fv_.grow(3 * capacity_, 3 * faces_);
     fn_.grow(3 * capacity_, 3 * faces_);
     killer_.grow(capacity_, faces_);
@@ -426,13 +447,17 @@ class ResidentHull {
     grow_for_rounds(bound, entry_bound);
     split();
     stats.refine_ms += lap();
+    return finish_fused(stats, first, true);
+  }
 
+  // The rest of a fused iteration from the rounds on: `begin`, the first launch after the split (from
+  // `first`, the faces before it); otherwise the rounds go on from the state (after an overflow).
+  bool finish_fused(ResidentStats& stats, std::size_t first, bool begin) {
     // Flip and flop rounds until no candidate is left (Figs. 3b, 4, 5), the refined count taken from the
     // state; then the routing and the compaction.  A run of rounds that stopped short of room (overflow)
     // leaves the routing harmless (a point's route from its face through the entries goes on from where it
     // stopped) and the compaction's output unused: the host grows the buffers and goes on with the rounds.
     RoundsState state{};
-    bool begin = true;
     while (true) {
       const std::size_t face_bound = fused_rounds(first, begin);
       begin = false;
@@ -464,6 +489,63 @@ class ResidentHull {
     active_ = state.kept_points;
     exec_.for_each(faces_, ResetFaces{killer_.data(), look_.data(), extreme_.data()});
     return state.refined != 0;
+  }
+
+  // Whole iterations in one launch (the executor's loop_kernel), one read of the state after them; the
+  // buffers swapped once per finished iteration, as compact() swaps them.  Returns the LoopExit.
+  u32 device_loop(ResidentStats& stats) {
+    cands_.grow(capacity_);
+    won_.grow(capacity_);
+    LoopBuffers<Point> b{};
+    b.m = view();
+    b.fv_spare = fv_out_.data();
+    b.fn_spare = fn_out_.data();
+    b.index = index_[0].data();
+    b.face = face_of_[0].data();
+    b.index_spare = index_[1].data();
+    b.face_spare = face_of_[1].data();
+    b.keep = keep_.data();
+    b.point_rank = point_rank_.data();
+    b.flags = flags_.data();
+    b.face_rank = face_rank_.data();
+    b.look = look_.data();
+    b.list = won_.data();
+    b.extreme = extreme_.data();
+    b.claim = claim_.data();
+    b.cands = cands_.data();
+    b.st = state_.data();
+    exec_.device_loop(b, static_cast<u32>(faces_), static_cast<u32>(active_), static_cast<u32>(capacity_),
+                      static_cast<u32>(entry_capacity_));
+    RoundsState state{};
+    exec_.download(&state, state_.data(), 1);
+    stats.route_ms += lap();
+    if (state.loop_iterations % 2 == 1) {
+      fv_.swap(fv_out_);
+      fn_.swap(fn_out_);
+      index_[0].swap(index_[1]);
+      face_of_[0].swap(face_of_[1]);
+    }
+    stats.iterations += state.loop_iterations;
+    stats.loop_iterations += state.loop_iterations;
+    stats.refined_faces += state.loop_refined;
+    round_ = state.round;
+    stats.rounds = state.rounds;
+    stats.edits = state.edits;
+    stats.work_items = state.work_items;
+    for (int k = 0; k < 4; ++k)
+      stats.round_phase_ms[k] = static_cast<double>(state.phase_ns[k]) * 1e-6;
+    active_ = state.kept_points;
+    if (state.loop_exit == kLoopOverflow) {
+      // Mid-iteration, as a fused launch that overflowed leaves it.
+      faces_ = state.faces;
+      entries_used_ = state.entries;
+      grow_faces(state.needed_faces);
+      grow_entries(state.needed_entries);
+      grow_for_rounds(faces_, entries_used_);
+    } else {
+      faces_ = state.live_faces;
+    }
+    return state.loop_exit;
   }
 
   // Room for a run of fused rounds from at most `faces` faces and `entries` entries in use: a round kills

@@ -613,7 +613,28 @@ struct RoundsState {
   u32 round_work, round_winners;            // scratch, zero
   u32 refined;                              // faces refined this iteration (SplitFaces)
   u32 live_faces, kept_points;              // the compaction's totals (MoveLive, MovePoints)
-  u64 phase_ns[4];                          // out, device only: claim, judge, number, apply (profiling)
+  // A device loop of whole iterations (CudaExec's small-mesh kernel): how many it finished, the faces they
+  // refined, and why it stopped (LoopExit).
+  u32 loop_iterations, loop_refined, loop_exit;
+  u64 phase_ns[4];  // out, device only: claim, judge, number, apply (profiling)
+};
+
+// Why a device loop of iterations stopped: every point is inside (done), an iteration refined no face
+// (stall: the mesh is as it was), the next iteration might not fit (room: nothing of it done), or a round
+// did not fit (overflow: mid-iteration, after the split; the host goes on with the rounds).
+enum LoopExit : u32 { kLoopDone = 0, kLoopStall = 1, kLoopRoom = 2, kLoopOverflow = 3 };
+
+// The buffers of a device loop of iterations: the current ones and the spares the compaction writes.
+template <class Point>
+struct LoopBuffers {
+  MeshView<Point> m;  // fv, fn: the current faces
+  u32 *fv_spare, *fn_spare;
+  u32 *index, *face, *index_spare, *face_spare;  // the kept points and their faces
+  u32 *keep, *point_rank, *flags, *face_rank, *look, *list;
+  u32 *win_mask, *block_offset;  // the executor's
+  u64 *extreme, *claim;
+  Candidate* cands;
+  RoundsState* st;
 };
 
 // What the host gives a fused run of rounds: `begin` (the iteration's first: faces = fresh_from + 3 refined,
