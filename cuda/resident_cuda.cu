@@ -603,27 +603,23 @@ struct CudaExec {
     read(&count, scalar32_.data(), 1);
     return count;
   }
-  // The distinct values of in[0..n), all below `bound`, ascending, into out; returns how many (one wait).
-  // A radix sort over the bits `bound` needs, into scratch, then the repeats dropped.
-  u32 sort_unique(const u32* in, std::size_t n, u32* out, u32* scratch, std::size_t bound) {
-    if (n == 0) return 0;
+  // The distinct values of in[0..n), all below `bound`, ascending, into out, and how many into *count
+  // (no wait).  A radix sort over the bits `bound` needs, into scratch, then the repeats dropped.
+  void sort_unique_to(const u32* in, std::size_t n, u32* out, u32* scratch, std::size_t bound, u32* count) {
+    if (n == 0) {
+      fill(count, 1, u32{0});
+      return;
+    }
     int bits = 1;
     while (bits < 32 && (std::size_t{1} << bits) < bound)
       ++bits;
-    scalar32_.grow(1);
     std::size_t sort_bytes = 0, unique_bytes = 0;
-    const auto count = static_cast<std::int64_t>(n);
-    check(cub::DeviceRadixSort::SortKeys(nullptr, sort_bytes, in, scratch, count, 0, bits), "sizing a sort");
-    check(cub::DeviceSelect::Unique(nullptr, unique_bytes, scratch, out, scalar32_.data(), count),
-          "sizing a unique");
-    const std::size_t bytes = std::max(sort_bytes, unique_bytes);
-    scratch_.grow(bytes);
-    check(cub::DeviceRadixSort::SortKeys(scratch_.data(), sort_bytes, in, scratch, count, 0, bits), "a sort");
-    check(cub::DeviceSelect::Unique(scratch_.data(), unique_bytes, scratch, out, scalar32_.data(), count),
-          "a unique");
-    u32 distinct = 0;
-    read(&distinct, scalar32_.data(), 1);
-    return distinct;
+    const auto items = static_cast<std::int64_t>(n);
+    check(cub::DeviceRadixSort::SortKeys(nullptr, sort_bytes, in, scratch, items, 0, bits), "sizing a sort");
+    check(cub::DeviceSelect::Unique(nullptr, unique_bytes, scratch, out, count, items), "sizing a unique");
+    scratch_.grow(std::max(sort_bytes, unique_bytes));
+    check(cub::DeviceRadixSort::SortKeys(scratch_.data(), sort_bytes, in, scratch, items, 0, bits), "a sort");
+    check(cub::DeviceSelect::Unique(scratch_.data(), unique_bytes, scratch, out, count, items), "a unique");
   }
   // The same, the total not brought back.
   void scan(const u32* in, u32* out, std::size_t n) {

@@ -62,16 +62,15 @@ struct HostExec {
     ++host_syncs;
     return best;
   }
-  // The distinct values of in[0..n), ascending, into out; returns how many (values below `bound`;
-  // scratch: n entries).
-  std::uint32_t sort_unique(const std::uint32_t* in, std::size_t n, std::uint32_t* out,
-                            std::uint32_t* /*scratch*/, std::size_t /*bound*/) {
+  // The distinct values of in[0..n), ascending, into out, and how many into *count (values below
+  // `bound`; scratch: n entries).
+  void sort_unique_to(const std::uint32_t* in, std::size_t n, std::uint32_t* out, std::uint32_t* /*scratch*/,
+                      std::size_t /*bound*/, std::uint32_t* count) {
     std::vector<std::uint32_t> values(in, in + n);
     std::sort(values.begin(), values.end());
     values.erase(std::unique(values.begin(), values.end()), values.end());
     std::copy(values.begin(), values.end(), out);
-    ++host_syncs;
-    return static_cast<std::uint32_t>(values.size());
+    *count = static_cast<std::uint32_t>(values.size());
   }
   // The indices i < n with pred(i), in order, into out; returns how many.
   template <class Pred>

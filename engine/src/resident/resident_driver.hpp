@@ -653,39 +653,42 @@ class ResidentHull {
   }
 
   BasicHullMesh<Point> finish(ResidentStats& stats) {
-    Buffer<u32> faults;
-    faults.grow(1);
-    exec_.fill(faults.data(), 1, u32{0});
-    exec_.for_each(faces_, CountFaults<Point>{view(), faults.data()});
-    u32 count = 0;
-    exec_.download(&count, faults.data(), 1);
-    if (count != 0) {
-      stats.faults = count;
-      return exact_finish(stats, std::to_string(count) + " edges not strictly convex");
-    }
-    // The vertices in index order (ascending, as exact_hull gives them); the corners become their ranks.
-    // Only the result comes back.  Fewer corners than points (most hulls): the corners sorted, without
-    // repeats, and each corner found there by bisection; otherwise each vertex flagged among the points
-    // and the flags prefix-summed (no sort of a corner list larger than the points).
+    // The edges that are not strictly convex, counted into the state; then the vertices in index order
+    // (ascending, as exact_hull gives them) with the corners renumbered to their ranks, where they are.
+    // Fewer corners than points (most hulls): the corners sorted without repeats, each corner found there
+    // by bisection, and both counts read at once.  Otherwise each vertex flagged among the points and the
+    // flags prefix-summed (no sort of a corner list larger than the points).  Only the result comes back.
+    RoundsState* st = state_.data();
+    exec_.fill(&st->faults, 2, u32{0});
+    exec_.for_each(faces_, CountFaults<Point>{view(), &st->faults});
     const std::size_t n = host_.size(), corners = 3 * faces_;
-    u32 vertices = 0;
+    u32 counts[2] = {0, 0};  // faults, vertices
     const u32* vertex_list = nullptr;
     if (corners < n) {
       point_rank_.grow(corners);
       index_[1].grow(corners);
-      vertices = exec_.sort_unique(fv_.data(), corners, point_rank_.data(), index_[1].data(), n);
-      exec_.for_each(corners, FindCorners{fv_.data(), point_rank_.data(), vertices, fv_out_.data()});
+      exec_.sort_unique_to(fv_.data(), corners, point_rank_.data(), index_[1].data(), n, &st->vertices);
+      exec_.for_each(corners, FindCorners{fv_.data(), point_rank_.data(), &st->vertices, fv_out_.data()});
+      exec_.download(counts, &st->faults, 2);
       vertex_list = point_rank_.data();
     } else {
+      exec_.download(counts, &st->faults, 1);
+    }
+    if (counts[0] != 0) {
+      stats.faults = counts[0];
+      return exact_finish(stats, std::to_string(counts[0]) + " edges not strictly convex");
+    }
+    if (!vertex_list) {
       keep_.grow(n);
       point_rank_.grow(n);
       index_[1].grow(n);
       exec_.fill(keep_.data(), n, u32{0});
       exec_.for_each(corners, FlagCorners{fv_.data(), keep_.data()});
-      vertices = exec_.select(keep_.data(), point_rank_.data(), index_[1].data(), n);
+      counts[1] = exec_.select(keep_.data(), point_rank_.data(), index_[1].data(), n);
       exec_.for_each(corners, RenumberCorners{fv_.data(), point_rank_.data(), fv_out_.data()});
       vertex_list = index_[1].data();
     }
+    const u32 vertices = counts[1];
     BasicHullMesh<Point> out;
     out.vertex_ids.resize(vertices);
     exec_.download(out.vertex_ids.data(), vertex_list, vertices);

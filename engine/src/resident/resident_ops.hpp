@@ -616,7 +616,8 @@ struct RoundsState {
   // A device loop of whole iterations (CudaExec's small-mesh kernel): how many it finished, the faces they
   // refined, and why it stopped (LoopExit).
   u32 loop_iterations, loop_refined, loop_exit;
-  u64 phase_ns[4];  // out, device only: claim, judge, number, apply (profiling)
+  u32 faults, vertices;  // the finish's counts: edges not strictly convex (CountFaults), hull vertices
+  u64 phase_ns[4];       // out, device only: claim, judge, number, apply (profiling)
 };
 
 // Why a device loop of iterations stopped: every point is inside (done), an iteration refined no face
@@ -719,10 +720,10 @@ struct FlagCorners {
 struct FindCorners {
   const u32* fv;
   const u32* vertices;
-  u32 count;
+  const u32* count;  // where the executor computes
   u32* out;
   CUDAHULL_HD void operator()(std::size_t k) const {
-    u32 lo = 0, hi = count;  // vertices[lo..hi) holds fv[k]
+    u32 lo = 0, hi = *count;  // vertices[lo..hi) holds fv[k]
     while (hi - lo > 1) {
       const u32 mid = lo + (hi - lo) / 2;
       if (vertices[mid] <= fv[k]) {
