@@ -17,6 +17,8 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #define STB_IMAGE_IMPLEMENTATION
@@ -27,6 +29,7 @@
 #include "png.hpp"
 #include "renderer.hpp"
 #include "script.hpp"
+#include "ui_layout.hpp"
 
 namespace cudahull::viewer {
 namespace {
@@ -315,6 +318,48 @@ bool rgba_near(const std::array<float, 3>& p, std::uint32_t rgba) {
   const float r = (rgba & 0xff) / 255.0f, g = ((rgba >> 8) & 0xff) / 255.0f,
               b = ((rgba >> 16) & 0xff) / 255.0f;
   return std::abs(p[0] - r) + std::abs(p[1] - g) + std::abs(p[2] - b) < 0.12f;
+}
+
+// Issue 17: `set legend on` draws the colour key into the picture (swatches in the palette's colours, in
+// the bottom left corner) and `off` gives the same picture back; `show labels` writes the vertex ids (in
+// the vertices' yellow) and the face ids (light blue) in the font.
+TEST(ViewerHeadless, LegendAndLabelsAppearAndGoAway) {
+  TempDir dir;
+  const std::string script =
+      dir.write("legend.txt", "step 3\nhide internal\nhide external\nscreenshot " + (dir / "plain.png") +
+                                  "\nset legend on\nscreenshot " + (dir / "legend.png") +
+                                  "\nset legend off\nscreenshot " + (dir / "off.png") +
+                                  "\nshow labels\nscreenshot " + (dir / "labels.png") + "\n");
+  const ViewerRun r = run_viewer({"--gen", "ball", "12", "--seed", "12", "--headless", "--width", "480",
+                                  "--height", "360", "--script", script});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_THAT(r.err, HasSubstr("text: font "));
+  const Image plain = read_png(dir / "plain.png"), legend = read_png(dir / "legend.png"),
+              off = read_png(dir / "off.png"), labels = read_png(dir / "labels.png");
+  EXPECT_GT(differing_fraction(plain, legend), 0.01);
+  EXPECT_EQ(differing_fraction(plain, off), 0.0);
+  // Each swatch of the faces' key is a square of its exact colour in the bottom left quarter.
+  auto count_in_corner = [](const Image& img, const glm::vec3& c) {
+    std::size_t n = 0;
+    for (int y = img.height / 2; y < img.height; ++y) {
+      for (int x = 0; x < img.width / 2; ++x) {
+        const auto p = img.at(x, y);
+        n += std::abs(p[0] - c.r) + std::abs(p[1] - c.g) + std::abs(p[2] - c.b) < 0.03f ? 1 : 0;
+      }
+    }
+    return n;
+  };
+  for (const glm::vec3& c : kFaceStateColors)
+    EXPECT_GE(count_in_corner(legend, c), count_in_corner(plain, c) + 60) << c.r << " " << c.g << " " << c.b;
+  auto count = [](const Image& img, const glm::vec3& c) {
+    std::size_t n = 0;
+    for (const auto& p : img.rgb)
+      n += rgba_near(p, pack_rgba(c.r, c.g, c.b, 1.0f)) ? 1 : 0;
+    return n;
+  };
+  EXPECT_LT(count(plain, kFaceIdColor), 5u);
+  EXPECT_GT(count(labels, kFaceIdColor), 40u);
+  EXPECT_GT(count(labels, kVertexColor), count(plain, kVertexColor) + 40);
 }
 
 // Issue 6, Figs. 3-5 and 7: next-rejected stops at a step that rejected a swap; the swaps layer draws that
@@ -638,6 +683,73 @@ TEST(ViewerWindow, StepsScreenshotAndCloseAfterFrames) {
                                   "3", "--screenshot", dir / "opt.png", "--frames", "2"});
   ASSERT_EQ(o.exit_code, 0) << describe(o);
   EXPECT_GT(variance(read_png(dir / "opt.png")), 1e-3);
+}
+
+UiRect rect_of(const nlohmann::json& j) {
+  return {j["x"].get<float>(), j["y"].get<float>(), j["width"].get<float>(), j["height"].get<float>()};
+}
+
+// Issue 17: the panels are docked to the window's edges, sized from it, at 1280x720 and 1920x1080 with
+// every panel open (the debugger too): the rectangles Dear ImGui really drew (--ui-layout) lie inside the
+// window, no two intersect, none covers the 3-d view, and no panel's content runs past its right edge.
+TEST(ViewerWindow, PanelsAreDockedWithoutOverlapAtBothSizes) {
+  if (!has_display()) GTEST_SKIP() << "no display (run under xvfb-run, as scripts/test does)";
+  TempDir dir;
+  const std::string script = dir.write("ui.txt", "step 3\nselect-face 0\nshow swaps\n");
+  for (const auto& [width, height] : {std::pair{1280, 720}, std::pair{1920, 1080}}) {
+    const std::string json_path = dir / ("layout_" + std::to_string(width) + ".json");
+    const ViewerRun r =
+        run_viewer({kBunny, "--width", std::to_string(width), "--height", std::to_string(height), "--script",
+                    script, "--frames", "3", "--ui-layout", json_path});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    std::ifstream in(json_path);
+    const nlohmann::json layout = nlohmann::json::parse(in);
+    const float w = layout["window"]["width"].get<float>(), h = layout["window"]["height"].get<float>();
+    EXPECT_EQ(w, static_cast<float>(width));
+    EXPECT_EQ(h, static_cast<float>(height));
+    std::vector<std::string> names;
+    std::vector<UiRect> rects;
+    for (const auto& p : layout["panels"]) {
+      names.push_back(p["name"].get<std::string>());
+      rects.push_back(rect_of(p));
+      EXPECT_TRUE(rects.back().inside(w, h)) << names.back() << " at " << width << "x" << height;
+      EXPECT_LE(p["overflow_x"].get<float>(), 0.5f)
+          << names.back() << " is cut at " << width << "x" << height;
+    }
+    std::sort(names.begin(), names.end());
+    EXPECT_EQ(names, (std::vector<std::string>{"Debugger", "Iteration", "Over the iterations", "cudahull"}));
+    const UiRect view = rect_of(layout["view"]);
+    EXPECT_TRUE(view.inside(w, h));
+    EXPECT_GT(view.width * view.height, 0.25f * w * h);
+    for (std::size_t a = 0; a < rects.size(); ++a) {
+      EXPECT_FALSE(rects[a].intersects(view)) << names[a] << " covers the view";
+      for (std::size_t b = a + 1; b < rects.size(); ++b)
+        EXPECT_FALSE(rects[a].intersects(rects[b]))
+            << names[a] << " and " << names[b] << " overlap at " << width << "x" << height;
+    }
+  }
+}
+
+// The same arithmetic over sizes the window test does not open: small, wide, high-DPI, debugger hidden.
+TEST(ViewerParts, LayoutTilesTheWindowAtAnySize) {
+  for (const auto& [w, h, scale] :
+       {std::tuple{1280.f, 720.f, 1.f}, std::tuple{1920.f, 1080.f, 1.f}, std::tuple{800.f, 600.f, 1.f},
+        std::tuple{3840.f, 2160.f, 2.f}, std::tuple{2560.f, 1080.f, 1.f}}) {
+    for (bool debugger : {true, false}) {
+      const UiLayout l = compute_ui_layout(w, h, scale, debugger);
+      std::vector<UiRect> rects{l.controls, l.iteration, l.plots, l.view};
+      if (debugger) rects.push_back(l.debugger);
+      float area = 0;
+      for (std::size_t a = 0; a < rects.size(); ++a) {
+        EXPECT_TRUE(rects[a].inside(w, h)) << a << " at " << w << "x" << h;
+        EXPECT_GT(rects[a].width, 0);
+        area += rects[a].width * rects[a].height;
+        for (std::size_t b = a + 1; b < rects.size(); ++b)
+          EXPECT_FALSE(rects[a].intersects(rects[b])) << a << " and " << b << " at " << w << "x" << h;
+      }
+      EXPECT_FLOAT_EQ(area, w * h);  // the panels and the view tile the window
+    }
+  }
 }
 
 TEST(ViewerParts, CameraJsonRoundTripsAndRejectsBadValues) {

@@ -19,6 +19,7 @@
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
+#include <imgui_internal.h>  // the panels' content extents, for --ui-layout
 
 #include <algorithm>
 #include <cfloat>
@@ -30,10 +31,14 @@
 
 #include "cudahull/errors.hpp"
 #include "cudahull/generators.hpp"
+#include "cudahull/mesh_io.hpp"
 #include "export.hpp"
+#include "legend.hpp"
 #include "options.hpp"
+#include "png.hpp"
 #include "run_plan.hpp"
 #include "session.hpp"
+#include "ui_layout.hpp"
 
 namespace cudahull::viewer {
 
@@ -81,6 +86,22 @@ std::string format_bytes(std::uint64_t b) {
   return s;
 }
 
+float button_width(const char* label) {
+  return ImGui::CalcTextSize(label, nullptr, true).x + 2 * ImGui::GetStyle().FramePadding.x;
+}
+
+float checkbox_width(const char* label) {
+  return ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x +
+         ImGui::CalcTextSize(label, nullptr, true).x;
+}
+
+// Puts the next item (`width` wide) beside the last one when it fits, else on a new line: rows of buttons
+// and checkboxes wrap in a narrow panel instead of running past its edge.
+void same_line_if_fits(float width) {
+  const float right = ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + width;
+  if (right <= ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x) ImGui::SameLine();
+}
+
 class AppWindow {
  public:
   AppWindow(const ViewerOptions& options, GLFWwindow* window) : o_(options), window_(window) {}
@@ -93,9 +114,23 @@ class AppWindow {
   void draw_ui();
   void panel_main();
   void panel_record();
+  void panel_legend();
   void panel_plots();
   void panel_debugger();
   void help_overlay();
+  // Panels are docked where compute_ui_layout() puts them (issue 17): Begin at that rectangle, and End
+  // noting what was drawn, for --ui-layout.
+  // The 3-d view's rectangle in framebuffer pixels: x and top from the top left (mouse), y from the bottom
+  // left (GL).
+  struct ViewPixels {
+    int x = 0, y = 0, top = 0, width = 1, height = 1;
+    double scale_x = 1, scale_y = 1;  // framebuffer pixels per window coordinate
+  };
+  ViewPixels view_pixels() const;
+  bool begin_panel(const char* name, const UiRect& rect, bool* open = nullptr);
+  void end_panel();
+  void write_ui_layout() const;
+  void write_window_png(int fb_w, int fb_h) const;
   void log(const std::string& line);
   void copy_view();
   void paste_view();
@@ -125,6 +160,8 @@ class AppWindow {
   int explain_index_ = 0;
   std::vector<std::string> explanation_;
   char export_path_[1024] = "cudahull_export";
+  UiLayout layout_;
+  std::vector<PanelReport> panels_drawn_;  // this frame's
   friend void drop_callback(GLFWwindow*, int, const char**);
 };
 
@@ -201,11 +238,9 @@ void AppWindow::handle_input() {
     }
     if (io.MouseWheel != 0) camera.zoom(io.MouseWheel);
     if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
-      int fb_w = 1, fb_h = 1;
-      glfwGetFramebufferSize(window_, &fb_w, &fb_h);
-      const double sx = static_cast<double>(fb_w) / std::max(win_w, 1),
-                   sy = static_cast<double>(fb_h) / std::max(win_h, 1);
-      session_->select_face(session_->face_at(io.MousePos.x * sx, io.MousePos.y * sy, fb_w, fb_h));
+      const ViewPixels v = view_pixels();
+      session_->select_face(session_->face_at(io.MousePos.x * v.scale_x - v.x,
+                                              io.MousePos.y * v.scale_y - v.top, v.width, v.height));
     }
   }
   if (io.WantCaptureKeyboard) return;
@@ -246,20 +281,20 @@ void AppWindow::handle_input() {
 }
 
 void AppWindow::panel_main() {
-  ImGui::SetNextWindowPos(ImVec2(10 * ui_scale_, 10 * ui_scale_), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(340 * ui_scale_, 0), ImVec2(340 * ui_scale_, FLT_MAX));
-  ImGui::Begin("cudahull", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  begin_panel("cudahull", layout_.controls);
+  // Sliders and fields take the panel's width less their labels, so no label runs past the edge.
+  ImGui::PushItemWidth(-ImGui::CalcTextSize("point opacity").x - ImGui::GetStyle().ItemInnerSpacing.x * 2);
   Scene* scene = session_->scene();
   RenderSettings& s = session_->settings();
 
   // The path that per-point state takes to the GL buffer (issue 5, item 3), said in the UI and the log.
-  ImGui::Text("Per-point state: %s", session_->upload_path().c_str());
+  ImGui::TextWrapped("Per-point state: %s", session_->upload_path().c_str());
   if (session_->scene())
-    ImGui::Text("Per-point bytes read back: %s",
-                format_bytes(session_->scene()->point_readback_bytes()).c_str());
+    ImGui::TextWrapped("Per-point bytes read back: %s",
+                       format_bytes(session_->scene()->point_readback_bytes()).c_str());
   ImGui::TextWrapped("Backend: %s", backend_note_.c_str());
-  ImGui::Text("Precision: %s", scene ? precision_note(o_.precision, scene->precision()).c_str()
-                                     : precision_name(o_.precision));
+  ImGui::TextWrapped("Precision: %s", scene ? precision_note(o_.precision, scene->precision()).c_str()
+                                            : precision_name(o_.precision));
   ImGui::Text("%.0f fps", static_cast<double>(ImGui::GetIO().Framerate));
 
   if (ImGui::CollapsingHeader("Data", ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -287,17 +322,17 @@ void AppWindow::panel_main() {
         ImGui::Text("loading %s ...", load_->source().label().c_str());
       }
     } else if (scene) {
-      ImGui::Text("%s: %zu points", scene->label().c_str(), scene->points().size());
+      ImGui::TextWrapped("%s: %zu points", scene->label().c_str(), scene->points().size());
     }
   }
 
   if (ImGui::CollapsingHeader("Steps", ImGuiTreeNodeFlags_DefaultOpen) && scene && !load_) {
     if (ImGui::Button("Step")) scene->step();
-    ImGui::SameLine();
+    same_line_if_fits(button_width("Pause"));
     if (ImGui::Button(running_ ? "Pause" : "Run")) running_ = !running_;
-    ImGui::SameLine();
+    same_line_if_fits(button_width("Run to end"));
     if (ImGui::Button("Run to end")) scene->run_to_end();
-    ImGui::SameLine();
+    same_line_if_fits(button_width("Reset"));
     if (ImGui::Button("Reset")) {
       running_ = false;
       scene->reset();
@@ -309,7 +344,7 @@ void AppWindow::panel_main() {
     if (ImGui::SliderInt("timeline", &position, 0, std::max(end, 1),
                          scene->final_known() ? "%d (end known)" : "%d"))
       scene->rewind(position);
-    ImGui::Text("position %d%s", scene->position(), scene->done() ? ": done, the exact hull" : "");
+    ImGui::TextWrapped("position %d%s", scene->position(), scene->done() ? ": done, the exact hull" : "");
     // Sub-steps (teaching): the step's phases one by one, built by replay when first asked for.
     if (ImGui::Checkbox("sub-steps", &substeps_on_)) scene->set_substep(substeps_on_ ? 0 : -1);
     if (substeps_on_) {
@@ -328,8 +363,8 @@ void AppWindow::panel_main() {
     for (int i = 0; i < kLayerCount; ++i) {
       const Layer layer = static_cast<Layer>(i);
       bool on = s.shown(layer);
+      if (i > 0) same_line_if_fits(checkbox_width(layer_name(layer)));
       if (ImGui::Checkbox(layer_name(layer), &on)) s.show(layer, on);
-      if (i % 4 != 3 && i + 1 < kLayerCount) ImGui::SameLine();
     }
     ImGui::SliderFloat("point size", &s.point_size, 1.0f, 16.0f, "%.1f");
     ImGui::SliderFloat("point opacity", &s.point_opacity, 0.05f, 1.0f, "%.2f");
@@ -359,25 +394,6 @@ void AppWindow::panel_main() {
     ImGui::SameLine();
     ImGui::RadioButton("age##f", &fc, 1);
     s.face_colors = static_cast<FaceColors>(fc);
-    // The legend (Figs. 1, 10): what each colour means.
-    const char* names[kFaceStateCount] = {"unchanged", "refined", "swapped", "removal"};
-    for (int i = 0; i < kFaceStateCount; ++i) {
-      const glm::vec3 c = kFaceStateColors[i];
-      ImGui::ColorButton(names[i], ImVec4(c.r, c.g, c.b, 1), ImGuiColorEditFlags_NoTooltip,
-                         ImVec2(10 * ui_scale_, 10 * ui_scale_));
-      ImGui::SameLine();
-      ImGui::Text("%s", names[i]);
-      if (i + 1 < kFaceStateCount) ImGui::SameLine();
-    }
-    const glm::vec3 pcs[3] = {kInternalColor, kExternalColor, kVertexColor};
-    const char* pnames[3] = {"internal", "external", "hull vertex"};
-    for (int i = 0; i < 3; ++i) {
-      ImGui::ColorButton(pnames[i], ImVec4(pcs[i].r, pcs[i].g, pcs[i].b, 1), ImGuiColorEditFlags_NoTooltip,
-                         ImVec2(10 * ui_scale_, 10 * ui_scale_));
-      ImGui::SameLine();
-      ImGui::Text("%s", pnames[i]);
-      if (i < 2) ImGui::SameLine();
-    }
     // Fig. 2: a face's cell.  Double-click a face, or type its id.
     int face = static_cast<int>(session_->selected_face());
     ImGui::SetNextItemWidth(120);
@@ -389,43 +405,63 @@ void AppWindow::panel_main() {
       const auto f = static_cast<FaceId>(session_->selected_face());
       const FaceExtreme& x = scene->engine().face_extremes()[f];
       const MeshFace& mf = scene->engine().mesh().face(f);
-      ImGui::Text("vertices %u %u %u; %u external points", mf.v[0], mf.v[1], mf.v[2], x.count);
-      if (x.count > 0) ImGui::Text("extreme point %u (the next apex)", x.furthest);
+      ImGui::TextWrapped("vertices %u %u %u; %u external points", mf.v[0], mf.v[1], mf.v[2], x.count);
+      if (x.count > 0) ImGui::TextWrapped("extreme point %u (the next apex)", x.furthest);
       const FaceCell cell = scene->engine().face_cell(f);
       for (int i = 0; i < 3; ++i) {
         const SeparatingPlane& p = cell.edge_plane[i];
-        ImGui::Text("plane %d: (%.3f, %.3f, %.3f) . x + %.4g", i, p.nx, p.ny, p.nz, p.d);
+        ImGui::TextWrapped("plane %d: (%.3f, %.3f, %.3f) . x + %.4g", i, p.nx, p.ny, p.nz, p.d);
       }
     }
     if (ImGui::Button("Fit view")) session_->fit_view();
-    ImGui::SameLine();
+    same_line_if_fits(button_width("Reset view"));
     if (ImGui::Button("Reset view")) session_->camera().reset();
-    ImGui::SameLine();
+    same_line_if_fits(button_width("Copy view"));
     if (ImGui::Button("Copy view")) copy_view();
-    ImGui::SameLine();
+    same_line_if_fits(button_width("Paste view"));
     if (ImGui::Button("Paste view")) paste_view();
   }
+  if (ImGui::CollapsingHeader("Legend", ImGuiTreeNodeFlags_DefaultOpen)) panel_legend();
   if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
   ImGui::TextDisabled("F1: keyboard shortcuts");
-  ImGui::End();
+  ImGui::PopItemWidth();
+  end_panel();
+}
+
+// The colour key of the layers shown (legend.hpp; the same list `set legend on` draws into pictures).
+void AppWindow::panel_legend() {
+  RenderSettings& s = session_->settings();
+  ImGui::Checkbox("draw it into the picture and screenshots", &s.legend);
+  std::string group;
+  for (const LegendEntry& e : legend_entries(s, session_->selected_face() >= 0)) {
+    if (e.group != group) {
+      group = e.group;
+      ImGui::TextDisabled("%s", group.c_str());
+    }
+    ImGui::ColorButton(e.name.c_str(), ImVec4(e.color.r, e.color.g, e.color.b, 1),
+                       ImGuiColorEditFlags_NoTooltip, ImVec2(12 * ui_scale_, 12 * ui_scale_));
+    ImGui::SameLine();
+    ImGui::TextWrapped("%s", e.name.c_str());
+  }
 }
 
 void AppWindow::panel_record() {
   Scene* scene = session_->scene();
-  const float w = static_cast<float>(ImGui::GetIO().DisplaySize.x);
-  ImGui::SetNextWindowPos(ImVec2(w - 330 * ui_scale_, 10 * ui_scale_), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(320 * ui_scale_, 0), ImVec2(320 * ui_scale_, FLT_MAX));
-  ImGui::Begin("Iteration", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  begin_panel("Iteration", layout_.iteration);
   const IterationRecord* r = scene && !load_ ? scene->current_record() : nullptr;
   if (r == nullptr) {
     ImGui::TextDisabled("no step taken yet");
-  } else if (ImGui::BeginTable("record", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp)) {
+  } else if (ImGui::BeginTable("record", 2, ImGuiTableFlags_RowBg)) {
+    // The names' column as wide as the longest name, the values wrapped in the rest: nothing is cut.
+    ImGui::TableSetupColumn("name", ImGuiTableColumnFlags_WidthFixed,
+                            ImGui::CalcTextSize("swaps complementary").x);
+    ImGui::TableSetupColumn("value", ImGuiTableColumnFlags_WidthStretch);
     auto row = [](const char* name, const std::string& value) {
       ImGui::TableNextRow();
       ImGui::TableSetColumnIndex(0);
       ImGui::TextUnformatted(name);
       ImGui::TableSetColumnIndex(1);
-      ImGui::TextUnformatted(value.c_str());
+      ImGui::TextWrapped("%s", value.c_str());
     };
     auto num = [](double x) {
       char s[32];
@@ -453,7 +489,7 @@ void AppWindow::panel_record() {
     ImGui::EndTable();
     if (!r->note.empty()) ImGui::TextWrapped("%s", r->note.c_str());
   }
-  ImGui::End();
+  end_panel();
 }
 
 // Issue 6: the last step's swaps (with the rejected ones and their reasons, Fig. 5), its decision array
@@ -461,11 +497,8 @@ void AppWindow::panel_record() {
 void AppWindow::panel_debugger() {
   Scene* scene = session_->scene();
   if (!scene || !show_debugger_) return;
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(10 * ui_scale_, display.y - 360 * ui_scale_), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(520 * ui_scale_, 340 * ui_scale_), ImGuiCond_FirstUseEver);
-  if (!ImGui::Begin("Debugger", &show_debugger_)) {
-    ImGui::End();
+  if (!begin_panel("Debugger", layout_.debugger, &show_debugger_)) {
+    end_panel();
     return;
   }
   if (ImGui::Button("Next step with a rejected swap")) {
@@ -474,7 +507,7 @@ void AppWindow::panel_debugger() {
   const IterationRecord* r = scene->current_record();
   if (r == nullptr) {
     ImGui::TextDisabled("step once to see the swaps and the decision array");
-    ImGui::End();
+    end_panel();
     return;
   }
   RenderSettings& s = session_->settings();
@@ -487,7 +520,11 @@ void AppWindow::panel_debugger() {
       if (ImGui::Checkbox("refinement layer", &on)) s.show(Layer::kRefinement, on);
       static bool rejected_only = false;
       ImGui::Checkbox("rejected only", &rejected_only);
-      if (ImGui::BeginTable("swaps", 5, ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg, ImVec2(0, 0))) {
+      // Columns as wide as their contents, scrolling sideways where the strip is narrower: nothing cut.
+      if (ImGui::BeginTable("swaps", 5,
+                            ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX | ImGuiTableFlags_RowBg |
+                                ImGuiTableFlags_SizingFixedFit,
+                            ImVec2(0, 0))) {
         ImGui::TableSetupColumn("#");
         ImGui::TableSetupColumn("kind");
         ImGui::TableSetupColumn("old -> new edge");
@@ -539,7 +576,9 @@ void AppWindow::panel_debugger() {
     if (ImGui::BeginTabItem("Decision array")) {
       ImGui::TextDisabled(
           "Fig. 7: a point of a swapped face goes 'above' or 'below' the plane; codes >= 0 are faces");
-      if (ImGui::BeginTable("decisions", 5, ImGuiTableFlags_ScrollY | ImGuiTableFlags_RowBg)) {
+      if (ImGui::BeginTable("decisions", 5,
+                            ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX | ImGuiTableFlags_RowBg |
+                                ImGuiTableFlags_SizingFixedFit)) {
         ImGui::TableSetupColumn("index");
         ImGui::TableSetupColumn("separating plane");
         ImGui::TableSetupColumn("above");
@@ -628,16 +667,12 @@ void AppWindow::panel_debugger() {
     }
     ImGui::EndTabBar();
   }
-  ImGui::End();
+  end_panel();
 }
 
 void AppWindow::panel_plots() {
   Scene* scene = session_->scene();
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x - 330 * ui_scale_, display.y - 330 * ui_scale_),
-                          ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(320 * ui_scale_, 320 * ui_scale_), ImGuiCond_FirstUseEver);
-  ImGui::Begin("Over the iterations");
+  begin_panel("Over the iterations", layout_.plots);
   if (scene && !load_ && !scene->history().empty()) {
     // Cf. Fig. 9: the points still outside the hull, and where the time goes.
     const auto& h = scene->history();
@@ -676,7 +711,7 @@ void AppWindow::panel_plots() {
   } else {
     ImGui::TextDisabled("step to see the plots");
   }
-  ImGui::End();
+  end_panel();
 }
 
 void AppWindow::help_overlay() {
@@ -701,7 +736,64 @@ void AppWindow::help_overlay() {
   ImGui::End();
 }
 
+AppWindow::ViewPixels AppWindow::view_pixels() const {
+  int fb_w = 1, fb_h = 1, win_w = 1, win_h = 1;
+  glfwGetFramebufferSize(window_, &fb_w, &fb_h);
+  glfwGetWindowSize(window_, &win_w, &win_h);
+  ViewPixels v;
+  v.scale_x = static_cast<double>(fb_w) / std::max(win_w, 1);
+  v.scale_y = static_cast<double>(fb_h) / std::max(win_h, 1);
+  const UiRect& r = layout_.view;
+  v.x = static_cast<int>(std::lround(r.x * v.scale_x));
+  v.top = static_cast<int>(std::lround(r.y * v.scale_y));
+  v.width = std::max(1, static_cast<int>(std::lround(r.width * v.scale_x)));
+  v.height = std::max(1, static_cast<int>(std::lround(r.height * v.scale_y)));
+  v.y = std::max(0, fb_h - v.top - v.height);
+  return v;
+}
+
+bool AppWindow::begin_panel(const char* name, const UiRect& rect, bool* open) {
+  ImGui::SetNextWindowPos(ImVec2(rect.x, rect.y), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(rect.width, rect.height), ImGuiCond_Always);
+  return ImGui::Begin(name, open,
+                      ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                          ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoBringToFrontOnFocus);
+}
+
+void AppWindow::end_panel() {
+  const ImGuiWindow* w = ImGui::GetCurrentWindow();
+  PanelReport p;
+  p.name = w->Name;
+  p.rect = {w->Pos.x, w->Pos.y, w->Size.x, w->Size.y};
+  // Content right of the visible area is cut unless the panel scrolls sideways.
+  if (!w->ScrollbarX) p.overflow_x = std::max(0.0f, w->DC.CursorMaxPos.x - w->InnerClipRect.Max.x);
+  panels_drawn_.push_back(p);
+  ImGui::End();
+}
+
+void AppWindow::write_ui_layout() const {
+  if (o_.ui_layout.empty()) return;
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  const std::string text = ui_layout_json(display.x, display.y, layout_.view, panels_drawn_).dump(2) + "\n";
+  write_file_atomically(o_.ui_layout, [&](std::ostream& out) { out << text; });
+}
+
+void AppWindow::write_window_png(int fb_w, int fb_h) const {
+  std::vector<std::uint8_t> pixels(static_cast<std::size_t>(fb_w) * fb_h * 4), flipped(pixels.size());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, fb_w, fb_h, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  const std::size_t row = static_cast<std::size_t>(fb_w) * 4;
+  for (int y = 0; y < fb_h; ++y)  // GL's first row is the bottom one
+    std::copy_n(pixels.data() + (fb_h - 1 - y) * row, row, flipped.data() + y * row);
+  write_png(o_.window_screenshot, flipped, fb_w, fb_h);
+}
+
 void AppWindow::draw_ui() {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  layout_ = compute_ui_layout(display.x, display.y, ui_scale_, show_debugger_ && session_->scene());
+  panels_drawn_.clear();
   panel_main();
   panel_record();
   panel_plots();
@@ -716,7 +808,7 @@ int AppWindow::run() {
   session_ = std::make_unique<Session>();
   session_->allow_interop(!o_.no_interop);
   backend_ = backend_factory(o_.backend, &backend_note_);
-  log("window: " + gl_description());
+  log("window: " + gl_description() + "; text: " + session_->renderer().text_note());
   if (!o_.source.empty()) {
     start_load(o_.source);
   } else {
@@ -781,12 +873,21 @@ int AppWindow::run() {
 
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (fb_w > 0 && fb_h > 0) {  // minimised: nothing to draw into
-      session_->draw(fb_w, fb_h, pixel_scale_);
+      // The scene in the view the panels leave free; the panels around it on the background.
+      glDisable(GL_SCISSOR_TEST);
+      const glm::vec3 b = session_->settings().background;
+      glClearColor(b.r, b.g, b.b, 1.0f);
+      glClear(GL_COLOR_BUFFER_BIT);
+      const ViewPixels v = view_pixels();
+      session_->draw(v.width, v.height, pixel_scale_, v.x, v.y);
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+      // The last frame, panels and all (--window-screenshot: the docs' pictures of the layout).
+      if (glfwWindowShouldClose(window_) && !o_.window_screenshot.empty()) write_window_png(fb_w, fb_h);
     }
     glfwSwapBuffers(window_);
   }
-  session_.reset();  // GL objects go while the context is alive
+  write_ui_layout();  // the last frame's panels
+  session_.reset();   // GL objects go while the context is alive
   return kExitOk;
 }
 

@@ -32,7 +32,8 @@ int run_headless(const ViewerOptions& o) {
     session.set_scene(std::make_unique<Scene>(points, factory, o.source.label()), true);
     log_line(o, o.source.label() + ": " + std::to_string(points.positions->size()) + " points; backend " +
                     backend_note + "; precision " + precision_note(o.precision, points.precision()) +
-                    "; per-point state: " + session.upload_path());
+                    "; per-point state: " + session.upload_path() +
+                    "; text: " + session.renderer().text_note());
     RunPlan plan({o.steps, o.script, o.screenshot, o.width, o.height});
     std::string line;
     while (plan.next(session, line))
@@ -149,6 +150,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 100000));
   app.add_flag("--no-interop", o.no_interop,
                "Upload per-point state from the CPU even where CUDA-GL interop works (for comparisons)");
+  app.add_option("--ui-layout", o.ui_layout,
+                 "Window: on closing, write each panel's rectangle (and the 3-d view's) as JSON to FILE");
+  app.add_option("--window-screenshot", o.window_screenshot,
+                 "Window: on closing, write a PNG of the whole window, panels included");
   app.add_flag("-q,--quiet", o.quiet, "No log lines on stderr");
 
   try {
@@ -174,6 +179,10 @@ int main(int argc, char** argv) {
       throw CLI::ValidationError(
           "--headless needs --screenshot, --script or --bench-frames (it has no other output)");
     if (!o.headless && o.bench_frames > 0) throw CLI::ValidationError("--bench-frames is for --headless");
+    if (o.headless && !o.window_screenshot.empty())
+      throw CLI::ValidationError("--window-screenshot is for the window; headless, use --screenshot");
+    if (o.headless && !o.ui_layout.empty())
+      throw CLI::ValidationError("--ui-layout is for the window (headless runs draw no panels)");
     if (o.headless && *frames_opt) throw CLI::ValidationError("--frames is for the window, not --headless");
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

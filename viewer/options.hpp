@@ -25,7 +25,10 @@ struct ViewerOptions {
   std::optional<long long> frames;    // windowed: close this many frames after the plan is done
   int bench_frames = 0;               // headless: time this many frames after the plan, JSON on stdout
   bool quiet = false;
-  bool no_interop = false;  // upload per-point state from the CPU even where CUDA-GL interop would work
+  bool no_interop = false;
+  std::string window_screenshot;  // window: a PNG of the last frame, panels included
+  std::string ui_layout;  // window: write the panels' rectangles as JSON here on closing (ui_layout.hpp)  //
+                          // upload per-point state from the CPU even where CUDA-GL interop would work
 };
 
 int run_window(const ViewerOptions& options);

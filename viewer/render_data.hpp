@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "cudahull/backend.hpp"
@@ -51,6 +52,15 @@ struct OverlayLabel {
   float x = 0, y = 0, z = 0;
   std::uint32_t rgba = 0;
   int number = 0;
+};
+// Text beside a point (the labels layer's vertex and face ids), centred `dx`, `dy` pixels right and down of
+// it; left out where `n` (the outward direction, zero for always) faces clearly away from the eye.
+struct TextLabel {
+  float x = 0, y = 0, z = 0;
+  float nx = 0, ny = 0, nz = 0;
+  std::uint32_t rgba = 0;
+  std::string text;
+  float dx = 0, dy = 0;
 };
 inline std::uint32_t pack_rgba(float r, float g, float b, float a) {
   auto byte = [](float v) { return static_cast<std::uint32_t>(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f); };

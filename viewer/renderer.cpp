@@ -11,13 +11,14 @@
 
 #include "cudahull/errors.hpp"
 #include "embedded_shaders.hpp"
+#include "text.hpp"
 
 namespace cudahull::viewer {
 
 namespace {
 
-constexpr const char* kLayerNames[kLayerCount] = {"hull",  "wireframe", "internal", "external",  "vertices",
-                                                  "cells", "swaps",     "normals",  "refinement"};
+constexpr const char* kLayerNames[kLayerCount] = {"hull",  "wireframe", "internal", "external",   "vertices",
+                                                  "cells", "swaps",     "normals",  "refinement", "labels"};
 
 // Compiles `source` with shaders/colors.glsl (hsv_to_rgb, face_color) after its #version line: GLSL has
 // no #include.  `#line 2` keeps the driver's line numbers those of the file.
@@ -60,9 +61,17 @@ unsigned link_shaders(std::initializer_list<GLuint> shaders, const char* name) {
   return program;
 }
 
-unsigned link(const char* vertex, const char* fragment, const char* name) {
+}  // namespace
+
+unsigned link_program(const char* vertex, const char* fragment, const char* name) {
   return link_shaders({compile(GL_VERTEX_SHADER, vertex, name), compile(GL_FRAGMENT_SHADER, fragment, name)},
                       name);
+}
+
+namespace {
+
+unsigned link(const char* vertex, const char* fragment, const char* name) {
+  return link_program(vertex, fragment, name);
 }
 
 unsigned link_compute(const char* source, const char* name) {
@@ -136,6 +145,7 @@ Renderer::Renderer() {
   glCreateVertexArrays(1, &label_vao_);
   glCreateBuffers(1, &label_buffer_);
   bind_overlay_layout(label_vao_, label_buffer_);
+  text_ = std::make_unique<TextRenderer>();
   GLuint splat_buffers[2];
   glCreateBuffers(2, splat_buffers);
   splat_depth_buffer_ = splat_buffers[0];
@@ -179,6 +189,10 @@ Renderer::Renderer() {
   glNamedBufferData(state_buffer_, 16, nullptr, GL_DYNAMIC_DRAW);
   if (const GLenum e = glGetError(); e != GL_NO_ERROR)
     throw DeviceError("OpenGL: error " + std::to_string(e) + " while creating the renderer's buffers");
+}
+
+const std::string& Renderer::text_note() const {
+  return text_->font_note();
 }
 
 Renderer::~Renderer() {
@@ -260,6 +274,53 @@ constexpr float kSegmentEnds[7][4] = {{0, 2, 1, 2}, {1, 2, 1, 1}, {1, 1, 1, 0}, 
                                       {0, 0, 0, 1}, {0, 1, 0, 2}, {0, 1, 1, 1}};
 }  // namespace
 
+// Ids and sequence numbers in the font (text.hpp), centred on their points; those whose outward direction
+// faces away from the eye are behind the hull and left out.  The legend in the view's bottom left corner.
+void Renderer::draw_text(const ViewParams& view, const glm::mat4& view_proj) const {
+  text_->clear();
+  const glm::vec3 eye = glm::vec3(glm::inverse(view.view)[3]);
+  auto place = [&](const TextLabel& label) {
+    const glm::vec3 p(label.x, label.y, label.z), outward(label.nx, label.ny, label.nz);
+    const glm::vec4 clip = view_proj * glm::vec4(p, 1.0f);
+    if (clip.w <= 0) return;
+    // Silhouette faces and vertices, seen nearly edge-on, keep their labels.
+    const float facing = glm::dot(outward, eye - p);
+    if (facing < -0.2f * glm::length(outward) * glm::length(eye - p)) return;
+    const float px = (clip.x / clip.w * 0.5f + 0.5f) * view.width + label.dx * view.pixel_scale,
+                py = (0.5f - clip.y / clip.w * 0.5f) * view.height + label.dy * view.pixel_scale;
+    if (px < 0 || py < 0 || px > view.width || py > view.height) return;
+    text_->add_label(px, py, label.text, label.rgba);
+  };
+  for (const TextLabel& label : text_labels_)
+    place(label);
+  for (const OverlayLabel& label : labels_)
+    place({label.x, label.y, label.z, 0, 0, 0, label.rgba, std::to_string(label.number), 9,
+           -9});  // beside the edge
+  if (!legend_.empty()) {
+    const float pad = 8, swatch = 12, line = text_->line_height();
+    float widest = 0;
+    for (const LegendRow& row : legend_)
+      widest = std::max(widest, text_->width(row.text) + (row.heading ? 0 : swatch + pad));
+    const float box_w = widest + 2 * pad, box_h = legend_.size() * line + 2 * pad;
+    const float left = pad, top = view.height - pad - box_h;
+    text_->add_rect(left, top, left + box_w, top + box_h, pack_rgba(0.05f, 0.05f, 0.06f, 0.82f));
+    float y = top + pad;
+    for (const LegendRow& row : legend_) {
+      const float baseline = y + 0.5f * line + 0.35f * text_->ascent();
+      if (row.heading) {
+        text_->add_text(left + pad, baseline, row.text, pack_rgba(0.65f, 0.65f, 0.7f, 1.0f));
+      } else {
+        const float sy = y + 0.5f * (line - swatch);
+        text_->add_rect(left + pad, sy, left + pad + swatch, sy + swatch,
+                        pack_rgba(row.color.r, row.color.g, row.color.b, 1.0f));
+        text_->add_text(left + 2 * pad + swatch, baseline, row.text, pack_rgba(0.92f, 0.92f, 0.92f, 1.0f));
+      }
+      y += line;
+    }
+  }
+  text_->draw(view.width, view.height);
+}
+
 void Renderer::draw_labels(const ViewParams& view, const glm::mat4& view_proj) const {
   std::vector<OverlayVertex> lines;
   const float unit = 5.0f * view.pixel_scale;  // a digit is 5 x 10 pixels at scale 1
@@ -340,13 +401,17 @@ void Renderer::draw_splats(const ViewParams& view, const glm::mat4& view_proj,
 
   glUseProgram(resolve_program_);
   glUniform2i(loc(resolve_program_, "u_size"), view.width, view.height);
+  glUniform2i(loc(resolve_program_, "u_origin"), view.origin_x, view.origin_y);
   glDepthMask(GL_TRUE);
   glBindVertexArray(resolve_vao_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
 void Renderer::draw(const ViewParams& view, const RenderSettings& s) const {
-  glViewport(0, 0, view.width, view.height);
+  glViewport(view.origin_x, view.origin_y, view.width, view.height);
+  // The clear only within the view (the window's panels are around it).
+  glScissor(view.origin_x, view.origin_y, view.width, view.height);
+  glEnable(GL_SCISSOR_TEST);
   glClearColor(s.background.r, s.background.g, s.background.b, 1.0f);
   glClearDepth(1.0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -357,7 +422,6 @@ void Renderer::draw(const ViewParams& view, const RenderSettings& s) const {
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
   glEnable(GL_PROGRAM_POINT_SIZE);
   glEnable(GL_MULTISAMPLE);
-  glDisable(GL_SCISSOR_TEST);
   glDisable(GL_STENCIL_TEST);
 
   const glm::mat4 view_proj = view.projection * view.view;
@@ -435,11 +499,14 @@ void Renderer::draw(const ViewParams& view, const RenderSettings& s) const {
       glDrawArrays(GL_LINES, static_cast<GLint>(overlay_triangle_vertices_),
                    static_cast<GLsizei>(overlay_line_vertices_));
   }
-  if (!labels_.empty()) {
+  if (text_->available()) {
+    draw_text(view, view_proj);
+  } else if (!labels_.empty()) {  // no font: the sequence numbers as line digits
     glUseProgram(overlay_program_);
     draw_labels(view, view_proj);
   }
   glDepthMask(GL_TRUE);
+  glDisable(GL_SCISSOR_TEST);
   glBindVertexArray(0);
   glUseProgram(0);
 }

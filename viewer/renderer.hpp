@@ -19,15 +19,22 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <glm/glm.hpp>
 
 #include "render_data.hpp"
 
 namespace cudahull::viewer {
+
+class TextRenderer;
+// Compiles and links a vertex + fragment program of the embedded shaders (colors.glsl prepended); throws
+// DeviceError with the driver's log.
+unsigned link_program(const char* vertex, const char* fragment, const char* name);
 
 // kCells: the selected face's separating planes, cell points and extreme point (Fig. 2); kSwaps: the last
 // step's swaps, rejected swaps and removals (Figs. 3b, 4, 5); kNormals: every edge's normal (the average of
@@ -42,9 +49,10 @@ enum class Layer {
   kCells,
   kSwaps,
   kNormals,
-  kRefinement
+  kRefinement,
+  kLabels,  // the hull's vertex ids and face ids, in the font (text.hpp)
 };
-inline constexpr int kLayerCount = 9;
+inline constexpr int kLayerCount = 10;
 const char* layer_name(Layer layer);
 std::optional<Layer> layer_from_name(std::string_view name);
 std::string layer_names();  // "hull, wireframe, ..." for messages
@@ -58,7 +66,7 @@ enum class PointMode { kAuto, kPoints, kSplats };
 inline constexpr std::size_t kSplatAutoPoints = 2000000;
 
 struct RenderSettings {
-  std::array<bool, kLayerCount> layers{true, true, true, true, true, true, false, false, false};
+  std::array<bool, kLayerCount> layers{true, true, true, true, true, true, false, false, false, false};
   float point_size = 3.0f;     // logical pixels (times pixel_scale)
   float point_opacity = 1.0f;  // 0..1
   float hull_opacity = 0.6f;   // 0..1; below 1 the points inside show through
@@ -68,6 +76,7 @@ struct RenderSettings {
   FaceColors face_colors = FaceColors::kState;
   float age_span = 5.0f;  // iterations over which "by age" fades from new to old
   glm::vec3 background{0.11f, 0.115f, 0.13f};
+  bool legend = false;  // the colour key drawn into the picture (legend.hpp)
 
   bool shown(Layer layer) const { return layers[static_cast<int>(layer)]; }
   void show(Layer layer, bool on) { layers[static_cast<int>(layer)] = on; }
@@ -78,6 +87,7 @@ inline constexpr glm::vec3 kInternalColor{0.85f, 0.16f, 0.12f};
 inline constexpr glm::vec3 kExternalColor{0.62f, 0.40f, 0.20f};
 inline constexpr glm::vec3 kVertexColor{1.0f, 0.92f, 0.35f};
 inline constexpr glm::vec3 kSelectedColor{0.20f, 0.90f, 0.95f};  // the selected face's cell points
+inline constexpr glm::vec3 kFaceIdColor{0.62f, 0.85f, 1.0f};     // face ids (the labels layer)
 inline constexpr std::array<glm::vec3, kFaceStateCount> kFaceStateColors{
     glm::vec3{0.33f, 0.55f, 0.88f},  // unchanged
     glm::vec3{0.96f, 0.62f, 0.16f},  // refined this step
@@ -87,9 +97,10 @@ inline constexpr std::array<glm::vec3, kFaceStateCount> kFaceStateColors{
 
 struct ViewParams {
   glm::mat4 view{1.0f}, projection{1.0f};
-  int width = 1, height = 1;     // framebuffer pixels
-  float pixel_scale = 1.0f;      // framebuffer pixels per logical pixel (high-DPI)
-  long long selected_face = -1;  // its cell's points are highlighted while the cells layer is shown
+  int width = 1, height = 1;       // framebuffer pixels
+  int origin_x = 0, origin_y = 0;  // the view's bottom left corner in the framebuffer (the window's panels)
+  float pixel_scale = 1.0f;        // framebuffer pixels per logical pixel (high-DPI)
+  long long selected_face = -1;    // its cell's points are highlighted while the cells layer is shown
 };
 
 class Renderer {
@@ -106,6 +117,16 @@ class Renderer {
   void set_overlay(const std::vector<OverlayVertex>& triangles, const std::vector<OverlayVertex>& lines,
                    const std::vector<OverlayLabel>& labels = {});
   void draw(const ViewParams& view, const RenderSettings& settings) const;
+  // Ids drawn in the font beside their points (the labels layer), and the legend's rows (drawn while not
+  // empty).  Both need the font: text_note() says which one, or why there is none.
+  void set_text_labels(std::vector<TextLabel> labels) { text_labels_ = std::move(labels); }
+  struct LegendRow {
+    std::string text;
+    glm::vec3 color{1.0f};
+    bool heading = false;
+  };
+  void set_legend(std::vector<LegendRow> rows) { legend_ = std::move(rows); }
+  const std::string& text_note() const;
 
   unsigned point_state_buffer() const { return state_buffer_; }
   // Whether draw() splats the cloud with these settings (the rest of the time it draws GL points).
@@ -123,6 +144,10 @@ class Renderer {
   std::size_t overlay_capacity_ = 0, overlay_triangle_vertices_ = 0, overlay_line_vertices_ = 0;
   std::vector<OverlayLabel> labels_;
   void draw_labels(const ViewParams& view, const glm::mat4& view_proj) const;
+  void draw_text(const ViewParams& view, const glm::mat4& view_proj) const;
+  std::unique_ptr<TextRenderer> text_;
+  std::vector<TextLabel> text_labels_;
+  std::vector<LegendRow> legend_;
   unsigned label_buffer_ = 0, label_vao_ = 0;
   mutable std::size_t label_capacity_ = 0;
   // The splats' per-pixel depth and colour, grown to the largest framebuffer drawn (draw() is const).

@@ -34,7 +34,7 @@ bool parse_number(const std::string& s, double& out) {
 }
 
 const char* kSettings[] = {"point-size",   "point-opacity", "hull-opacity", "wire-width",
-                           "point-colors", "face-colors",   "point-mode"};
+                           "point-colors", "face-colors",   "point-mode",   "legend"};
 
 }  // namespace
 
@@ -138,6 +138,8 @@ std::vector<ScriptCommand> parse_script(std::istream& in, const std::string& nam
       } else if (c.text == "point-mode") {
         if (c.value != "auto" && c.value != "points" && c.value != "splats")
           fail("point-mode is 'auto', 'points' or 'splats'");
+      } else if (c.text == "legend") {
+        if (c.value != "on" && c.value != "off") fail("legend is 'on' or 'off'");
       } else if (c.text == "face-colors") {
         if (c.value != "state" && c.value != "age") fail("face-colors is 'state' or 'age'");
       } else if (c.text == "point-size" || c.text == "wire-width") {

@@ -19,7 +19,8 @@
 //   camera JSON          the view, as Ctrl-C copies it (camera.hpp)
 //   screenshot PATH      a PNG of the scene (not the panels); %d in PATH becomes the position
 //   set NAME VALUE       point-size, point-opacity, hull-opacity, wire-width (numbers),
-//                        point-colors state|face, face-colors state|age, point-mode auto|points|splats
+//                        point-colors state|face, face-colors state|age, point-mode auto|points|splats,
+//                        legend on|off (the colour key drawn into the picture)
 //
 // parse_script() checks the whole file before anything runs, so a bad line fails early with a one-line
 // ScriptError naming the file and the line ("demo.txt:7: ...").

@@ -7,6 +7,7 @@
 
 #include "cudahull/errors.hpp"
 #include "export.hpp"
+#include "legend.hpp"
 #include "png.hpp"
 
 namespace cudahull::viewer {
@@ -69,6 +70,7 @@ void Session::update_overlay() {
   key.refinement = settings_.shown(Layer::kRefinement);
   key.swaps = settings_.shown(Layer::kSwaps);
   key.sequence_limit = scene_ ? scene_->substep_sequence_limit() : 0;
+  key.labels = settings_.shown(Layer::kLabels);
   if (key == overlay_key_) return;
   overlay_key_ = key;
   overlay_.triangles.clear();
@@ -77,6 +79,30 @@ void Session::update_overlay() {
     build_overlay(scene_->engine(), selected_face_,
                   {key.cells, key.normals, key.refinement, key.swaps, key.sequence_limit}, overlay_);
   renderer_.set_overlay(overlay_.triangles, overlay_.lines, overlay_.labels);
+  renderer_.set_text_labels(key.labels ? id_labels() : std::vector<TextLabel>{});
+}
+
+std::vector<TextLabel> Session::id_labels() const {
+  std::vector<TextLabel> out;
+  if (!scene_ || scene_->position() == 0 || scene_->engine().dimension() != 3) return out;
+  const Mesh& mesh = scene_->engine().mesh();
+  const std::vector<Point3>& points = scene_->points();
+  const std::uint32_t face_rgba = pack_rgba(kFaceIdColor.r, kFaceIdColor.g, kFaceIdColor.b, 1.0f);
+  for (FaceId f = 0; f < mesh.face_capacity(); ++f) {
+    if (!mesh.alive(f)) continue;
+    const MeshFace& face = mesh.face(f);
+    glm::vec3 c[3];
+    for (int i = 0; i < 3; ++i)
+      c[i] = glm::vec3(points[face.v[i]].x, points[face.v[i]].y, points[face.v[i]].z);
+    const glm::vec3 mid = (c[0] + c[1] + c[2]) / 3.0f, n = glm::cross(c[1] - c[0], c[2] - c[0]);
+    out.push_back({mid.x, mid.y, mid.z, n.x, n.y, n.z, face_rgba, "f" + std::to_string(f)});
+  }
+  // Vertex ids up and to the right of their points, all of them, as the vertex points are all drawn (those
+  // behind show through the translucent hull).
+  const std::uint32_t vertex_rgba = pack_rgba(kVertexColor.r, kVertexColor.g, kVertexColor.b, 1.0f);
+  for (PointIndex v : mesh.vertices())
+    out.push_back({points[v].x, points[v].y, points[v].z, 0, 0, 0, vertex_rgba, std::to_string(v), 8, -8});
+  return out;
 }
 
 bool Session::next_step_where(const std::function<bool(const IterationRecord&)>& wanted) {
@@ -164,7 +190,7 @@ long long Session::face_at(double x, double y, int width, int height) const {
   return pick_face(scene_->engine(), a, b - a);
 }
 
-void Session::draw(int width, int height, float pixel_scale) {
+void Session::draw(int width, int height, float pixel_scale, int origin_x, int origin_y) {
   update_overlay();
   if (scene_) {
     RenderData& data = scene_->render_data();
@@ -176,9 +202,20 @@ void Session::draw(int width, int height, float pixel_scale) {
   view.width = std::max(width, 1);
   view.height = std::max(height, 1);
   view.pixel_scale = pixel_scale;
+  view.origin_x = origin_x;
+  view.origin_y = origin_y;
   view.view = camera_.view();
   view.projection = camera_.projection(static_cast<float>(view.width) / static_cast<float>(view.height));
   view.selected_face = selected_face_;
+  std::vector<Renderer::LegendRow> legend;
+  if (settings_.legend) {
+    std::string group;
+    for (const LegendEntry& e : legend_entries(settings_, selected_face_ >= 0)) {
+      if (e.group != group) legend.push_back({group = e.group, glm::vec3(1.0f), true});
+      legend.push_back({e.name, e.color, false});
+    }
+  }
+  renderer_.set_legend(std::move(legend));
   renderer_.draw(view, settings_);
 }
 
@@ -296,6 +333,7 @@ std::string Session::execute(const ScriptCommand& c, int width, int height) {
         settings_.point_mode = c.value == "points"   ? PointMode::kPoints
                                : c.value == "splats" ? PointMode::kSplats
                                                      : PointMode::kAuto;
+      if (c.text == "legend") settings_.legend = c.value == "on";
       if (c.text == "face-colors")
         settings_.face_colors = c.value == "age" ? FaceColors::kAge : FaceColors::kState;
       return "";

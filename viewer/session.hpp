@@ -54,8 +54,9 @@ class Session {
   bool interop_active() const { return scene_ && scene_->device_point_states(); }
   void allow_interop(bool allowed) { interop_allowed_ = allowed; }
 
-  // Uploads what changed and draws into the bound framebuffer.
-  void draw(int width, int height, float pixel_scale);
+  // Uploads what changed and draws into the bound framebuffer, in the width x height rectangle whose
+  // bottom left corner is (origin_x, origin_y).
+  void draw(int width, int height, float pixel_scale, int origin_x = 0, int origin_y = 0);
   // Renders the scene offscreen at width x height and writes a PNG atomically; %d in `path` becomes the
   // timeline position.  Returns the path written.  Throws OutputError or DeviceError.
   std::string screenshot(const std::string& path, int width, int height);
@@ -85,12 +86,13 @@ class Session {
     const Scene* scene = nullptr;
     int position = -1;
     long long selected = -1;
-    bool cells = false, normals = false, refinement = false, swaps = false;
+    bool cells = false, normals = false, refinement = false, swaps = false, labels = false;
     int sequence_limit = 0;
     bool operator==(const OverlayKey&) const = default;
   } overlay_key_;
   Overlay overlay_;
   void update_overlay();
+  std::vector<TextLabel> id_labels() const;  // the labels layer: vertex and face ids
   bool next_step_where(const std::function<bool(const IterationRecord&)>& wanted);
   void choose_upload_path();
   void write_device_states(RenderData& data);
