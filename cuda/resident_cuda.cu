@@ -410,6 +410,25 @@ __global__ void __launch_bounds__(Block)
   sync();
   MeshView<Point> m = b.m;
   u32 iterations = 0, refined_total = 0, exit = kLoopDone;
+  if (b.first) {
+    // Section 3.1's first distribution, as the driver's setup does it: each point to its cone, kept when
+    // above; the faces (all live) unstamped, ranked as they are; the kept points compacted.
+    const AssignFirst<Point> assign{m, faces, b.first_list, b.index_spare, b.face_spare, b.keep};
+    for (u32 j = tid; j < active; j += Block)
+      assign(j);
+    const ResetFaces reset{m.killer, b.look, b.extreme};
+    for (u32 f = tid; f < faces; f += Block) {
+      reset(f);
+      b.face_rank[f] = f;
+    }
+    const u32 kept = block_exclusive_scan<Block, kItems>(b.keep, b.point_rank, active);
+    const MovePoints points{b.keep,  b.point_rank, b.face_rank,     b.index_spare, b.face_spare,
+                            b.index, b.face,       ~std::size_t{0}, nullptr};
+    for (u32 j = tid; j < active; j += Block)
+      points(j);
+    sync();
+    active = kept;
+  }
   while (active > 0) {
     if (8 * faces + 64 > st->face_capacity || 5 * faces + 64 > st->entry_capacity) {
       exit = kLoopRoom;

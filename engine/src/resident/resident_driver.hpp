@@ -178,12 +178,16 @@ class ResidentHull {
     const u32 first_faces = static_cast<u32>(faces_);
     grow_faces(std::max(kInitialFaces, faces_));
     grow_entries(kInitialFaces);
-    exec_.upload(fv_.data(), fv.data(), fv.size());
-    exec_.upload(fn_.data(), fn.data(), fn.size());
-    exec_.fill(killer_.data(), faces_, kAlive);
     state_.grow(1);
-    const RoundsState zero{};
-    exec_.upload(state_.data(), &zero, 1);
+    FirstMesh first{};
+    first.faces = first_faces;
+    std::copy(fv.begin(), fv.end(), first.fv);
+    std::copy(fn.begin(), fn.end(), first.fn);
+    first.fv_out = fv_.data();
+    first.fn_out = fn_.data();
+    first.killer = killer_.data();
+    first.st = state_.data();
+    exec_.for_each(fv.size(), first);
     // The points not proven inside P (all, without P), listed in index order (one wait for the count).
     const u32* list = nullptr;
     active_ = n;
@@ -195,17 +199,23 @@ class ResidentHull {
     stats.dropped_by_polytope = n - active_;
     for (auto* b : {&index_[0], &index_[1], &face_of_[0], &face_of_[1], &keep_, &point_rank_})
       b->grow(active_, b == &index_[1] ? active_ : 0);
-    exec_.for_each(active_, AssignFirst<Point>{view(), first_faces, list, index_[0].data(),
-                                               face_of_[0].data(), keep_.data()});
-    compact(faces_);
+    // Few points left: the device loop distributes them itself (no launches and wait of the compaction).
+    bool first_in_loop = false;
+    if constexpr (Exec::kDeviceLoop) first_in_loop = active_ <= exec_.loop_points;
+    if (!first_in_loop) {
+      exec_.for_each(active_, AssignFirst<Point>{view(), first_faces, list, index_[0].data(),
+                                                 face_of_[0].data(), keep_.data()});
+      compact(faces_);
+    }
     stats.setup_ms = lap();
 
     while (active_ > 0) {
       if constexpr (Exec::kDeviceLoop) {
         // A small mesh with few points left: whole iterations in one launch, one wait for all of them.
-        if (active_ <= exec_.loop_points && 8 * faces_ + 64 <= capacity_ &&
-            5 * faces_ + 64 <= entry_capacity_) {
-          const u32 exit = device_loop(stats);
+        if (first_in_loop || (active_ <= exec_.loop_points && 8 * faces_ + 64 <= capacity_ &&
+                              5 * faces_ + 64 <= entry_capacity_)) {
+          const u32 exit = device_loop(stats, first_in_loop ? list : nullptr, first_in_loop);
+          first_in_loop = false;
           if (exit == kLoopStall) return exact_finish(stats, "stalled: no face could refine");
           if (exit == kLoopDone) continue;
           if (exit == kLoopOverflow) {
@@ -493,7 +503,8 @@ class ResidentHull {
 
   // Whole iterations in one launch (the executor's loop_kernel), one read of the state after them; the
   // buffers swapped once per finished iteration, as compact() swaps them.  Returns the LoopExit.
-  u32 device_loop(ResidentStats& stats) {
+  // `first`: the loop begins with the first distribution of the listed points (`list`, or all).
+  u32 device_loop(ResidentStats& stats, const u32* list, bool first) {
     cands_.grow(capacity_);
     won_.grow(capacity_);
     LoopBuffers<Point> b{};
@@ -514,6 +525,8 @@ class ResidentHull {
     b.claim = claim_.data();
     b.cands = cands_.data();
     b.st = state_.data();
+    b.first_list = list;
+    b.first = first ? 1u : 0u;
     exec_.device_loop(b, static_cast<u32>(faces_), static_cast<u32>(active_), static_cast<u32>(capacity_),
                       static_cast<u32>(entry_capacity_));
     RoundsState state{};
@@ -665,12 +678,27 @@ class ResidentHull {
     u32 counts[2] = {0, 0};  // faults, vertices
     const u32* vertex_list = nullptr;
     if (corners < n) {
-      point_rank_.grow(corners);
+      // The vertex list right after the renumbered corners (fv_out_ has room for twice the faces), so
+      // that both come back in one read.
       index_[1].grow(corners);
-      exec_.sort_unique_to(fv_.data(), corners, point_rank_.data(), index_[1].data(), n, &st->vertices);
-      exec_.for_each(corners, FindCorners{fv_.data(), point_rank_.data(), &st->vertices, fv_out_.data()});
+      u32* list = fv_out_.data() + corners;
+      exec_.sort_unique_to(fv_.data(), corners, list, index_[1].data(), n, &st->vertices);
+      exec_.for_each(corners, FindCorners{fv_.data(), list, &st->vertices, fv_out_.data()});
       exec_.download(counts, &st->faults, 2);
-      vertex_list = point_rank_.data();
+      if (counts[0] == 0) {
+        std::vector<u32> both(corners + counts[1]);
+        exec_.download(both.data(), fv_out_.data(), both.size());
+        BasicHullMesh<Point> out;
+        out.vertex_ids.assign(both.begin() + static_cast<std::ptrdiff_t>(corners), both.end());
+        out.triangles.resize(faces_);
+        static_assert(sizeof(Triangle) == 3 * sizeof(u32));
+        std::copy(both.begin(), both.begin() + static_cast<std::ptrdiff_t>(corners),
+                  reinterpret_cast<u32*>(out.triangles.data()));
+        out.vertices.resize(out.vertex_ids.size());
+        for (std::size_t k = 0; k < out.vertex_ids.size(); ++k)
+          out.vertices[k] = host_[out.vertex_ids[k]];
+        return out;
+      }
     } else {
       exec_.download(counts, &st->faults, 1);
     }

@@ -636,12 +636,30 @@ struct LoopBuffers {
   u64 *extreme, *claim;
   Candidate* cands;
   RoundsState* st;
+  u32 first;              // begin with the first distribution (AssignFirst) of ...
+  const u32* first_list;  // ... these points (null: all), into the spares, then compacted into index, face
 };
 
 // What the host gives a fused run of rounds: `begin` (the iteration's first: faces = fresh_from + 3 refined,
 // entries = refined, from the state) or not (it goes on after an overflow), and the room there is.
 struct RoundsLaunch {
   u32 begin, fresh_from, face_capacity, entry_capacity;
+};
+
+// The first mesh (P's faces or the tetrahedron's), written where the executor computes from the
+// operation's own copy (a kernel parameter on the device: no upload and no wait), with the state zeroed.
+inline constexpr int kMaxFirstFaces = kMaxDropPlanes;
+struct FirstMesh {
+  u32 faces;
+  u32 fv[3 * kMaxFirstFaces], fn[3 * kMaxFirstFaces];
+  u32 *fv_out, *fn_out, *killer;
+  RoundsState* st;
+  CUDAHULL_HD void operator()(std::size_t i) const {
+    fv_out[i] = fv[i];
+    fn_out[i] = fn[i];
+    if (i < faces) killer[i] = kAlive;
+    if (i == 0) *st = RoundsState{};
+  }
 };
 
 // ---------------------------------------------------------------------------------------------------------
