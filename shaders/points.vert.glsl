@@ -17,14 +17,18 @@ uniform vec3 u_external_color;
 uniform vec3 u_vertex_color;
 uniform int u_selected_face;  // -1: none; else its cell's points are drawn in u_selected_color (Fig. 2)
 uniform vec3 u_selected_color;
+uniform vec2 u_cue_range;  // view depths of the nearest and the furthest data: full and dimmest shade
 
 flat out vec3 v_color;
 flat out int v_visible;
+out float v_cue;
 
 void main() {
   gl_Position = u_view_proj * vec4(a_position, 1.0);
   gl_PointSize = u_point_size;
   v_visible = 1;
+  float depth = (gl_Position.w - u_cue_range.x) / max(u_cue_range.y - u_cue_range.x, 1e-20);
+  v_cue = mix(1.0, 0.5, clamp(depth, 0.0, 1.0));
   if (u_pass == 1) {
     v_color = u_vertex_color;
     gl_PointSize = u_point_size * 1.4 + 1.0;

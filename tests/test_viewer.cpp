@@ -362,6 +362,58 @@ TEST(ViewerHeadless, LegendAndLabelsAppearAndGoAway) {
   EXPECT_GT(count(labels, kVertexColor), count(plain, kVertexColor) + 40);
 }
 
+// The frames ffprobe decodes in a video file (-1 when it cannot read it).
+int decoded_frames(const std::string& path) {
+  const std::string cmd =
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+      "stream=nb_read_frames -of csv=p=0 " +
+      quote(path) + " 2>&1";
+  std::FILE* pipe = popen(cmd.c_str(), "r");
+  if (pipe == nullptr) return -1;
+  char line[256] = {};
+  const bool read = std::fgets(line, sizeof line, pipe) != nullptr;
+  pclose(pipe);
+  try {
+    return read ? std::stoi(line) : -1;
+  } catch (const std::exception&) {
+    ADD_FAILURE() << "ffprobe " << path << ": " << line;
+    return -1;
+  }
+}
+
+// Issue 17: recordings through ffmpeg have one frame per step (an .mp4), one per sub-step (`substep all`,
+// a .gif), and --record records a whole headless run; a path that is neither .mp4 nor .gif is a usage error.
+TEST(ViewerHeadless, RecordingsHaveOneFramePerStepOrSubStep) {
+  TempDir dir;
+  const std::string script =
+      dir.write("record.txt", "record start " + (dir / "steps.mp4") +
+                                  "\nstep 4\nrecord stop\nnext-removal\nrecord start " +
+                                  (dir / "phases.gif") + "\nsubstep all\nrecord stop\n");
+  const ViewerRun r = run_viewer({"--gen", "ball", "3000", "--seed", "5", "--headless", "--width", "161",
+                                  "--height", "121", "--script", script});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_THAT(r.err, HasSubstr("steps.mp4 (4 frames)"));
+  EXPECT_EQ(decoded_frames(dir / "steps.mp4"), 4);
+  const std::size_t played = r.err.find("played sub-steps 0 to ");
+  ASSERT_NE(played, std::string::npos) << r.err;
+  const int phases = std::stoi(r.err.substr(played + 22)) + 1;
+  EXPECT_GE(phases, 4);
+  EXPECT_EQ(decoded_frames(dir / "phases.gif"), phases);
+  EXPECT_FALSE(fs::exists(dir / "phases.gif.partial"));
+
+  // The bunny's whole run: one frame per iteration.
+  const ViewerRun b =
+      run_viewer({kBunny, "--headless", "--width", "96", "--height", "72", "--record", dir / "bunny.mp4",
+                  "--script", dir.write("run.txt", "run\nexport-trace " + (dir / "t.jsonl") + "\n")});
+  ASSERT_EQ(b.exit_code, 0) << describe(b);
+  EXPECT_EQ(decoded_frames(dir / "bunny.mp4"), static_cast<int>(lines_of(dir / "t.jsonl").size()));
+
+  const ViewerRun bad =
+      run_viewer({kBunny, "--headless", "--script", dir.write("bad.txt", "record start a.avi\n")});
+  EXPECT_EQ(bad.exit_code, 2) << describe(bad);
+  EXPECT_THAT(bad.err, HasSubstr("bad.txt:1: 'record start' needs a .mp4 or .gif path"));
+}
+
 // Issue 6, Figs. 3-5 and 7: next-rejected stops at a step that rejected a swap; the swaps layer draws that
 // step's swaps (green new edges) and the rejected foldover (orange old edge, magenta beneath-triangle); the
 // refinement layer changes the picture; the exported decision table is the trace's decision array for the
@@ -486,6 +538,10 @@ TEST(ViewerHeadless, DemosRenderAndShowTheirCases) {
   EXPECT_EQ(bunny["external_after"].get<std::size_t>(), 0u) << "the bunny demo runs to the end";
   for (const char* png : {"bunny_00.png", "bunny_01.png", "bunny_05.png"})
     EXPECT_GT(variance(read_png(dir / ("out/demos/" + std::string(png)))), 1e-4) << png;
+  // Issue 17: one animation per demo beside its pictures: the bunny's iterations, the others' sub-steps.
+  EXPECT_EQ(decoded_frames(dir / "out/demos/bunny.gif"), bunny["iteration"].get<int>() + 1);
+  for (const char* gif : {"swap.gif", "foldover.gif", "removal.gif"})
+    EXPECT_GE(decoded_frames(dir / ("out/demos/" + std::string(gif))), 4) << gif;
 }
 
 // Issue 6, item 4: "explain point" retraces a point's route through the step's refinement[] and decision[]

@@ -366,7 +366,12 @@ void AppWindow::panel_main() {
       if (i > 0) same_line_if_fits(checkbox_width(layer_name(layer)));
       if (ImGui::Checkbox(layer_name(layer), &on)) s.show(layer, on);
     }
-    ImGui::SliderFloat("point size", &s.point_size, 1.0f, 16.0f, "%.1f");
+    ImGui::Checkbox("auto##size", &s.point_size_auto);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("points as large as their spacing on the screen (no moire)");
+    ImGui::SameLine();
+    if (ImGui::SliderFloat("point size", &s.point_size, 1.0f, 16.0f, s.point_size_auto ? "auto" : "%.1f"))
+      s.point_size_auto = false;
     ImGui::SliderFloat("point opacity", &s.point_opacity, 0.05f, 1.0f, "%.2f");
     ImGui::SliderFloat("hull opacity", &s.hull_opacity, 0.0f, 1.0f, "%.2f");
     ImGui::SliderFloat("wire width", &s.wire_width, 0.5f, 4.0f, "%.1f");
@@ -840,8 +845,11 @@ int AppWindow::run() {
     // The command-line plan, one action per frame once the data is in; its screenshots have the size the
     // framebuffer has when it starts.
     const bool waiting = load_ != nullptr || first_load_;
-    if (!plan_ && !waiting && fb_w > 0 && fb_h > 0)
+    if (!plan_ && !waiting && fb_w > 0 && fb_h > 0) {
       plan_ = std::make_unique<RunPlan>(PlanOptions{o_.steps, o_.script, o_.screenshot, fb_w, fb_h});
+      session_->record_fps = o_.record_fps;
+      if (!o_.record.empty()) session_->start_recording(o_.record, fb_w, fb_h);
+    }
     if (plan_ && !plan_->finished()) {
       std::string line;
       plan_->next(*session_, line);
@@ -863,6 +871,8 @@ int AppWindow::run() {
       }
       if (scene->done()) running_ = false;
     }
+
+    session_->record_if_changed();  // steps from the keyboard and the Run button too
 
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -886,6 +896,7 @@ int AppWindow::run() {
     }
     glfwSwapBuffers(window_);
   }
+  log(session_->stop_recording());
   write_ui_layout();  // the last frame's panels
   session_.reset();   // GL objects go while the context is alive
   return kExitOk;

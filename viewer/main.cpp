@@ -11,6 +11,7 @@
 #include "cudahull/generators.hpp"
 #include "headless_context.hpp"
 #include "options.hpp"
+#include "recorder.hpp"
 #include "run_plan.hpp"
 #include "session.hpp"
 
@@ -34,10 +35,15 @@ int run_headless(const ViewerOptions& o) {
                     backend_note + "; precision " + precision_note(o.precision, points.precision()) +
                     "; per-point state: " + session.upload_path() +
                     "; text: " + session.renderer().text_note());
+    session.record_fps = o.record_fps;
+    if (!o.record.empty()) session.start_recording(o.record, o.width, o.height);
     RunPlan plan({o.steps, o.script, o.screenshot, o.width, o.height});
     std::string line;
     while (plan.next(session, line))
       log_line(o, line);
+    // A headless recording with nothing else to do records the whole run.
+    if (session.recording() && !o.steps && o.script.empty() && o.screenshot.empty()) session.run_to_end();
+    log_line(o, session.stop_recording());
     const Scene& scene = *session.scene();
     log_line(o, "at position " + std::to_string(scene.position()) + (scene.done() ? " (done)" : "") +
                     "; per-point bytes read back from the backend: " +
@@ -90,10 +96,12 @@ const char* kFooter =
     "                             %d being the position (0 = the bare points, 1 = the tetrahedron, ...).\n"
     "Script (--script FILE), one command per line, # comments:\n"
     "  step [N] | run | rewind N | select-face ID | show LAYER | hide LAYER | camera JSON |\n"
-    "  screenshot PATH | set NAME VALUE\n"
-    "  LAYER: hull wireframe internal external vertices (cells swaps: reserved for issue 6)\n"
+    "  screenshot PATH | set NAME VALUE | record start PATH.mp4|.gif | record stop | substep K|off|all\n"
+    "  LAYER: hull wireframe internal external vertices cells swaps normals refinement labels\n"
     "  set: point-size N, point-opacity A, hull-opacity A, wire-width N, point-colors state|face,\n"
-    "       face-colors state|age\n"
+    "       face-colors state|age, point-mode auto|points|splats, legend on|off, record-fps N\n"
+    "Recording (--record OUT.mp4|.gif, or record start/stop): one frame per step, sub-step or jump, through\n"
+    "  ffmpeg.  Window only: --ui-layout FILE (the panels' rectangles as JSON), --window-screenshot PNG.\n"
     "Exit codes: 0 ok; 1 cannot write a screenshot; 2 usage or a bad script line; 3 unreadable or invalid\n"
     "input; 4 no OpenGL 4.5 (no display, no EGL) or device failure.";
 
@@ -152,6 +160,12 @@ int main(int argc, char** argv) {
                "Upload per-point state from the CPU even where CUDA-GL interop works (for comparisons)");
   app.add_option("--ui-layout", o.ui_layout,
                  "Window: on closing, write each panel's rectangle (and the 3-d view's) as JSON to FILE");
+  app.add_option("--record", o.record,
+                 "Record OUT.mp4 or OUT.gif (ffmpeg): one frame per step or sub-step the run takes (without "
+                 "--script or --steps, to the end)");
+  app.add_option("--record-fps", o.record_fps, "Frames a second of --record and `record start`")
+      ->check(CLI::Range(0.1, 120.0))
+      ->capture_default_str();
   app.add_option("--window-screenshot", o.window_screenshot,
                  "Window: on closing, write a PNG of the whole window, panels included");
   app.add_flag("-q,--quiet", o.quiet, "No log lines on stderr");
@@ -175,9 +189,12 @@ int main(int argc, char** argv) {
     if (*frames_opt) o.frames = frames;
     o.size_given = *width_opt || *height_opt;
     if (o.headless && o.source.empty()) throw CLI::ValidationError("--headless needs INPUT or --gen DIST N");
-    if (o.headless && o.screenshot.empty() && o.script_path.empty() && o.bench_frames == 0)
+    if (!o.record.empty() && !is_recording_path(o.record))
+      throw CLI::ValidationError("--record: a recording is a .mp4 or a .gif, not '" + o.record + "'");
+    if (o.headless && o.screenshot.empty() && o.script_path.empty() && o.bench_frames == 0 &&
+        o.record.empty())
       throw CLI::ValidationError(
-          "--headless needs --screenshot, --script or --bench-frames (it has no other output)");
+          "--headless needs --screenshot, --script, --record or --bench-frames (it has no other output)");
     if (!o.headless && o.bench_frames > 0) throw CLI::ValidationError("--bench-frames is for --headless");
     if (o.headless && !o.window_screenshot.empty())
       throw CLI::ValidationError("--window-screenshot is for the window; headless, use --screenshot");

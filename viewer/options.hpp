@@ -26,6 +26,8 @@ struct ViewerOptions {
   int bench_frames = 0;               // headless: time this many frames after the plan, JSON on stdout
   bool quiet = false;
   bool no_interop = false;
+  std::string record;  // a .mp4 or .gif of every step the run takes (recorder.hpp)
+  double record_fps = 2.0;
   std::string window_screenshot;  // window: a PNG of the last frame, panels included
   std::string ui_layout;  // window: write the panels' rectangles as JSON here on closing (ui_layout.hpp)  //
                           // upload per-point state from the CPU even where CUDA-GL interop would work

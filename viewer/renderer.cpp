@@ -355,6 +355,10 @@ void Renderer::draw_labels(const ViewParams& view, const glm::mat4& view_proj) c
   glEnable(GL_DEPTH_TEST);
 }
 
+float point_pixels(const ViewParams& view, const RenderSettings& s) {
+  return std::max(1.0f, (s.point_size_auto ? view.auto_point_size : s.point_size) * view.pixel_scale);
+}
+
 bool Renderer::uses_splats(const RenderSettings& s) const {
   if (s.point_mode == PointMode::kSplats) return true;
   return s.point_mode == PointMode::kAuto && point_count_ >= kSplatAutoPoints && s.point_opacity >= 1.0f;
@@ -380,7 +384,7 @@ void Renderer::draw_splats(const ViewParams& view, const glm::mat4& view_proj,
   glUniformMatrix4fv(loc(splat_program_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
   glUniform1ui(loc(splat_program_, "u_count"), static_cast<GLuint>(point_count_));
   glUniform2i(loc(splat_program_, "u_size"), view.width, view.height);
-  glUniform1f(loc(splat_program_, "u_point_size"), std::max(1.0f, s.point_size * view.pixel_scale));
+  glUniform1f(loc(splat_program_, "u_point_size"), point_pixels(view, s));
   glUniform1i(loc(splat_program_, "u_color_mode"), s.point_colors == PointColors::kFace ? 1 : 0);
   glUniform1i(loc(splat_program_, "u_show_internal"), s.shown(Layer::kInternal));
   glUniform1i(loc(splat_program_, "u_show_external"), s.shown(Layer::kExternal));
@@ -434,7 +438,7 @@ void Renderer::draw(const ViewParams& view, const RenderSettings& s) const {
   if ((any_points && point_count_ > 0 && !splats) || vertices) {
     glUseProgram(points_program_);
     glUniformMatrix4fv(loc(points_program_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
-    glUniform1f(loc(points_program_, "u_point_size"), std::max(1.0f, s.point_size * view.pixel_scale));
+    glUniform1f(loc(points_program_, "u_point_size"), point_pixels(view, s));
     glUniform1i(loc(points_program_, "u_color_mode"), s.point_colors == PointColors::kFace ? 1 : 0);
     glUniform1i(loc(points_program_, "u_show_internal"), s.shown(Layer::kInternal));
     glUniform1i(loc(points_program_, "u_show_external"), s.shown(Layer::kExternal));
@@ -445,7 +449,10 @@ void Renderer::draw(const ViewParams& view, const RenderSettings& s) const {
                 s.shown(Layer::kCells) ? static_cast<int>(view.selected_face) : -1);
     glUniform3fv(loc(points_program_, "u_selected_color"), 1, glm::value_ptr(kSelectedColor));
     glUniform1f(loc(points_program_, "u_opacity"), s.point_opacity);
+    glUniform2f(loc(points_program_, "u_cue_range"), view.cue_near, view.cue_far);
     glDepthMask(s.point_opacity >= 1.0f ? GL_TRUE : GL_FALSE);
+    // Opaque points: their discs' soft edges as MSAA coverage, not blending (order independent).
+    if (s.point_opacity >= 1.0f) glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     if (any_points && point_count_ > 0 && !splats) {
       glUniform1i(loc(points_program_, "u_pass"), 0);
       glBindVertexArray(points_vao_);
@@ -458,6 +465,7 @@ void Renderer::draw(const ViewParams& view, const RenderSettings& s) const {
       glBindVertexArray(vertices_vao_);
       glDrawElements(GL_POINTS, static_cast<GLsizei>(hull_vertex_count_), GL_UNSIGNED_INT, nullptr);
     }
+    glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
   }
 
   const bool faces = s.shown(Layer::kHull), wire = s.shown(Layer::kWireframe);

@@ -67,10 +67,11 @@ inline constexpr std::size_t kSplatAutoPoints = 2000000;
 
 struct RenderSettings {
   std::array<bool, kLayerCount> layers{true, true, true, true, true, true, false, false, false, false};
-  float point_size = 3.0f;     // logical pixels (times pixel_scale)
-  float point_opacity = 1.0f;  // 0..1
-  float hull_opacity = 0.6f;   // 0..1; below 1 the points inside show through
-  float wire_width = 1.2f;     // logical pixels
+  float point_size = 3.0f;      // logical pixels (times pixel_scale), unless point_size_auto
+  bool point_size_auto = true;  // the size at which neighbouring points touch (ViewParams::auto_point_size)
+  float point_opacity = 1.0f;   // 0..1
+  float hull_opacity = 0.6f;    // 0..1; below 1 the points inside show through
+  float wire_width = 1.2f;      // logical pixels
   PointColors point_colors = PointColors::kState;
   PointMode point_mode = PointMode::kAuto;
   FaceColors face_colors = FaceColors::kState;
@@ -101,6 +102,10 @@ struct ViewParams {
   int origin_x = 0, origin_y = 0;  // the view's bottom left corner in the framebuffer (the window's panels)
   float pixel_scale = 1.0f;        // framebuffer pixels per logical pixel (high-DPI)
   long long selected_face = -1;    // its cell's points are highlighted while the cells layer is shown
+  float cue_near = 0.0f, cue_far = 1.0f;  // view depths of the data's near and far side (the depth cue)
+  // Logical pixels: the data's typical spacing on the screen, so that a regular scan (the bunny) draws as a
+  // closed surface rather than a grid of dots beating against the pixels' (moire).
+  float auto_point_size = 3.0f;
 };
 
 class Renderer {
@@ -179,6 +184,9 @@ class OffscreenTarget {
   unsigned fbo_ = 0, color_ = 0, depth_ = 0;      // multisampled
   unsigned resolve_fbo_ = 0, resolve_color_ = 0;  // single-sampled
 };
+
+// The points' diameter in framebuffer pixels for these settings.
+float point_pixels(const ViewParams& view, const RenderSettings& settings);
 
 // GL_RENDERER and GL_VERSION of the current context, for logs.
 std::string gl_description();

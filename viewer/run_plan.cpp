@@ -20,9 +20,10 @@ bool RunPlan::next(Session& session, std::string& log) {
     case Stage::kSteps:
       stage_ = sequence ? Stage::kSequence : o_.script.empty() ? Stage::kScreenshot : Stage::kScript;
       if (sequence) return true;
-      if (scene && o_.steps) scene->step(*o_.steps);
+      // Through the session, which records a frame per step while recording.
+      if (scene && o_.steps) session.step(*o_.steps);
       // Without a script, a screenshot shows the end unless --steps says otherwise.
-      if (scene && !o_.steps && o_.script.empty() && !o_.screenshot.empty()) scene->run_to_end();
+      if (scene && !o_.steps && o_.script.empty() && !o_.screenshot.empty()) session.run_to_end();
       return true;
     case Stage::kScript:
       if (script_index_ < o_.script.size()) {
@@ -43,7 +44,7 @@ bool RunPlan::next(Session& session, std::string& log) {
         stage_ = Stage::kFinished;
         return false;
       }
-      scene->step();
+      session.step(1);
       sequence_shot_taken_ = false;
       return true;
     }

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cudahull/errors.hpp"
+#include "recorder.hpp"
 #include "renderer.hpp"
 
 namespace cudahull::viewer {
@@ -33,8 +34,8 @@ bool parse_number(const std::string& s, double& out) {
   return in && (in >> std::ws).eof();
 }
 
-const char* kSettings[] = {"point-size",   "point-opacity", "hull-opacity", "wire-width",
-                           "point-colors", "face-colors",   "point-mode",   "legend"};
+const char* kSettings[] = {"point-size",  "point-opacity", "hull-opacity", "wire-width", "point-colors",
+                           "face-colors", "point-mode",    "legend",       "record-fps"};
 
 }  // namespace
 
@@ -102,8 +103,23 @@ std::vector<ScriptCommand> parse_script(std::istream& in, const std::string& nam
       c.kind = ScriptCommand::Kind::kSubstep;
       if (rest == "off") {
         c.number = -1;
+      } else if (rest == "all") {
+        c.number = kAllSubsteps;
       } else {
         one_integer(0, "a phase number >= 0, or off");
+      }
+    } else if (verb == "record") {
+      const auto space = rest.find_first_of(" \t");
+      const std::string what = rest.substr(0, space);
+      const std::string path = space == std::string::npos ? "" : trim(rest.substr(space));
+      if (what == "start") {
+        c.kind = ScriptCommand::Kind::kRecordStart;
+        if (!is_recording_path(path)) fail("'record start' needs a .mp4 or .gif path, not '" + path + "'");
+        c.text = path;
+      } else if (what == "stop" && path.empty()) {
+        c.kind = ScriptCommand::Kind::kRecordStop;
+      } else {
+        fail("'record' takes 'start PATH' or 'stop'");
       }
     } else if (verb == "explain-point") {
       c.kind = ScriptCommand::Kind::kExplainPoint;
@@ -138,10 +154,13 @@ std::vector<ScriptCommand> parse_script(std::istream& in, const std::string& nam
       } else if (c.text == "point-mode") {
         if (c.value != "auto" && c.value != "points" && c.value != "splats")
           fail("point-mode is 'auto', 'points' or 'splats'");
+      } else if (c.text == "record-fps") {
+        if (!parse_number(c.value, x) || x <= 0 || x > 120) fail("record-fps must be a number in (0, 120]");
       } else if (c.text == "legend") {
         if (c.value != "on" && c.value != "off") fail("legend is 'on' or 'off'");
       } else if (c.text == "face-colors") {
         if (c.value != "state" && c.value != "age") fail("face-colors is 'state' or 'age'");
+      } else if (c.text == "point-size" && c.value == "auto") {
       } else if (c.text == "point-size" || c.text == "wire-width") {
         if (!parse_number(c.value, x) || x <= 0 || x > 64) fail(c.text + " must be a number in (0, 64]");
       } else if (c.text == "point-opacity" || c.text == "hull-opacity") {
@@ -156,7 +175,7 @@ std::vector<ScriptCommand> parse_script(std::istream& in, const std::string& nam
       fail("unknown command '" + verb +
            "' (step, run, rewind, select-face, show, hide, camera, screenshot, set, next-rejected, "
            "next-removal, frame, "
-           "export-mesh, export-trace, export-decisions)");
+           "export-mesh, export-trace, export-decisions, record)");
     }
     commands.push_back(std::move(c));
   }

@@ -11,8 +11,10 @@
 //   next-removal         to the next position whose step removed a vertex after complementary swaps
 //   frame CASE           point the camera at a case of the step: rejected, removal, or swap SEQ
 //   explain-point I      log how the step routed input point I through refinement[] and decision[]
-//   substep K|off        show phase K of the step (0 before it, 1 refinement, then each swap or removal,
-//                        last the redistribution); off shows the step's result
+//   substep K|off|all    show phase K of the step (0 before it, 1 refinement, then each swap or removal,
+//                        last the redistribution); off shows the step's result; all plays every phase
+//   record start PATH    record a .mp4 or .gif (ffmpeg): one frame per step, sub-step or jump from here on
+//   record stop          finish the recording
 //   export-mesh PATH     the current polyhedron (.obj, .off or .ply)
 //   export-trace PATH    every step so far as JSON lines (`cudahull hull --trace`)
 //   export-decisions PATH  the current step's decision array as CSV
@@ -20,7 +22,7 @@
 //   screenshot PATH      a PNG of the scene (not the panels); %d in PATH becomes the position
 //   set NAME VALUE       point-size, point-opacity, hull-opacity, wire-width (numbers),
 //                        point-colors state|face, face-colors state|age, point-mode auto|points|splats,
-//                        legend on|off (the colour key drawn into the picture)
+//                        legend on|off (the colour key drawn into the picture), record-fps N
 //
 // parse_script() checks the whole file before anything runs, so a bad line fails early with a one-line
 // ScriptError naming the file and the line ("demo.txt:7: ...").
@@ -58,6 +60,8 @@ struct ScriptCommand {
     kExportMesh,
     kExportTrace,
     kExportDecisions,
+    kRecordStart,
+    kRecordStop,
   };
   Kind kind = Kind::kStep;
   long long number = 0;  // step, rewind, select-face
@@ -66,6 +70,8 @@ struct ScriptCommand {
   nlohmann::json json;   // camera
   std::string where;     // "FILE:LINE", for errors while running
 };
+
+inline constexpr long long kAllSubsteps = -2;  // `substep all`
 
 std::vector<ScriptCommand> parse_script(std::istream& in, const std::string& name);
 std::vector<ScriptCommand> read_script(const std::string& path);  // InputError when unreadable

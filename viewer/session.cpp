@@ -1,7 +1,9 @@
 #include "session.hpp"
 
+#include <algorithm>
 #include <cfloat>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 
@@ -18,6 +20,17 @@ void Session::set_scene(std::unique_ptr<Scene> scene, bool fit_camera) {
   interop_.reset();  // registered for the old point count; the new scene reallocates the buffer
   scene_ = std::move(scene);
   selected_face_ = -1;
+  if (scene_) {  // once per scene: bounds() reads every point
+    float lo[3], hi[3];
+    scene_->bounds(lo, hi);
+    data_centre_ = 0.5f * (glm::vec3(lo[0], lo[1], lo[2]) + glm::vec3(hi[0], hi[1], hi[2]));
+    data_radius_ = 0.5f * glm::length(glm::vec3(hi[0], hi[1], hi[2]) - glm::vec3(lo[0], lo[1], lo[2]));
+    // The points' typical spacing were they spread over the box's surface (scans are surfaces; a solid
+    // cloud seen from outside shows about as many).
+    const glm::vec3 e = glm::vec3(hi[0], hi[1], hi[2]) - glm::vec3(lo[0], lo[1], lo[2]);
+    const double area = 2.0 * (double{e.x} * e.y + double{e.y} * e.z + double{e.z} * e.x);
+    data_spacing_ = static_cast<float>(std::sqrt(area / std::max<std::size_t>(scene_->points().size(), 1)));
+  }
   choose_upload_path();
   if (scene_ && (fit_camera || !camera_fitted_)) fit_view();
 }
@@ -207,6 +220,14 @@ void Session::draw(int width, int height, float pixel_scale, int origin_x, int o
   view.view = camera_.view();
   view.projection = camera_.projection(static_cast<float>(view.width) / static_cast<float>(view.height));
   view.selected_face = selected_face_;
+  // The depth cue spans the data's bounding sphere as seen from the eye.
+  const float distance = glm::length(camera_.eye() - data_centre_);
+  view.cue_near = distance - data_radius_;
+  view.cue_far = distance + data_radius_;
+  // Pixels per unit at the data's centre: projection[1][1] is 1 / tan(fov / 2).
+  const float pixels_per_unit = 0.5f * static_cast<float>(view.height) * view.projection[1][1] /
+                                std::max(distance, 1e-20f) / std::max(pixel_scale, 1.0f);
+  view.auto_point_size = std::clamp(1.5f * data_spacing_ * pixels_per_unit, 2.0f, 6.0f);
   std::vector<Renderer::LegendRow> legend;
   if (settings_.legend) {
     std::string group;
@@ -219,13 +240,55 @@ void Session::draw(int width, int height, float pixel_scale, int origin_x, int o
   renderer_.draw(view, settings_);
 }
 
-std::string Session::screenshot(const std::string& path, int width, int height) {
+std::vector<std::uint8_t> Session::render_rgba(int width, int height) {
   if (!offscreen_ || offscreen_->width() != width || offscreen_->height() != height)
     offscreen_ = std::make_unique<OffscreenTarget>(width, height);
   offscreen_->bind();
   // Screenshots use logical pixels = framebuffer pixels, whatever the screen's scale.
   draw(width, height, 1.0f);
-  const std::vector<std::uint8_t> rgba = offscreen_->read_rgba();
+  return offscreen_->read_rgba();
+}
+
+void Session::start_recording(const std::string& path, int width, int height) {
+  if (recorder_) stop_recording();
+  recorder_ = std::make_unique<Recorder>(path, width, height, record_fps);
+  recorded_at_ = now_at();
+}
+
+std::string Session::stop_recording() {
+  if (!recorder_) return "";
+  std::unique_ptr<Recorder> recorder = std::move(recorder_);
+  const int frames = recorder->close();
+  return "wrote " + recorder->path() + " (" + std::to_string(frames) + " frames)";
+}
+
+Session::RecordedAt Session::now_at() const {
+  return {scene_.get(), scene_ ? scene_->position() : -1, scene_ ? scene_->substep() : -2};
+}
+
+void Session::record_if_changed() {
+  if (!recorder_ || now_at() == recorded_at_) return;
+  recorded_at_ = now_at();
+  recorder_->add(render_rgba(recorder_->width(), recorder_->height()));
+}
+
+void Session::step(int count) {
+  for (int i = 0; i < count && scene_ && !scene_->done(); ++i) {
+    scene_->step();
+    record_if_changed();
+  }
+}
+
+void Session::run_to_end() {
+  if (!recorder_) {
+    if (scene_) scene_->run_to_end();
+    return;
+  }
+  step(1 << 30);
+}
+
+std::string Session::screenshot(const std::string& path, int width, int height) {
+  const std::vector<std::uint8_t> rgba = render_rgba(width, height);
   const std::string out = format_numbered_path(path, scene_ ? scene_->position() : 0);
   write_png(out, rgba, width, height);
   return out;
@@ -250,14 +313,29 @@ std::string Session::execute(const ScriptCommand& c, int width, int height) {
   using Kind = ScriptCommand::Kind;
   switch (c.kind) {
     case Kind::kStep:
-      if (scene_) scene_->step(static_cast<int>(c.number));
+      step(static_cast<int>(c.number));
       return "";
     case Kind::kRun:
-      if (scene_) scene_->run_to_end();
+      run_to_end();
       return "";
     case Kind::kRewind:
       if (scene_) scene_->rewind(static_cast<int>(c.number));
+      record_if_changed();
       return "";
+    case Kind::kRecordStart:
+      try {
+        start_recording(c.text, width, height);
+      } catch (const OutputError& e) {
+        throw OutputError(c.where + ": " + e.what());
+      }
+      return "recording " + c.text;
+    case Kind::kRecordStop:
+      try {
+        const std::string line = stop_recording();
+        return line.empty() ? c.where + ": note: not recording" : line;
+      } catch (const OutputError& e) {
+        throw OutputError(c.where + ": " + e.what());
+      }
     case Kind::kSelectFace:
       selected_face_ = c.number;
       return "";
@@ -282,17 +360,30 @@ std::string Session::execute(const ScriptCommand& c, int width, int height) {
       } catch (const OutputError& e) {
         throw OutputError(c.where + ": " + e.what());
       }
-    case Kind::kNextRejected:
-      return next_rejected() ? "" : c.where + ": note: no later step rejects a swap";
-    case Kind::kNextRemoval:
-      return next_removal() ? ""
-                            : c.where + ": note: no later step removes a vertex after complementary swaps";
+    case Kind::kNextRejected: {
+      const bool found = next_rejected();
+      record_if_changed();
+      return found ? "" : c.where + ": note: no later step rejects a swap";
+    }
+    case Kind::kNextRemoval: {
+      const bool found = next_removal();
+      record_if_changed();
+      return found ? "" : c.where + ": note: no later step removes a vertex after complementary swaps";
+    }
     case Kind::kSubstep: {
       if (!scene_) return "";
       const int count = scene_->substep_count();
-      if (count == 0 && c.number >= 0)
+      if (count == 0 && c.number != -1)
         return c.where + ": note: this step has no sub-steps (position 0 or 1)";
+      if (c.number == kAllSubsteps) {  // each phase in turn: a frame each while recording
+        for (int phase = 0; phase < count; ++phase) {
+          scene_->set_substep(phase);
+          record_if_changed();
+        }
+        return "played sub-steps 0 to " + std::to_string(count - 1);
+      }
       scene_->set_substep(static_cast<int>(c.number));
+      record_if_changed();
       if (c.number < 0) return "";
       const int phase = std::min<int>(static_cast<int>(c.number), count - 1);
       return "sub-step " + std::to_string(phase) + " of " + std::to_string(count - 1) + ": " +
@@ -323,7 +414,10 @@ std::string Session::execute(const ScriptCommand& c, int width, int height) {
       return "wrote " + c.text;
     case Kind::kSet: {
       const double x = std::strtod(c.value.c_str(), nullptr);
-      if (c.text == "point-size") settings_.point_size = static_cast<float>(x);
+      if (c.text == "point-size") {
+        settings_.point_size_auto = c.value == "auto";
+        if (!settings_.point_size_auto) settings_.point_size = static_cast<float>(x);
+      }
       if (c.text == "point-opacity") settings_.point_opacity = static_cast<float>(x);
       if (c.text == "hull-opacity") settings_.hull_opacity = static_cast<float>(x);
       if (c.text == "wire-width") settings_.wire_width = static_cast<float>(x);
@@ -334,6 +428,7 @@ std::string Session::execute(const ScriptCommand& c, int width, int height) {
                                : c.value == "splats" ? PointMode::kSplats
                                                      : PointMode::kAuto;
       if (c.text == "legend") settings_.legend = c.value == "on";
+      if (c.text == "record-fps") record_fps = x;
       if (c.text == "face-colors")
         settings_.face_colors = c.value == "age" ? FaceColors::kAge : FaceColors::kState;
       return "";

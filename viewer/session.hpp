@@ -13,6 +13,7 @@
 #include "camera.hpp"
 #include "cuda_gl_buffer.hpp"
 #include "overlay.hpp"
+#include "recorder.hpp"
 #include "renderer.hpp"
 #include "scene.hpp"
 #include "script.hpp"
@@ -61,6 +62,20 @@ class Session {
   // timeline position.  Returns the path written.  Throws OutputError or DeviceError.
   std::string screenshot(const std::string& path, int width, int height);
 
+  // Recordings (recorder.hpp, issue 17): while one is on, each step, sub-step or jump on the timeline adds
+  // one frame (the scene at width x height, as screenshot() renders it); `record start` itself adds none.
+  // Throw OutputError.
+  void start_recording(const std::string& path, int width, int height);
+  std::string stop_recording();  // "wrote PATH (N frames)", or "" when not recording
+  bool recording() const { return recorder_ != nullptr; }
+  double record_fps = 2.0;  // frames a second in the file
+  // A frame if the scene, its position or its sub-step changed since the last one: the window calls it every
+  // frame, so that stepping from the keyboard records too.
+  void record_if_changed();
+  // Steps `count` times or to the end, one frame each while recording.
+  void step(int count);
+  void run_to_end();
+
   // Draws `frames` frames offscreen at width x height, waiting for the GPU after the last; returns the
   // milliseconds per frame (upload included where something changed).
   double time_frames(int frames, int width, int height);
@@ -77,6 +92,9 @@ class Session {
   bool camera_fitted_ = false;
   RenderSettings settings_;
   long long selected_face_ = -1;
+  glm::vec3 data_centre_{0.0f};  // the scene's bounding sphere (the depth cue)
+  float data_radius_ = 1.0f;
+  float data_spacing_ = 0.0f;  // the points' typical spacing (the automatic point size)
   std::unique_ptr<OffscreenTarget> offscreen_;
   bool interop_allowed_ = true;
   std::string upload_path_ = "CPU upload (no scene)";
@@ -91,6 +109,14 @@ class Session {
     bool operator==(const OverlayKey&) const = default;
   } overlay_key_;
   Overlay overlay_;
+  std::unique_ptr<Recorder> recorder_;
+  struct RecordedAt {
+    const Scene* scene = nullptr;
+    int position = -1, substep = -2;
+    bool operator==(const RecordedAt&) const = default;
+  } recorded_at_;
+  RecordedAt now_at() const;
+  std::vector<std::uint8_t> render_rgba(int width, int height);
   void update_overlay();
   std::vector<TextLabel> id_labels() const;  // the labels layer: vertex and face ids
   bool next_step_where(const std::function<bool(const IterationRecord&)>& wanted);
