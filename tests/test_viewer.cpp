@@ -414,6 +414,40 @@ TEST(ViewerHeadless, RecordingsHaveOneFramePerStepOrSubStep) {
   EXPECT_THAT(bad.err, HasSubstr("bad.txt:1: 'record start' needs a .mp4 or .gif path"));
 }
 
+// Issue 17, picking: a scripted hover names the point under the mouse (its id, that it is external, its
+// face and its signed distance to that face's plane, positive: outside) and a click there explains that
+// same point's route, ending where the backend put it; over a face, the hover names the face and a click
+// selects it and draws its cell.
+TEST(ViewerHeadless, HoverAndClickNameWhatIsUnderTheMouse) {
+  TempDir dir;
+  const std::string script = dir.write(
+      "pick.txt",
+      "step 2\nhide hull\nhide internal\nhide vertices\nhover 160 120\nclick 160 120\n"
+      "show hull\nhide external\nscreenshot " +
+          (dir / "before.png") + "\nhover 160 120\nclick 160 120\nscreenshot " + (dir / "after.png") + "\n");
+  const ViewerRun r = run_viewer({"--gen", "ball", "3000", "--seed", "5", "--headless", "--width", "320",
+                                  "--height", "240", "--script", script});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  const std::string point_hover = "hover 160 120: point ";
+  const std::size_t at = r.err.find(point_hover);
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const std::string point = r.err.substr(at + point_hover.size(),
+                                         r.err.find(':', at + point_hover.size()) - at - point_hover.size());
+  EXPECT_THAT(r.err, HasSubstr(point_hover + point + ": external, face "));
+  EXPECT_THAT(r.err, HasSubstr(", signed distance +"));
+  const std::size_t explained = r.err.find("click 160 120: explain point " + point + ":");
+  ASSERT_NE(explained, std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the backend agrees (face ", explained), std::string::npos) << r.err;
+
+  const std::string face_hover = "hover 160 120: face ";
+  const std::size_t f = r.err.find(face_hover);
+  ASSERT_NE(f, std::string::npos) << r.err;
+  const std::string face =
+      r.err.substr(f + face_hover.size(), r.err.find(':', f + face_hover.size()) - f - face_hover.size());
+  EXPECT_THAT(r.err, HasSubstr("click 160 120: selected face " + face + " "));
+  EXPECT_GT(differing_fraction(read_png(dir / "before.png"), read_png(dir / "after.png")), 0.01);
+}
+
 // Issue 6, Figs. 3-5 and 7: next-rejected stops at a step that rejected a swap; the swaps layer draws that
 // step's swaps (green new edges) and the rejected foldover (orange old edge, magenta beneath-triangle); the
 // refinement layer changes the picture; the exported decision table is the trace's decision array for the

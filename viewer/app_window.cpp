@@ -64,7 +64,8 @@ constexpr Shortcut kShortcuts[] = {
     {"Left drag", "orbit"},
     {"Right / middle drag, Shift + left drag", "pan"},
     {"Wheel", "zoom"},
-    {"Double-click", "select the face under the mouse: its cell, points and extreme point (Fig. 2)"},
+    {"Hover", "a point's or face's ids, state, face and signed distance"},
+    {"Click", "on a point: its route through the step (Explain point); on a face: its cell (Fig. 2)"},
     {"N", "toggle the edge normals of all faces"},
     {"W", "toggle the last step's swaps (with their sequence numbers) and removals"},
     {"G", "toggle the last step's refinements (parent faces, apexes)"},
@@ -158,6 +159,9 @@ class AppWindow {
   bool show_debugger_ = true;
   bool substeps_on_ = false;
   int explain_index_ = 0;
+  bool select_explain_tab_ = false;  // a click on a point opens its explanation
+  Session::Pick hover_;
+  int hover_position_ = -1;
   std::vector<std::string> explanation_;
   char export_path_[1024] = "cudahull_export";
   UiLayout layout_;
@@ -237,8 +241,34 @@ void AppWindow::handle_input() {
       }
     }
     if (io.MouseWheel != 0) camera.zoom(io.MouseWheel);
+    // Hover: a tooltip for the point or face under the mouse (looked up again only when the mouse moves).
+    const ViewPixels v = view_pixels();
+    const double mx = io.MousePos.x * v.scale_x - v.x, my = io.MousePos.y * v.scale_y - v.top;
+    const bool over_view = mx >= 0 && my >= 0 && mx < v.width && my < v.height;
+    if (over_view && !ImGui::IsAnyMouseDown() && scene && !load_) {
+      if (io.MouseDelta.x != 0 || io.MouseDelta.y != 0 || hover_position_ != scene->position()) {
+        hover_ = session_->pick(mx, my, v.width, v.height);
+        hover_position_ = scene->position();
+      }
+      if (hover_.kind != Session::Pick::Kind::kNone) ImGui::SetTooltip("%s", hover_.text.c_str());
+    } else if (!over_view) {
+      hover_ = {};
+    }
+    // A click (released without dragging): a point's route in the debugger, or a face's cell.
+    if (over_view && scene && !load_ && ImGui::IsMouseReleased(ImGuiMouseButton_Left) &&
+        io.MouseDragMaxDistanceSqr[ImGuiMouseButton_Left] < 9.0f) {
+      const Session::Pick p = session_->pick(mx, my, v.width, v.height);
+      const std::vector<std::string> lines = session_->click(mx, my, v.width, v.height);
+      if (p.kind == Session::Pick::Kind::kPoint) {
+        explain_index_ = static_cast<int>(p.id);
+        explanation_.assign(lines.begin() + 1, lines.end());
+        show_debugger_ = true;
+        select_explain_tab_ = true;
+      } else if (!lines.empty()) {
+        status_ = lines.front();
+      }
+    }
     if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
-      const ViewPixels v = view_pixels();
       session_->select_face(session_->face_at(io.MousePos.x * v.scale_x - v.x,
                                               io.MousePos.y * v.scale_y - v.top, v.width, v.height));
     }
@@ -632,7 +662,9 @@ void AppWindow::panel_debugger() {
       }
       ImGui::EndTabItem();
     }
-    if (ImGui::BeginTabItem("Explain point")) {
+    if (ImGui::BeginTabItem("Explain point", nullptr,
+                            select_explain_tab_ ? ImGuiTabItemFlags_SetSelected : ImGuiTabItemFlags_None)) {
+      select_explain_tab_ = false;
       // A point's path through this step's refinement[] and decision[] (Fig. 7) to its new face.
       ImGui::SetNextItemWidth(160);
       ImGui::InputInt("point index", &explain_index_);

@@ -108,6 +108,14 @@ std::vector<ScriptCommand> parse_script(std::istream& in, const std::string& nam
       } else {
         one_integer(0, "a phase number >= 0, or off");
       }
+    } else if (verb == "hover" || verb == "click") {
+      c.kind = verb == "hover" ? ScriptCommand::Kind::kHover : ScriptCommand::Kind::kClick;
+      std::istringstream words(rest);
+      std::string extra;
+      double y = 0;
+      if (!(words >> c.number >> c.value) || !parse_number(c.value, y) || c.number < 0 || y < 0 ||
+          (words >> extra))
+        fail("'" + verb + "' needs a pixel: X Y (from the top left)");
     } else if (verb == "record") {
       const auto space = rest.find_first_of(" \t");
       const std::string what = rest.substr(0, space);
@@ -175,7 +183,7 @@ std::vector<ScriptCommand> parse_script(std::istream& in, const std::string& nam
       fail("unknown command '" + verb +
            "' (step, run, rewind, select-face, show, hide, camera, screenshot, set, next-rejected, "
            "next-removal, frame, "
-           "export-mesh, export-trace, export-decisions, record)");
+           "export-mesh, export-trace, export-decisions, record, hover, click)");
     }
     commands.push_back(std::move(c));
   }

@@ -15,6 +15,8 @@
 //                        last the redistribution); off shows the step's result; all plays every phase
 //   record start PATH    record a .mp4 or .gif (ffmpeg): one frame per step, sub-step or jump from here on
 //   record stop          finish the recording
+//   hover X Y            log what the mouse at pixel (X, Y) of the screenshot size shows as its tooltip
+//   click X Y            a click there: explain the point, or select the face (and show its cell)
 //   export-mesh PATH     the current polyhedron (.obj, .off or .ply)
 //   export-trace PATH    every step so far as JSON lines (`cudahull hull --trace`)
 //   export-decisions PATH  the current step's decision array as CSV
@@ -62,6 +64,8 @@ struct ScriptCommand {
     kExportDecisions,
     kRecordStart,
     kRecordStop,
+    kHover,
+    kClick,
   };
   Kind kind = Kind::kStep;
   long long number = 0;  // step, rewind, select-face

@@ -192,6 +192,125 @@ std::string Session::frame_case(const std::string& what, long long sequence) {
   return "";
 }
 
+namespace {
+
+// The signed distance of p to the plane of triangle (a, b, c), positive on the side its normal points to
+// (outside, for the hull's counter-clockwise faces).
+double signed_distance(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  const glm::dvec3 ga(a.x, a.y, a.z),
+      n = glm::cross(glm::dvec3(b.x, b.y, b.z) - ga, glm::dvec3(c.x, c.y, c.z) - ga);
+  const double length = glm::length(n);
+  return length > 0 ? glm::dot(n, glm::dvec3(p.x, p.y, p.z) - ga) / length : 0.0;
+}
+
+std::string format_distance(double d) {
+  char s[64];
+  std::snprintf(s, sizeof s, "%+.4g", d);
+  return s;
+}
+
+}  // namespace
+
+Session::Pick Session::pick(double x, double y, int width, int height) {
+  Pick out;
+  if (!scene_ || width <= 0 || height <= 0) return out;
+  const std::vector<Point3>& points = scene_->points();
+  RenderData& data = scene_->render_data();
+  // Per-point state as drawn: the CPU copy, or (interop) the engine's.
+  std::vector<std::int32_t> engine_states;
+  const std::vector<std::int32_t>* states = &data.point_state;
+  if (states->size() != points.size() && scene_->position() > 0) {
+    engine_states = scene_->engine().point_faces();
+    for (PointIndex v : data.hull_vertex_ids)
+      if (v < engine_states.size()) engine_states[v] = kPointVertex;
+    states = &engine_states;
+  }
+  auto state_of = [&](std::size_t i) { return i < states->size() ? (*states)[i] : 0; };
+  auto drawn = [&](std::int32_t s) {
+    return s == kPointVertex ? settings_.shown(Layer::kVertices)
+           : s < 0
+               ? settings_.shown(Layer::kInternal)
+               : settings_.shown(Layer::kExternal) || (settings_.shown(Layer::kCells) && s == selected_face_);
+  };
+  const glm::mat4 view_proj =
+      camera_.projection(static_cast<float>(width) / static_cast<float>(height)) * camera_.view();
+  ViewParams view;
+  view.width = width;
+  view.height = height;
+  const float radius = std::max(6.0f, 0.5f * point_pixels(view, settings_) + 2.0f);
+  double best = radius * radius, best_depth = 2.0;
+  long long best_point = -1;
+  if (points.size() <= kPickPointLimit) {
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const glm::vec4 clip = view_proj * glm::vec4(points[i].x, points[i].y, points[i].z, 1.0f);
+      if (clip.w <= 0) continue;
+      const double px = (clip.x / clip.w * 0.5 + 0.5) * width, py = (0.5 - clip.y / clip.w * 0.5) * height;
+      const double d2 = (px - x) * (px - x) + (py - y) * (py - y), depth = clip.z / clip.w;
+      // The nearest on the screen; among points a pixel apart, the one in front.
+      if (d2 > best + 1.0 || (d2 > best - 1.0 && depth >= best_depth) || !drawn(state_of(i))) continue;
+      best = d2;
+      best_depth = depth;
+      best_point = static_cast<long long>(i);
+    }
+  }
+  const SteppingEngine& engine = scene_->engine();
+  if (best_point >= 0) {
+    const auto i = static_cast<PointIndex>(best_point);
+    const std::int32_t s = state_of(i);
+    out.kind = Pick::Kind::kPoint;
+    out.id = best_point;
+    out.text = "point " + std::to_string(i);
+    if (scene_->position() == 0) {
+      out.text += ": no step yet";
+    } else if (s == kPointVertex) {
+      out.text += ": a hull vertex";
+    } else if (s < 0) {
+      out.text += ": internal (proven inside the polyhedron)";
+    } else {
+      const MeshFace& f = engine.mesh().face(static_cast<FaceId>(s));
+      out.text += ": external, face " + std::to_string(s) + ", signed distance " +
+                  format_distance(signed_distance(engine.point(i), engine.point(f.v[0]), engine.point(f.v[1]),
+                                                  engine.point(f.v[2]))) +
+                  " to its plane";
+    }
+    return out;
+  }
+  const long long face = face_at(x, y, width, height);
+  if (face < 0 || !settings_.shown(Layer::kHull)) return out;
+  const auto f = static_cast<FaceId>(face);
+  const MeshFace& mf = engine.mesh().face(f);
+  out.kind = Pick::Kind::kFace;
+  out.id = face;
+  out.text = "face " + std::to_string(face) + ": vertices " + std::to_string(mf.v[0]) + " " +
+             std::to_string(mf.v[1]) + " " + std::to_string(mf.v[2]);
+  const std::vector<FaceExtreme>& extremes = engine.face_extremes();
+  if (f < extremes.size() && extremes[f].count > 0) {
+    out.text += "; " + std::to_string(extremes[f].count) + " external points, the furthest " +
+                std::to_string(extremes[f].furthest) + " at signed distance " +
+                format_distance(signed_distance(engine.point(extremes[f].furthest), engine.point(mf.v[0]),
+                                                engine.point(mf.v[1]), engine.point(mf.v[2])));
+  } else {
+    out.text += "; no external points (final)";
+  }
+  return out;
+}
+
+std::vector<std::string> Session::click(double x, double y, int width, int height) {
+  const Pick p = pick(x, y, width, height);
+  if (p.kind == Pick::Kind::kPoint) {
+    std::vector<std::string> lines{"explain point " + std::to_string(p.id) + ":"};
+    for (const std::string& line : scene_->explain_point(static_cast<PointIndex>(p.id)))
+      lines.push_back("  " + line);
+    return lines;
+  }
+  if (p.kind == Pick::Kind::kFace) {
+    select_face(p.id);
+    settings_.show(Layer::kCells, true);
+    return {"selected face " + std::to_string(p.id) + " (its cell: the cells layer)"};
+  }
+  return {"nothing there"};
+}
+
 long long Session::face_at(double x, double y, int width, int height) const {
   if (!scene_ || scene_->position() == 0 || width <= 0 || height <= 0) return -1;
   const glm::mat4 inverse = glm::inverse(
@@ -388,6 +507,20 @@ std::string Session::execute(const ScriptCommand& c, int width, int height) {
       const int phase = std::min<int>(static_cast<int>(c.number), count - 1);
       return "sub-step " + std::to_string(phase) + " of " + std::to_string(count - 1) + ": " +
              scene_->substep_label(phase);
+    }
+    case Kind::kHover:
+    case Kind::kClick: {
+      std::string text = std::string(c.kind == Kind::kHover ? "hover " : "click ") +
+                         std::to_string(c.number) + " " + c.value + ": ";
+      const double x = static_cast<double>(c.number), y = std::strtod(c.value.c_str(), nullptr);
+      if (c.kind == Kind::kHover) {
+        const Pick p = pick(x, y, width, height);
+        return text + (p.kind == Pick::Kind::kNone ? "nothing there" : p.text);
+      }
+      const std::vector<std::string> lines = click(x, y, width, height);
+      for (std::size_t k = 0; k < lines.size(); ++k)
+        text += (k ? "\n" : "") + lines[k];
+      return text;
     }
     case Kind::kExplainPoint: {
       if (!scene_) return "";

@@ -35,6 +35,21 @@ class Session {
   // The face of the current polyhedron under framebuffer pixel (x, y) (origin top left) of a width x height
   // view, or -1: a ray cast from the camera (issue 6, picking a face to inspect its cell).
   long long face_at(double x, double y, int width, int height) const;
+  // What is under framebuffer pixel (x, y) of a width x height view (issue 17's hover and click): the
+  // nearest drawn point within a few pixels (a hull vertex, an external or an internal point), else the
+  // face the ray hits.  `text` is the tooltip: ids, state, the point's face and its signed distance to that
+  // face's plane.  Points are searched up to kPickPointLimit of them (a pass over all of them per call).
+  struct Pick {
+    enum class Kind { kNone, kPoint, kFace } kind = Kind::kNone;
+    long long id = -1;
+    std::string text;
+  };
+  static constexpr std::size_t kPickPointLimit = 2000000;
+  Pick pick(double x, double y, int width, int height);
+  // A click: on a point, its route through the step (explain_point, one line each); on a face, selects it
+  // and shows its cell (the cells layer).
+  std::vector<std::string> click(double x, double y, int width, int height);
+
   // Steps or replays to the next position after the current one whose step rejected a swap (Fig. 5);
   // false, staying put, when the run ends without one.
   bool next_rejected();
