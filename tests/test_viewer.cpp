@@ -448,6 +448,33 @@ TEST(ViewerHeadless, HoverAndClickNameWhatIsUnderTheMouse) {
   EXPECT_GT(differing_fraction(read_png(dir / "before.png"), read_png(dir / "after.png")), 0.01);
 }
 
+// Issue 17, the input layer: the model's own surface (a PLY's face element; an OBJ's faces through
+// tinyobjloader) drawn grey under the points; a generated cloud has none, and the layer changes nothing.
+TEST(ViewerHeadless, InputLayerDrawsTheModelsOwnSurface) {
+  TempDir dir;
+  auto grey_fraction = [](const Image& img) {
+    return central_fraction(img, [](const auto& p) {
+      return std::abs(p[0] - p[1]) < 0.02f && std::abs(p[1] - p[2]) < 0.02f && p[0] > 0.3f;
+    });
+  };
+  const std::string script =
+      dir.write("input.txt",
+                "step 2\nhide hull\nhide wireframe\nhide internal\n"
+                "hide external\nhide vertices\nscreenshot " +
+                    (dir / "bare.png") + "\nshow input\nscreenshot " + (dir / "input.png") + "\n");
+  for (const std::string model : {"bun_zipper.ply", "teapot.obj"}) {
+    const ViewerRun r = run_viewer({std::string(CUDAHULL_ASSETS_DIR) + "/" + model, "--headless", "--width",
+                                    "240", "--height", "180", "--script", script});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    EXPECT_LT(grey_fraction(read_png(dir / "bare.png")), 0.001) << model;
+    EXPECT_GT(grey_fraction(read_png(dir / "input.png")), 0.2) << model;
+  }
+  const ViewerRun g = run_viewer(
+      {"--gen", "ball", "500", "--headless", "--width", "240", "--height", "180", "--script", script});
+  ASSERT_EQ(g.exit_code, 0) << describe(g);
+  EXPECT_EQ(differing_fraction(read_png(dir / "bare.png"), read_png(dir / "input.png")), 0.0);
+}
+
 // Issue 6, Figs. 3-5 and 7: next-rejected stops at a step that rejected a swap; the swaps layer draws that
 // step's swaps (green new edges) and the rejected foldover (orange old edge, magenta beneath-triangle); the
 // refinement layer changes the picture; the exported decision table is the trace's decision array for the

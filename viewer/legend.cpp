@@ -60,6 +60,7 @@ std::vector<LegendEntry> legend_entries(const RenderSettings& s, bool face_selec
     out.push_back({"refinement", "apex and its edges", glm::vec3(1.0f, 0.62f, 0.16f)});
   }
   if (cell) out.push_back({"cell", "separating planes", glm::vec3(0.2f, 0.85f, 0.95f)});
+  if (s.shown(Layer::kInput)) out.push_back({"model", "the input's own surface", glm::vec3(0.78f * 0.75f)});
   return out;
 }
 

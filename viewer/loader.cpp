@@ -19,7 +19,10 @@ std::string precision_note(Precision requested, Precision used) {
   return std::string(precision_name(used)) + (requested == Precision::kAuto ? " (auto)" : " (as requested)");
 }
 
-ScenePoints load_points(const PointSource& source, Precision precision, const ProgressFn& progress) {
+namespace {
+
+// The points alone (load_points() adds the model's faces).
+ScenePoints load_positions(const PointSource& source, Precision precision, const ProgressFn& progress) {
   precision = resolve_precision(precision, source.path);
   if (precision == Precision::kDouble) {
     std::vector<Point3d> exact;
@@ -43,6 +46,16 @@ ScenePoints load_points(const PointSource& source, Precision precision, const Pr
   return {std::make_shared<const std::vector<Point3>>(
               generate_points(distribution_from_name(source.distribution), source.count, source.seed)),
           nullptr};
+}
+
+}  // namespace
+
+ScenePoints load_points(const PointSource& source, Precision precision, const ProgressFn& progress) {
+  ScenePoints points = load_positions(source, precision, progress);
+  if (!source.path.empty())
+    points.surface = std::make_shared<const std::vector<InputTriangle>>(
+        read_input_surface(source.path, points.positions->size()));
+  return points;
 }
 
 Scene::BackendFactory backend_factory(const std::string& requested, std::string* note) {

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -80,6 +81,8 @@ struct RenderData {
   std::vector<std::int32_t> point_state;                 // one per position
   std::vector<HullCorner> hull;                          // 3 per face of the current polyhedron
   std::vector<std::uint32_t> hull_vertex_ids;            // indices into positions
+  // The input model's triangles, indices into positions (uploaded with kDirtyPositions); may be null.
+  std::shared_ptr<const std::vector<std::array<std::uint32_t, 3>>> surface;
   std::uint32_t dirty = kDirtyAll;
 };
 

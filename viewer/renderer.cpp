@@ -17,8 +17,9 @@ namespace cudahull::viewer {
 
 namespace {
 
-constexpr const char* kLayerNames[kLayerCount] = {"hull",  "wireframe", "internal", "external",   "vertices",
-                                                  "cells", "swaps",     "normals",  "refinement", "labels"};
+constexpr const char* kLayerNames[kLayerCount] = {"hull",       "wireframe", "internal", "external",
+                                                  "vertices",   "cells",     "swaps",    "normals",
+                                                  "refinement", "labels",    "input"};
 
 // Compiles `source` with shaders/colors.glsl (hsv_to_rgb, face_color) after its #version line: GLSL has
 // no #include.  `#line 2` keeps the driver's line numbers those of the file.
@@ -146,6 +147,7 @@ Renderer::Renderer() {
   glCreateBuffers(1, &label_buffer_);
   bind_overlay_layout(label_vao_, label_buffer_);
   text_ = std::make_unique<TextRenderer>();
+
   GLuint splat_buffers[2];
   glCreateBuffers(2, splat_buffers);
   splat_depth_buffer_ = splat_buffers[0];
@@ -175,6 +177,16 @@ Renderer::Renderer() {
     glEnableVertexArrayAttrib(vao, 1);
   }
   glVertexArrayElementBuffer(vertices_vao_, vertex_id_buffer_);
+
+  // The input layer: the model's triangles index the same positions.
+  input_program_ = link(shaders::input_vert, shaders::input_frag, "input");
+  glCreateVertexArrays(1, &input_vao_);
+  glCreateBuffers(1, &input_index_buffer_);
+  glVertexArrayVertexBuffer(input_vao_, 0, position_buffer_, 0, sizeof(Point3));
+  glVertexArrayAttribFormat(input_vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(input_vao_, 0, 0);
+  glEnableVertexArrayAttrib(input_vao_, 0);
+  glVertexArrayElementBuffer(input_vao_, input_index_buffer_);
 
   glVertexArrayVertexBuffer(hull_vao_, 0, hull_buffer_, 0, sizeof(HullCorner));
   glVertexArrayAttribFormat(hull_vao_, 0, 3, GL_FLOAT, GL_FALSE, offsetof(HullCorner, x));
@@ -211,6 +223,9 @@ Renderer::~Renderer() {
   glDeleteVertexArrays(3, vaos);
   glDeleteProgram(points_program_);
   glDeleteProgram(hull_program_);
+  glDeleteVertexArrays(1, &input_vao_);
+  glDeleteBuffers(1, &input_index_buffer_);
+  glDeleteProgram(input_program_);
 }
 
 void Renderer::upload(RenderData& data) {
@@ -227,6 +242,10 @@ void Renderer::upload(RenderData& data) {
                       nullptr, GL_DYNAMIC_DRAW);
     last_point_bytes_ += point_count_ * sizeof(Point3);
     data.dirty |= kDirtyPointState;
+    input_index_count_ = data.surface ? data.surface->size() * 3 : 0;
+    glNamedBufferData(input_index_buffer_,
+                      static_cast<GLsizeiptr>(std::max<std::size_t>(input_index_count_ * 4, 16)),
+                      input_index_count_ ? data.surface->data() : nullptr, GL_STATIC_DRAW);
   }
   if (data.dirty & kDirtyPointState) {
     const std::size_t n = std::min(point_count_, data.point_state.size());
@@ -429,6 +448,18 @@ void Renderer::draw(const ViewParams& view, const RenderSettings& s) const {
   glDisable(GL_STENCIL_TEST);
 
   const glm::mat4 view_proj = view.projection * view.view;
+
+  // The model's own surface first, without depth writes: the points then draw over it, the hull around it.
+  if (s.shown(Layer::kInput) && input_index_count_ > 0) {
+    glUseProgram(input_program_);
+    glUniformMatrix4fv(loc(input_program_, "u_view"), 1, GL_FALSE, glm::value_ptr(view.view));
+    glUniformMatrix4fv(loc(input_program_, "u_proj"), 1, GL_FALSE, glm::value_ptr(view.projection));
+    glUniform1f(loc(input_program_, "u_opacity"), 0.5f);
+    glDepthMask(GL_FALSE);
+    glBindVertexArray(input_vao_);
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(input_index_count_), GL_UNSIGNED_INT, nullptr);
+    glDepthMask(GL_TRUE);
+  }
 
   // Points first: the translucent hull then blends over the ones inside it.
   const bool any_points = s.shown(Layer::kInternal) || s.shown(Layer::kExternal);

@@ -51,8 +51,9 @@ enum class Layer {
   kNormals,
   kRefinement,
   kLabels,  // the hull's vertex ids and face ids, in the font (text.hpp)
+  kInput,   // the input model's own surface (input_surface.hpp), lit, grey, half transparent
 };
-inline constexpr int kLayerCount = 10;
+inline constexpr int kLayerCount = 11;
 const char* layer_name(Layer layer);
 std::optional<Layer> layer_from_name(std::string_view name);
 std::string layer_names();  // "hull, wireframe, ..." for messages
@@ -66,7 +67,7 @@ enum class PointMode { kAuto, kPoints, kSplats };
 inline constexpr std::size_t kSplatAutoPoints = 2000000;
 
 struct RenderSettings {
-  std::array<bool, kLayerCount> layers{true, true, true, true, true, true, false, false, false, false};
+  std::array<bool, kLayerCount> layers{true, true, true, true, true, true, false, false, false, false, false};
   float point_size = 3.0f;      // logical pixels (times pixel_scale), unless point_size_auto
   bool point_size_auto = true;  // the size at which neighbouring points touch (ViewParams::auto_point_size)
   float point_opacity = 1.0f;   // 0..1
@@ -159,6 +160,8 @@ class Renderer {
   mutable unsigned splat_depth_buffer_ = 0, splat_color_buffer_ = 0;
   mutable std::size_t splat_capacity_ = 0;
   unsigned points_vao_ = 0, vertices_vao_ = 0, hull_vao_ = 0;
+  unsigned input_program_ = 0, input_vao_ = 0, input_index_buffer_ = 0;
+  std::size_t input_index_count_ = 0;
   unsigned position_buffer_ = 0, state_buffer_ = 0, vertex_id_buffer_ = 0, hull_buffer_ = 0;
   std::size_t point_count_ = 0, hull_corner_count_ = 0, hull_vertex_count_ = 0;
   std::size_t hull_buffer_capacity_ = 0, vertex_id_capacity_ = 0;

@@ -32,12 +32,14 @@ std::array<PointIndex, 3> sorted(std::array<PointIndex, 3> k) {
 Scene::Scene(ScenePoints points, BackendFactory make_backend, std::string label)
     : points_(std::move(points.positions)),
       exact_(std::move(points.exact)),
+      surface_(std::move(points.surface)),
       make_backend_(std::move(make_backend)),
       label_(std::move(label)) {
   if (exact_ && exact_->size() != points_->size())
     throw std::invalid_argument("Scene: the double points and the render positions differ in number");
   restart();
   render_.positions = points_;
+  render_.surface = surface_;
   render_.dirty = kDirtyAll;
 }
 

@@ -29,6 +29,7 @@
 
 #include "cudahull/backend.hpp"
 #include "cudahull/engine.hpp"
+#include "input_surface.hpp"
 #include "render_data.hpp"
 
 namespace cudahull::viewer {
@@ -38,6 +39,8 @@ namespace cudahull::viewer {
 struct ScenePoints {
   std::shared_ptr<const std::vector<Point3>> positions;
   std::shared_ptr<const std::vector<Point3d>> exact;  // null: float precision
+  // The model's own faces (input_surface.hpp), indices into `positions`; null or empty for a bare cloud.
+  std::shared_ptr<const std::vector<InputTriangle>> surface;
   Precision precision() const { return exact ? Precision::kDouble : Precision::kFloat; }
 };
 
@@ -145,6 +148,7 @@ class Scene {
 
   std::shared_ptr<const std::vector<Point3>> points_;  // render positions (the engine's in float precision)
   std::shared_ptr<const std::vector<Point3d>> exact_;  // the engine's in double precision, else null
+  std::shared_ptr<const std::vector<InputTriangle>> surface_;
   BackendFactory make_backend_;
   std::string label_;
   std::unique_ptr<SteppingEngine> engine_;
