@@ -466,7 +466,7 @@ void AppWindow::panel_main() {
 // The colour key of the layers shown (legend.hpp; the same list `set legend on` draws into pictures).
 void AppWindow::panel_legend() {
   RenderSettings& s = session_->settings();
-  ImGui::Checkbox("draw it into the picture and screenshots", &s.legend);
+  ImGui::Checkbox("draw it into screenshots and recordings", &s.legend);
   std::string group;
   for (const LegendEntry& e : legend_entries(s, session_->selected_face() >= 0)) {
     if (e.group != group) {
@@ -699,6 +699,24 @@ void AppWindow::panel_debugger() {
         glfwGetFramebufferSize(window_, &fb_w, &fb_h);
         attempt("the screenshot", [&] { session_->screenshot(base + ".png", fb_w, fb_h); });
       }
+      // A clip of what happens from now on: one frame per step or sub-step (the view's size).
+      if (!session_->recording()) {
+        const char* extension = nullptr;
+        if (ImGui::Button("Record (.mp4)")) extension = ".mp4";
+        same_line_if_fits(button_width("Record (.gif)"));
+        if (ImGui::Button("Record (.gif)")) extension = ".gif";
+        if (extension != nullptr) {
+          const ViewPixels v = view_pixels();
+          attempt("nothing yet: recording",
+                  [&] { session_->start_recording(base + extension, v.width, v.height); });
+        }
+      } else if (ImGui::Button("Stop recording")) {
+        try {
+          status_ = session_->stop_recording();
+        } catch (const std::exception& e) {
+          status_ = e.what();
+        }
+      }
       if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
       ImGui::EndTabItem();
     }
@@ -921,7 +939,7 @@ int AppWindow::run() {
       glClearColor(b.r, b.g, b.b, 1.0f);
       glClear(GL_COLOR_BUFFER_BIT);
       const ViewPixels v = view_pixels();
-      session_->draw(v.width, v.height, pixel_scale_, v.x, v.y);
+      session_->draw(v.width, v.height, pixel_scale_, v.x, v.y, true);
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
       // The last frame, panels and all (--window-screenshot: the docs' pictures of the layout).
       if (glfwWindowShouldClose(window_) && !o_.window_screenshot.empty()) write_window_png(fb_w, fb_h);

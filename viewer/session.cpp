@@ -113,8 +113,29 @@ std::vector<TextLabel> Session::id_labels() const {
   // Vertex ids up and to the right of their points, all of them, as the vertex points are all drawn (those
   // behind show through the translucent hull).
   const std::uint32_t vertex_rgba = pack_rgba(kVertexColor.r, kVertexColor.g, kVertexColor.b, 1.0f);
-  for (PointIndex v : mesh.vertices())
+  const std::vector<PointIndex> vertices = mesh.vertices();
+  for (PointIndex v : vertices)
     out.push_back({points[v].x, points[v].y, points[v].z, 0, 0, 0, vertex_rgba, std::to_string(v), 8, -8});
+  // The points the step's swaps and removals name that are no hull vertex now (a vertex beneath a rejected
+  // swap that a later removal took away, a removed vertex), in grey: the debugger's ids are all findable.
+  if (const IterationRecord* r = scene_->current_record()) {
+    std::vector<PointIndex> named;
+    for (const SwapRecord& w : r->swaps) {
+      named.insert(named.end(), {w.old_edge[0], w.old_edge[1], w.new_edge[0], w.new_edge[1]});
+      if (w.beneath_vertex != kNoPoint)
+        named.insert(named.end(),
+                     {w.beneath_vertex, w.beneath_triangle[0], w.beneath_triangle[1], w.beneath_triangle[2]});
+    }
+    for (const RemovalRecord& m : r->removals)
+      named.push_back(m.vertex);
+    std::sort(named.begin(), named.end());
+    named.erase(std::unique(named.begin(), named.end()), named.end());
+    const std::uint32_t grey = pack_rgba(0.75f, 0.75f, 0.75f, 1.0f);
+    for (PointIndex p : named) {
+      if (p < points.size() && !std::binary_search(vertices.begin(), vertices.end(), p))
+        out.push_back({points[p].x, points[p].y, points[p].z, 0, 0, 0, grey, std::to_string(p), 8, -8});
+    }
+  }
   return out;
 }
 
@@ -322,7 +343,7 @@ long long Session::face_at(double x, double y, int width, int height) const {
   return pick_face(scene_->engine(), a, b - a);
 }
 
-void Session::draw(int width, int height, float pixel_scale, int origin_x, int origin_y) {
+void Session::draw(int width, int height, float pixel_scale, int origin_x, int origin_y, bool window_view) {
   update_overlay();
   if (scene_) {
     RenderData& data = scene_->render_data();
@@ -348,7 +369,7 @@ void Session::draw(int width, int height, float pixel_scale, int origin_x, int o
                                 std::max(distance, 1e-20f) / std::max(pixel_scale, 1.0f);
   view.auto_point_size = std::clamp(1.5f * data_spacing_ * pixels_per_unit, 2.0f, 6.0f);
   std::vector<Renderer::LegendRow> legend;
-  if (settings_.legend) {
+  if (settings_.legend && !window_view) {
     std::string group;
     for (const LegendEntry& e : legend_entries(settings_, selected_face_ >= 0)) {
       if (e.group != group) legend.push_back({group = e.group, glm::vec3(1.0f), true});

@@ -71,8 +71,10 @@ class Session {
   void allow_interop(bool allowed) { interop_allowed_ = allowed; }
 
   // Uploads what changed and draws into the bound framebuffer, in the width x height rectangle whose
-  // bottom left corner is (origin_x, origin_y).
-  void draw(int width, int height, float pixel_scale, int origin_x = 0, int origin_y = 0);
+  // bottom left corner is (origin_x, origin_y).  The legend (`set legend on`) is drawn into pictures
+  // (screenshots, recordings, headless), not into the window's view, whose panel has it already.
+  void draw(int width, int height, float pixel_scale, int origin_x = 0, int origin_y = 0,
+            bool window_view = false);
   // Renders the scene offscreen at width x height and writes a PNG atomically; %d in `path` becomes the
   // timeline position.  Returns the path written.  Throws OutputError or DeviceError.
   std::string screenshot(const std::string& path, int width, int height);
