@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "cuda_backend.hpp"
+#include "cuda_errors.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/parallel.hpp"
 #include "cudahull/phase_times.hpp"
@@ -30,33 +31,16 @@ namespace {
 // ---------------------------------------------------------------------------------------------------------
 // Errors: every CUDA call is checked; a failure becomes a one-line DeviceError.
 
-std::string error_text(cudaError_t e) {
-  return std::string(cudaGetErrorName(e)) + " (" + cudaGetErrorString(e) + ")";
-}
-
 [[noreturn]] void fail(const char* what, cudaError_t e) {
-  cudaGetLastError();  // clear a non-sticky error; a sticky one (kernel fault) stays with the context
-  throw DeviceError(std::string("CUDA backend: ") + what + ": " + error_text(e));
+  throw_cuda_error("CUDA backend", what, e);
 }
 
 void check(cudaError_t e, const char* what) {
   if (e != cudaSuccess) fail(what, e);
 }
 
-std::string memory_text(std::size_t bytes) {
-  return std::to_string(bytes) + " bytes (" + std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB)";
-}
-
 [[noreturn]] void fail_alloc(const char* what, std::size_t bytes, cudaError_t e, bool pinned) {
-  cudaGetLastError();
-  std::string msg = std::string("CUDA backend: out of ") + (pinned ? "pinned host" : "device") +
-                    " memory allocating " + memory_text(bytes) + " for " + what;
-  std::size_t free_bytes = 0, total_bytes = 0;
-  if (!pinned && cudaMemGetInfo(&free_bytes, &total_bytes) == cudaSuccess) {
-    msg += " (" + memory_text(free_bytes) + " free of " + memory_text(total_bytes) + ")";
-  }
-  cudaGetLastError();
-  throw DeviceError(msg + ": " + error_text(e));
+  throw_out_of_memory("CUDA backend", what, bytes, e, pinned);
 }
 
 // Grow-only device buffer: reused across iterations, reallocated only when a larger size is needed.
@@ -471,7 +455,7 @@ class CudaBackend final : public BasicBackend<Point> {
     cudaError_t e = cudaGetDeviceCount(&count);
     if (e != cudaSuccess) {
       cudaGetLastError();
-      throw DeviceError("CUDA backend: no usable CUDA device: " + error_text(e));
+      throw DeviceError("CUDA backend: no usable CUDA device: " + cuda_error_text(e));
     }
     if (device < 0 || device >= count) {
       throw DeviceError("CUDA backend: no CUDA device " + std::to_string(device) + " (" +

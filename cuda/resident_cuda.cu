@@ -15,6 +15,7 @@
 #include <cuda/std/utility>
 #include <string>
 
+#include "cuda_errors.hpp"
 #include "cudahull/errors.hpp"
 #include "resident/resident_driver.hpp"
 #include "resident_cuda.hpp"
@@ -24,10 +25,7 @@ namespace resident {
 namespace {
 
 void check(cudaError_t e, const char* what) {
-  if (e == cudaSuccess) return;
-  cudaGetLastError();
-  throw DeviceError(std::string("resident engine: ") + what + ": " + cudaGetErrorName(e) + " (" +
-                    cudaGetErrorString(e) + ")");
+  if (e != cudaSuccess) throw_cuda_error("resident engine", what, e);
 }
 
 constexpr int kBlock = 256;
@@ -347,18 +345,7 @@ __global__ void __launch_bounds__(Block)
     }
   };
   const u32 tid = blockIdx.x * blockDim.x + threadIdx.x;
-  // The iteration's counts from the refinement's, or those the last launch stopped at.
-  if (tid == 0) {
-    if (launch.begin) {
-      st->fresh_from = launch.fresh_from;
-      st->faces = launch.fresh_from + 3 * st->refined;
-      st->entries = st->refined;
-    }
-    st->face_capacity = launch.face_capacity;
-    st->entry_capacity = launch.entry_capacity;
-    st->overflow = 0;
-    st->round_work = 0;  // a launch that overflowed left its count
-  }
+  if (tid == 0) start_rounds(st, launch);
   barrier();
   run_rounds<Point, Block>(find, claim, look, cands, list, win_mask, block_offset, st, barrier);
 }
@@ -410,6 +397,17 @@ __global__ void __launch_bounds__(Block)
   sync();
   MeshView<Point> m = b.m;
   u32 iterations = 0, refined_total = 0, exit = kLoopDone;
+  // The kept ones of the `active` points moved to (index_to, face_to), their faces renumbered by
+  // face_rank; returns how many.
+  auto compact_points = [&](const u32* index_from, const u32* face_from, u32* index_to, u32* face_to) {
+    const u32 kept = block_exclusive_scan<Block, kItems>(b.keep, b.point_rank, active);
+    const MovePoints move{b.keep,   b.point_rank, b.face_rank,     index_from, face_from,
+                          index_to, face_to,      ~std::size_t{0}, nullptr};
+    for (u32 j = tid; j < active; j += Block)
+      move(j);
+    sync();
+    return kept;
+  };
   if (b.first) {
     // Section 3.1's first distribution, as the driver's setup does it: each point to its cone, kept when
     // above; the faces (all live) unstamped, ranked as they are; the kept points compacted.
@@ -421,13 +419,7 @@ __global__ void __launch_bounds__(Block)
       reset(f);
       b.face_rank[f] = f;
     }
-    const u32 kept = block_exclusive_scan<Block, kItems>(b.keep, b.point_rank, active);
-    const MovePoints points{b.keep,  b.point_rank, b.face_rank,     b.index_spare, b.face_spare,
-                            b.index, b.face,       ~std::size_t{0}, nullptr};
-    for (u32 j = tid; j < active; j += Block)
-      points(j);
-    sync();
-    active = kept;
+    active = compact_points(b.index_spare, b.face_spare, b.index, b.face);
   }
   while (active > 0) {
     if (8 * faces + 64 > st->face_capacity || 5 * faces + 64 > st->entry_capacity) {
@@ -452,12 +444,8 @@ __global__ void __launch_bounds__(Block)
     for (u32 f = tid; f < faces; f += Block)
       split(f);
     if (tid == 0) {
-      st->fresh_from = faces;
-      st->faces = faces + 3 * refined;
-      st->entries = refined;
       st->refined = refined;
-      st->overflow = 0;
-      st->round_work = 0;
+      start_rounds(st, RoundsLaunch{1, faces, st->face_capacity, st->entry_capacity});
     }
     sync();
     // Flips and flops (Figs. 3b, 4, 5).
@@ -480,12 +468,7 @@ __global__ void __launch_bounds__(Block)
     const MoveLive<Point> move{m, b.flags, b.face_rank, b.fv_spare, b.fn_spare, ~std::size_t{0}, nullptr};
     for (u32 f = tid; f < bound; f += Block)
       move(f);
-    const u32 kept = block_exclusive_scan<Block, kItems>(b.keep, b.point_rank, active);
-    const MovePoints points{b.keep,        b.point_rank, b.face_rank,     b.index, b.face,
-                            b.index_spare, b.face_spare, ~std::size_t{0}, nullptr};
-    for (u32 j = tid; j < active; j += Block)
-      points(j);
-    sync();
+    const u32 kept = compact_points(b.index, b.face, b.index_spare, b.face_spare);
     cuda::std::swap(m.fv, b.fv_spare);
     cuda::std::swap(m.fn, b.fn_spare);
     cuda::std::swap(b.index, b.index_spare);
@@ -536,15 +519,7 @@ struct CudaExec {
       pool();
       T* fresh = nullptr;
       const cudaError_t e = cudaMallocAsync(reinterpret_cast<void**>(&fresh), n * sizeof(T), 0);
-      if (e != cudaSuccess) {
-        std::size_t free_bytes = 0, total_bytes = 0;
-        cudaGetLastError();
-        cudaMemGetInfo(&free_bytes, &total_bytes);
-        cudaGetLastError();
-        throw DeviceError("resident engine: out of device memory allocating " +
-                          std::to_string(n * sizeof(T) >> 20) + " MiB (" + std::to_string(free_bytes >> 20) +
-                          " MiB free of " + std::to_string(total_bytes >> 20) + ")");
-      }
+      if (e != cudaSuccess) throw_out_of_memory("resident engine", "a buffer", n * sizeof(T), e);
       if (keep > 0 && ptr_)
         check(
             cudaMemcpyAsync(fresh, ptr_, std::min(keep, capacity_) * sizeof(T), cudaMemcpyDeviceToDevice, 0),

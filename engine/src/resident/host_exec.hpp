@@ -139,14 +139,7 @@ struct FusedHostExec : HostExec {
   template <class Point>
   void fused_rounds(const FindCandidate<Point>& find, u64* claim, u32* look, Candidate* cands, u32* list,
                     RoundsState* st, RoundsLaunch launch) {
-    if (launch.begin) {
-      st->fresh_from = launch.fresh_from;
-      st->faces = launch.fresh_from + 3 * st->refined;
-      st->entries = st->refined;
-    }
-    st->face_capacity = launch.face_capacity;
-    st->entry_capacity = launch.entry_capacity;
-    st->overflow = 0;
+    start_rounds(st, launch);
     std::vector<u32> winners;
     while (true) {
       const u32 faces = st->faces, fresh = st->fresh_from, entries = st->entries, round = st->round + 1;

@@ -263,6 +263,17 @@ class ResidentHull {
     return exact_hull(host_, ids);
   }
 
+  // The mean of P's vertices (rounded: every use of it is checked exactly or with a margin).
+  static Vec3d centre_of(const BasicHullMesh<Point>& polytope) {
+    Vec3d centre{0, 0, 0};
+    for (const Point& v : polytope.vertices) {
+      const Vec3d p = to_vec3d(v);
+      centre = {centre.x + p.x, centre.y + p.y, centre.z + p.z};
+    }
+    const double k = 1.0 / static_cast<double>(polytope.vertices.size());
+    return {centre.x * k, centre.y * k, centre.z * k};
+  }
+
   // P's face planes with the bounds that make DropFilter sound.  Rounding analysis (u = 2^-53, every
   // operation rounded once, no fused operations): for a face (a, b, c) the edge vectors, the cross product
   // n = (b - a) x (c - a) and d = -n.a are computed with |n - n*| <= 8u (|products|) per component and
@@ -275,13 +286,7 @@ class ResidentHull {
       return filter;
     constexpr double u = 0x1p-53;
     const double M = max_coordinate_;
-    Vec3d centre{0, 0, 0};
-    for (const Point& v : polytope.vertices) {
-      const Vec3d p = to_vec3d(v);
-      centre = {centre.x + p.x, centre.y + p.y, centre.z + p.z};
-    }
-    const double k = 1.0 / static_cast<double>(polytope.vertices.size());
-    centre = {centre.x * k, centre.y * k, centre.z * k};
+    const Vec3d centre = centre_of(polytope);
     for (const Triangle& t : polytope.triangles) {
       const Vec3d a = to_vec3d(polytope.vertices[t[0]]), b = to_vec3d(polytope.vertices[t[1]]),
                   c = to_vec3d(polytope.vertices[t[2]]);
@@ -311,13 +316,7 @@ class ResidentHull {
   // centre is exactly strictly below every face; false otherwise (or when P is flat).
   bool polytope_mesh(const BasicHullMesh<Point>& polytope, std::vector<u32>& fv, std::vector<u32>& fn) {
     if (polytope.dimension != 3 || polytope.triangles.size() < 4) return false;
-    Vec3d centre{0, 0, 0};
-    for (const Point& v : polytope.vertices) {
-      const Vec3d p = to_vec3d(v);
-      centre = {centre.x + p.x, centre.y + p.y, centre.z + p.z};
-    }
-    const double k = 1.0 / static_cast<double>(polytope.vertices.size());
-    centre = {centre.x * k, centre.y * k, centre.z * k};
+    const Vec3d centre = centre_of(polytope);
     const std::size_t faces = polytope.triangles.size();
     fv.assign(3 * faces, 0);
     fn.assign(3 * faces, kNone);
@@ -482,19 +481,10 @@ class ResidentHull {
       fn_.swap(fn_out_);
       index_[0].swap(index_[1]);
       face_of_[0].swap(face_of_[1]);
-      faces_ = state.faces;
-      entries_used_ = state.entries;
-      grow_faces(state.needed_faces);
-      grow_entries(state.needed_entries);
-      grow_for_rounds(faces_, entries_used_);
+      grow_after_overflow(state);
     }
     stats.refined_faces += state.refined;
-    round_ = state.round;
-    stats.rounds = state.rounds;
-    stats.edits = state.edits;
-    stats.work_items = state.work_items;
-    for (int k = 0; k < 4; ++k)
-      stats.round_phase_ms[k] = static_cast<double>(state.phase_ns[k]) * 1e-6;
+    take_counters(state, stats);
     faces_ = state.live_faces;
     active_ = state.kept_points;
     exec_.for_each(faces_, ResetFaces{killer_.data(), look_.data(), extreme_.data()});
@@ -541,24 +531,33 @@ class ResidentHull {
     stats.iterations += state.loop_iterations;
     stats.loop_iterations += state.loop_iterations;
     stats.refined_faces += state.loop_refined;
+    take_counters(state, stats);
+    active_ = state.kept_points;
+    if (state.loop_exit == kLoopOverflow) {
+      grow_after_overflow(state);  // mid-iteration, as a fused launch that overflowed leaves it
+    } else {
+      faces_ = state.live_faces;
+    }
+    return state.loop_exit;
+  }
+
+  // The state's counters, which add up over the run, into the stats; the round the next split stamps from.
+  void take_counters(const RoundsState& state, ResidentStats& stats) {
     round_ = state.round;
     stats.rounds = state.rounds;
     stats.edits = state.edits;
     stats.work_items = state.work_items;
     for (int k = 0; k < 4; ++k)
       stats.round_phase_ms[k] = static_cast<double>(state.phase_ns[k]) * 1e-6;
-    active_ = state.kept_points;
-    if (state.loop_exit == kLoopOverflow) {
-      // Mid-iteration, as a fused launch that overflowed leaves it.
-      faces_ = state.faces;
-      entries_used_ = state.entries;
-      grow_faces(state.needed_faces);
-      grow_entries(state.needed_entries);
-      grow_for_rounds(faces_, entries_used_);
-    } else {
-      faces_ = state.live_faces;
-    }
-    return state.loop_exit;
+  }
+
+  // After a run of rounds that did not fit: the mesh as the rounds left it, and room for the next round.
+  void grow_after_overflow(const RoundsState& state) {
+    faces_ = state.faces;
+    entries_used_ = state.entries;
+    grow_faces(state.needed_faces);
+    grow_entries(state.needed_entries);
+    grow_for_rounds(faces_, entries_used_);
   }
 
   // Room for a run of fused rounds from at most `faces` faces and `entries` entries in use: a round kills

@@ -646,6 +646,21 @@ struct RoundsLaunch {
   u32 begin, fresh_from, face_capacity, entry_capacity;
 };
 
+// A fused run of rounds starts (one thread): the iteration's counts from the refinement's, or those the last
+// run stopped at; the room there is; no overflow, and no work listed yet (a run that overflowed left its
+// count).
+CUDAHULL_HD inline void start_rounds(RoundsState* st, const RoundsLaunch& launch) {
+  if (launch.begin) {
+    st->fresh_from = launch.fresh_from;
+    st->faces = launch.fresh_from + 3 * st->refined;
+    st->entries = st->refined;
+  }
+  st->face_capacity = launch.face_capacity;
+  st->entry_capacity = launch.entry_capacity;
+  st->overflow = 0;
+  st->round_work = 0;
+}
+
 // The first mesh (P's faces or the tetrahedron's), written where the executor computes from the
 // operation's own copy (a kernel parameter on the device: no upload and no wait), with the state zeroed.
 inline constexpr int kMaxFirstFaces = kMaxDropPlanes;
