@@ -313,8 +313,8 @@ void Renderer::draw_text(const ViewParams& view, const glm::mat4& view_proj) con
   for (const TextLabel& label : text_labels_)
     place(label);
   for (const OverlayLabel& label : labels_)
-    place({label.x, label.y, label.z, 0, 0, 0, label.rgba, std::to_string(label.number), 9,
-           -9});  // beside the edge
+    // Below right of their edge or vertex, where the ids (above right) are not.
+    place({label.x, label.y, label.z, 0, 0, 0, label.rgba, std::to_string(label.number), 9, 10});
   if (!legend_.empty()) {
     const float pad = 8, swatch = 12, line = text_->line_height();
     float widest = 0;
