@@ -587,8 +587,22 @@ void AppWindow::panel_debugger() {
               ImGui::Text("%u beneath (%u,%u,%u); %s", w.beneath_vertex, w.beneath_triangle[0],
                           w.beneath_triangle[1], w.beneath_triangle[2],
                           gone ? "resolved later" : "edge still there");
+              // The short form in the cell, the sentence on hover.
+              if (ImGui::IsItemHovered())
+                ImGui::SetTooltip(
+                    "swapping %u-%u for %u-%u would put vertex %u beneath the new triangle (%u, %u, %u): the "
+                    "surface would fold over.\n%s",
+                    w.old_edge[0], w.old_edge[1], w.new_edge[0], w.new_edge[1], w.beneath_vertex,
+                    w.beneath_triangle[0], w.beneath_triangle[1], w.beneath_triangle[2],
+                    gone ? "A later swap or removal of this step took the edge away."
+                         : "The edge is still there after the step.");
             } else {
               ImGui::Text("%s", gone ? "resolved later" : "edge still there");
+              if (ImGui::IsItemHovered())
+                ImGui::SetTooltip("%s",
+                                  w.kind == SwapKind::kRejectedEdgeExists
+                                      ? "rejected: the new edge is already an edge of the mesh"
+                                      : "rejected: the four points are coplanar seen from the interior");
             }
           }
           ImGui::TableNextColumn();
@@ -636,6 +650,9 @@ void AppWindow::panel_debugger() {
             ImGui::TableNextColumn();
             if (d.kind == kDecisionSwap) {
               ImGui::Text("(%.3f, %.3f, %.3f) . x + %.4g", d.plane.nx, d.plane.ny, d.plane.nz, d.plane.d);
+              if (ImGui::IsItemHovered())  // the digits the cell rounds away
+                ImGui::SetTooltip("(%.17g, %.17g, %.17g) . x + %.17g", d.plane.nx, d.plane.ny, d.plane.nz,
+                                  d.plane.d);
             } else {
               ImGui::TextUnformatted("removal");
             }
