@@ -240,7 +240,8 @@ Session::Pick Session::pick(double x, double y, int width, int height) {
   // Per-point state as drawn: the CPU copy, or (interop) the engine's.
   std::vector<std::int32_t> engine_states;
   const std::vector<std::int32_t>* states = &data.point_state;
-  if (states->size() != points.size() && scene_->position() > 0) {
+  const bool search_points = points.size() <= kPickPointLimit;  // beyond, no per-point pass nor readback
+  if (search_points && states->size() != points.size() && scene_->position() > 0) {
     engine_states = scene_->engine().point_faces();
     for (PointIndex v : data.hull_vertex_ids)
       if (v < engine_states.size()) engine_states[v] = kPointVertex;
@@ -261,7 +262,7 @@ Session::Pick Session::pick(double x, double y, int width, int height) {
   const float radius = std::max(6.0f, 0.5f * point_pixels(view, settings_) + 2.0f);
   double best = radius * radius, best_depth = 2.0;
   long long best_point = -1;
-  if (points.size() <= kPickPointLimit) {
+  if (search_points) {
     for (std::size_t i = 0; i < points.size(); ++i) {
       const glm::vec4 clip = view_proj * glm::vec4(points[i].x, points[i].y, points[i].z, 1.0f);
       if (clip.w <= 0) continue;
