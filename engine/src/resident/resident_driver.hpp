@@ -1,19 +1,23 @@
 // The resident engine's driver: Algorithm 1 with every phase on one executor, the host hearing O(1) bytes
-// per step (counts from the prefix sums) until the result.  `Exec` is HostExec (host_exec.hpp: loops on
-// the host, for the CPU tests and as the reference) or CudaExec (cuda/resident_cuda.cu: kernels on the
-// device); both run the same operations (resident_ops.hpp) in the same order and give the same mesh.
+// per iteration (a small state) until the result.  `Exec` is HostExec (host_exec.hpp: loops on the host,
+// for the CPU tests and as the reference; FusedHostExec steps them as the GPU does) or CudaExec
+// (cuda/resident_cuda.cu: kernels on the device); all run the same operations (resident_ops.hpp) in the
+// same order and give the same mesh.
 //
 // design:
-//   tetrahedron       section 3.1 through the executor's reductions, confirmed exactly on the host
-//   first distribution each point to a face's cone, kept when above it
-//   per iteration     furthest point per face; refine every face that has one (Fig. 3a); flip and flop
-//                     rounds until no candidate is left (Figs. 3b, 4, 5); route every kept point through
-//                     the entries; compact faces and points
-//   finish            no external point left: count the edges that are not strictly convex; none, and the
-//                     mesh is the exact hull.  Otherwise (coplanar or cospherical input where the local
-//                     edits stop short), or on a stall, the exact reference hull of the mesh's vertices and
-//                     the points still outside: every other point was dropped inside a tetrahedron of c and
-//                     mesh vertices, so these hold every extreme point.
+//   P                  one pass: the points extreme along 14 directions; P is their exact hull (host)
+//   drop test          the points proven strictly inside P (DropFilter) are dropped; the rest listed
+//   first mesh         P with c its centre (else section 3.1's tetrahedron, confirmed exactly)
+//   first distribution each listed point to a face's cone, kept when above it
+//   per iteration      furthest point per face; refine every face that has one (Fig. 3a); flip and flop
+//                      rounds until no candidate is left (Figs. 3b, 4, 5); route every kept point through
+//                      the entries; compact faces and points.  On the GPU one wait an iteration, and for a
+//                      small mesh with few points whole iterations in one launch (the device loop)
+//   finish             no external point left: count the edges that are not strictly convex; none, and the
+//                      mesh is the exact hull.  Otherwise (coplanar or cospherical input where the local
+//                      edits stop short), or on a stall, the exact reference hull of the mesh's vertices
+//                      and the points still outside: every other point was dropped inside P or inside a
+//                      tetrahedron of c and mesh vertices, so these hold every extreme point.
 #pragma once
 
 #include <algorithm>
