@@ -38,6 +38,7 @@
 #include "png.hpp"
 #include "run_plan.hpp"
 #include "session.hpp"
+#include "text.hpp"
 #include "ui_layout.hpp"
 
 namespace cudahull::viewer {
@@ -1013,9 +1014,16 @@ int run_window(const ViewerOptions& o) {
   glfwGetFramebufferSize(window, &fb_w, &h);
   const float ui_scale = std::max(1.0f, scale_x * static_cast<float>(win_w) / std::max(fb_w, 1));
   ImGui::GetStyle().ScaleAllSizes(ui_scale);
-  ImFontConfig font;
-  font.SizePixels = 13.0f * ui_scale;
-  io.Fonts->AddFontDefault(&font);
+  // The panels in the picture's font (DejaVu Sans) where it is installed, else Dear ImGui's own.
+  const std::string font_path = viewer_font_path();
+  if (std::FILE* f = std::fopen(font_path.c_str(), "rb"); f != nullptr) {
+    std::fclose(f);
+    io.Fonts->AddFontFromFileTTF(font_path.c_str(), 14.0f * ui_scale);
+  } else {
+    ImFontConfig font;
+    font.SizePixels = 13.0f * ui_scale;
+    io.Fonts->AddFontDefault(&font);
+  }
   if (!ImGui_ImplGlfw_InitForOpenGL(window, true) || !ImGui_ImplOpenGL3_Init("#version 450 core"))
     throw DeviceError("Dear ImGui cannot initialise its GLFW or OpenGL backend");
   struct BackendGuard {

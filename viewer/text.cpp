@@ -25,14 +25,18 @@ namespace {
 constexpr int kFirstChar = 32, kCharCount = 95;  // printable ASCII
 
 std::vector<unsigned char> read_font(std::string& path) {
-  const char* from_env = std::getenv("CUDAHULL_VIEWER_FONT");
-  path = from_env && *from_env ? from_env : CUDAHULL_VIEWER_FONT_PATH;
+  path = viewer_font_path();
   std::ifstream in(path, std::ios::binary);
   return in ? std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {})
             : std::vector<unsigned char>();
 }
 
 }  // namespace
+
+std::string viewer_font_path() {
+  const char* from_env = std::getenv("CUDAHULL_VIEWER_FONT");
+  return from_env && *from_env ? from_env : CUDAHULL_VIEWER_FONT_PATH;
+}
 
 TextRenderer::TextRenderer(float pixel_height) : pixel_height_(pixel_height) {
   std::string path;

@@ -16,6 +16,9 @@
 
 namespace cudahull::viewer {
 
+// The font file: $CUDAHULL_VIEWER_FONT, else fonts-dejavu-core's DejaVuSans.ttf (the path CMake found).
+std::string viewer_font_path();
+
 class TextRenderer {
  public:
   explicit TextRenderer(float pixel_height = 15.0f);
