@@ -17,6 +17,8 @@ namespace cudahull::viewer {
 
 namespace {
 
+constexpr float kTextPixels = 15.0f;  // the labels' and the legend's font size, logical pixels
+
 constexpr const char* kLayerNames[kLayerCount] = {"hull",       "wireframe", "internal", "external",
                                                   "vertices",   "cells",     "swaps",    "normals",
                                                   "refinement", "labels",    "input"};
@@ -146,7 +148,7 @@ Renderer::Renderer() {
   glCreateVertexArrays(1, &label_vao_);
   glCreateBuffers(1, &label_buffer_);
   bind_overlay_layout(label_vao_, label_buffer_);
-  text_ = std::make_unique<TextRenderer>();
+  text_ = std::make_unique<TextRenderer>(kTextPixels);
 
   GLuint splat_buffers[2];
   glCreateBuffers(2, splat_buffers);
@@ -296,6 +298,8 @@ constexpr float kSegmentEnds[7][4] = {{0, 2, 1, 2}, {1, 2, 1, 1}, {1, 1, 1, 0}, 
 // Ids and sequence numbers in the font (text.hpp), centred on their points; those whose outward direction
 // faces away from the eye are behind the hull and left out.  The legend in the view's bottom left corner.
 void Renderer::draw_text(const ViewParams& view, const glm::mat4& view_proj) const {
+  if (text_->pixel_height() != kTextPixels * view.pixel_scale)
+    text_ = std::make_unique<TextRenderer>(kTextPixels * view.pixel_scale);
   text_->clear();
   const glm::vec3 eye = glm::vec3(glm::inverse(view.view)[3]);
   auto place = [&](const TextLabel& label) {
@@ -316,7 +320,7 @@ void Renderer::draw_text(const ViewParams& view, const glm::mat4& view_proj) con
     // Below right of their edge or vertex, where the ids (above right) are not.
     place({label.x, label.y, label.z, 0, 0, 0, label.rgba, std::to_string(label.number), 9, 10});
   if (!legend_.empty()) {
-    const float pad = 8, swatch = 12, line = text_->line_height();
+    const float pad = 8 * view.pixel_scale, swatch = 12 * view.pixel_scale, line = text_->line_height();
     float widest = 0;
     for (const LegendRow& row : legend_)
       widest = std::max(widest, text_->width(row.text) + (row.heading ? 0 : swatch + pad));

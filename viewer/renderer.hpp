@@ -151,7 +151,8 @@ class Renderer {
   std::vector<OverlayLabel> labels_;
   void draw_labels(const ViewParams& view, const glm::mat4& view_proj) const;
   void draw_text(const ViewParams& view, const glm::mat4& view_proj) const;
-  std::unique_ptr<TextRenderer> text_;
+  // Baked for the last pixel scale drawn at (high-DPI: the text keeps its logical size); draw() is const.
+  mutable std::unique_ptr<TextRenderer> text_;
   std::vector<TextLabel> text_labels_;
   std::vector<LegendRow> legend_;
   unsigned label_buffer_ = 0, label_vao_ = 0;

@@ -28,6 +28,7 @@ class TextRenderer {
 
   bool available() const { return texture_ != 0; }
   const std::string& font_note() const { return note_; }
+  float pixel_height() const { return pixel_height_; }
   float line_height() const { return pixel_height_ * 1.25f; }
   float ascent() const { return ascent_; }
   float width(const std::string& text) const;
