@@ -25,7 +25,8 @@ void main() {
   // rims would trace the scan's grid (the moire of issue 17).
   float relief = smoothstep(4.0, 10.0, u_point_size);
   float shade = mix(0.85, 0.45 + 0.55 * light, relief) * v_cue;
-  // The last pixel or so of the radius fades out.
-  float edge = 1.0 - smoothstep(1.0 - 2.0 / max(u_point_size, 1.0), 1.0, sqrt(r2));
+  // The last pixel of the radius fades out; points of a pixel or two are whole pixels (a ramp across all of
+  // them would leave next to no coverage).
+  float edge = u_point_size < 3.0 ? 1.0 : 1.0 - smoothstep(1.0 - 2.0 / u_point_size, 1.0, sqrt(r2));
   frag_color = vec4(v_color * shade, u_opacity * edge);
 }

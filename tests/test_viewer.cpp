@@ -475,6 +475,38 @@ TEST(ViewerHeadless, InputLayerDrawsTheModelsOwnSurface) {
   EXPECT_EQ(differing_fraction(read_png(dir / "bare.png"), read_png(dir / "input.png")), 0.0);
 }
 
+// Issue 17, no moire on the bunny at the defaults: the scan's points are drawn as large as their spacing
+// on the screen, so the bare cloud is a closed surface, with (next to) no background pixel enclosed by drawn
+// ones.  At the old fixed default of 3 pixels, at 960x720, the same measure finds the gaps between the scan
+// lines that made the moire.
+TEST(ViewerHeadless, BunnyScanDrawsAsAClosedSurfaceAtTheDefaults) {
+  TempDir dir;
+  auto enclosed_gaps = [](const Image& img) {  // background pixels with drawn ones 2 pixels away all round
+    std::size_t drawn = 0, gaps = 0;
+    for (int y = 2; y + 2 < img.height; ++y) {
+      for (int x = 2; x + 2 < img.width; ++x) {
+        if (!background(img.at(x, y))) {
+          ++drawn;
+        } else if (!background(img.at(x - 2, y)) && !background(img.at(x + 2, y)) &&
+                   !background(img.at(x, y - 2)) && !background(img.at(x, y + 2))) {
+          ++gaps;
+        }
+      }
+    }
+    return drawn > 0 ? static_cast<double>(gaps) / drawn : 1.0;
+  };
+  const std::string script =
+      dir.write("bare.txt", "screenshot " + (dir / "auto.png") + "\nset point-size 3\nscreenshot " +
+                                (dir / "three.png") + "\n");
+  for (const auto& [width, height] : {std::pair{480, 360}, std::pair{960, 720}}) {
+    const ViewerRun r = run_viewer({kBunny, "--headless", "--width", std::to_string(width), "--height",
+                                    std::to_string(height), "--script", script});
+    ASSERT_EQ(r.exit_code, 0) << describe(r);
+    EXPECT_LT(enclosed_gaps(read_png(dir / "auto.png")), 0.005) << width << "x" << height;
+  }
+  EXPECT_GT(enclosed_gaps(read_png(dir / "three.png")), 0.02);  // 960x720, the last
+}
+
 // Issue 6, Figs. 3-5 and 7: next-rejected stops at a step that rejected a swap; the swaps layer draws that
 // step's swaps (green new edges) and the rejected foldover (orange old edge, magenta beneath-triangle); the
 // refinement layer changes the picture; the exported decision table is the trace's decision array for the
