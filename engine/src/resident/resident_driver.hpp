@@ -319,7 +319,10 @@ class ResidentHull {
   // P as the first mesh (corners and links as the driver keeps them) with its centre as c, when the
   // centre is exactly strictly below every face; false otherwise (or when P is flat).
   bool polytope_mesh(const BasicHullMesh<Point>& polytope, std::vector<u32>& fv, std::vector<u32>& fn) {
-    if (polytope.dimension != 3 || polytope.triangles.size() < 4) return false;
+    // FirstMesh holds 2 * 14 - 4 faces, all a hull of 14 points can have.
+    if (polytope.dimension != 3 || polytope.triangles.size() < 4 ||
+        polytope.triangles.size() > static_cast<std::size_t>(kMaxFirstFaces))
+      return false;
     const Vec3d centre = centre_of(polytope);
     const std::size_t faces = polytope.triangles.size();
     fv.assign(3 * faces, 0);
