@@ -627,12 +627,7 @@ struct CudaExec {
   }
   u32 exclusive_scan(const u32* in, u32* out, std::size_t n) {
     if (n == 0) return 0;
-    std::size_t bytes = 0;
-    check(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, static_cast<std::int64_t>(n)),
-          "sizing a scan");
-    scratch_.grow(bytes);
-    check(cub::DeviceScan::ExclusiveSum(scratch_.data(), bytes, in, out, static_cast<std::int64_t>(n)),
-          "a scan");
+    scan(in, out, n);
     scalar32_.grow(1);
     scan_total_kernel<<<1, 1>>>(in, out, n, scalar32_.data());
     check(cudaGetLastError(), "launching a scan total");

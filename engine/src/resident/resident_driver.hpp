@@ -35,7 +35,6 @@
 #include "cudahull/mesh.hpp"
 #include "cudahull/resident.hpp"
 #include "phases/initial_tetrahedron.hpp"
-#include "resident/host_exec.hpp"
 #include "resident/resident_ops.hpp"
 
 namespace cudahull::resident {
@@ -395,7 +394,6 @@ class ResidentHull {
     }
   }
 
-  // One iteration; false when no face could refine.
   // The furthest point per face (extreme_ is zero), and the faces that refine (flags_).
   void mark_refined() {
     exec_.segmented_max(
@@ -483,11 +481,7 @@ class ResidentHull {
       exec_.download(&state, state_.data(), 1);
       stats.route_ms += lap();
       if (!state.overflow) break;
-      // Back to the mesh of the rounds: the compaction wrote into the spare buffers.
-      fv_.swap(fv_out_);
-      fn_.swap(fn_out_);
-      index_[0].swap(index_[1]);
-      face_of_[0].swap(face_of_[1]);
+      swap_spares();  // back to the mesh of the rounds: the compaction's outputs go unused
       grow_after_overflow(state);
     }
     stats.refined_faces += state.refined;
@@ -529,12 +523,7 @@ class ResidentHull {
     RoundsState state{};
     exec_.download(&state, state_.data(), 1);
     stats.route_ms += lap();
-    if (state.loop_iterations % 2 == 1) {
-      fv_.swap(fv_out_);
-      fn_.swap(fn_out_);
-      index_[0].swap(index_[1]);
-      face_of_[0].swap(face_of_[1]);
-    }
+    if (state.loop_iterations % 2 == 1) swap_spares();
     stats.iterations += state.loop_iterations;
     stats.loop_iterations += state.loop_iterations;
     stats.refined_faces += state.loop_refined;
@@ -636,8 +625,6 @@ class ResidentHull {
     exec_.scan(flags_.data(), face_rank_.data(), face_bound);
     exec_.for_each(face_bound, MoveLive<Point>{view(), flags_.data(), face_rank_.data(), fv_out_.data(),
                                                fn_out_.data(), face_bound - 1, &st->live_faces});
-    fv_.swap(fv_out_);
-    fn_.swap(fn_out_);
     if (active_ == 0) {
       exec_.fill(&st->kept_points, 1, u32{0});
     } else {
@@ -646,6 +633,12 @@ class ResidentHull {
                                          index_[0].data(), face_of_[0].data(), index_[1].data(),
                                          face_of_[1].data(), active_ - 1, &st->kept_points});
     }
+    swap_spares();
+  }
+  // The compaction's outputs become the current faces and points (and back, to undo it).
+  void swap_spares() {
+    fv_.swap(fv_out_);
+    fn_.swap(fn_out_);
     index_[0].swap(index_[1]);
     face_of_[0].swap(face_of_[1]);
   }
