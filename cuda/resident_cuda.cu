@@ -741,6 +741,9 @@ struct ResidentCudaHull<Point>::Impl {
   resident::CudaExec exec;
   resident::CudaExec::Buffer<Point> points;
   const std::vector<Point>* host = nullptr;
+  const Point* device = nullptr;  // the points run() reads: points.data() or the caller's
+  std::size_t count = 0;
+  bool given = false;  // upload() or use_device_points() was called
 };
 
 template <class Point>
@@ -757,11 +760,24 @@ void ResidentCudaHull<Point>::upload(const std::vector<Point>& points) {
                                cudaMemcpyHostToDevice),
                     "uploading the points");
   impl_->host = &points;
+  impl_->device = impl_->points.data();
+  impl_->count = points.size();
+  impl_->given = true;
+}
+
+template <class Point>
+void ResidentCudaHull<Point>::use_device_points(const Point* device_points, std::size_t count) {
+  if (count >= 0xffffffffu) throw std::invalid_argument("too many points (at most 2^32 - 2)");
+  if (count != 0 && !device_points) throw std::invalid_argument("no device points");
+  impl_->host = nullptr;
+  impl_->device = device_points;
+  impl_->count = count;
+  impl_->given = true;
 }
 
 template <class Point>
 BasicHullMesh<Point> ResidentCudaHull<Point>::run(ResidentStats* stats) {
-  if (!impl_->host) throw std::logic_error("ResidentCudaHull::run() before upload()");
+  if (!impl_->given) throw std::logic_error("ResidentCudaHull::run() before upload() or use_device_points()");
   resident::CudaExec& exec = impl_->exec;
   exec.host_syncs = exec.bytes_to_device = exec.bytes_from_device = 0;
   resident::device_bytes.peak = resident::device_bytes.now;
@@ -769,7 +785,7 @@ BasicHullMesh<Point> ResidentCudaHull<Point>::run(ResidentStats* stats) {
   ResidentStats& out = stats ? *stats : local;
   BasicHullMesh<Point> result;
   {
-    resident::ResidentHull<Point, resident::CudaExec> hull(exec, *impl_->host, impl_->points.data());
+    resident::ResidentHull<Point, resident::CudaExec> hull(exec, impl_->device, impl_->count, impl_->host);
     result = hull.run(out);
   }
   resident::trim_pool();

@@ -41,6 +41,25 @@ void expect_exact(const std::vector<Point>& points, const std::string& what,
   EXPECT_EQ(fused_stats.rounds, stats.rounds) << what << " (fused)";
   EXPECT_EQ(fused_stats.edits, stats.edits) << what << " (fused)";
   EXPECT_EQ(fused_stats.iterations, stats.iterations) << what << " (fused)";
+  // As for points only the GPU holds (a CuPy array): the coordinates read through the executor, the
+  // same hull, and the same coordinates in it.
+  ResidentStats executor_stats;
+  const BasicHullMesh<Point> executor_only =
+      resident_hull_host(points, &executor_stats, ResidentRounds::kFused, true);
+  EXPECT_EQ(executor_only.dimension, hull.dimension) << what << " (executor's points only)";
+  EXPECT_EQ(executor_only.vertex_ids, hull.vertex_ids) << what << " (executor's points only)";
+  EXPECT_TRUE(executor_only.triangles == hull.triangles) << what << " (executor's points only)";
+  EXPECT_TRUE(executor_only.polygon == hull.polygon) << what << " (executor's points only)";
+  if (executor_stats.polytope_first && !executor_stats.exact_finish)
+    EXPECT_LE(executor_stats.points_read_back, 14 + hull.vertex_ids.size()) << what;
+  else if (!points.empty())
+    EXPECT_GT(executor_stats.points_read_back, 0u) << what;
+  ASSERT_EQ(executor_only.vertices.size(), executor_only.vertex_ids.size()) << what;
+  for (std::size_t k = 0; k < executor_only.vertex_ids.size(); ++k) {
+    const Point& want = points[executor_only.vertex_ids[k]];
+    const Point& got = executor_only.vertices[k];
+    EXPECT_TRUE(got.x == want.x && got.y == want.y && got.z == want.z) << what << " vertex " << k;
+  }
   if (stats_out) *stats_out = stats;
 }
 

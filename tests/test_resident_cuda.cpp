@@ -3,6 +3,7 @@
 // exact_hull on generated and seeded sets and the property test's adversarial sets, the stepping engine on
 // the CPU backend at a million points, and the known counts of the shared models.  Run on the GPU machine
 // (docs/benchmarks.md says how).
+#include <cuda_runtime.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -33,6 +34,24 @@ BasicHullMesh<Point> on_device(const std::vector<Point>& points, ResidentStats* 
   return hull.run(stats);
 }
 
+// The points as a CuPy array or a PyTorch tensor holds them: already in device memory, borrowed in place.
+template <class Point>
+BasicHullMesh<Point> on_device_points(const std::vector<Point>& points, ResidentStats* stats) {
+  Point* device = nullptr;
+  const std::size_t bytes = std::max<std::size_t>(points.size(), 1) * sizeof(Point);
+  EXPECT_EQ(cudaMalloc(reinterpret_cast<void**>(&device), bytes), cudaSuccess);
+  EXPECT_EQ(cudaMemcpy(device, points.data(), points.size() * sizeof(Point), cudaMemcpyHostToDevice),
+            cudaSuccess);
+  BasicHullMesh<Point> out;
+  {
+    ResidentCudaHull<Point> hull;
+    hull.use_device_points(device, points.size());
+    out = hull.run(stats);
+  }
+  cudaFree(device);
+  return out;
+}
+
 // Device and host executors: the same mesh and the same counts; `oracle` true also checks exact_hull.
 template <class Point>
 void expect_same_as_host(const std::vector<Point>& points, const std::string& what, bool oracle = true) {
@@ -45,6 +64,17 @@ void expect_same_as_host(const std::vector<Point>& points, const std::string& wh
   EXPECT_EQ(device_stats.rounds, host_stats.rounds) << what;
   EXPECT_EQ(device_stats.edits, host_stats.edits) << what;
   EXPECT_EQ(device_stats.exact_finish, host_stats.exact_finish) << what;
+  // Borrowed device points: the same mesh, and no more read back than the coordinates checked.
+  ResidentStats borrowed_stats;
+  const BasicHullMesh<Point> borrowed = on_device_points(points, &borrowed_stats);
+  EXPECT_EQ(borrowed.vertex_ids, host.vertex_ids) << what << " (device points)";
+  EXPECT_EQ(borrowed.triangles, host.triangles) << what << " (device points)";
+  EXPECT_TRUE(borrowed.vertices == device.vertices) << what << " (device points)";
+  EXPECT_EQ(borrowed_stats.bytes_from_device,
+            device_stats.bytes_from_device + borrowed_stats.points_read_back * sizeof(Point))
+      << what << " (device points)";
+  if (borrowed_stats.polytope_first && !borrowed_stats.exact_finish)
+    EXPECT_LE(borrowed_stats.points_read_back, 14 + borrowed.vertex_ids.size()) << what << " (device points)";
   if (oracle) {
     const BasicHullMesh<Point> exact = exact_hull(points);
     EXPECT_EQ(device.vertex_ids, exact.vertex_ids) << what;

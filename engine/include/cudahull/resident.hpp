@@ -21,6 +21,7 @@ struct ResidentStats {
   std::uint64_t work_items = 0;           // faces the rounds looked at, summed over the rounds
   std::uint64_t dropped_by_polytope = 0;  // points proven inside P, the extremes' polytope, at the start
   std::uint64_t loop_iterations = 0;      // iterations run by the device loop of a small mesh
+  bool polytope_first = false;            // P was the first mesh (else section 3.1's tetrahedron)
   std::uint64_t faults = 0;               // edges not strictly convex at the end (then the exact finish)
   bool exact_finish = false;              // the result came from the exact reference hull of the candidates
   std::string note;                       // why, for lower-dimensional input or the exact finish
@@ -28,6 +29,7 @@ struct ResidentStats {
   std::uint64_t bytes_to_device = 0;      // host -> executor, after the points
   std::uint64_t bytes_from_device = 0;    // executor -> host, the result included
   std::uint64_t device_bytes_peak = 0;    // device memory held at most, the points included (0 on the host)
+  std::uint64_t points_read_back = 0;     // coordinates read back for the exact checks (borrowed points only)
   // Where the time went (host clock; each phase ends in a wait for a count, so these are wall times).
   double setup_ms = 0, refine_ms = 0, rounds_ms = 0, route_ms = 0, finish_ms = 0;
   // Inside the device's rounds (device clock, the slowest block): finding and claiming, judging the
@@ -41,9 +43,11 @@ struct ResidentStats {
 enum class ResidentRounds { kStepped, kFused };
 
 // The exact hull (vertices are exactly the strictly extreme points), computed by the resident engine's
-// operations on the host.  Point3 or Point3d.
+// operations on the host.  Point3 or Point3d.  `executor_points_only`: the driver reads coordinates only
+// through the executor, as it does for points that only the GPU holds (ResidentCudaHull::use_device_points).
 template <class Point>
 BasicHullMesh<Point> resident_hull_host(const std::vector<Point>& points, ResidentStats* stats = nullptr,
-                                        ResidentRounds rounds = ResidentRounds::kStepped);
+                                        ResidentRounds rounds = ResidentRounds::kStepped,
+                                        bool executor_points_only = false);
 
 }  // namespace cudahull

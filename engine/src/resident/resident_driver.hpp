@@ -139,17 +139,26 @@ class ResidentHull {
   template <class T>
   using Buffer = typename Exec::template Buffer<T>;
 
-  // `points` lives where the executor computes (the host vector itself for HostExec, a device copy for
-  // CudaExec); `host_points` is the same data on the host, for the exact checks of the tetrahedron and
-  // the result's coordinates.
-  ResidentHull(Exec& exec, const std::vector<Point>& host_points, const Point* points)
-      : exec_(exec), host_(host_points), points_(points) {}
+  // `count` points live at `points`, where the executor computes (the host vector itself for HostExec, a
+  // device copy or the caller's device array for CudaExec).  `host_points`, when given, is the same data on
+  // the host, where the exact checks read.  Without it (points only the executor holds, e.g. a CuPy array)
+  // the driver reads back the few coordinates it checks: P's 14 points, the result's vertices, the exact
+  // finish's candidates; every point only for section 3.1's tetrahedron or lower-dimensional input.
+  ResidentHull(Exec& exec, const Point* points, std::size_t count, const std::vector<Point>* host_points)
+      : exec_(exec), host_(host_points), points_(points), n_(count) {}
 
   BasicHullMesh<Point> run(ResidentStats& stats) {
+    BasicHullMesh<Point> hull = run_all(stats);
+    stats.points_read_back = points_read_back_;
+    return hull;
+  }
+
+ private:
+  BasicHullMesh<Point> run_all(ResidentStats& stats) {
     stats = ResidentStats{};
     lap();
-    const std::size_t n = host_.size();
-    if (n == 0) return exact_hull(host_);
+    const std::size_t n = n_;
+    if (n == 0) return exact_hull(std::vector<Point>{});
     // P, the drop filter, and the first mesh: P itself where its centre is strictly inside every face
     // (its cones tile space from there: the star shape holds from the start, and the first iterations
     // need not find P's vertices again); else section 3.1's tetrahedron, over all points when P is flat
@@ -157,12 +166,14 @@ class ResidentHull {
     const BasicHullMesh<Point> polytope = directional_polytope();
     const DropFilter filter = drop_filter(polytope);
     std::vector<u32> fv, fn;
-    if (!polytope_mesh(polytope, fv, fn)) {
-      TetrahedronQueries<Point, Exec> queries(exec_, host_, points_);
-      const phases::InitialTetrahedron tetrahedron = phases::find_initial_tetrahedron(host_, queries);
+    stats.polytope_first = polytope_mesh(polytope, fv, fn);
+    if (!stats.polytope_first) {
+      const std::vector<Point>& host = all_points();
+      TetrahedronQueries<Point, Exec> queries(exec_, host, points_);
+      const phases::InitialTetrahedron tetrahedron = phases::find_initial_tetrahedron(host, queries);
       if (tetrahedron.dimension < 3) return lower_dimensional(stats, tetrahedron.note);
       Mesh mesh;
-      if (!phases::make_initial_tetrahedron(host_, tetrahedron.corners, mesh, c_))
+      if (!phases::make_initial_tetrahedron(host, tetrahedron.corners, mesh, c_))
         return lower_dimensional(stats, "tetrahedron too flat for an interior point");
       fv.resize(12);
       fn.resize(12);
@@ -244,26 +255,69 @@ class ResidentHull {
     return out;
   }
 
- private:
   // P (see DirectionKeys): the exact hull of the points extreme along kDirections, found in one pass.
   BasicHullMesh<Point> directional_polytope() {
     const std::array<u64, kDirections> keys =
-        exec_.template reduce_max_many<kDirections>(host_.size(), DirectionKeys<Point>{points_});
+        exec_.template reduce_max_many<kDirections>(n_, DirectionKeys<Point>{points_});
     std::vector<PointIndex> ids;
     for (const u64 key : keys)
       ids.push_back(rank_key_index(key));
     std::sort(ids.begin(), ids.end());
     ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    const std::vector<Point> at = fetch(ids);
     // Every coordinate is at most M in size: the axis extremes, widened for the float-rounded ranking of
     // double coordinates (rank_key) by more than its relative error.
     max_coordinate_ = 0;
     for (int k = 0; k < 6; ++k) {
-      const Vec3d p = to_vec3d(host_[rank_key_index(keys[k])]);
+      const auto slot = std::lower_bound(ids.begin(), ids.end(), rank_key_index(keys[k])) - ids.begin();
+      const Vec3d p = to_vec3d(at[static_cast<std::size_t>(slot)]);
       const double v = k < 2 ? p.x : k < 4 ? p.y : p.z;
       max_coordinate_ = std::max(max_coordinate_, std::fabs(v));
     }
     max_coordinate_ *= 1 + 0x1p-20;
-    return exact_hull(host_, ids);
+    return hull_of(ids, at);
+  }
+
+  // The coordinates of points `ids`: from the host copy, or gathered where the executor computes and read
+  // back in one piece.
+  std::vector<Point> fetch(const std::vector<PointIndex>& ids) {
+    std::vector<Point> out(ids.size());
+    if (host_) {
+      for (std::size_t k = 0; k < ids.size(); ++k)
+        out[k] = (*host_)[ids[k]];
+    } else if (!ids.empty()) {
+      gather_ids_.grow(ids.size());
+      exec_.upload(gather_ids_.data(), ids.data(), ids.size());
+      gather(gather_ids_.data(), out);
+    }
+    return out;
+  }
+  // The coordinates of the `out.size()` points listed at `ids` where the executor computes.
+  void gather(const u32* ids, std::vector<Point>& out) {
+    points_read_back_ += out.size();
+    gathered_.grow(out.size());
+    exec_.for_each(out.size(), GatherPoints<Point>{points_, ids, gathered_.data()});
+    exec_.download(out.data(), gathered_.data(), out.size());
+  }
+  // Every point on the host: the caller's copy, or all of them read back once (section 3.1's tetrahedron
+  // and lower-dimensional input only).
+  const std::vector<Point>& all_points() {
+    if (host_) return *host_;
+    if (read_back_.size() != n_) {
+      points_read_back_ += n_;
+      read_back_.resize(n_);
+      exec_.download(read_back_.data(), points_, n_);
+    }
+    return read_back_;
+  }
+  // The exact hull of points `ids` (ascending, no repeats; `at`: their coordinates): as exact_hull of
+  // all points restricted to them, duplicates going to the lowest index.
+  BasicHullMesh<Point> hull_of(const std::vector<PointIndex>& ids, const std::vector<Point>& at) const {
+    if (host_) return exact_hull(*host_, ids);
+    BasicHullMesh<Point> hull = exact_hull(at);
+    for (PointIndex& v : hull.vertex_ids)
+      v = ids[v];
+    return hull;
   }
 
   // The mean of P's vertices (rounded: every use of it is checked exactly or with a margin).
@@ -654,7 +708,7 @@ class ResidentHull {
 
   BasicHullMesh<Point> lower_dimensional(ResidentStats& stats, const std::string& why) {
     stats.note = why;
-    return exact_hull(host_);
+    return exact_hull(all_points());
   }
 
   // The mesh's faces, read back once.
@@ -673,7 +727,7 @@ class ResidentHull {
     RoundsState* st = state_.data();
     exec_.fill(&st->faults, 2, u32{0});
     exec_.for_each(faces_, CountFaults<Point>{view(), &st->faults});
-    const std::size_t n = host_.size(), corners = 3 * faces_;
+    const std::size_t n = n_, corners = 3 * faces_;
     u32 counts[2] = {0, 0};  // faults, vertices
     const u32* vertex_list = nullptr;
     if (corners < n) {
@@ -693,9 +747,7 @@ class ResidentHull {
         static_assert(sizeof(Triangle) == 3 * sizeof(u32));
         std::copy(both.begin(), both.begin() + static_cast<std::ptrdiff_t>(corners),
                   reinterpret_cast<u32*>(out.triangles.data()));
-        out.vertices.resize(out.vertex_ids.size());
-        for (std::size_t k = 0; k < out.vertex_ids.size(); ++k)
-          out.vertices[k] = host_[out.vertex_ids[k]];
+        out.vertices = vertex_coordinates(out.vertex_ids, list);
         return out;
       }
     } else {
@@ -722,9 +774,19 @@ class ResidentHull {
     out.triangles.resize(faces_);
     static_assert(sizeof(Triangle) == 3 * sizeof(u32));
     exec_.download(reinterpret_cast<u32*>(out.triangles.data()), fv_out_.data(), 3 * faces_);
-    out.vertices.resize(vertices);
-    for (std::size_t k = 0; k < vertices; ++k)
-      out.vertices[k] = host_[out.vertex_ids[k]];
+    out.vertices = vertex_coordinates(out.vertex_ids, vertex_list);
+    return out;
+  }
+
+  // The result's coordinates: from the host copy, or gathered from the vertex list where it is.
+  std::vector<Point> vertex_coordinates(const std::vector<PointIndex>& ids, const u32* list) {
+    std::vector<Point> out(ids.size());
+    if (!host_) {
+      gather(list, out);
+      return out;
+    }
+    for (std::size_t k = 0; k < ids.size(); ++k)
+      out[k] = (*host_)[ids[k]];
     return out;
   }
 
@@ -738,12 +800,17 @@ class ResidentHull {
     exec_.download(candidates.data() + mesh_part, index_[0].data(), active_);
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-    return exact_hull(host_, candidates);
+    return hull_of(candidates, host_ ? std::vector<Point>{} : fetch(candidates));
   }
 
   Exec& exec_;
-  const std::vector<Point>& host_;
+  const std::vector<Point>* host_;  // null: the points are only where the executor computes
   const Point* points_;
+  std::size_t n_;
+  std::vector<Point> read_back_;  // all_points() without a host copy
+  std::uint64_t points_read_back_ = 0;
+  Buffer<u32> gather_ids_;
+  Buffer<Point> gathered_;
   std::chrono::steady_clock::time_point lap_start_;
   Vec3d c_{};
   double max_coordinate_ = 0;     // every point's coordinates are at most this in size

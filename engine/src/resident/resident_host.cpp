@@ -7,9 +7,10 @@ namespace cudahull {
 
 namespace {
 template <class Exec, class Point>
-BasicHullMesh<Point> run_on(const std::vector<Point>& points, ResidentStats* stats) {
+BasicHullMesh<Point> run_on(const std::vector<Point>& points, ResidentStats* stats, bool executor_only) {
   Exec exec;
-  resident::ResidentHull<Point, Exec> hull(exec, points, points.data());
+  resident::ResidentHull<Point, Exec> hull(exec, points.data(), points.size(),
+                                           executor_only ? nullptr : &points);
   ResidentStats local;
   ResidentStats& out = stats ? *stats : local;
   BasicHullMesh<Point> result = hull.run(out);
@@ -22,14 +23,15 @@ BasicHullMesh<Point> run_on(const std::vector<Point>& points, ResidentStats* sta
 
 template <class Point>
 BasicHullMesh<Point> resident_hull_host(const std::vector<Point>& points, ResidentStats* stats,
-                                        ResidentRounds rounds) {
+                                        ResidentRounds rounds, bool executor_points_only) {
   if (points.size() >= 0xffffffffu) throw std::invalid_argument("too many points (at most 2^32 - 2)");
-  if (rounds == ResidentRounds::kFused) return run_on<resident::FusedHostExec>(points, stats);
-  return run_on<resident::HostExec>(points, stats);
+  if (rounds == ResidentRounds::kFused)
+    return run_on<resident::FusedHostExec>(points, stats, executor_points_only);
+  return run_on<resident::HostExec>(points, stats, executor_points_only);
 }
 
 // The two coordinate types (README, "Precision").
-template HullMesh resident_hull_host(const std::vector<Point3>&, ResidentStats*, ResidentRounds);
-template HullMeshd resident_hull_host(const std::vector<Point3d>&, ResidentStats*, ResidentRounds);
+template HullMesh resident_hull_host(const std::vector<Point3>&, ResidentStats*, ResidentRounds, bool);
+template HullMeshd resident_hull_host(const std::vector<Point3d>&, ResidentStats*, ResidentRounds, bool);
 
 }  // namespace cudahull

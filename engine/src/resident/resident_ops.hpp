@@ -768,6 +768,14 @@ struct FindCorners {
     out[k] = lo;
   }
 };
+// The coordinates of listed points, for a caller whose points are only where the executor computes.
+template <class Point>
+struct GatherPoints {
+  const Point* points;
+  const u32* ids;
+  Point* out;
+  CUDAHULL_HD void operator()(std::size_t k) const { out[k] = points[ids[k]]; }
+};
 struct RenumberCorners {
   const u32* fv;
   const u32* rank;
