@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "cudahull/convex_hull.hpp"
@@ -117,6 +119,33 @@ TEST(ConvexHullApi, BadInputIsOneInputError) {
             "point 2: y coordinate 1e+39 does not fit in float");
   std::vector<Point3> floats{{0, 0, 0}, {1, 0, 0}, {0, 0, std::numeric_limits<float>::infinity()}};
   EXPECT_EQ(message([&] { convex_hull(floats); }), "point 2: z coordinate inf is not finite");
+}
+
+// What convex_hull_device() refuses before it reads a point (its hulls are tested on the GPU through the
+// Python module, python/gpu_tests).
+TEST(ConvexHullApi, DevicePointsNeedTheGpu) {
+  const std::vector<Point3> host{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  ConvexHullOptions cpu;
+  cpu.backend = BackendChoice::kCpu;
+  EXPECT_THROW(convex_hull_device(&host[0].x, host.size(), cpu), std::invalid_argument);
+  const CudaStatus cuda = cuda_status();
+  if (cuda.usable) {
+    // A host pointer is no device memory: refused, instead of faulting in the engine's first kernel.
+    try {
+      convex_hull_device(&host[0].x, host.size());
+      ADD_FAILURE() << "a host pointer was taken as device memory";
+    } catch (const DeviceError& e) {
+      EXPECT_EQ(std::string(e.what()), "device points: the array is not in CUDA device memory");
+    }
+    return;
+  }
+  try {
+    convex_hull_device(&host[0].x, host.size());
+    ADD_FAILURE() << "no DeviceError without a GPU";
+  } catch (const DeviceError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("points in GPU memory, but no usable CUDA device: ", 0), 0u)
+        << e.what();
+  }
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "cudahull/errors.hpp"
 #include "cudahull/resident.hpp"
 #include "device_info.hpp"
+#include "device_points.hpp"
 #include "resident_cuda.hpp"
 
 namespace cudahull {
@@ -40,39 +41,49 @@ std::string shortest(double value) {
                    shortest(value) + " " + why);
 }
 
+// The point `i` as Point, from its coordinates widened to double, or InputError (one line naming the point)
+// for what the exact hull cannot take.  The device path names its first bad point with it too.
+template <class Point>
+Point checked_point(std::size_t i, const double (&widened)[3]) {
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!std::isfinite(widened[axis])) bad_coordinate(i, axis, widened[axis], "is not finite");
+  }
+  if constexpr (std::is_same_v<Point, Point3d>) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const double m = std::fabs(widened[axis]);
+      if (m != 0 && (m < kMinExactMagnitude || m > kMaxExactMagnitude)) {
+        bad_coordinate(
+            i, axis, widened[axis],
+            "is outside the range of exact double arithmetic (nonzero magnitudes from 2^-250 to 2^250)");
+      }
+    }
+    return Point3d{widened[0], widened[1], widened[2]};
+  } else {
+    // Rounded once to float (a float input is unchanged); a double beyond float's range cannot be.
+    const float rounded[3] = {static_cast<float>(widened[0]), static_cast<float>(widened[1]),
+                              static_cast<float>(widened[2])};
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!std::isfinite(rounded[axis])) bad_coordinate(i, axis, widened[axis], "does not fit in float");
+    }
+    return Point3{rounded[0], rounded[1], rounded[2]};
+  }
+}
+
+void check_count(std::size_t count) {
+  // PointIndex is 32 bits and the engine keeps 0xffffffff as "no point".
+  if (count >= 0xffffffffu)
+    throw InputError("too many points: " + std::to_string(count) + " (at most 2^32 - 2)");
+}
+
 // Copies `count` points into Point (float or double), refusing what the exact hull cannot take;
 // `coordinate(i, axis)` reads the input.
 template <class Point, class Coordinate>
 std::vector<Point> copy_checked(std::size_t count, Coordinate coordinate) {
-  // PointIndex is 32 bits and the engine keeps 0xffffffff as "no point".
-  if (count >= 0xffffffffu)
-    throw InputError("too many points: " + std::to_string(count) + " (at most 2^32 - 2)");
+  check_count(count);
   std::vector<Point> points(count);
   for (std::size_t i = 0; i < count; ++i) {
-    double widened[3];
-    for (int axis = 0; axis < 3; ++axis) {
-      widened[axis] = coordinate(i, axis);
-      if (!std::isfinite(widened[axis])) bad_coordinate(i, axis, widened[axis], "is not finite");
-    }
-    if constexpr (std::is_same_v<Point, Point3d>) {
-      for (int axis = 0; axis < 3; ++axis) {
-        const double m = std::fabs(widened[axis]);
-        if (m != 0 && (m < kMinExactMagnitude || m > kMaxExactMagnitude)) {
-          bad_coordinate(i, axis, widened[axis],
-                         "is outside the range of exact double arithmetic (nonzero magnitudes from 2^-250 to "
-                         "2^250)");
-        }
-      }
-      points[i] = Point3d{widened[0], widened[1], widened[2]};
-    } else {
-      // Rounded once to float (a float input is unchanged); a double beyond float's range cannot be.
-      const float rounded[3] = {static_cast<float>(widened[0]), static_cast<float>(widened[1]),
-                                static_cast<float>(widened[2])};
-      for (int axis = 0; axis < 3; ++axis) {
-        if (!std::isfinite(rounded[axis])) bad_coordinate(i, axis, widened[axis], "does not fit in float");
-      }
-      points[i] = Point3{rounded[0], rounded[1], rounded[2]};
-    }
+    const double widened[3] = {coordinate(i, 0), coordinate(i, 1), coordinate(i, 2)};
+    points[i] = checked_point<Point>(i, widened);
   }
   return points;
 }
@@ -194,12 +205,18 @@ ConvexHull hull_in(const std::vector<Point>& points, const ConvexHullOptions& op
       if (device.usable) {
         ResidentCudaHull<Point> resident;
         resident.upload(points);
-        return describe(resident.run(), "cuda-resident");
+        ResidentStats stats;
+        ConvexHull hull = describe(resident.run(&stats), "cuda-resident");
+        hull.resident_stats = std::move(stats);
+        return hull;
       }
       if (options.backend == BackendChoice::kCuda)
         throw DeviceError("backend cuda: no usable CUDA device: " + device.reason);
     }
-    return describe(resident_hull_host(points), "cpu-resident");
+    ResidentStats stats;
+    ConvexHull hull = describe(resident_hull_host(points, &stats), "cpu-resident");
+    hull.resident_stats = std::move(stats);
+    return hull;
   }
   std::unique_ptr<BasicBackend<Point>> backend = make_backend<Point>(options.backend);
   std::string name = backend->name();
@@ -215,6 +232,45 @@ ConvexHull checked_hull(std::size_t count, Coordinate coordinate, Precision own,
   const Precision precision = options.precision == Precision::kAuto ? own : options.precision;
   if (precision == Precision::kDouble) return hull_in(copy_checked<Point3d>(count, coordinate), options);
   return hull_in(copy_checked<Point3>(count, coordinate), options);
+}
+
+// The hull of points that only the current device holds, in Point: checked (and converted) there, then
+// borrowed by the resident engine.
+template <class Point, class Scalar>
+ConvexHull device_hull_in(const Scalar* device_xyz, std::size_t count) {
+  CheckedDevicePoints<Point> checked = check_device_points<Point>(device_xyz, count);
+  if (checked.first_bad != count) {
+    // Named from its own coordinates by the host path's check, so the message is the same word for word.
+    const std::array<double, 3> p = read_device_point(device_xyz, checked.first_bad);
+    const double widened[3] = {p[0], p[1], p[2]};
+    checked_point<Point>(checked.first_bad, widened);
+    throw std::logic_error("convex_hull_device: point " + std::to_string(checked.first_bad) +
+                           " failed the device's check but passes the host's");
+  }
+  ResidentCudaHull<Point> resident;
+  resident.use_device_points(checked.points, count);
+  ResidentStats stats;
+  ConvexHull hull = describe(resident.run(&stats), "cuda-resident");
+  stats.host_syncs += checked.host_syncs;
+  stats.bytes_from_device += checked.bytes_from_device;
+  hull.resident_stats = std::move(stats);
+  return hull;
+}
+
+template <class Scalar>
+ConvexHull device_hull(const Scalar* device_xyz, std::size_t count, Precision own,
+                       const ConvexHullOptions& options) {
+  if (options.backend == BackendChoice::kCpu)
+    throw std::invalid_argument("points in GPU memory need backend auto or cuda, not cpu");
+  check_count(count);
+  // Not query_cuda_device(): reading the device's properties would cost more than a small hull.
+  std::string why_not;
+  if (!cuda_device_present(&why_not))
+    throw DeviceError("points in GPU memory, but no usable CUDA device: " + why_not);
+  if (count != 0) require_current_device_memory(device_xyz);
+  const Precision precision = options.precision == Precision::kAuto ? own : options.precision;
+  if (precision == Precision::kDouble) return device_hull_in<Point3d>(device_xyz, count);
+  return device_hull_in<Point3>(device_xyz, count);
 }
 
 template <class Point>
@@ -286,6 +342,19 @@ ConvexHull convex_hull(const float* xyz, std::size_t count, const ConvexHullOpti
 
 ConvexHull convex_hull(const double* xyz, std::size_t count, const ConvexHullOptions& options) {
   return checked_hull(count, array_coordinate(xyz), Precision::kDouble, options);
+}
+
+ConvexHull convex_hull_device(const float* device_xyz, std::size_t count, const ConvexHullOptions& options) {
+  return device_hull(device_xyz, count, Precision::kFloat, options);
+}
+
+ConvexHull convex_hull_device(const double* device_xyz, std::size_t count, const ConvexHullOptions& options) {
+  return device_hull(device_xyz, count, Precision::kDouble, options);
+}
+
+CudaStatus cuda_status() {
+  const CudaDeviceInfo device = query_cuda_device();
+  return {device.usable, device.name, device.reason};
 }
 
 BackendChoice backend_from_name(const std::string& name) {

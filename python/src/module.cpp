@@ -1,17 +1,20 @@
 // cudahull._cudahull: the nanobind extension under the Python package (python/cudahull/__init__.py), which
 // gives it scipy's ConvexHull interface.  It takes C-contiguous (n, 3) float32 or float64 NumPy arrays, as
-// the package hands them over, and returns plain dicts of NumPy arrays.
+// the package hands them over, or such arrays in CUDA memory (DLPack: CuPy, PyTorch; or a raw pointer from
+// __cuda_array_interface__), and returns plain dicts of NumPy arrays.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/string.h>
 
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include "cudahull/convex_hull.hpp"
 #include "cudahull/engine.hpp"
 #include "cudahull/errors.hpp"
+#include "cudahull/resident.hpp"
 
 namespace nb = nanobind;
 
@@ -64,8 +67,37 @@ nb::object column_to_numpy(const Rows& rows, Get get) {
   return to_numpy(std::move(column));
 }
 
+// Any array in CUDA memory; its dtype, shape and layout are checked here, with messages that say what to do.
+using CudaArray = nb::ndarray<nb::ro, nb::device::cuda>;
+
+nb::object stats_to_dict(const std::optional<ResidentStats>& stats) {
+  if (!stats) return nb::none();
+  const ResidentStats& s = *stats;
+  nb::dict d;
+  d["iterations"] = s.iterations;
+  d["refined_faces"] = s.refined_faces;
+  d["rounds"] = s.rounds;
+  d["edits"] = s.edits;
+  d["dropped_by_polytope"] = s.dropped_by_polytope;
+  d["polytope_first"] = s.polytope_first;
+  d["exact_finish"] = s.exact_finish;
+  d["note"] = s.note;
+  d["host_syncs"] = s.host_syncs;
+  d["bytes_to_device"] = s.bytes_to_device;
+  d["bytes_from_device"] = s.bytes_from_device;
+  d["device_bytes_peak"] = s.device_bytes_peak;
+  d["points_read_back"] = s.points_read_back;
+  d["setup_ms"] = s.setup_ms;
+  d["refine_ms"] = s.refine_ms;
+  d["rounds_ms"] = s.rounds_ms;
+  d["route_ms"] = s.route_ms;
+  d["finish_ms"] = s.finish_ms;
+  return d;
+}
+
 nb::dict hull_to_dict(ConvexHull&& hull) {
   nb::dict d;
+  d["stats"] = stats_to_dict(hull.resident_stats);
   d["dimension"] = hull.dimension;
   d["precision"] = precision_name(hull.precision);
   d["backend"] = hull.backend;
@@ -100,6 +132,52 @@ nb::dict convex_hull_of(PointArray<Scalar> points, const std::string& backend, c
     hull = convex_hull(points.data(), points.shape(0), options);
   }
   return hull_to_dict(std::move(hull));
+}
+
+template <class Scalar>
+nb::dict device_hull_of(const Scalar* xyz, std::size_t count, const std::string& backend,
+                        const std::string& precision) {
+  const ConvexHullOptions options = options_from(backend, precision, "resident");
+  ConvexHull hull;
+  {
+    nb::gil_scoped_release unlocked;  // the caller holds the array for the call
+    hull = convex_hull_device(xyz, count, options);
+  }
+  return hull_to_dict(std::move(hull));
+}
+
+// An (n, 3) array in CUDA memory, through DLPack: C-contiguous float32 or float64, as the engine reads it.
+nb::dict convex_hull_cuda(const CudaArray& points, const std::string& backend, const std::string& precision) {
+  const bool is_float = points.dtype() == nb::dtype<float>(),
+             is_double = points.dtype() == nb::dtype<double>();
+  if (!is_float && !is_double)
+    throw std::invalid_argument("points in GPU memory must be float32 or float64 (convert with .astype())");
+  if (points.ndim() != 2 || points.shape(1) != 3) {
+    std::string shape;
+    for (std::size_t k = 0; k < points.ndim(); ++k)
+      shape += (k ? ", " : "") + std::to_string(points.shape(k));
+    if (points.ndim() == 1) shape += ",";
+    throw std::invalid_argument("points must be an (n, 3) array of 3-D points, not one of shape (" + shape +
+                                ")");
+  }
+  // Strides count elements; a single row's first stride means nothing.
+  const std::size_t n = points.shape(0);
+  if (n != 0 && (points.stride(1) != 1 || (n > 1 && points.stride(0) != 3))) {
+    throw std::invalid_argument(
+        "points in GPU memory must be C-contiguous: the engine reads them in place "
+        "(cupy.ascontiguousarray(x) "
+        "or x.contiguous() copies them on the device)");
+  }
+  if (is_float) return device_hull_of(static_cast<const float*>(points.data()), n, backend, precision);
+  return device_hull_of(static_cast<const double*>(points.data()), n, backend, precision);
+}
+
+// The same from __cuda_array_interface__'s pointer, for arrays that offer no DLPack (the package checks
+// the interface's shape, type and strides).
+nb::dict convex_hull_cuda_pointer(std::uintptr_t pointer, std::size_t count, bool is_double,
+                                  const std::string& backend, const std::string& precision) {
+  if (is_double) return device_hull_of(reinterpret_cast<const double*>(pointer), count, backend, precision);
+  return device_hull_of(reinterpret_cast<const float*>(pointer), count, backend, precision);
 }
 
 // The stepping engine for notebooks: one iteration per step(), its record as a dict of NumPy arrays.
@@ -256,6 +334,16 @@ NB_MODULE(_cudahull, m) {
         nb::arg("engine"));
   m.def("convex_hull", &convex_hull_of<double>, nb::arg("points"), nb::arg("backend"), nb::arg("precision"),
         nb::arg("engine"));
+
+  // Arrays in CUDA memory (issue 16): read in place by the resident engine.
+  m.def("convex_hull_cuda", &convex_hull_cuda, nb::arg("points"), nb::arg("backend"), nb::arg("precision"));
+  m.def("convex_hull_cuda_pointer", &convex_hull_cuda_pointer, nb::arg("pointer"), nb::arg("count"),
+        nb::arg("is_double"), nb::arg("backend"), nb::arg("precision"));
+  // Whether a CUDA array can be taken here at all: (usable, why not), before its data is touched.
+  m.def("cuda_device", []() {
+    const CudaStatus cuda = cuda_status();
+    return nb::make_tuple(cuda.usable, cuda.usable ? cuda.device : cuda.reason);
+  });
 
   nb::list kinds;
   for (SwapKind kind : {SwapKind::kRegular, SwapKind::kComplementary, SwapKind::kRejectedFoldover,

@@ -13,10 +13,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cudahull/backend.hpp"
+#include "cudahull/resident.hpp"
 #include "cudahull/types.hpp"
 
 namespace cudahull {
@@ -56,6 +58,10 @@ struct ConvexHull {
   // Dimension 3: the solid's volume and surface area.  Dimension 2: volume 0, area both sides of the
   // polygon (the surface area of the flat solid, twice the polygon's area).  Lower: 0 and 0.
   double volume = 0, area = 0;
+  // The resident engine's counters (iterations, host waits, bytes each way, coordinates read back for its
+  // exact checks; resident.hpp), empty for the stepping engine.  For convex_hull_device() they include
+  // the input check's wait and read-back.
+  std::optional<ResidentStats> resident_stats;
 };
 
 // The exact convex hull of `points`.  Throws InputError (one line naming the point index) for a NaN or
@@ -67,6 +73,19 @@ ConvexHull convex_hull(const std::vector<Point3d>& points, const ConvexHullOptio
 // The same on `count` points given as x, y, z triples in one contiguous array (e.g. a NumPy array).
 ConvexHull convex_hull(const float* xyz, std::size_t count, const ConvexHullOptions& options = {});
 ConvexHull convex_hull(const double* xyz, std::size_t count, const ConvexHullOptions& options = {});
+
+// The same on `count` x, y, z triples already in the memory of the current CUDA device (a CuPy array, a
+// PyTorch tensor), read in place: the resident engine on the CUDA backend borrows them, whatever
+// options.engine says (the stepping engine needs them on the host), and reads back only the coordinates
+// its exact checks need (resident_stats counts them).  The points are checked on the device first, with
+// the errors above (the first bad point named); a float array with kDouble is widened, a double array
+// with kFloat rounded, into a temporary device buffer.  Throws std::invalid_argument for kCpu, and
+// DeviceError without a usable GPU or for memory that is not the current device's.  The array must stay
+// unchanged until the call returns.
+ConvexHull convex_hull_device(const float* device_xyz, std::size_t count,
+                              const ConvexHullOptions& options = {});
+ConvexHull convex_hull_device(const double* device_xyz, std::size_t count,
+                              const ConvexHullOptions& options = {});
 
 // The points convex_hull() computes on: `count` x, y, z triples as Point (Point3 rounds a double once,
 // Point3d widens a float exactly), with the same checks and errors.  Scalar is float or double.
@@ -82,6 +101,14 @@ ConvexHull hull_from_mesh(const BasicHullMesh<Point>& mesh, std::string backend)
 template <class Point>
 std::unique_ptr<BasicBackend<Point>> make_backend(BackendChoice choice,
                                                   std::string* chosen_because = nullptr);
+
+// Whether this process has a usable CUDA device (what backend auto looks for): its name, or why not.
+struct CudaStatus {
+  bool usable = false;
+  std::string device;  // e.g. "NVIDIA H100 80GB HBM3"
+  std::string reason;  // e.g. "no CUDA-capable device is detected"
+};
+CudaStatus cuda_status();
 
 // "auto", "cpu", "cuda" and back; throws std::invalid_argument for another name.
 BackendChoice backend_from_name(const std::string& name);

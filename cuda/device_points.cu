@@ -1,0 +1,152 @@
+#include "device_points.hpp"
+
+#include <cuda_runtime.h>
+
+#include <algorithm>
+#include <string>
+#include <type_traits>
+
+#include "cuda_errors.hpp"
+#include "cudahull/errors.hpp"
+
+namespace cudahull {
+
+namespace {
+
+constexpr const char* kWho = "device points";
+constexpr unsigned kThreads = 256;
+
+void check(cudaError_t e, const char* what) {
+  if (e != cudaSuccess) throw_cuda_error(kWho, what, e);
+}
+
+// The same bounds as the host's checked_points (api/src/convex_hull.cpp): the exact predicates in double
+// are exact only for these magnitudes.
+template <class Point, class Scalar>
+__device__ bool acceptable(Scalar c, decltype(Point::x)& out) {
+  const double v = static_cast<double>(c);
+  if (!isfinite(v)) return false;
+  if constexpr (std::is_same_v<Point, Point3d>) {
+    const double m = fabs(v);
+    out = v;
+    return m == 0 || (m >= 0x1p-250 && m <= 0x1p+250);
+  } else {
+    // Rounded to nearest once (a float is unchanged), as static_cast<float> on the host.
+    out = static_cast<float>(v);
+    return isfinite(out);
+  }
+}
+
+// One pass: every point tested (the lowest failing index wins through atomicMin, so the error names the
+// same point as the host path's scan) and, when `out` is given, written in Point's precision.
+template <class Point, class Scalar>
+__global__ void check_points_kernel(const Scalar* xyz, std::size_t count, Point* out,
+                                    unsigned long long* first_bad) {
+  const std::size_t stride = static_cast<std::size_t>(gridDim.x) * blockDim.x;
+  for (std::size_t i = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x; i < count;
+       i += stride) {
+    Point p;
+    const bool good = acceptable<Point>(xyz[3 * i], p.x) & acceptable<Point>(xyz[3 * i + 1], p.y) &
+                      acceptable<Point>(xyz[3 * i + 2], p.z);
+    if (!good) atomicMin(first_bad, static_cast<unsigned long long>(i));
+    if (out) out[i] = p;
+  }
+}
+
+unsigned grid_for(std::size_t count) {
+  // A grid-stride loop over enough blocks to fill the device several times over; more only adds blocks
+  // with nothing to do.
+  int device = 0, sms = 1;
+  check(cudaGetDevice(&device), "reading the current device");
+  check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), "reading the SM count");
+  const std::size_t needed = (count + kThreads - 1) / kThreads;
+  return static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(needed, 16u * sms)));
+}
+
+}  // namespace
+
+bool cuda_device_present(std::string* why_not) {
+  int count = 0;
+  const cudaError_t e = cudaGetDeviceCount(&count);
+  if (e != cudaSuccess) {
+    cudaGetLastError();
+    if (why_not) *why_not = cudaGetErrorString(e);
+    return false;
+  }
+  if (count == 0 && why_not) *why_not = "no CUDA device found";
+  return count > 0;
+}
+
+void require_current_device_memory(const void* xyz) {
+  int current = 0;
+  check(cudaGetDevice(&current), "reading the current device");
+  cudaPointerAttributes attributes{};
+  const cudaError_t e = cudaPointerGetAttributes(&attributes, xyz);
+  if (e != cudaSuccess) {
+    cudaGetLastError();
+    throw DeviceError(std::string(kWho) + ": the array is not in CUDA device memory (" + cuda_error_text(e) +
+                      ")");
+  }
+  if (attributes.type != cudaMemoryTypeDevice && attributes.type != cudaMemoryTypeManaged)
+    throw DeviceError(std::string(kWho) + ": the array is not in CUDA device memory");
+  if (attributes.device != current) {
+    throw DeviceError(std::string(kWho) + ": the array is on CUDA device " +
+                      std::to_string(attributes.device) + ", but the current device is " +
+                      std::to_string(current) + ": make its device current (cupy.cuda.Device(" +
+                      std::to_string(attributes.device) + ").use(), torch.cuda.set_device(" +
+                      std::to_string(attributes.device) + "))");
+  }
+}
+
+template <class Point, class Scalar>
+CheckedDevicePoints<Point> check_device_points(const Scalar* xyz, std::size_t count) {
+  CheckedDevicePoints<Point> result;
+  result.count = count;
+  result.first_bad = count;
+  if (count == 0) return result;
+  // CuPy and PyTorch may have written the array on a stream of their own, unordered with ours.
+  check(cudaDeviceSynchronize(), "waiting for the array's producer");
+
+  Point* out = nullptr;
+  if constexpr (!std::is_same_v<decltype(Point::x), Scalar>) {
+    const std::size_t bytes = count * sizeof(Point);
+    void* memory = nullptr;
+    const cudaError_t e = cudaMalloc(&memory, bytes);
+    if (e != cudaSuccess) throw_out_of_memory(kWho, "the points in the hull's precision", bytes, e);
+    result.converted = std::shared_ptr<void>(memory, [](void* p) { cudaFree(p); });
+    out = static_cast<Point*>(memory);
+    result.points = out;
+  } else {
+    result.points = reinterpret_cast<const Point*>(xyz);
+  }
+
+  unsigned long long* first_bad = nullptr;
+  check(cudaMalloc(&first_bad, sizeof *first_bad), "allocating the check's result");
+  const std::unique_ptr<unsigned long long, void (*)(unsigned long long*)> owned(
+      first_bad, [](unsigned long long* p) { cudaFree(p); });
+  check(cudaMemset(first_bad, 0xff, sizeof *first_bad), "clearing the check's result");
+  check_points_kernel<Point, Scalar><<<grid_for(count), kThreads>>>(xyz, count, out, first_bad);
+  check(cudaGetLastError(), "launching the check");
+  unsigned long long bad = 0;
+  check(cudaMemcpy(&bad, first_bad, sizeof bad, cudaMemcpyDeviceToHost), "reading the check's result");
+  result.host_syncs = 1;
+  result.bytes_from_device = sizeof bad;
+  result.first_bad = bad == ~0ull ? count : static_cast<std::size_t>(bad);
+  return result;
+}
+
+template <class Scalar>
+std::array<double, 3> read_device_point(const Scalar* xyz, std::size_t index) {
+  Scalar c[3];
+  check(cudaMemcpy(c, xyz + 3 * index, sizeof c, cudaMemcpyDeviceToHost), "reading a point back");
+  return {static_cast<double>(c[0]), static_cast<double>(c[1]), static_cast<double>(c[2])};
+}
+
+template CheckedDevicePoints<Point3> check_device_points<Point3>(const float*, std::size_t);
+template CheckedDevicePoints<Point3> check_device_points<Point3>(const double*, std::size_t);
+template CheckedDevicePoints<Point3d> check_device_points<Point3d>(const float*, std::size_t);
+template CheckedDevicePoints<Point3d> check_device_points<Point3d>(const double*, std::size_t);
+template std::array<double, 3> read_device_point(const float*, std::size_t);
+template std::array<double, 3> read_device_point(const double*, std::size_t);
+
+}  // namespace cudahull

@@ -1,0 +1,49 @@
+// Points that only the GPU holds (issue 16: a CuPy array, a PyTorch tensor), checked and, where the hull
+// is computed in the other precision, converted on the device, so that the resident engine can borrow
+// them (ResidentCudaHull::use_device_points) without a coordinate crossing to the host.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "cudahull/types.hpp"
+
+namespace cudahull {
+
+// Whether the process sees a CUDA device, asked cheaply (no device properties are read); `why_not` gets the
+// CUDA runtime's reason when not.
+bool cuda_device_present(std::string* why_not);
+
+// Throws DeviceError (one line) unless `xyz` points into device (or managed) memory of the current CUDA
+// device: a host pointer, or another device's memory, would fault in the engine's first kernel instead.
+void require_current_device_memory(const void* xyz);
+
+// `count` points, as the hull in Point computes on them, on the current device.
+template <class Point>
+struct CheckedDevicePoints {
+  const Point* points = nullptr;  // the caller's own array, or `converted`'s
+  std::size_t count = 0;
+  // The index of the first point that the exact hull in Point cannot take (a NaN or infinite coordinate;
+  // for Point3d a nonzero magnitude outside 2^-250..2^250; for Point3 from double one that rounds to an
+  // infinity), or `count` when there is none.  The caller names it from the point's own coordinates
+  // (read_device_point), with the host path's words.
+  std::size_t first_bad = 0;
+  std::shared_ptr<void> converted;  // the rounded or widened copy, when Scalar is not Point's
+  std::uint64_t host_syncs = 0, bytes_from_device = 0;  // what the check read back
+};
+
+// Checks `count` x, y, z triples of Scalar (float or double) at `xyz` in the current device's memory for
+// Point (Point3 or Point3d), in one pass over them; a float array for Point3d is widened (exactly), a
+// double array for Point3 rounded (once, to nearest), into a new device buffer.  Waits for the device
+// first: the array's producer may have written it on any stream.  Throws DeviceError.
+template <class Point, class Scalar>
+CheckedDevicePoints<Point> check_device_points(const Scalar* xyz, std::size_t count);
+
+// Point `index`'s coordinates, read back (24 bytes at most), for the error message that names it.
+template <class Scalar>
+std::array<double, 3> read_device_point(const Scalar* xyz, std::size_t index);
+
+}  // namespace cudahull

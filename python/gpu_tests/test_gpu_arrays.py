@@ -1,0 +1,256 @@
+"""CuPy arrays and PyTorch CUDA tensors, read in place (issue 16), against the same points given as NumPy: the
+same hull (vertices, triangles, neighbours, planes, volume, area), the same errors, and far fewer bytes read
+back than the points hold.  ctest label gpu: skipped (exit 77) where there is no GPU, CuPy or PyTorch."""
+
+import numpy as np
+import pytest
+import scipy.spatial
+
+import cudahull
+
+GPU_USABLE, GPU_WHY = cudahull._cudahull.cuda_device()
+pytestmark = pytest.mark.skipif(not GPU_USABLE, reason=f"no usable CUDA device: {GPU_WHY}")
+
+
+@pytest.fixture(params=["cupy", "torch"])
+def lib(request):
+    module = pytest.importorskip(request.param)
+    if request.param == "torch" and not module.cuda.is_available():
+        pytest.skip("PyTorch sees no CUDA device")
+    return module
+
+
+def on_device(lib, array):
+    if lib.__name__ == "cupy":
+        return lib.asarray(array)
+    return lib.from_numpy(np.ascontiguousarray(array)).cuda()
+
+
+def to_numpy(array):
+    if isinstance(array, np.ndarray):
+        return array
+    if hasattr(array, "get"):
+        return array.get()
+    return array.detach().cpu().numpy()
+
+
+def distributions():
+    rng = np.random.default_rng(2026)
+    n = 20000
+    ball = rng.uniform(-1, 1, size=(3 * n, 3))
+    ball = ball[np.linalg.norm(ball, axis=1) <= 1][:n]
+    sphere = rng.normal(size=(2000, 3))
+    sphere /= np.linalg.norm(sphere, axis=1, keepdims=True)
+    grid = np.array([[x, y, z] for x in range(12) for y in range(12) for z in range(12)], dtype=np.float64)
+    a, b = rng.integers(-50, 50, size=(2, 3000))
+    tilted = np.outer(a, [1, 2, 3]) + np.outer(b, [-2, 1, 0])  # exactly coplanar, in float32 too
+    corners = np.array([[x, y, z] for x in (0.0, 1.0) for y in (0.0, 1.0) for z in (0.0, 1.0)])
+    duplicates = np.concatenate([rng.uniform(0.1, 0.9, size=(500, 3)), np.repeat(corners, 40, axis=0)])
+    return {
+        # In general position: the triangulation is unique, scipy is an oracle.
+        "ball": ball,
+        "cube": rng.uniform(-1, 1, size=(n, 3)),
+        "gauss": rng.normal(size=(n, 3)),
+        "sphere": sphere,  # every point a vertex
+        "shifted": ball * [1e3, 1, 1e-3] + [1e6, -5, 7],
+        # Degenerate: coplanar points on faces, flat, collinear, repeated, too few, none.
+        "grid": grid,
+        "duplicates": duplicates,
+        "flat": np.column_stack([rng.uniform(-1, 1, size=(5000, 2)), np.zeros(5000)]),
+        "tilted_flat": tilted.astype(np.float64),
+        "collinear": np.outer(rng.integers(-1000, 1000, size=500), [1, 2, 3]).astype(np.float64),
+        "one_point": np.full((100, 3), 0.5),
+        "three": rng.normal(size=(3, 3)),
+        "empty": np.empty((0, 3)),
+    }
+
+
+DISTRIBUTIONS = distributions()
+GENERAL_POSITION = {"ball", "cube", "gauss", "sphere", "shifted"}
+
+
+def faces(hull):
+    """Each triangle (rotated to start at its smallest index, orientation kept) -> its neighbours' vertex
+    sets in the same corner order, and its plane."""
+    s, n, e = to_numpy(hull.simplices), to_numpy(hull.neighbors), to_numpy(hull.equations)
+    out = {}
+    for f in range(len(s)):
+        t = s[f].tolist()
+        k = t.index(min(t))
+        across = [tuple(sorted(s[g].tolist())) for g in n[f].tolist()]
+        out[tuple(t[k:] + t[:k])] = (tuple(across[k:] + across[:k]), tuple(e[f].tolist()))
+    return out
+
+
+def assert_same_hull(got, want, exact_mesh=True):
+    assert got.dimension == want.dimension
+    assert got.precision == want.precision
+    assert np.array_equal(to_numpy(got.vertices), want.vertices)
+    if exact_mesh:
+        assert faces(got) == faces(want)
+        assert np.array_equal(to_numpy(got.polygon), want.polygon)
+    assert got.volume == pytest.approx(want.volume, rel=1e-12, abs=0)
+    assert got.area == pytest.approx(want.area, rel=1e-12, abs=0)
+
+
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+@pytest.mark.parametrize("name", sorted(DISTRIBUTIONS))
+def test_same_hull_as_numpy(lib, name, dtype):
+    points = DISTRIBUTIONS[name].astype(dtype)
+    device_points = on_device(lib, points)
+    got = cudahull.ConvexHull(device_points)
+    assert got.points is device_points and got.npoints == len(points)
+    assert got.backend == "cuda-resident" and got.stats["iterations"] >= 0
+    # The same engine from host memory: the same mesh, face for face.
+    assert_same_hull(got, cudahull.ConvexHull(points, engine="resident"))
+    # The stepping engine (the NumPy default): the same exact hull; the same triangles where they are unique.
+    assert_same_hull(got, cudahull.ConvexHull(points), exact_mesh=False)
+    # shifted in float32 rounds to a coarse grid, where four points on a plane are no longer rare.
+    if name in GENERAL_POSITION and not (name == "shifted" and dtype == np.float32):
+        assert faces(got).keys() == faces(cudahull.ConvexHull(points)).keys()
+        qhull = scipy.spatial.ConvexHull(points.astype(np.float64))
+        assert np.array_equal(to_numpy(got.vertices), qhull.vertices)
+        assert got.volume == pytest.approx(qhull.volume, rel=1e-9)
+        assert got.area == pytest.approx(qhull.area, rel=1e-9)
+    if len(points):
+        assert np.array_equal(got.min_bound, points.min(axis=0))
+        assert np.array_equal(got.max_bound, points.max(axis=0))
+
+
+@pytest.mark.parametrize("dtype, precision", [(np.float64, "float"), (np.float32, "double")])
+@pytest.mark.parametrize("name", ["ball", "grid", "shifted", "tilted_flat"])
+def test_precision_conversion_on_the_device(lib, name, dtype, precision):
+    points = DISTRIBUTIONS[name].astype(dtype)
+    got = cudahull.ConvexHull(on_device(lib, points), precision=precision)
+    assert got.precision == precision
+    assert_same_hull(got, cudahull.ConvexHull(points, precision=precision, engine="resident"))
+
+
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+@pytest.mark.parametrize("name", ["ball", "cube", "gauss"])
+def test_bytes_read_back_are_far_below_the_points(lib, name, dtype):
+    """2M points: the result and the exact checks' coordinates come back, not the points."""
+    rng = np.random.default_rng(7)
+    n = 2_000_000
+    if name == "ball":
+        points = rng.uniform(-1, 1, size=(2 * n, 3))
+        points = points[np.linalg.norm(points, axis=1) <= 1][:n]
+    elif name == "cube":
+        points = rng.uniform(-1, 1, size=(n, 3))
+    else:
+        points = rng.normal(size=(n, 3))
+    points = points.astype(dtype)
+    got = cudahull.ConvexHull(on_device(lib, points))
+    point_bytes = points.nbytes
+    stats = got.stats
+    assert stats["bytes_from_device"] < point_bytes / 50, stats
+    assert stats["points_read_back"] < n / 100, stats
+    assert stats["bytes_to_device"] < point_bytes / 50, stats
+    want = cudahull.ConvexHull(points, engine="resident")
+    assert np.array_equal(to_numpy(got.vertices), want.vertices)
+    assert got.volume == pytest.approx(want.volume, rel=1e-12)
+
+
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_non_finite_points_raise_the_numpy_paths_error(lib, dtype, bad):
+    points = DISTRIBUTIONS["cube"].astype(dtype).copy()
+    points[1234, 1] = bad
+    points[5678, 0] = np.nan  # a later bad point: the first is named, as on the host
+    with pytest.raises(ValueError) as host_error:
+        cudahull.ConvexHull(points)
+    with pytest.raises(ValueError) as device_error:
+        cudahull.ConvexHull(on_device(lib, points))
+    assert str(device_error.value) == str(host_error.value)
+    assert str(device_error.value).startswith("point 1234: y coordinate ")
+
+
+@pytest.mark.parametrize("value, precision", [(1e300, "auto"), (-1e-300, "auto"), (1e39, "float")])
+def test_out_of_range_doubles_raise_the_numpy_paths_error(lib, value, precision):
+    points = DISTRIBUTIONS["gauss"].copy()
+    points[42, 2] = value
+    with pytest.raises(ValueError) as host_error:
+        cudahull.ConvexHull(points, precision=precision)
+    with pytest.raises(ValueError) as device_error:
+        cudahull.ConvexHull(on_device(lib, points), precision=precision)
+    assert str(device_error.value) == str(host_error.value)
+    assert str(device_error.value).startswith("point 42: z coordinate ")
+
+
+def test_device_results_are_arrays_of_the_inputs_kind(lib):
+    points = DISTRIBUTIONS["gauss"]
+    device_points = on_device(lib, points)
+    got = cudahull.ConvexHull(device_points, device_results=True)
+    want = cudahull.ConvexHull(points, engine="resident")
+    for name in ("vertices", "simplices", "neighbors", "equations", "polygon", "coplanar", "min_bound",
+                 "max_bound"):
+        value = getattr(got, name)
+        assert type(value) is type(device_points), name
+        assert value.device == device_points.device, name
+        if name not in ("simplices", "neighbors", "equations"):  # the mesh is compared face by face below
+            assert np.array_equal(to_numpy(value), getattr(want, name)), name
+    assert faces(got) == faces(want)
+    as_dict = cudahull.convex_hull(device_points, device_results=True)
+    assert type(as_dict["vertices"]) is type(device_points)
+    assert np.array_equal(to_numpy(as_dict["vertices"]), want.vertices)
+    assert as_dict["stats"]["bytes_from_device"] > 0
+    plain = cudahull.convex_hull(device_points)
+    assert isinstance(plain["vertices"], np.ndarray)
+    assert np.array_equal(plain["vertices"], want.vertices)
+
+
+def test_add_points_on_the_device(lib):
+    points = DISTRIBUTIONS["ball"]
+    half = len(points) // 2
+    hull = cudahull.ConvexHull(on_device(lib, points[:half]))
+    hull.add_points(on_device(lib, points[half:]))
+    assert hull.npoints == len(points)
+    assert np.array_equal(hull.vertices, cudahull.ConvexHull(points).vertices)
+    assert hull.volume == pytest.approx(cudahull.ConvexHull(points).volume, rel=1e-12)
+    with pytest.raises(ValueError, match="takes .* points in GPU memory"):
+        hull.add_points(points[:10])
+
+
+def test_cuda_array_interface_alone(lib):
+    """An array offering only __cuda_array_interface__ (as Numba's), read through its pointer."""
+
+    class InterfaceOnly:
+        def __init__(self, array):
+            self.array = array  # keeps the memory alive
+            self.__cuda_array_interface__ = array.__cuda_array_interface__
+            self.shape = tuple(array.shape)
+
+    for dtype in (np.float32, np.float64):
+        points = DISTRIBUTIONS["grid"].astype(dtype)
+        got = cudahull.ConvexHull(InterfaceOnly(on_device(lib, points)))
+        assert_same_hull(got, cudahull.ConvexHull(points, engine="resident"))
+
+
+def test_layouts_and_types_the_engine_cannot_read(lib):
+    points = on_device(lib, DISTRIBUTIONS["cube"])
+    with pytest.raises(ValueError, match="must be C-contiguous"):
+        cudahull.ConvexHull(points[::2])
+    with pytest.raises(ValueError, match="must be float32 or float64"):
+        cudahull.ConvexHull(points[:, :3].to(lib.float16) if lib.__name__ == "torch" else points.astype("f2"))
+    with pytest.raises(ValueError, match=r"must be an \(n, 3\) array"):
+        cudahull.ConvexHull(points[:, :2].copy() if lib.__name__ == "cupy" else points[:, :2].contiguous())
+    with pytest.raises(ValueError, match="need backend 'auto' or 'cuda'"):
+        cudahull.ConvexHull(points, backend="cpu")
+
+
+def test_torch_specifics():
+    torch = pytest.importorskip("torch")
+    if not torch.cuda.is_available():
+        pytest.skip("PyTorch sees no CUDA device")
+    points = DISTRIBUTIONS["gauss"]
+    want = cudahull.ConvexHull(points, engine="resident")
+    # A tensor that requires grad is read as values.
+    tensor = torch.from_numpy(points).cuda().requires_grad_(True)
+    assert np.array_equal(cudahull.ConvexHull(tensor).vertices, want.vertices)
+    # Written on a side stream: the hull waits for the producer.
+    stream = torch.cuda.Stream()
+    with torch.cuda.stream(stream):
+        late = torch.from_numpy(points).cuda(non_blocking=True) * 2
+    got = cudahull.ConvexHull(late)
+    assert np.array_equal(got.vertices, want.vertices)
+    assert got.volume == pytest.approx(want.volume * 8, rel=1e-12)
