@@ -85,21 +85,25 @@ struct ResidentRun {
   double upload_ms = 0, run_ms = 0;
 };
 
+// The resident engine's device for --backend `requested`: a CUDA device's name, or empty for the host.
+std::string resident_device(const std::string& requested, std::string& why) {
+  why = "as requested";
+  if (requested == "cpu") return "";
+  const CudaDeviceInfo info = query_cuda_device();
+  if (info.usable) {
+    if (requested == "auto") why = "auto: a usable CUDA device";
+    return info.name;
+  }
+  if (requested == "cuda") throw DeviceError("--backend cuda: no usable CUDA device: " + info.reason);
+  why = "auto: no usable CUDA device: " + info.reason;
+  return "";
+}
+
 template <class Point>
 ResidentRun<Point> run_resident(const std::vector<Point>& points, const std::string& requested, bool quiet) {
   ResidentRun<Point> r;
-  std::string why = "as requested";
-  if (requested != "cpu") {
-    const CudaDeviceInfo info = query_cuda_device();
-    if (info.usable) {
-      r.device = info.name;
-      if (requested == "auto") why = "auto: a usable CUDA device";
-    } else if (requested == "cuda") {
-      throw DeviceError("--backend cuda: no usable CUDA device: " + info.reason);
-    } else {
-      why = "auto: no usable CUDA device: " + info.reason;
-    }
-  }
+  std::string why;
+  r.device = resident_device(requested, why);
   if (!r.device.empty()) {
     r.backend_name = "cuda-resident";
     ResidentCudaHull<Point> resident;
@@ -119,6 +123,19 @@ ResidentRun<Point> run_resident(const std::vector<Point>& points, const std::str
   if (!quiet) std::fprintf(stderr, "backend: %s (%s)\n", r.backend_name.c_str(), why.c_str());
   if (!quiet && r.stats.exact_finish) std::fprintf(stderr, "note: exact finish: %s\n", r.stats.note.c_str());
   return r;
+}
+
+// A stepped engine's result with its coordinates (lower-dimensional input: the exact hull it answered
+// with, polygon and all).
+template <class Point>
+BasicHullMesh<Point> stepped_hull(const SteppingEngine& engine, const std::vector<Point>& points) {
+  if (engine.dimension() < 3) return exact_hull(points);
+  BasicHullMesh<Point> hull;
+  hull.vertex_ids = engine.result_vertex_ids();
+  hull.triangles = engine.result_triangles();
+  for (const PointIndex v : hull.vertex_ids)
+    hull.vertices.push_back(points[v]);
+  return hull;
 }
 
 template <class Point>
@@ -231,15 +248,22 @@ int hull_in(const HullOptions& o) {
   const auto t_read = Clock::now();
   const std::vector<Point> points = read_input<Point>(o.input, o.quiet);
   const double read_ms = ms_since(t_read);
-  if (o.engine == "resident" && (!o.trace.empty() || o.table)) {
-    std::fprintf(stderr,
-                 "cudahull: error: --trace and --table need --engine stepping (the resident engine "
-                 "keeps no per-iteration records yet)\n");
-    return kExitUsage;
-  }
+  // The resident engine with records (--trace, --table) steps an iteration at a time and reads back what
+  // each did; without them it runs in one go, hearing O(1) bytes an iteration.
   const bool resident = o.engine == "resident";
+  const bool recorded_resident = resident && (!o.trace.empty() || o.table);
   std::string device, backend_name;
   std::unique_ptr<BasicBackend<Point>> backend;
+  std::unique_ptr<SteppingEngine> resident_stepper;
+  if (recorded_resident) {
+    std::string why;
+    device = resident_device(o.backend, why);
+    resident_stepper =
+        device.empty() ? make_resident_stepping_engine(points) : make_resident_cuda_stepping_engine(points);
+    if (device.empty()) device = "cpu";
+    backend_name = resident_stepper->backend_name();
+    if (!o.quiet) std::fprintf(stderr, "backend: %s (%s)\n", backend_name.c_str(), why.c_str());
+  }
   if (!resident) {
     backend = choose_backend<Point>(o.backend, o.quiet, &device);
     backend_name = backend->name();
@@ -258,8 +282,30 @@ int hull_in(const HullOptions& o) {
     std::printf("%4s %9s %9s %8s %7s %7s %7s %7s %11s %11s %9s %9s\n", "iter", "faces", "refined", "regular",
                 "compl", "reject", "removed", "entries", "ext before", "ext after", "host ms", "back ms");
   }
+  auto on_record = [&](const IterationRecord& r) {
+    ++iterations;
+    host_ms += r.host_ms;
+    backend_ms += r.backend_ms;
+    repairs += r.repairs;
+    swaps += r.swaps_regular + r.swaps_complementary;
+    rejected += r.swaps_rejected;
+    removed += r.vertices_removed;
+    bytes_to += r.bytes_to_backend;
+    bytes_from += r.bytes_from_backend;
+    if (!o.trace.empty()) trace << iteration_to_json(r).dump() << "\n";
+    if (o.table) {
+      std::printf("%4d %9zu %9zu %8zu %7zu %7zu %7zu %7zu %11zu %11zu %9.3f %9.3f\n", r.iteration,
+                  r.faces_after, r.faces_refined, r.swaps_regular, r.swaps_complementary, r.swaps_rejected,
+                  r.vertices_removed, r.decision_entries, r.external_before, r.external_after, r.host_ms,
+                  r.backend_ms);
+    }
+    if (!o.quiet && !r.note.empty()) std::fprintf(stderr, "note: %s\n", r.note.c_str());
+  };
   const auto t_run = Clock::now();
-  if (resident) {
+  if (recorded_resident) {
+    resident_stepper->run(on_record);
+    resident_run.hull = stepped_hull(*resident_stepper, points);
+  } else if (resident) {
     resident_run = run_resident(points, o.backend, o.quiet);
     backend_name = resident_run.backend_name;
     device = resident_run.device;
@@ -269,26 +315,9 @@ int hull_in(const HullOptions& o) {
     bytes_to = resident_run.stats.bytes_to_device;
     bytes_from = resident_run.stats.bytes_from_device;
     backend_ms = resident_run.upload_ms + resident_run.run_ms;
-  } else
-    engine->run([&](const IterationRecord& r) {
-      ++iterations;
-      host_ms += r.host_ms;
-      backend_ms += r.backend_ms;
-      repairs += r.repairs;
-      swaps += r.swaps_regular + r.swaps_complementary;
-      rejected += r.swaps_rejected;
-      removed += r.vertices_removed;
-      bytes_to += r.bytes_to_backend;
-      bytes_from += r.bytes_from_backend;
-      if (!o.trace.empty()) trace << iteration_to_json(r).dump() << "\n";
-      if (o.table) {
-        std::printf("%4d %9zu %9zu %8zu %7zu %7zu %7zu %7zu %11zu %11zu %9.3f %9.3f\n", r.iteration,
-                    r.faces_after, r.faces_refined, r.swaps_regular, r.swaps_complementary, r.swaps_rejected,
-                    r.vertices_removed, r.decision_entries, r.external_before, r.external_after, r.host_ms,
-                    r.backend_ms);
-      }
-      if (!o.quiet && !r.note.empty()) std::fprintf(stderr, "note: %s\n", r.note.c_str());
-    });
+  } else {
+    engine->run(on_record);
+  }
   const double run_ms = ms_since(t_run);
   const BasicHullMesh<Point>& hull = resident ? resident_run.hull : engine->result();
   if (!o.quiet && hull.dimension < 3) {

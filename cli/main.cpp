@@ -22,7 +22,8 @@ const char* kPrecisionHelp =
 
 const char* kEngineHelp =
     "stepping (Algorithm 1 an iteration at a time with its records; the host edits the mesh) or resident "
-    "(the whole iteration where the points are: on the GPU with a CUDA backend; no records yet)";
+    "(the whole iteration where the points are: on the GPU with a CUDA backend; with --trace or --table it "
+    "steps an iteration at a time and reads back its records)";
 
 int fail(int code, const std::string& message) {
   return cudahull::report_error("cudahull", code, message);

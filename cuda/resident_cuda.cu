@@ -18,6 +18,7 @@
 #include "cuda_errors.hpp"
 #include "cudahull/errors.hpp"
 #include "resident/resident_driver.hpp"
+#include "resident/resident_stepping.hpp"
 #include "resident_cuda.hpp"
 
 namespace cudahull {
@@ -449,7 +450,7 @@ __global__ void __launch_bounds__(Block)
     }
     sync();
     // Flips and flops (Figs. 3b, 4, 5).
-    run_rounds<Point, Block>(FindCandidate<Point>{m}, b.claim, b.look, b.cands, b.list, b.win_mask,
+    run_rounds<Point, Block>(FindCandidate<Point>{m, {}}, b.claim, b.look, b.cands, b.list, b.win_mask,
                              b.block_offset, st, sync);
     sync();
     if (st->overflow) {
@@ -796,8 +797,39 @@ BasicHullMesh<Point> ResidentCudaHull<Point>::run(ResidentStats* stats) {
   return result;
 }
 
+namespace {
+// The stepping engine on the device executor, with the device copy of the points it reads.
+template <class Point>
+class CudaResidentStepper final : public resident::ResidentStepper<Point, resident::CudaExec> {
+  using Base = resident::ResidentStepper<Point, resident::CudaExec>;
+
+ public:
+  explicit CudaResidentStepper(const std::vector<Point>& points)
+      : Base(points, nullptr, "cuda-resident", true) {
+    device_points_.grow(std::max<std::size_t>(points.size(), 1));
+    if (!points.empty())
+      resident::check(cudaMemcpy(device_points_.data(), points.data(), points.size() * sizeof(Point),
+                                 cudaMemcpyHostToDevice),
+                      "uploading the points");
+    this->exec_.bytes_to_device += points.size() * sizeof(Point);
+    this->exec_points_ = device_points_.data();
+  }
+
+ private:
+  resident::CudaExec::Buffer<Point> device_points_;
+};
+}  // namespace
+
+template <class Point>
+std::unique_ptr<SteppingEngine> make_resident_cuda_stepping_engine(const std::vector<Point>& points) {
+  if (points.size() >= 0xffffffffu) throw std::invalid_argument("too many points (at most 2^32 - 2)");
+  return std::make_unique<CudaResidentStepper<Point>>(points);
+}
+
 // The two coordinate types (README, "Precision").
 template class ResidentCudaHull<Point3>;
 template class ResidentCudaHull<Point3d>;
+template std::unique_ptr<SteppingEngine> make_resident_cuda_stepping_engine(const std::vector<Point3>&);
+template std::unique_ptr<SteppingEngine> make_resident_cuda_stepping_engine(const std::vector<Point3d>&);
 
 }  // namespace cudahull

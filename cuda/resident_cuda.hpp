@@ -32,4 +32,10 @@ class ResidentCudaHull {
   std::unique_ptr<Impl> impl_;
 };
 
+// The resident engine one iteration a step on the GPU, with records (make_resident_stepping_engine's,
+// entry for entry): the viewer's, `--trace`'s and `--table`'s CUDA engine.  Uploads `points`, and borrows
+// them for the exact checks.  Throws DeviceError.
+template <class Point>
+std::unique_ptr<SteppingEngine> make_resident_cuda_stepping_engine(const std::vector<Point>& points);
+
 }  // namespace cudahull

@@ -335,9 +335,9 @@ TEST(CliHull, BackendAutoSaysWhichAndCudaNeedsADevice) {
   }
 }
 
-// --engine resident (issue 15): the same vertices as Qhull, verified, with its counts in --stats; records
-// (--table, --trace) are the stepping engine's, so asking for them with it is a usage error.
-TEST(CliHull, ResidentEngineMatchesQhullAndRefusesRecords) {
+// --engine resident (issue 15): the same vertices as Qhull, verified, with its counts in --stats; with
+// --table and --trace it steps with records, the same hull, a trace line and a table row per step.
+TEST(CliHull, ResidentEngineMatchesQhullWithAndWithoutRecords) {
   for (Distribution dist : {Distribution::kBall, Distribution::kSphere, Distribution::kCylinder}) {
     const auto points = generate_points(dist, 20000, 7);
     const HullRun r = hull_of(points, {"--engine", "resident"});
@@ -349,10 +349,29 @@ TEST(CliHull, ResidentEngineMatchesQhullAndRefusesRecords) {
     EXPECT_GT(stats.at("host_syncs").get<int>(), 0);
   }
   TempDir dir;
-  write_points((dir / "in.xyz").string(), generate_points(Distribution::kCube, 100, 1));
-  const CliRun table = run_cli({"hull", (dir / "in.xyz").string(), "--engine", "resident", "--table"});
-  EXPECT_EQ(table.exit_code, kExitUsage) << describe(table);
-  EXPECT_THAT(table.err, HasSubstr("need --engine stepping"));
+  const auto sphere = generate_points(Distribution::kSphere, 3000, 2);
+  write_points((dir / "in.xyz").string(), sphere);
+  const std::string trace = (dir / "trace.jsonl").string(), vertices = (dir / "v.txt").string();
+  const CliRun table = run_cli({"hull", (dir / "in.xyz").string(), "--engine", "resident", "--table",
+                                "--trace", trace, "--vertices-out", vertices});
+  ASSERT_EQ(table.exit_code, kExitOk) << describe(table);
+  std::ifstream lines(trace);
+  std::size_t steps = 0, performed = 0;
+  for (std::string line; std::getline(lines, line); ++steps) {
+    const nlohmann::json j = nlohmann::json::parse(line);
+    EXPECT_EQ(j.at("iteration").get<std::size_t>(), steps);
+    performed += j.at("swaps_regular").get<std::size_t>() + j.at("swaps_complementary").get<std::size_t>();
+  }
+  EXPECT_GT(steps, 3u);
+  EXPECT_GT(performed, 0u);
+  // A table row per step after the header.
+  EXPECT_EQ(static_cast<std::size_t>(std::count(table.out.begin(), table.out.end(), '\n')), steps + 1)
+      << table.out;
+  std::ifstream ids(vertices);
+  std::vector<PointIndex> listed;
+  for (std::string line; std::getline(ids, line);)
+    listed.push_back(static_cast<PointIndex>(std::stoul(line)));  // "id x y z"
+  EXPECT_EQ(listed, run_qhull(sphere).vertex_ids);
   const CliRun bad = run_cli({"hull", (dir / "in.xyz").string(), "--engine", "fast"});
   EXPECT_EQ(bad.exit_code, kExitUsage) << describe(bad);
 }

@@ -18,6 +18,7 @@
 #include "cudahull/hull_checker.hpp"
 #include "cudahull/point_io.hpp"
 #include "cudahull/resident.hpp"
+#include "cudahull/trace.hpp"
 #include "device_info.hpp"
 #include "resident_cuda.hpp"
 #include "support/property_cases.hpp"
@@ -165,6 +166,69 @@ TEST_F(ResidentCuda, SharedModelsAtTheirKnownCounts) {
     const HullMesh hull = on_device(points, &stats);
     EXPECT_EQ(hull.vertex_ids.size(), count) << name;
     expect_same_as_host(points, name, false);
+  }
+}
+
+// A record without what depends on the machine (times, bytes): what the records compare on.
+nlohmann::json record_contents(const IterationRecord& r) {
+  nlohmann::json j = iteration_to_json(r);
+  for (const char* timing : {"host_ms", "backend_ms", "upload_ms", "bytes_to_backend", "bytes_from_backend"})
+    j.erase(timing);
+  return j;
+}
+
+// Records (deliverable 3): the device's stepping engine makes the host executor's records, entry for entry
+// (swaps with their kinds, rejected foldovers with the vertex beneath, removals, the decision array), the
+// same mesh after every step, the same point states (also written on the device, as for the viewer's
+// interop), and the same hull.
+template <class Point>
+void expect_same_records(const std::vector<Point>& points, const std::string& what) {
+  std::unique_ptr<SteppingEngine> host = make_resident_stepping_engine(points);
+  std::unique_ptr<SteppingEngine> device = make_resident_cuda_stepping_engine(points);
+  EXPECT_TRUE(device->has_device_point_states());
+  std::int32_t* states = nullptr;
+  ASSERT_EQ(cudaMalloc(reinterpret_cast<void**>(&states), std::max<std::size_t>(points.size(), 1) * 4),
+            cudaSuccess);
+  while (!host->done()) {
+    ASSERT_FALSE(device->done()) << what;
+    const IterationRecord a = host->step(), b = device->step();
+    ASSERT_EQ(record_contents(a), record_contents(b)) << what << ", step " << a.iteration;
+    if (host->dimension() != 3) continue;
+    std::vector<MeshFace> ha, hb;
+    for (FaceId f = 0; f < host->mesh().face_capacity(); ++f) {
+      EXPECT_EQ(host->mesh().face(f).v, device->mesh().face(f).v) << what << ", face " << f;
+      EXPECT_EQ(host->mesh().face(f).n, device->mesh().face(f).n) << what << ", face " << f;
+    }
+    const std::vector<std::int32_t> faces = host->point_faces();
+    EXPECT_EQ(faces, device->point_faces()) << what << ", step " << a.iteration;
+    const std::vector<PointIndex> vertices = device->mesh().vertices();
+    ASSERT_TRUE(device->write_point_states_on_device(states, points.size(), vertices));
+    std::vector<std::int32_t> written(points.size());
+    ASSERT_EQ(cudaMemcpy(written.data(), states, points.size() * 4, cudaMemcpyDeviceToHost), cudaSuccess);
+    for (PointIndex i = 0; i < points.size(); ++i) {
+      const std::int32_t want = device->mesh().has_vertex(i) ? kPointStateVertex
+                                : faces[i] >= 0              ? faces[i]
+                                                             : kPointStateInternal;
+      ASSERT_EQ(written[i], want) << what << ", point " << i;
+    }
+  }
+  cudaFree(states);
+  EXPECT_TRUE(device->done()) << what;
+  EXPECT_EQ(host->result_vertex_ids(), device->result_vertex_ids()) << what;
+  EXPECT_EQ(host->result_triangles(), device->result_triangles()) << what;
+  EXPECT_EQ(device->result_vertex_ids(), exact_hull(points).vertex_ids) << what;
+}
+
+TEST_F(ResidentCuda, SteppedRecordsMatchTheHostExecutor) {
+  for (const char* name : {"cube", "ball", "sphere", "gauss", "cylinder"}) {
+    const std::vector<Point3> points = generate_points(distribution_from_name(name), 20000, 3);
+    expect_same_records(points, name);
+    expect_same_records(widened(points), std::string(name) + " in double");
+  }
+  for (std::uint64_t id = 0; id < 200; ++id) {
+    const testing::Case c = testing::make_case(id);
+    expect_same_records(c.points, "property case " + std::to_string(id) + " (" + c.kind + ")");
+    if (HasFailure()) break;
   }
 }
 

@@ -724,6 +724,49 @@ TEST(ViewerHeadless, SubStepsReplayTheStepToTheEnginesMesh) {
   EXPECT_GT(swap_pixels(read_png(dir / "result.png")), 0u);
 }
 
+// Issue 15, deliverable 3: the debugger on the resident engine (--engine resident, its records read back
+// each step).  Explain point ends where the engine put each point; the sub-steps replay a step with a
+// removal to the engine's own mesh; next-rejected stops at the first step with a rejected foldover.
+TEST(ViewerHeadless, ResidentEngineDebuggerViews) {
+  TempDir dir;
+  std::string script = "step 3\n";
+  for (int i = 0; i < 3000; i += 10)
+    script += "explain-point " + std::to_string(i) + "\n";
+  ViewerRun r = run_viewer({"--gen", "ball", "3000", "--seed", "5", "--engine", "resident", "--headless",
+                            "--width", "64", "--height", "48", "--script", dir.write("explain.txt", script)});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_THAT(r.err, HasSubstr("resident engine"));
+  std::size_t agree = 0;
+  for (std::size_t at = r.err.find("the backend agrees"); at != std::string::npos;
+       at = r.err.find("the backend agrees", at + 1))
+    ++agree;
+  EXPECT_THAT(r.err, ::testing::Not(HasSubstr("instead"))) << r.err;
+  EXPECT_GT(agree, 10u) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("refinement at apex"));
+
+  script = "next-removal\nexport-mesh " + (dir / "result.obj") + "\n";
+  for (int phase = 0; phase < 60; ++phase)
+    script += "substep " + std::to_string(phase) + "\nexport-mesh " +
+              (dir / ("phase_" + std::to_string(phase) + ".obj")) + "\n";
+  script += "substep off\nrewind 0\nnext-rejected\nexport-trace " + (dir / "trace.jsonl") + "\n";
+  r = run_viewer({"--gen", "ball", "60", "--seed", "1", "--engine", "resident", "--headless", "--width", "64",
+                  "--height", "48", "--script", dir.write("substeps.txt", script)});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_THAT(r.err, HasSubstr("(Fig. 4)"));  // a removal phase
+  const std::size_t marker = r.err.find(": redistribution");
+  ASSERT_NE(marker, std::string::npos) << r.err;
+  const std::size_t of = r.err.rfind(" of ", marker);
+  const int last = std::stoi(r.err.substr(of + 4));
+  ASSERT_GE(last, 3);
+  ASSERT_LE(last, 60);
+  const auto result = obj_faces(dir / "result.obj");
+  EXPECT_EQ(obj_faces(dir / ("phase_" + std::to_string(last - 1) + ".obj")), result);
+  EXPECT_NE(obj_faces(dir / "phase_0.obj"), result);
+  const std::vector<std::string> trace = lines_of(dir / "trace.jsonl");
+  ASSERT_FALSE(trace.empty());
+  EXPECT_GT(nlohmann::json::parse(trace.back())["swaps_rejected"].get<int>(), 0) << r.err;
+}
+
 TEST(ViewerHeadless, BadScriptLineExits2NamingTheLine) {
   TempDir dir;
   const std::string script =

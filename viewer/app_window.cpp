@@ -880,7 +880,7 @@ int AppWindow::run() {
 
   session_ = std::make_unique<Session>();
   session_->allow_interop(!o_.no_interop);
-  backend_ = backend_factory(o_.backend, &backend_note_);
+  backend_ = backend_factory(o_.backend, &backend_note_, o_.engine);
   log("window: " + gl_description() + "; text: " + session_->renderer().text_note());
   if (!o_.source.empty()) {
     start_load(o_.source);

@@ -6,7 +6,9 @@
 #include "cudahull/cpu_backend.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/generators.hpp"
+#include "cudahull/resident.hpp"
 #include "device_info.hpp"
+#include "resident_cuda.hpp"
 
 namespace cudahull::viewer {
 
@@ -58,20 +60,34 @@ ScenePoints load_points(const PointSource& source, Precision precision, const Pr
   return points;
 }
 
-Scene::BackendFactory backend_factory(const std::string& requested, std::string* note) {
+Scene::BackendFactory backend_factory(const std::string& requested, std::string* note,
+                                      const std::string& engine) {
+  const bool resident = engine == "resident";
+  const std::string engine_note = resident ? ", resident engine" : "";
   if (requested != "cpu") {
     const CudaDeviceInfo info = query_cuda_device();
     if (info.usable) {
-      *note =
-          "cuda, " + info.name + (requested == "auto" ? " (auto: a usable CUDA device)" : " (as requested)");
-      return {[] { return make_cuda_backend<Point3>(); }, [] { return make_cuda_backend<Point3d>(); }};
+      *note = "cuda, " + info.name + engine_note +
+              (requested == "auto" ? " (auto: a usable CUDA device)" : " (as requested)");
+      if (resident)
+        return {{},
+                {},
+                [](const std::vector<Point3>& p) { return make_resident_cuda_stepping_engine(p); },
+                [](const std::vector<Point3d>& p) { return make_resident_cuda_stepping_engine(p); }};
+      return {
+          [] { return make_cuda_backend<Point3>(); }, [] { return make_cuda_backend<Point3d>(); }, {}, {}};
     }
     if (requested == "cuda") throw DeviceError("--backend cuda: no usable CUDA device: " + info.reason);
-    *note = "cpu (auto: no usable CUDA device: " + info.reason + ")";
+    *note = "cpu" + engine_note + " (auto: no usable CUDA device: " + info.reason + ")";
   } else {
-    *note = "cpu (as requested)";
+    *note = "cpu" + engine_note + " (as requested)";
   }
-  return {[] { return make_cpu_backend<Point3>(); }, [] { return make_cpu_backend<Point3d>(); }};
+  if (resident)
+    return {{},
+            {},
+            [](const std::vector<Point3>& p) { return make_resident_stepping_engine(p); },
+            [](const std::vector<Point3d>& p) { return make_resident_stepping_engine(p); }};
+  return {[] { return make_cpu_backend<Point3>(); }, [] { return make_cpu_backend<Point3d>(); }, {}, {}};
 }
 
 BackgroundLoad::BackgroundLoad(PointSource source, Precision precision)

@@ -34,9 +34,11 @@ std::string precision_note(Precision requested, Precision used);
 // InputError (unreadable or invalid file) or std::invalid_argument (unknown distribution).
 ScenePoints load_points(const PointSource& source, Precision precision, const ProgressFn& progress = {});
 
-// --backend: "cpu", "cuda", or "auto" (CUDA when a usable device is present, else the CPU).  Throws
-// DeviceError for "cuda" without a usable device.  `note` says what was chosen and why.
-Scene::BackendFactory backend_factory(const std::string& requested, std::string* note);
+// --backend: "cpu", "cuda", or "auto" (CUDA when a usable device is present, else the CPU); --engine:
+// "stepping" (the Engine over that backend) or "resident" (the resident engine on that device, with
+// records).  Throws DeviceError for "cuda" without a usable device.  `note` says what was chosen and why.
+Scene::BackendFactory backend_factory(const std::string& requested, std::string* note,
+                                      const std::string& engine = "stepping");
 
 // Loads on a worker thread (load_points(), precision resolved there).  The destructor waits for it.
 class BackgroundLoad {

@@ -23,7 +23,7 @@ void log_line(const ViewerOptions& options, const std::string& line) {
 
 int run_headless(const ViewerOptions& o) {
   std::string backend_note;
-  auto factory = backend_factory(o.backend, &backend_note);
+  auto factory = backend_factory(o.backend, &backend_note, o.engine);
   auto points = load_points(o.source, o.precision);
   auto context = HeadlessContext::create();
   log_line(o, "headless: " + context->description() + ": " + gl_description());
@@ -134,6 +134,11 @@ int main(int argc, char** argv) {
          "--backend", o.backend,
          "auto (CUDA when a usable device is present, else the CPU), cuda (exit 4 without a device) or cpu")
       ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
+      ->capture_default_str();
+  app.add_option("--engine", o.engine,
+                 "stepping (the host edits the mesh, the backend moves the points) or resident (every phase "
+                 "where the points are, on the GPU with a CUDA backend, its records read back each step)")
+      ->check(CLI::IsMember({"stepping", "resident"}))
       ->capture_default_str();
   std::string precision = "auto";
   app.add_option(

@@ -44,6 +44,8 @@ Scene::Scene(ScenePoints points, BackendFactory make_backend, std::string label)
 }
 
 std::unique_ptr<SteppingEngine> Scene::make_engine() const {
+  if (make_backend_.resident_float)
+    return exact_ ? make_backend_.resident_double(*exact_) : make_backend_.resident_float(*points_);
   if (exact_) return std::make_unique<BasicEngine<Point3d>>(*exact_, make_backend_.make_double());
   return std::make_unique<Engine>(*points_, make_backend_.make_float());
 }

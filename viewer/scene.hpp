@@ -44,10 +44,13 @@ struct ScenePoints {
   Precision precision() const { return exact ? Precision::kDouble : Precision::kFloat; }
 };
 
-// Makes a backend (one per engine: the scene's and the replay one) in either precision.
+// Makes a backend (one per engine: the scene's and the replay one) in either precision; or, for the
+// resident engine (--engine resident), the engine itself, which brings its own executor.
 struct BackendFactory {
   std::function<std::unique_ptr<BasicBackend<Point3>>()> make_float;
   std::function<std::unique_ptr<BasicBackend<Point3d>>()> make_double;
+  std::function<std::unique_ptr<SteppingEngine>(const std::vector<Point3>&)> resident_float;
+  std::function<std::unique_ptr<SteppingEngine>(const std::vector<Point3d>&)> resident_double;
 };
 
 class Scene {

@@ -32,6 +32,18 @@ FaceId Mesh::add_face(PointIndex a, PointIndex b, PointIndex c) {
   return id;
 }
 
+void Mesh::assign(const std::vector<MeshFace>& faces) {
+  faces_.clear();
+  alive_.clear();
+  live_count_ = 0;
+  vertex_face_.clear();
+  vertex_count_ = 0;
+  for (const MeshFace& face : faces) {
+    const FaceId id = add_face(face.v[0], face.v[1], face.v[2]);
+    faces_[id].n = face.n;
+  }
+}
+
 void Mesh::kill(FaceId f) {
   alive_[f] = 0;
   --live_count_;

@@ -75,6 +75,10 @@ class Mesh {
   // first + 2k + 1, where `first` is the returned id.
   FaceId swap_batch(const std::vector<std::pair<FaceId, int>>& swaps, unsigned workers);
 
+  // The mesh `faces` (corners and links, as a closed 2-manifold), all live, replacing this one: a mesh
+  // built elsewhere (the resident engine's, read back for the records) with this class's queries.
+  void assign(const std::vector<MeshFace>& faces);
+
   // Renumbers live faces 0..F-1 in id order; returns old id -> new id (kNoFace for dead faces), valid until
   // the next compact().
   const std::vector<FaceId>& compact();

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -49,5 +50,14 @@ template <class Point>
 BasicHullMesh<Point> resident_hull_host(const std::vector<Point>& points, ResidentStats* stats = nullptr,
                                         ResidentRounds rounds = ResidentRounds::kStepped,
                                         bool executor_points_only = false);
+
+class SteppingEngine;
+
+// The resident engine one iteration a step, with records (the viewer, `--trace`, `--table`: swaps with their
+// kinds, rejected foldovers with the vertex beneath, removals, the decision array), on the host executor;
+// cuda/resident_cuda.hpp makes the GPU's.  The same hull as resident_hull_host(); the engine borrows
+// `points`.
+template <class Point>
+std::unique_ptr<SteppingEngine> make_resident_stepping_engine(const std::vector<Point>& points);
 
 }  // namespace cudahull

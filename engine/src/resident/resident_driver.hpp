@@ -133,6 +133,21 @@ class TetrahedronQueries final : public BasicBackend<Point> {
   std::size_t n_;
 };
 
+// What a recorded iteration did, read back for the records (resident_stepping.hpp makes the IterationRecord
+// of it).  Face ids are the iteration's own: 0 .. faces_before - 1 the mesh it began with, then the
+// refinement's children, then each round's new faces, in order.
+struct RecordedIteration {
+  std::size_t faces_before = 0, refined = 0;
+  u32 first_round = 0;                 // the number of its first round (Rejection::round counts on)
+  std::vector<u32> fv;                 // corners of every face id (killed faces keep theirs)
+  std::vector<u32> killer;             // per face id: kAlive, kDeadSlot, or the entry that killed it
+  std::vector<Entry> entries;          // the decision entries (Fig. 7): refinements first, then the edits
+  std::vector<u32> round_first_entry;  // per round: its first entry
+  std::vector<Rejection> rejections;   // what the rounds turned down, by round and candidate (repeats kept)
+  bool rejections_truncated = false;   // more than the log could hold
+  std::vector<u32> new_id;             // per face id: its id after the compaction (live faces only)
+};
+
 template <class Point, class Exec>
 class ResidentHull {
  public:
@@ -153,75 +168,80 @@ class ResidentHull {
     return hull;
   }
 
+  // Stepping with records (resident_stepping.hpp: the viewer, --trace, --table).  The same iterations as
+  // run(), one per step(), the rounds stepped by the host (the mesh is the fused rounds' own, which the tests
+  // check edit for edit), and what each did read back (RecordedIteration): O(faces) bytes a step, asked for.
+  // begin(): P, the first mesh and the first distribution; false when that is already the answer (no points,
+  // lower-dimensional input), then in `done`.
+  bool begin(ResidentStats& stats, BasicHullMesh<Point>& done) {
+    stats = ResidentStats{};
+    lap();
+    const u32* list = nullptr;
+    bool first_in_loop = false;
+    return setup(stats, done, false, list, first_in_loop);
+  }
+  // One iteration, recorded; false when no face could refine (a stall: end(stats, true) finishes exactly).
+  bool step(ResidentStats& stats, RecordedIteration& out);
+  // After the last step: the exact check and the result (the exact finish after a stall).
+  BasicHullMesh<Point> end(ResidentStats& stats, bool stalled) {
+    lap();
+    BasicHullMesh<Point> out = stalled ? exact_finish(stats, "stalled: no face could refine") : finish(stats);
+    stats.finish_ms = lap();
+    stats.points_read_back = points_read_back_;
+    return out;
+  }
+  std::size_t active_points() const { return active_; }
+  std::size_t face_count() const { return faces_; }
+  Vec3d interior() const { return c_; }
+  // The current (compacted) mesh: corners and links, 3 per face.
+  void read_mesh(std::vector<u32>& fv, std::vector<u32>& fn) {
+    fv.resize(3 * faces_);
+    fn.resize(3 * faces_);
+    exec_.download(fv.data(), fv_.data(), fv.size());
+    exec_.download(fn.data(), fn_.data(), fn.size());
+  }
+  // Per point: its face while it is kept (outside), else -1.
+  void read_point_faces(std::vector<std::int32_t>& out) {
+    out.assign(n_, -1);
+    std::vector<u32> index(active_), face(active_);
+    exec_.download(index.data(), index_[0].data(), active_);
+    exec_.download(face.data(), face_of_[0].data(), active_);
+    for (std::size_t j = 0; j < active_; ++j)
+      out[index[j]] = static_cast<std::int32_t>(face[j]);
+  }
+  // Per face: how many kept points it holds and the furthest (the next refinement's apex), or 0 and none.
+  void read_face_extremes(std::vector<FaceExtreme>& out) {
+    std::vector<u64> furthest(faces_);
+    std::vector<u32> counts(faces_);
+    flags_.grow(faces_ + 1);
+    exec_.fill(flags_.data(), faces_, u32{0});
+    exec_.for_each(active_, CountPerFace{face_of_[0].data(), flags_.data()});
+    exec_.segmented_max(
+        active_, FurthestPerFace<Point>{view(), index_[0].data(), face_of_[0].data(), extreme_.data()});
+    exec_.download(counts.data(), flags_.data(), faces_);
+    exec_.download(furthest.data(), extreme_.data(), faces_);
+    out.resize(faces_);
+    for (std::size_t f = 0; f < faces_; ++f)
+      out[f] = FaceExtreme{counts[f], counts[f] ? rank_key_index(furthest[f]) : kNoPoint};
+  }
+  // Backend::write_point_states_on_device's states, written where the executor computes.
+  void write_point_states(std::int32_t* out, const std::vector<PointIndex>& vertices) {
+    exec_.fill(out, n_, kPointStateInternal);
+    exec_.for_each(active_, ScatterPointStates{index_[0].data(), face_of_[0].data(), out});
+    if (vertices.empty()) return;
+    gather_ids_.grow(vertices.size());
+    exec_.upload(gather_ids_.data(), vertices.data(), vertices.size());
+    exec_.for_each(vertices.size(), MarkPoints{gather_ids_.data(), kPointStateVertex, out});
+  }
+
  private:
   BasicHullMesh<Point> run_all(ResidentStats& stats) {
     stats = ResidentStats{};
     lap();
-    const std::size_t n = n_;
-    if (n == 0) return exact_hull(std::vector<Point>{});
-    // P, the drop filter, and the first mesh: P itself where its centre is strictly inside every face
-    // (its cones tile space from there: the star shape holds from the start, and the first iterations
-    // need not find P's vertices again); else section 3.1's tetrahedron, over all points when P is flat
-    // (then the input may be too).
-    const BasicHullMesh<Point> polytope = directional_polytope();
-    const DropFilter filter = drop_filter(polytope);
-    std::vector<u32> fv, fn;
-    stats.polytope_first = polytope_mesh(polytope, fv, fn);
-    if (!stats.polytope_first) {
-      const std::vector<Point>& host = all_points();
-      TetrahedronQueries<Point, Exec> queries(exec_, host, points_);
-      const phases::InitialTetrahedron tetrahedron = phases::find_initial_tetrahedron(host, queries);
-      if (tetrahedron.dimension < 3) return lower_dimensional(stats, tetrahedron.note);
-      Mesh mesh;
-      if (!phases::make_initial_tetrahedron(host, tetrahedron.corners, mesh, c_))
-        return lower_dimensional(stats, "tetrahedron too flat for an interior point");
-      fv.resize(12);
-      fn.resize(12);
-      for (u32 f = 0; f < 4; ++f) {
-        for (int k = 0; k < 3; ++k) {
-          fv[3 * f + k] = mesh.face(f).v[k];
-          fn[3 * f + k] = mesh.face(f).n[k];
-        }
-      }
-    }
-
-    // The first mesh, and the first distribution (section 3.1).  Room for a hull of a few thousand faces
-    // from the start: growing is a round of allocations and copies, most of an iteration's host time on a
-    // small hull.
-    faces_ = fv.size() / 3;
-    const u32 first_faces = static_cast<u32>(faces_);
-    grow_faces(std::max(kInitialFaces, faces_));
-    grow_entries(kInitialFaces);
-    state_.grow(1);
-    FirstMesh first{};
-    first.faces = first_faces;
-    std::copy(fv.begin(), fv.end(), first.fv);
-    std::copy(fn.begin(), fn.end(), first.fn);
-    first.fv_out = fv_.data();
-    first.fn_out = fn_.data();
-    first.killer = killer_.data();
-    first.st = state_.data();
-    exec_.for_each(fv.size(), first);
-    // The points not proven inside P (all, without P), listed in index order (one wait for the count).
+    BasicHullMesh<Point> done;
     const u32* list = nullptr;
-    active_ = n;
-    if (filter.planes != 0) {
-      index_[1].grow(n);
-      active_ = exec_.select_if(n, NotInsideP<Point>{points_, filter}, index_[1].data());
-      list = index_[1].data();
-    }
-    stats.dropped_by_polytope = n - active_;
-    for (auto* b : {&index_[0], &index_[1], &face_of_[0], &face_of_[1], &keep_, &point_rank_})
-      b->grow(active_, b == &index_[1] ? active_ : 0);
-    // Few points left: the device loop distributes them itself (no launches and wait of the compaction).
     bool first_in_loop = false;
-    if constexpr (Exec::kDeviceLoop) first_in_loop = active_ <= exec_.loop_points;
-    if (!first_in_loop) {
-      exec_.for_each(active_, AssignFirst<Point>{view(), first_faces, list, index_[0].data(),
-                                                 face_of_[0].data(), keep_.data()});
-      compact(faces_);
-    }
-    stats.setup_ms = lap();
+    if (!setup(stats, done, true, list, first_in_loop)) return done;
 
     while (active_ > 0) {
       if constexpr (Exec::kDeviceLoop) {
@@ -253,6 +273,87 @@ class ResidentHull {
     BasicHullMesh<Point> out = finish(stats);
     stats.finish_ms = lap();
     return out;
+  }
+
+  // P, the first mesh, and the first distribution (unless the device loop is to do it: `first_in_loop`,
+  // from the points at `list`).  False when `done` is already the answer.
+  bool setup(ResidentStats& stats, BasicHullMesh<Point>& done, bool loop_allowed, const u32*& list,
+             bool& first_in_loop) {
+    (void)loop_allowed;  // only an executor with a device loop asks
+    const std::size_t n = n_;
+    if (n == 0) {
+      done = exact_hull(std::vector<Point>{});
+      return false;
+    }
+    // P, the drop filter, and the first mesh: P itself where its centre is strictly inside every face
+    // (its cones tile space from there: the star shape holds from the start, and the first iterations
+    // need not find P's vertices again); else section 3.1's tetrahedron, over all points when P is flat
+    // (then the input may be too).
+    const BasicHullMesh<Point> polytope = directional_polytope();
+    const DropFilter filter = drop_filter(polytope);
+    std::vector<u32> fv, fn;
+    stats.polytope_first = polytope_mesh(polytope, fv, fn);
+    if (!stats.polytope_first) {
+      const std::vector<Point>& host = all_points();
+      TetrahedronQueries<Point, Exec> queries(exec_, host, points_);
+      const phases::InitialTetrahedron tetrahedron = phases::find_initial_tetrahedron(host, queries);
+      if (tetrahedron.dimension < 3) {
+        done = lower_dimensional(stats, tetrahedron.note);
+        return false;
+      }
+      Mesh mesh;
+      if (!phases::make_initial_tetrahedron(host, tetrahedron.corners, mesh, c_)) {
+        done = lower_dimensional(stats, "tetrahedron too flat for an interior point");
+        return false;
+      }
+      fv.resize(12);
+      fn.resize(12);
+      for (u32 f = 0; f < 4; ++f) {
+        for (int k = 0; k < 3; ++k) {
+          fv[3 * f + k] = mesh.face(f).v[k];
+          fn[3 * f + k] = mesh.face(f).n[k];
+        }
+      }
+    }
+
+    // The first mesh, and the first distribution (section 3.1).  Room for a hull of a few thousand faces
+    // from the start: growing is a round of allocations and copies, most of an iteration's host time on a
+    // small hull.
+    faces_ = fv.size() / 3;
+    const u32 first_faces = static_cast<u32>(faces_);
+    grow_faces(std::max(kInitialFaces, faces_));
+    grow_entries(kInitialFaces);
+    state_.grow(1);
+    FirstMesh first{};
+    first.faces = first_faces;
+    std::copy(fv.begin(), fv.end(), first.fv);
+    std::copy(fn.begin(), fn.end(), first.fn);
+    first.fv_out = fv_.data();
+    first.fn_out = fn_.data();
+    first.killer = killer_.data();
+    first.st = state_.data();
+    exec_.for_each(fv.size(), first);
+    // The points not proven inside P (all, without P), listed in index order (one wait for the count).
+    list = nullptr;
+    active_ = n;
+    if (filter.planes != 0) {
+      index_[1].grow(n);
+      active_ = exec_.select_if(n, NotInsideP<Point>{points_, filter}, index_[1].data());
+      list = index_[1].data();
+    }
+    stats.dropped_by_polytope = n - active_;
+    for (auto* b : {&index_[0], &index_[1], &face_of_[0], &face_of_[1], &keep_, &point_rank_})
+      b->grow(active_, b == &index_[1] ? active_ : 0);
+    // Few points left: the device loop distributes them itself (no launches and wait of the compaction).
+    first_in_loop = false;
+    if constexpr (Exec::kDeviceLoop) first_in_loop = loop_allowed && active_ <= exec_.loop_points;
+    if (!first_in_loop) {
+      exec_.for_each(active_, AssignFirst<Point>{view(), first_faces, list, index_[0].data(),
+                                                 face_of_[0].data(), keep_.data()});
+      compact(faces_);
+    }
+    stats.setup_ms = lap();
+    return true;
   }
 
   // P (see DirectionKeys): the exact hull of the points extreme along kDirections, found in one pass.
@@ -629,8 +730,8 @@ class ResidentHull {
     launch.fresh_from = static_cast<u32>(fresh_from);
     launch.face_capacity = static_cast<u32>(capacity_);
     launch.entry_capacity = static_cast<u32>(entry_capacity_);
-    exec_.fused_rounds(FindCandidate<Point>{view()}, claim_.data(), look_.data(), cands_.data(), won_.data(),
-                       state_.data(), launch);
+    exec_.fused_rounds(FindCandidate<Point>{view(), {}}, claim_.data(), look_.data(), cands_.data(),
+                       won_.data(), state_.data(), launch);
     return capacity_;
   }
 
@@ -649,8 +750,13 @@ class ResidentHull {
       won_.grow(work + 1);
       cands_.grow(work);
       won_rank_.grow(work + 1);
-      exec_.for_each(work, Claim<Point>{FindCandidate<Point>{view()}, work_list_.data(), round_,
-                                        claim_.data(), look_.data(), cands_.data()});
+      FindCandidate<Point> find{view(), {}};
+      if (recording_) {
+        recording_->round_first_entry.push_back(static_cast<u32>(entries_used_));
+        find.log = RejectionLog{rejections_.data(), rejection_count_.data(), rejection_capacity_, round_};
+      }
+      exec_.for_each(
+          work, Claim<Point>{find, work_list_.data(), round_, claim_.data(), look_.data(), cands_.data()});
       exec_.for_each(work, Won{round_, claim_.data(), cands_.data(), won_.data()});
       const u32 winners = exec_.exclusive_scan(won_.data(), won_rank_.data(), work);
       // The normal end: no work face has a candidate (a round with candidates always has a winner, the
@@ -803,6 +909,11 @@ class ResidentHull {
     return hull_of(candidates, host_ ? std::vector<Point>{} : fetch(candidates));
   }
 
+  RecordedIteration* recording_ = nullptr;  // step(): where stepped_rounds() notes its rounds
+  Buffer<Rejection> rejections_;
+  Buffer<u32> rejection_count_;
+  u32 rejection_capacity_ = 0;
+
   Exec& exec_;
   const std::vector<Point>* host_;  // null: the points are only where the executor computes
   const Point* points_;
@@ -826,5 +937,60 @@ class ResidentHull {
   Buffer<Candidate> cands_;  // per work item (stepped rounds) or per face (fused rounds)
   Buffer<u32> index_[2], face_of_[2], keep_, point_rank_;
 };
+
+template <class Point, class Exec>
+bool ResidentHull<Point, Exec>::step(ResidentStats& stats, RecordedIteration& out) {
+  out = RecordedIteration{};
+  out.faces_before = faces_;
+  lap();
+  mark_refined();
+  const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
+  if (refined == 0) return false;
+  out.refined = refined;
+  stats.refined_faces += refined;
+  const std::size_t first = faces_;
+  grow_faces(faces_ + 3 * std::size_t{refined});
+  grow_entries(refined);
+  split();
+  faces_ += 3 * std::size_t{refined};
+  entries_used_ = refined;
+  stats.refine_ms += lap();
+
+  // The rounds, their rejections logged (a face may meet the same one in several rounds: all are kept
+  // here, in order, and the records keep the first).
+  rejection_capacity_ = static_cast<u32>(std::max<std::size_t>(4096, 2 * faces_));
+  rejections_.grow(rejection_capacity_);
+  rejection_count_.grow(1);
+  exec_.fill(rejection_count_.data(), 1, u32{0});
+  recording_ = &out;
+  out.first_round = round_ + 1;
+  stepped_rounds(stats, first);
+  recording_ = nullptr;
+  out.fv.resize(3 * faces_);
+  out.killer.resize(faces_);
+  out.entries.resize(entries_used_);
+  exec_.download(out.fv.data(), fv_.data(), out.fv.size());
+  exec_.download(out.killer.data(), killer_.data(), out.killer.size());
+  exec_.download(out.entries.data(), entries_.data(), out.entries.size());
+  u32 rejected = 0;
+  exec_.download(&rejected, rejection_count_.data(), 1);
+  out.rejections_truncated = rejected > rejection_capacity_;
+  out.rejections.resize(std::min(rejected, rejection_capacity_));
+  exec_.download(out.rejections.data(), rejections_.data(), out.rejections.size());
+  // The log is filled by atomics in any order: by round, then candidate, the same on every executor.
+  std::sort(out.rejections.begin(), out.rejections.end(), [](const Rejection& a, const Rejection& b) {
+    return a.round != b.round ? a.round < b.round : a.id != b.id ? a.id < b.id : a.kind < b.kind;
+  });
+  stats.rounds_ms += lap();
+
+  route();
+  const std::size_t face_ids = faces_;
+  compact(face_ids);
+  out.new_id.resize(face_ids);
+  exec_.download(out.new_id.data(), face_rank_.data(), face_ids);
+  stats.route_ms += lap();
+  ++stats.iterations;
+  return true;
+}
 
 }  // namespace cudahull::resident

@@ -2,6 +2,7 @@
 #include "cudahull/resident.hpp"
 #include "resident/host_exec.hpp"
 #include "resident/resident_driver.hpp"
+#include "resident/resident_stepping.hpp"
 
 namespace cudahull {
 
@@ -33,5 +34,14 @@ BasicHullMesh<Point> resident_hull_host(const std::vector<Point>& points, Reside
 // The two coordinate types (README, "Precision").
 template HullMesh resident_hull_host(const std::vector<Point3>&, ResidentStats*, ResidentRounds, bool);
 template HullMeshd resident_hull_host(const std::vector<Point3d>&, ResidentStats*, ResidentRounds, bool);
+
+template <class Point>
+std::unique_ptr<SteppingEngine> make_resident_stepping_engine(const std::vector<Point>& points) {
+  if (points.size() >= 0xffffffffu) throw std::invalid_argument("too many points (at most 2^32 - 2)");
+  return std::make_unique<resident::ResidentStepper<Point, resident::HostExec>>(points, points.data(),
+                                                                                "cpu-resident", false);
+}
+template std::unique_ptr<SteppingEngine> make_resident_stepping_engine(const std::vector<Point3>&);
+template std::unique_ptr<SteppingEngine> make_resident_stepping_engine(const std::vector<Point3d>&);
 
 }  // namespace cudahull

@@ -396,9 +396,32 @@ struct Around {
   CUDAHULL_HD u32 apex(int i) const { return gv[i][(j[i] + 2) % 3]; }
 };
 
+// Records (the viewer, --trace): the candidates a round turned down, as FindCandidate meets them.  Only
+// the recording driver gives it somewhere to write; the fast paths leave `at` null.
+enum RejectionKind : u32 {
+  kRejectFoldover = 0,     // a flip whose new faces would not keep c strictly below (Fig. 5, seen from c)
+  kRejectNotManifold = 1,  // a flip whose new edge is already an edge of the mesh
+  kRejectRemoval = 2,      // a degree-3 concave vertex whose removal would fold over or not be a 2-manifold
+};
+struct Rejection {
+  u32 kind, round, id;  // id: 6 f + slot, as Candidate::id
+  u32 vertex[4];        // flip: u, v, x, y; removal: v, a, b, d
+};
+struct RejectionLog {
+  Rejection* at = nullptr;
+  u32* count = nullptr;
+  u32 capacity = 0, round = 0;
+  CUDAHULL_HD void add(u32 kind, u32 id, u32 a, u32 b, u32 c, u32 d) const {
+    if (!at) return;
+    const u32 k = atomic_add_u32(count, 1);
+    if (k < capacity) at[k] = Rejection{kind, round, id, {a, b, c, d}};
+  }
+};
+
 template <class Point>
 struct FindCandidate {
   MeshView<Point> m;
+  RejectionLog log;  // records only
 
   // Edge i of f, owned by f when f is the lower of its two faces: a concave edge whose flip keeps both new
   // faces' cones proper.
@@ -408,10 +431,16 @@ struct FindCandidate {
     if (g < f || j < 0) return false;
     const int iv = (i + 1) % 3, ix = (i + 2) % 3;
     const Vec3d &pu = a.p[i], &pv = a.p[iv], &px = a.p[ix], &py = a.y[i];
-    if (orient3d(pu, pv, px, py) <= 0) return false;                                     // convex or flat
-    if (orient3d(m.c, px, pu, py) <= 0 || orient3d(m.c, py, pv, px) <= 0) return false;  // a foldover
+    if (orient3d(pu, pv, px, py) <= 0) return false;  // convex or flat
+    if (orient3d(m.c, px, pu, py) <= 0 || orient3d(m.c, py, pv, px) <= 0) {
+      log.add(kRejectFoldover, 6 * f + static_cast<u32>(i), a.v[i], a.v[iv], a.v[ix], a.apex(i));
+      return false;
+    }
     const u32 A = a.n[ix], D = a.n[iv], B = a.gn[i][(j + 1) % 3], C = a.gn[i][(j + 2) % 3];
-    if (A == B || C == D || A == g || B == f || C == f || D == g) return false;  // not a 2-manifold
+    if (A == B || C == D || A == g || B == f || C == f || D == g) {  // not a 2-manifold
+      log.add(kRejectNotManifold, 6 * f + static_cast<u32>(i), a.v[i], a.v[iv], a.v[ix], a.apex(i));
+      return false;
+    }
     out = Candidate{kFlip, 0, 2, {f, g, A, B, C, D}, {a.v[i], a.v[iv], a.v[ix], a.apex(i)}};
     return true;
   }
@@ -435,10 +464,12 @@ struct FindCandidate {
     if (r.gn[k][hv] != t || r.gn[kb][tv] != f) return false;  // degree above 3
     const Vec3d &pv = r.p[k], &pa = r.p[ka], &pb = r.p[kb], &pd = r.y[k];
     if (orient3d(pa, pb, pd, pv) > 0) return false;  // v is strictly extreme here
-    if (orient3d(m.c, pa, pb, pd) <= 0) return false;
     const u32 ab = r.n[ka], da = r.gn[k][(hv + 1) % 3], bd = r.gn[kb][(tv + 1) % 3];
-    if (ab == da || ab == bd || da == bd || ab == h || ab == t || da == f || da == t || bd == f || bd == h)
+    if (orient3d(m.c, pa, pb, pd) <= 0 || ab == da || ab == bd || da == bd || ab == h || ab == t || da == f ||
+        da == t || bd == f || bd == h) {
+      log.add(kRejectRemoval, 6 * f + 3 + static_cast<u32>(k), v, a, b, d);
       return false;
+    }
     out = Candidate{kFlop, 0, 3, {f, h, t, ab, bd, da}, {v, a, b, d}};
     return true;
   }
@@ -768,6 +799,30 @@ struct FindCorners {
     out[k] = lo;
   }
 };
+// Records: how many kept points each face holds (with FurthestPerFace, the debugger's face extremes).
+struct CountPerFace {
+  const u32* point_face;
+  u32* count;
+  CUDAHULL_HD void operator()(std::size_t j) const { atomic_add_u32(&count[point_face[j]], 1); }
+};
+
+// The debugger's point states (Backend::write_point_states_on_device): every point internal, then each
+// kept point its face, then the vertices marked.
+struct ScatterPointStates {
+  const u32* point_index;
+  const u32* point_face;
+  std::int32_t* out;
+  CUDAHULL_HD void operator()(std::size_t j) const {
+    out[point_index[j]] = static_cast<std::int32_t>(point_face[j]);
+  }
+};
+struct MarkPoints {
+  const u32* ids;
+  std::int32_t value;
+  std::int32_t* out;
+  CUDAHULL_HD void operator()(std::size_t k) const { out[ids[k]] = value; }
+};
+
 // The coordinates of listed points, for a caller whose points are only where the executor computes.
 template <class Point>
 struct GatherPoints {

@@ -1,0 +1,475 @@
+// The resident engine stepped one iteration at a time, with records (issue 15, deliverable 3): the
+// SteppingEngine the viewer, `--trace` and `--table` drive, over the same operations the fast path runs
+// (resident_driver.hpp), on the host or the GPU executor.
+//
+// design:
+//   step 0        P (or section 3.1's tetrahedron) and the first distribution; the mesh read back
+//   step k        ResidentHull::step(): refine, the flip and flop rounds stepped by the host with every
+//                 candidate they turn down logged, route, compact; then read back what it did
+//                 (RecordedIteration, O(faces) bytes) and the new mesh, and turn them into the
+//                 IterationRecord the stepping Engine gives:
+//                   refinements     the entries of kind refine: the killed face's corners and the apex
+//                   swaps           flips, in round order, each round's rejections first; regular when
+//                                   the flipped edge was an edge of the mesh the iteration began with
+//                                   (a refined face's edge, Fig. 3b), complementary otherwise (Fig. 4)
+//                   removals        flops (Fig. 4); rejected ones where the new face would not keep c
+//                                   strictly below, or the surface would not stay a 2-manifold
+//                   decision array  the flip and flop entries as Fig. 7's entries: a flip's plane is the
+//                                   plane through c and the new edge (the resident engine routes by cones
+//                                   from c), a removal's has none
+//   the end       the exact check on the executor (ResidentHull::end), as the fast path finishes
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <unordered_set>
+#include <utility>
+#include <vector>
+
+#include "cudahull/engine.hpp"
+#include "resident/resident_driver.hpp"
+
+namespace cudahull::resident {
+
+// The plane through a, b, d (normal of unit length), oriented so that `inside` is on its positive side.
+inline SeparatingPlane plane_through(const Vec3d& a, const Vec3d& b, const Vec3d& d, const Vec3d& inside) {
+  const Vec3d u{b.x - a.x, b.y - a.y, b.z - a.z}, w{d.x - a.x, d.y - a.y, d.z - a.z};
+  Vec3d n{u.y * w.z - u.z * w.y, u.z * w.x - u.x * w.z, u.x * w.y - u.y * w.x};
+  const double length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+  if (length > 0) n = {n.x / length, n.y / length, n.z / length};
+  SeparatingPlane p{n.x, n.y, n.z, -(n.x * a.x + n.y * a.y + n.z * a.z)};
+  if (p.nx * inside.x + p.ny * inside.y + p.nz * inside.z + p.d < 0) p = {-p.nx, -p.ny, -p.nz, -p.d};
+  return p;
+}
+
+template <class Point, class Exec>
+class ResidentStepper : public SteppingEngine {
+ public:
+  // Borrows `points` (the host copy, for coordinates and exact checks); `exec_points` is where the
+  // executor reads them (the same vector on the host, a device copy on the GPU).
+  ResidentStepper(const std::vector<Point>& points, const Point* exec_points, std::string backend_name,
+                  bool device_point_states)
+      : points_(&points),
+        exec_points_(exec_points),
+        name_(std::move(backend_name)),
+        device_states_(device_point_states) {}
+
+  bool done() const override { return done_; }
+  void restart() override {
+    hull_.reset();
+    mesh_ = Mesh{};
+    iteration_ = 0;
+    done_ = false;
+    dimension_ = -2;
+    c_ = {};
+    stats_ = {};
+    result_ = {};
+    record_ = {};
+    last_ = {};
+    extremes_.clear();
+    decisions_.clear();
+    refinement_.clear();
+    removed_.clear();
+  }
+  IterationRecord step() override {
+    if (done_) throw std::logic_error("step() after done()");
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::uint64_t to_before = exec_.bytes_to_device, from_before = exec_.bytes_from_device;
+    IterationRecord r;
+    r.iteration = iteration_++;
+    if (!hull_) {
+      first_step(r);
+    } else {
+      next_step(r);
+    }
+    r.backend_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    r.bytes_to_backend = exec_.bytes_to_device - to_before;
+    r.bytes_from_backend = exec_.bytes_from_device - from_before;
+    record_ = r;
+    return r;
+  }
+  void run(const std::function<void(const IterationRecord&)>& on_step = {}) override {
+    while (!done_) {
+      const IterationRecord r = step();
+      if (on_step) on_step(r);
+    }
+  }
+
+  std::size_t point_count() const override { return points_->size(); }
+  Vec3d point(PointIndex i) const override { return to_vec3d((*points_)[i]); }
+  Precision precision() const override {
+    return std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
+  }
+  const Mesh& mesh() const override { return mesh_; }
+  std::string backend_name() const override { return name_; }
+  std::uint64_t bytes_from_backend() const override { return exec_.bytes_from_device; }
+  bool has_device_point_states() const override { return device_states_; }
+  int dimension() const override { return dimension_; }
+  Vec3d interior_point() const override { return c_; }
+  // Face f's cell: the cone from c over it (the resident engine's cells; section 3's separating planes
+  // become the planes through c and each edge), its sides positive inside.
+  FaceCell face_cell(FaceId f) const override {
+    const MeshFace& face = mesh_.face(f);
+    const Vec3d a = point(face.v[0]), b = point(face.v[1]), d = point(face.v[2]);
+    const Vec3d centre{(a.x + b.x + d.x) / 3, (a.y + b.y + d.y) / 3, (a.z + b.z + d.z) / 3};
+    FaceCell cell;
+    cell.face_plane = plane_through(a, b, d, {2 * centre.x - c_.x, 2 * centre.y - c_.y, 2 * centre.z - c_.z});
+    const Vec3d corners[3] = {a, b, d};
+    for (int i = 0; i < 3; ++i)
+      cell.edge_plane[i] = plane_through(c_, corners[i], corners[(i + 1) % 3], centre);
+    return cell;
+  }
+  std::vector<std::int32_t> point_faces() const override {
+    std::vector<std::int32_t> out;
+    if (hull_ && dimension_ == 3) hull_->read_point_faces(out);
+    return out;
+  }
+  bool write_point_states_on_device(std::int32_t* device_out, std::size_t count,
+                                    const std::vector<PointIndex>& vertices) override {
+    if (!device_states_ || !hull_ || dimension_ != 3 || count != points_->size()) return false;
+    hull_->write_point_states(device_out, vertices);
+    return true;
+  }
+  std::vector<std::string> explain_route(PointIndex point, std::int32_t old_face) const override;
+  const std::vector<FaceExtreme>& face_extremes() const override { return extremes_; }
+  const std::vector<DecisionEntry>& last_decisions() const override { return decisions_; }
+  const std::vector<RefinementEntry>& last_refinement() const override { return refinement_; }
+  const std::vector<PointIndex>& removed_vertices() const override { return removed_; }
+  const IterationRecord& last_record() const override { return record_; }
+  const std::vector<PointIndex>& result_vertex_ids() const override { return result_.vertex_ids; }
+  const std::vector<Triangle>& result_triangles() const override { return result_.triangles; }
+
+  const BasicHullMesh<Point>& result() const { return result_; }
+  const ResidentStats& stats() const { return stats_; }
+
+ protected:
+  Exec exec_;
+  const std::vector<Point>* points_;
+  const Point* exec_points_;  // the executor's copy; a subclass that makes it sets it before step()
+
+ private:
+  void first_step(IterationRecord& r) {
+    hull_.emplace(exec_, exec_points_, points_->size(), points_);
+    r.external_before = points_->size();
+    BasicHullMesh<Point> answer;
+    if (!hull_->begin(stats_, answer)) {
+      dimension_ = answer.dimension;
+      if (points_->empty()) dimension_ = -1;
+      result_ = std::move(answer);
+      r.note = points_->empty() ? "no points" : stats_.note;
+      done_ = true;
+      return;
+    }
+    dimension_ = 3;
+    c_ = hull_->interior();
+    read_mesh();
+    r.faces_after = mesh_.live_faces();
+    r.external_after = hull_->active_points();
+    r.refined_apexes = mesh_.vertices();  // the first mesh's corners (P's, or the tetrahedron's)
+    r.note = stats_.polytope_first ? "first mesh: P, the hull of the extremes along 14 directions"
+                                   : "first mesh: section 3.1's tetrahedron";
+    if (r.external_after == 0) finish(r, false);
+  }
+
+  void next_step(IterationRecord& r) {
+    r.faces_before = mesh_.live_faces();
+    r.external_before = hull_->active_points();
+    if (!hull_->step(stats_, last_)) {
+      finish(r, true);
+      return;
+    }
+    describe(last_, r);
+    read_mesh();
+    r.faces_after = mesh_.live_faces();
+    r.external_after = hull_->active_points();
+    if (r.external_after == 0) finish(r, false);
+  }
+
+  void finish(IterationRecord& r, bool stalled) {
+    result_ = hull_->end(stats_, stalled);
+    if (stats_.exact_finish) {
+      r.repairs = std::max<std::uint64_t>(1, stats_.faults);
+      r.note = (r.note.empty() ? "" : r.note + "; ") + "exact finish: " + stats_.note;
+    }
+    done_ = true;
+  }
+
+  void read_mesh() {
+    std::vector<u32> fv, fn;
+    hull_->read_mesh(fv, fn);
+    std::vector<MeshFace> faces(fv.size() / 3);
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      for (int k = 0; k < 3; ++k) {
+        faces[f].v[k] = fv[3 * f + k];
+        faces[f].n[k] = fn[3 * f + k];
+      }
+    }
+    mesh_.assign(faces);
+    hull_->read_face_extremes(extremes_);
+  }
+
+  // Where a point of face id `o` of the iteration goes (Fig. 7's route codes): its id in the new mesh,
+  // or the decision entry that killed it later in the iteration.
+  static std::int32_t route_code(const RecordedIteration& it, u32 o) {
+    const u32 e = it.killer[o];
+    if (e == kAlive) return static_cast<std::int32_t>(it.new_id[o]);
+    return -static_cast<std::int32_t>(e - it.refined) - 1;
+  }
+
+  void describe(const RecordedIteration& it, IterationRecord& r) {
+    const std::size_t entries = it.entries.size();
+    // The faces each entry killed (a refinement one, a flip two, a flop three).
+    std::vector<std::array<u32, 3>> killed(entries, {kNone, kNone, kNone});
+    for (u32 f = 0; f < it.killer.size(); ++f) {
+      const u32 e = it.killer[f];
+      if (e >= entries) continue;
+      for (u32& slot : killed[e]) {
+        if (slot == kNone) {
+          slot = f;
+          break;
+        }
+      }
+    }
+    auto corner = [&](u32 f, int k) { return it.fv[3 * f + k]; };
+    // The edges of the mesh the iteration began with: a flip of one of them is a regular swap.
+    std::unordered_set<u64> old_edges;
+    auto edge_key = [](u32 a, u32 b) { return (u64{std::min(a, b)} << 32) | std::max(a, b); };
+    for (u32 f = 0; f < it.faces_before; ++f) {
+      for (int k = 0; k < 3; ++k)
+        old_edges.insert(edge_key(corner(f, k), corner(f, (k + 1) % 3)));
+    }
+
+    // Refinements (Fig. 3a): the old face, its apex, and the planes through c, the apex and each corner.
+    refinement_.clear();
+    for (u32 e = 0; e < it.refined; ++e) {
+      const Entry& entry = it.entries[e];
+      const u32 f = killed[e][0];
+      RefinementEntry out;
+      out.face = f;
+      out.apex = entry.p;
+      std::array<PointIndex, 3> corners{};
+      const Vec3d p = point(entry.p);
+      for (int k = 0; k < 3; ++k) {
+        corners[k] = corner(f, k);
+        out.child[k] = route_code(it, entry.out[k]);
+      }
+      for (int k = 0; k < 3; ++k) {
+        const Vec3d a = point(corners[k]), b = point(corners[(k + 1) % 3]);
+        out.plane[k] = plane_through(c_, a, p, {(a.x + b.x + p.x) / 3, (a.y + b.y + p.y) / 3, (a.z + b.z + p.z) / 3});
+      }
+      refinement_.push_back(out);
+      r.refined_apexes.push_back(entry.p);
+      r.refined_faces.push_back(corners);
+    }
+    r.faces_refined = it.refined;
+
+    // The decision array (Fig. 7) and the edits in the order they were made: round by round, each round's
+    // rejections (the first time they were met) and then its winners.
+    decisions_.clear();
+    for (std::size_t e = it.refined; e < entries; ++e) {
+      const Entry& entry = it.entries[e];
+      DecisionEntry d;
+      if (entry.kind == kFlip) {
+        const u32 n2 = entry.out[1];
+        const Vec3d x = point(entry.p), y = point(entry.q), v = point(corner(n2, 1));
+        d.plane = plane_through(c_, x, y, {(x.x + y.x + v.x) / 3, (x.y + y.y + v.y) / 3, (x.z + y.z + v.z) / 3});
+        d.above = route_code(it, n2);
+        d.below = route_code(it, entry.out[0]);
+        d.kind = kDecisionSwap;
+      } else {
+        d.above = d.below = route_code(it, entry.out[0]);
+        d.kind = kDecisionRemoval;
+      }
+      decisions_.push_back(d);
+    }
+    r.decisions = decisions_;
+    r.decision_entries = decisions_.size();
+
+    std::unordered_set<std::string> seen;  // rejections already recorded this iteration
+    int sequence = 0;
+    std::size_t next_rejection = 0;
+    const std::size_t rounds = it.round_first_entry.size();
+    for (std::size_t k = 0; k < rounds; ++k) {
+      const u32 round = it.first_round + static_cast<u32>(k);
+      for (; next_rejection < it.rejections.size() && it.rejections[next_rejection].round <= round;
+           ++next_rejection) {
+        const Rejection& rej = it.rejections[next_rejection];
+        const std::string key = std::to_string(rej.kind) + ":" + std::to_string(rej.vertex[0]) + ":" +
+                                std::to_string(rej.vertex[1]) + ":" + std::to_string(rej.vertex[2]) + ":" +
+                                std::to_string(rej.vertex[3]);
+        if (!seen.insert(key).second) continue;
+        record_rejection(rej, sequence++, r);
+      }
+      const std::size_t begin = it.round_first_entry[k];
+      const std::size_t end = k + 1 < rounds ? it.round_first_entry[k + 1] : entries;
+      for (std::size_t e = begin; e < end; ++e) {
+        const Entry& entry = it.entries[e];
+        const auto index = static_cast<std::int32_t>(e - it.refined);
+        if (entry.kind == kFlip) {
+          SwapRecord s;
+          const u32 u = corner(entry.out[0], 1), v = corner(entry.out[1], 1);
+          s.kind = old_edges.count(edge_key(u, v)) ? SwapKind::kRegular : SwapKind::kComplementary;
+          s.sequence = sequence++;
+          s.old_edge[0] = u;
+          s.old_edge[1] = v;
+          s.new_edge[0] = entry.p;
+          s.new_edge[1] = entry.q;
+          s.decision_index = index;
+          (s.kind == SwapKind::kRegular ? r.swaps_regular : r.swaps_complementary) += 1;
+          r.swaps.push_back(s);
+        } else {
+          // The removed vertex: the corner its three faces share.
+          auto holds = [&](u32 face, u32 v) {
+            return v == corner(face, 0) || v == corner(face, 1) || v == corner(face, 2);
+          };
+          u32 vertex = kNone;
+          for (int a = 0; a < 3 && vertex == kNone; ++a) {
+            const u32 v = corner(killed[e][0], a);
+            if (holds(killed[e][1], v) && holds(killed[e][2], v)) vertex = v;
+          }
+          RemovalRecord rm;
+          rm.sequence = sequence++;
+          rm.vertex = vertex;
+          for (int k2 = 0; k2 < 3; ++k2)
+            rm.ring[k2] = corner(entry.out[0], k2);
+          rm.decision_index = index;
+          r.removals.push_back(rm);
+          removed_.push_back(vertex);
+          ++r.vertices_removed;
+        }
+      }
+    }
+    if (it.rejections_truncated)
+      r.note = "more rejected candidates than the log holds: the records list the first " +
+               std::to_string(it.rejections.size());
+  }
+
+  void record_rejection(const Rejection& rej, int sequence, IterationRecord& r) const {
+    if (rej.kind == kRejectRemoval) {
+      RemovalRecord rm;
+      rm.sequence = sequence;
+      rm.vertex = rej.vertex[0];
+      rm.ring[0] = rej.vertex[1];
+      rm.ring[1] = rej.vertex[2];
+      rm.ring[2] = rej.vertex[3];
+      rm.rejected = true;
+      r.removals.push_back(rm);
+      ++r.removals_rejected;
+      return;
+    }
+    // Flip u - v into x - y: n1 = (x, u, y), n2 = (y, v, x).  A foldover (Fig. 5): seen from c, the vertex
+    // of the old edge whose new face would turn over lies beneath the other new face.
+    const u32 u = rej.vertex[0], v = rej.vertex[1], x = rej.vertex[2], y = rej.vertex[3];
+    SwapRecord s;
+    s.sequence = sequence;
+    s.old_edge[0] = u;
+    s.old_edge[1] = v;
+    s.new_edge[0] = x;
+    s.new_edge[1] = y;
+    if (rej.kind == kRejectFoldover) {
+      s.kind = SwapKind::kRejectedFoldover;
+      const bool u_turns = orient3d(c_, point(x), point(u), point(y)) <= 0;
+      s.beneath_vertex = u_turns ? u : v;
+      const std::array<PointIndex, 3> other = u_turns ? std::array<PointIndex, 3>{y, v, x}
+                                                      : std::array<PointIndex, 3>{x, u, y};
+      std::copy(other.begin(), other.end(), s.beneath_triangle);
+    } else {
+      s.kind = SwapKind::kRejectedEdgeExists;
+    }
+    ++r.swaps_rejected;
+    r.swaps.push_back(s);
+  }
+
+  std::string name_;
+  bool device_states_;
+  mutable std::optional<ResidentHull<Point, Exec>> hull_;  // reads back on const queries
+  Mesh mesh_;
+  int iteration_ = 0;
+  bool done_ = false;
+  int dimension_ = -2;
+  Vec3d c_{};
+  ResidentStats stats_;
+  BasicHullMesh<Point> result_;
+  IterationRecord record_;
+  RecordedIteration last_;
+  std::vector<FaceExtreme> extremes_;
+  std::vector<DecisionEntry> decisions_;
+  std::vector<RefinementEntry> refinement_;
+  std::vector<PointIndex> removed_;
+};
+
+// The debugger's "explain point": the point's route through the last step's entries, as RoutePoints
+// takes it, hop by hop, ending in "face F", "internal" or "vertex".
+template <class Point, class Exec>
+std::vector<std::string> ResidentStepper<Point, Exec>::explain_route(PointIndex point_id,
+                                                                     std::int32_t old_face) const {
+  if (!hull_ || dimension_ != 3 || point_id >= points_->size()) return {"no 3-d step to explain"};
+  const Vec3d q = point(point_id);
+  std::vector<std::string> lines;
+  auto verdict = [&](u32 face_now, std::vector<std::string>& out) {
+    const MeshFace& face = mesh_.face(face_now);
+    if (orient3d(point(face.v[0]), point(face.v[1]), point(face.v[2]), q) > 0) {
+      out.push_back("strictly above it (exact orient3d): kept");
+      out.push_back("face " + std::to_string(face_now));
+    } else if (mesh_.has_vertex(point_id)) {
+      out.push_back("on it: a vertex of the mesh");
+      out.push_back("vertex");
+    } else {
+      out.push_back("on or below it, so inside the tetrahedron of c and the face (exact orient3d): dropped");
+      out.push_back("internal");
+    }
+    return out;
+  };
+  if (iteration_ == 1) {
+    // The first distribution: the first face (P's or the tetrahedron's) whose closed cone from c holds it.
+    const std::size_t faces = mesh_.live_faces();
+    u32 f = static_cast<u32>(faces - 1);
+    for (u32 g = 0; g + 1 < faces; ++g) {
+      const MeshFace& face = mesh_.face(g);
+      const Vec3d a = point(face.v[0]), b = point(face.v[1]), d = point(face.v[2]);
+      if (orient3d(c_, a, b, q) >= 0 && orient3d(c_, b, d, q) >= 0 && orient3d(c_, d, a, q) >= 0) {
+        f = g;
+        break;
+      }
+    }
+    lines.push_back("first distribution: in the cone from c over first-mesh face " + std::to_string(f));
+    return verdict(f, lines);
+  }
+  const RecordedIteration& it = last_;
+  if (old_face < 0 || static_cast<std::size_t>(old_face) >= it.faces_before)
+    return {"point " + std::to_string(point_id) + " had no face before this step (inside, or a vertex)"};
+  u32 f = static_cast<u32>(old_face);
+  lines.push_back("from face " + std::to_string(f) + " of the mesh before the step");
+  for (u32 e = it.killer[f]; e != kAlive; e = it.killer[f]) {
+    const Entry& entry = it.entries[e];
+    if (entry.kind == kRefine) {
+      const Vec3d p = point(entry.p);
+      int s[3];
+      for (int k = 0; k < 3; ++k)
+        s[k] = orient3d(c_, point(it.fv[3 * f + k]), p, q);
+      const int k = (s[1] >= 0 && s[0] <= 0) ? 0 : (s[2] >= 0 && s[1] <= 0) ? 1 : 2;
+      lines.push_back("refinement at apex " + std::to_string(entry.p) + " (Fig. 3a): child " + std::to_string(k) +
+                      " by the planes through c, the apex and the corners");
+      f = entry.out[k];
+    } else if (entry.kind == kFlip) {
+      const bool above = orient3d(c_, point(entry.p), point(entry.q), q) >= 0;
+      lines.push_back("decision[" + std::to_string(e - it.refined) + "]: swap to edge " + std::to_string(entry.p) +
+                      "-" + std::to_string(entry.q) + ", " + (above ? "+" : "-") +
+                      " side of the plane through c and the new edge");
+      f = entry.out[above ? 1 : 0];
+    } else {
+      lines.push_back("decision[" + std::to_string(e - it.refined) + "]: vertex removal (Fig. 4), one face");
+      f = entry.out[0];
+    }
+  }
+  const u32 now = it.new_id[f];
+  lines.push_back("the cone of face " + std::to_string(now) + " of the new mesh holds it");
+  return verdict(now, lines);
+}
+
+}  // namespace cudahull::resident
