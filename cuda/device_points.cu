@@ -98,6 +98,15 @@ void require_current_device_memory(const void* xyz) {
   }
 }
 
+std::shared_ptr<void> upload_to_device(const void* host, std::size_t bytes) {
+  void* memory = nullptr;
+  const cudaError_t e = cudaMalloc(&memory, std::max<std::size_t>(bytes, 1));
+  if (e != cudaSuccess) throw_out_of_memory(kWho, "the points", bytes, e);
+  std::shared_ptr<void> owned(memory, [](void* p) { cudaFree(p); });
+  check(cudaMemcpy(memory, host, bytes, cudaMemcpyHostToDevice), "uploading the points");
+  return owned;
+}
+
 template <class Point, class Scalar>
 CheckedDevicePoints<Point> check_device_points(const Scalar* xyz, std::size_t count) {
   CheckedDevicePoints<Point> result;

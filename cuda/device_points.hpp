@@ -21,6 +21,9 @@ bool cuda_device_present(std::string* why_not);
 // device: a host pointer, or another device's memory, would fault in the engine's first kernel instead.
 void require_current_device_memory(const void* xyz);
 
+// A copy of `bytes` at `host` in the current device's memory, freed with the pointer.  Throws DeviceError.
+std::shared_ptr<void> upload_to_device(const void* host, std::size_t bytes);
+
 // `count` points, as the hull in Point computes on them, on the current device.
 template <class Point>
 struct CheckedDevicePoints {

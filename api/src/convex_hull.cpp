@@ -12,6 +12,7 @@
 #include "cudahull/cpu_backend.hpp"
 #include "cudahull/engine.hpp"
 #include "cudahull/errors.hpp"
+#include "cudahull/parallel.hpp"
 #include "cudahull/resident.hpp"
 #include "device_info.hpp"
 #include "device_points.hpp"
@@ -41,32 +42,40 @@ std::string shortest(double value) {
                    shortest(value) + " " + why);
 }
 
-// The point `i` as Point, from its coordinates widened to double, or InputError (one line naming the point)
-// for what the exact hull cannot take.  The device path names its first bad point with it too.
+// Why the exact hull in Point cannot take a point whose coordinates, widened to double, are `widened`
+// (the axis in `axis`), or nullptr, with the point in Point in `out`.  Every coordinate's finiteness is
+// asked before any range, so that a message names a NaN before a huge neighbour.
 template <class Point>
-Point checked_point(std::size_t i, const double (&widened)[3]) {
-  for (int axis = 0; axis < 3; ++axis) {
-    if (!std::isfinite(widened[axis])) bad_coordinate(i, axis, widened[axis], "is not finite");
+const char* rejection(const double (&widened)[3], int& axis, Point& out) {
+  for (axis = 0; axis < 3; ++axis) {
+    if (!std::isfinite(widened[axis])) return "is not finite";
   }
   if constexpr (std::is_same_v<Point, Point3d>) {
-    for (int axis = 0; axis < 3; ++axis) {
+    for (axis = 0; axis < 3; ++axis) {
       const double m = std::fabs(widened[axis]);
-      if (m != 0 && (m < kMinExactMagnitude || m > kMaxExactMagnitude)) {
-        bad_coordinate(
-            i, axis, widened[axis],
-            "is outside the range of exact double arithmetic (nonzero magnitudes from 2^-250 to 2^250)");
-      }
+      if (m != 0 && (m < kMinExactMagnitude || m > kMaxExactMagnitude))
+        return "is outside the range of exact double arithmetic (nonzero magnitudes from 2^-250 to 2^250)";
     }
-    return Point3d{widened[0], widened[1], widened[2]};
+    out = Point3d{widened[0], widened[1], widened[2]};
   } else {
     // Rounded once to float (a float input is unchanged); a double beyond float's range cannot be.
     const float rounded[3] = {static_cast<float>(widened[0]), static_cast<float>(widened[1]),
                               static_cast<float>(widened[2])};
-    for (int axis = 0; axis < 3; ++axis) {
-      if (!std::isfinite(rounded[axis])) bad_coordinate(i, axis, widened[axis], "does not fit in float");
+    for (axis = 0; axis < 3; ++axis) {
+      if (!std::isfinite(rounded[axis])) return "does not fit in float";
     }
-    return Point3{rounded[0], rounded[1], rounded[2]};
+    out = Point3{rounded[0], rounded[1], rounded[2]};
   }
+  return nullptr;
+}
+
+// Throws the InputError (one line naming the point) for point `i`, if rejection() has one.  The device
+// path names its first bad point with it too.
+template <class Point>
+void throw_if_rejected(std::size_t i, const double (&widened)[3]) {
+  int axis = 0;
+  Point unused;
+  if (const char* why = rejection(widened, axis, unused)) bad_coordinate(i, axis, widened[axis], why);
 }
 
 void check_count(std::size_t count) {
@@ -76,14 +85,32 @@ void check_count(std::size_t count) {
 }
 
 // Copies `count` points into Point (float or double), refusing what the exact hull cannot take;
-// `coordinate(i, axis)` reads the input.
+// `coordinate(i, axis)` reads the input.  On all host cores: for 10M points the copy is otherwise most of
+// a resident hull's time.  Each chunk stops at its first bad point; the lowest is the one named, as a
+// scan in order would.
 template <class Point, class Coordinate>
 std::vector<Point> copy_checked(std::size_t count, Coordinate coordinate) {
   check_count(count);
   std::vector<Point> points(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    const double widened[3] = {coordinate(i, 0), coordinate(i, 1), coordinate(i, 2)};
-    points[i] = checked_point<Point>(i, widened);
+  const unsigned workers = hardware_workers();
+  std::vector<std::size_t> first_bad(workers, count);
+  parallel_chunks(
+      count, workers,
+      [&](std::size_t begin, std::size_t end, unsigned worker) {
+        for (std::size_t i = begin; i < end; ++i) {
+          const double widened[3] = {coordinate(i, 0), coordinate(i, 1), coordinate(i, 2)};
+          int axis = 0;
+          if (rejection(widened, axis, points[i])) {
+            first_bad[worker] = i;
+            return;
+          }
+        }
+      },
+      std::size_t{1} << 16);
+  const std::size_t bad = *std::min_element(first_bad.begin(), first_bad.end());
+  if (bad != count) {
+    const double widened[3] = {coordinate(bad, 0), coordinate(bad, 1), coordinate(bad, 2)};
+    throw_if_rejected<Point>(bad, widened);
   }
   return points;
 }
@@ -243,7 +270,7 @@ ConvexHull device_hull_in(const Scalar* device_xyz, std::size_t count) {
     // Named from its own coordinates by the host path's check, so the message is the same word for word.
     const std::array<double, 3> p = read_device_point(device_xyz, checked.first_bad);
     const double widened[3] = {p[0], p[1], p[2]};
-    checked_point<Point>(checked.first_bad, widened);
+    throw_if_rejected<Point>(checked.first_bad, widened);
     throw std::logic_error("convex_hull_device: point " + std::to_string(checked.first_bad) +
                            " failed the device's check but passes the host's");
   }
@@ -273,16 +300,31 @@ ConvexHull device_hull(const Scalar* device_xyz, std::size_t count, Precision ow
   return device_hull_in<Point3>(device_xyz, count);
 }
 
+template <class Scalar>
+auto array_coordinate(const Scalar* xyz) {
+  return [xyz](std::size_t i, int axis) -> double { return xyz[3 * i + axis]; };
+}
+
+// The hull of `count` x, y, z triples in host memory.  For the resident engine on the GPU they are uploaded
+// as they are and checked (or converted) there, as convex_hull_device() does: the engine needs no host
+// copy of them (it reads back the few coordinates its exact checks need), and the copy would cost more
+// than the hull.  Otherwise they are checked into a host copy.
+template <class Scalar>
+ConvexHull array_hull(const Scalar* xyz, std::size_t count, Precision own, const ConvexHullOptions& options) {
+  if (options.engine == EngineChoice::kResident && options.backend != BackendChoice::kCpu && count != 0 &&
+      cuda_device_present(nullptr)) {
+    check_count(count);
+    const std::shared_ptr<void> copy = upload_to_device(xyz, count * 3 * sizeof(Scalar));
+    return device_hull(static_cast<const Scalar*>(copy.get()), count, own, options);
+  }
+  return checked_hull(count, array_coordinate(xyz), own, options);
+}
+
 template <class Point>
 auto vector_coordinate(const std::vector<Point>& points) {
   return [&points](std::size_t i, int axis) -> double {
     return axis == 0 ? points[i].x : axis == 1 ? points[i].y : points[i].z;
   };
-}
-
-template <class Scalar>
-auto array_coordinate(const Scalar* xyz) {
-  return [xyz](std::size_t i, int axis) -> double { return xyz[3 * i + axis]; };
 }
 
 }  // namespace
@@ -337,11 +379,11 @@ ConvexHull convex_hull(const std::vector<Point3d>& points, const ConvexHullOptio
 }
 
 ConvexHull convex_hull(const float* xyz, std::size_t count, const ConvexHullOptions& options) {
-  return checked_hull(count, array_coordinate(xyz), Precision::kFloat, options);
+  return array_hull(xyz, count, Precision::kFloat, options);
 }
 
 ConvexHull convex_hull(const double* xyz, std::size_t count, const ConvexHullOptions& options) {
-  return checked_hull(count, array_coordinate(xyz), Precision::kDouble, options);
+  return array_hull(xyz, count, Precision::kDouble, options);
 }
 
 ConvexHull convex_hull_device(const float* device_xyz, std::size_t count, const ConvexHullOptions& options) {
