@@ -88,7 +88,8 @@ void expect_record_explains_step(const SteppingEngine& engine, Mesh before, cons
       ASSERT_NE(f, kNoFace) << what << ": swap " << s.sequence << " of an edge not in the mesh";
       const MeshFace& face = before.face(f);
       EXPECT_EQ(face.v[(slot + 2) % 3], x) << what << ": swap " << s.sequence;
-      EXPECT_GT(orient3d(P(u), P(v), P(x), P(y)), 0) << what << ": swap " << s.sequence << " of a convex edge";
+      EXPECT_GT(orient3d(P(u), P(v), P(x), P(y)), 0)
+          << what << ": swap " << s.sequence << " of a convex edge";
       if (s.kind == SwapKind::kRegular || s.kind == SwapKind::kComplementary) {
         EXPECT_EQ(s.kind == SwapKind::kRegular, old.adjacent(u, v))
             << what << ": swap " << s.sequence << " is regular exactly when its edge was in the old mesh";
@@ -100,8 +101,10 @@ void expect_record_explains_step(const SteppingEngine& engine, Mesh before, cons
         if (s.kind == SwapKind::kRejectedFoldover) {
           // Seen from c, one of the new faces (x, u, y), (y, v, x) would turn over, and the recorded vertex
           // lies beneath the other.
-          const bool u_turns = orient3d(c, P(x), P(u), P(y)) <= 0, v_turns = orient3d(c, P(y), P(v), P(x)) <= 0;
-          EXPECT_TRUE(u_turns || v_turns) << what << ": rejected foldover " << s.sequence << " would not fold";
+          const bool u_turns = orient3d(c, P(x), P(u), P(y)) <= 0,
+                     v_turns = orient3d(c, P(y), P(v), P(x)) <= 0;
+          EXPECT_TRUE(u_turns || v_turns)
+              << what << ": rejected foldover " << s.sequence << " would not fold";
           EXPECT_EQ(s.beneath_vertex, u_turns ? u : v) << what;
         } else {
           EXPECT_EQ(s.kind, SwapKind::kRejectedEdgeExists) << what;

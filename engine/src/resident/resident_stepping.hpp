@@ -260,7 +260,8 @@ class ResidentStepper : public SteppingEngine {
       }
       for (int k = 0; k < 3; ++k) {
         const Vec3d a = point(corners[k]), b = point(corners[(k + 1) % 3]);
-        out.plane[k] = plane_through(c_, a, p, {(a.x + b.x + p.x) / 3, (a.y + b.y + p.y) / 3, (a.z + b.z + p.z) / 3});
+        out.plane[k] =
+            plane_through(c_, a, p, {(a.x + b.x + p.x) / 3, (a.y + b.y + p.y) / 3, (a.z + b.z + p.z) / 3});
       }
       refinement_.push_back(out);
       r.refined_apexes.push_back(entry.p);
@@ -277,7 +278,8 @@ class ResidentStepper : public SteppingEngine {
       if (entry.kind == kFlip) {
         const u32 n2 = entry.out[1];
         const Vec3d x = point(entry.p), y = point(entry.q), v = point(corner(n2, 1));
-        d.plane = plane_through(c_, x, y, {(x.x + y.x + v.x) / 3, (x.y + y.y + v.y) / 3, (x.z + y.z + v.z) / 3});
+        d.plane =
+            plane_through(c_, x, y, {(x.x + y.x + v.x) / 3, (x.y + y.y + v.y) / 3, (x.z + y.z + v.z) / 3});
         d.above = route_code(it, n2);
         d.below = route_code(it, entry.out[0]);
         d.kind = kDecisionSwap;
@@ -375,8 +377,8 @@ class ResidentStepper : public SteppingEngine {
       s.kind = SwapKind::kRejectedFoldover;
       const bool u_turns = orient3d(c_, point(x), point(u), point(y)) <= 0;
       s.beneath_vertex = u_turns ? u : v;
-      const std::array<PointIndex, 3> other = u_turns ? std::array<PointIndex, 3>{y, v, x}
-                                                      : std::array<PointIndex, 3>{x, u, y};
+      const std::array<PointIndex, 3> other =
+          u_turns ? std::array<PointIndex, 3>{y, v, x} : std::array<PointIndex, 3>{x, u, y};
       std::copy(other.begin(), other.end(), s.beneath_triangle);
     } else {
       s.kind = SwapKind::kRejectedEdgeExists;
@@ -453,13 +455,13 @@ std::vector<std::string> ResidentStepper<Point, Exec>::explain_route(PointIndex 
       for (int k = 0; k < 3; ++k)
         s[k] = orient3d(c_, point(it.fv[3 * f + k]), p, q);
       const int k = (s[1] >= 0 && s[0] <= 0) ? 0 : (s[2] >= 0 && s[1] <= 0) ? 1 : 2;
-      lines.push_back("refinement at apex " + std::to_string(entry.p) + " (Fig. 3a): child " + std::to_string(k) +
-                      " by the planes through c, the apex and the corners");
+      lines.push_back("refinement at apex " + std::to_string(entry.p) + " (Fig. 3a): child " +
+                      std::to_string(k) + " by the planes through c, the apex and the corners");
       f = entry.out[k];
     } else if (entry.kind == kFlip) {
       const bool above = orient3d(c_, point(entry.p), point(entry.q), q) >= 0;
-      lines.push_back("decision[" + std::to_string(e - it.refined) + "]: swap to edge " + std::to_string(entry.p) +
-                      "-" + std::to_string(entry.q) + ", " + (above ? "+" : "-") +
+      lines.push_back("decision[" + std::to_string(e - it.refined) + "]: swap to edge " +
+                      std::to_string(entry.p) + "-" + std::to_string(entry.q) + ", " + (above ? "+" : "-") +
                       " side of the plane through c and the new edge");
       f = entry.out[above ? 1 : 0];
     } else {
