@@ -26,8 +26,8 @@ if [ "$PART" != bench ]; then
   export CUDAHULL_PROPERTY_CASES=100
   for tool in memcheck synccheck initcheck racecheck; do
     echo "== compute-sanitizer --tool $tool"
-    filter='*Seeded*:*SharedModels*:*Property*:*Generated*'
-    [ $tool = racecheck ] && filter='*Seeded*:*SharedModels*:*Property*'
+    filter='*Seeded*:*SharedModels*:*Property*:*Generated*:*SteppedRecords*'
+    [ $tool = racecheck ] && filter='*Seeded*:*SharedModels*:*Property*:*SteppedRecords*'
     timeout 280 compute-sanitizer --tool $tool --error-exitcode 9 $B/test_resident_cuda --gtest_filter="$filter" \
       > $O/sanitizer_$tool.txt 2>&1
     echo "exit $?"; grep -E "ERROR SUMMARY|RACECHECK SUMMARY|^\[  (PASSED|FAILED)" $O/sanitizer_$tool.txt | head -3
@@ -48,4 +48,20 @@ if [ "$PART" != tests ]; then
   run resident --dist sphere --n 1000000 --repeat 3 --precision double
   echo "== sphere 10M (a 20M-face hull), resident only"
   run resident --dist sphere --n 10000000 --repeat 3
+  echo "== records on (--table: a step at a time, each step's records read back), sphere 1M"
+  $B/cudahull gen sphere 1000000 -o /tmp/sphere_1m.xyz 2>/dev/null
+  for engine in resident stepping; do
+    /usr/bin/time -f "$engine --table: %e s wall" $B/cudahull hull /tmp/sphere_1m.xyz --engine $engine --backend cuda \
+      --table --quiet > $O/table_$engine.txt
+    tail -3 $O/table_$engine.txt
+  done
+  echo "== the viewer at 20M points, CUDA-GL interop, 1920x1080: resident and stepping engines"
+  export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
+  for dist in cube ball; do
+    for engine in resident stepping; do
+      echo "{\"engine\": \"$engine\", \"dist\": \"$dist\", \"result\": $($B/cudahull-viewer --gen $dist 20000000 \
+        --headless --width 1920 --height 1080 --steps 2 --bench-frames 200 --engine $engine --quiet)}" \
+        | tee -a $O/viewer_resident.jsonl
+    done
+  done
 fi
