@@ -15,12 +15,12 @@ $B/test_viewer_interop 2>&1 | tail -3
 echo "== models through cuda, --verify, auto and forced precisions"
 for m in .carry/models/*.ply .carry/models/*.obj; do
   for p in auto float double; do
-    $B/cudahull hull $m --backend cuda --verify --precision $p -q --stats - | python3 -c "import json,sys; j=json.load(sys.stdin); print('$m', '$p', j['precision'], j['hull_vertices'], j['verified'])"
+    $B/cudahull hull $m --backend cuda --engine stepping --verify --precision $p -q --stats - | python3 -c "import json,sys; j=json.load(sys.stdin); print('$m', '$p', j['precision'], j['hull_vertices'], j['verified'])"
   done
 done
 echo "== float and double, same points, Qhull in the same run"
 for d in cube ball; do for p in float double float double; do
-  $B/cudahull bench --dist $d --n 10000000 --repeat 3 --precision $p --vs qhull --json | tee -a $O/bench_precision.jsonl
+  $B/cudahull bench --dist $d --n 10000000 --repeat 3 --engine stepping --precision $p --vs qhull --json | tee -a $O/bench_precision.jsonl
 done; done
 echo "== float path before (84aa319) and after, alternating"
 for round in 1 2; do

@@ -515,13 +515,24 @@ int bench_in(const BenchOptions& o) {
 
 }  // namespace
 
-int run_hull(const HullOptions& o) {
+// --engine auto: the resident engine where it runs on a GPU (the backend CUDA, or auto with a usable
+// device), the stepping engine on the CPU, whose worker threads make it the faster one there.
+std::string resolve_engine(const std::string& engine, const std::string& backend) {
+  if (engine != "auto") return engine;
+  return backend != "cpu" && query_cuda_device().usable ? "resident" : "stepping";
+}
+
+int run_hull(const HullOptions& options) {
+  HullOptions o = options;
+  o.engine = resolve_engine(o.engine, o.backend);
   return resolve_precision(precision_from_name(o.precision), o.input) == Precision::kDouble
              ? hull_in<Point3d>(o)
              : hull_in<Point3>(o);
 }
 
-int run_bench(const BenchOptions& o) {
+int run_bench(const BenchOptions& options) {
+  BenchOptions o = options;
+  o.engine = resolve_engine(o.engine, o.backend);
   return resolve_precision(precision_from_name(o.precision), o.input) == Precision::kDouble
              ? bench_in<Point3d>(o)
              : bench_in<Point3>(o);

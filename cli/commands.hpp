@@ -25,7 +25,8 @@ struct HullOptions {
   std::string output;        // -o: .obj, .off or .ply
   std::string vertices_out;  // --vertices-out
   std::string backend = "auto";
-  std::string engine = "stepping";  // --engine: "stepping" (records, the viewer's) or "resident" (issue 15)
+  std::string engine =
+      "auto";  // --engine: "auto", "stepping" (the host edits the mesh) or "resident" (issue 15)
   // --precision: "auto" (the file's auto_precision(): double for text formats and double PLY, float for
   // binary float PLY), "float" or "double".
   std::string precision = "auto";
@@ -43,8 +44,8 @@ struct BenchOptions {
   std::uint64_t count = 1000000;
   std::uint64_t seed = 1;
   std::string backend = "auto";
-  std::string engine = "stepping";  // as for hull
-  std::string precision = "auto";   // as for hull; "auto" is float for a generated distribution
+  std::string engine = "auto";     // as for hull
+  std::string precision = "auto";  // as for hull; "auto" is float for a generated distribution
   int repeat = 3;
   std::string versus;  // "qhull" or empty
   bool json = false;

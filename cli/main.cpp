@@ -21,9 +21,10 @@ const char* kPrecisionHelp =
     "and generated points), float or double";
 
 const char* kEngineHelp =
-    "stepping (Algorithm 1 an iteration at a time with its records; the host edits the mesh) or resident "
-    "(the whole iteration where the points are: on the GPU with a CUDA backend; with --trace or --table it "
-    "steps an iteration at a time and reads back its records)";
+    "auto (resident on a GPU, stepping on the CPU), stepping (Algorithm 1 an iteration at a time; the host "
+    "edits the mesh, the backend moves the points) or resident (the whole iteration where the points are: "
+    "on the GPU with a CUDA backend, else one host thread; with --trace or --table it steps an iteration at "
+    "a time and reads back its records)";
 
 int fail(int code, const std::string& message) {
   return cudahull::report_error("cudahull", code, message);
@@ -70,7 +71,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
       ->capture_default_str();
   hull_cmd->add_option("--engine", hull.engine, kEngineHelp)
-      ->check(CLI::IsMember({"stepping", "resident"}))
+      ->check(CLI::IsMember({"auto", "stepping", "resident"}))
       ->capture_default_str();
   hull_cmd->add_option("--precision", hull.precision, kPrecisionHelp)
       ->check(CLI::IsMember({"auto", "float", "double"}))
@@ -94,7 +95,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
       ->capture_default_str();
   bench_cmd->add_option("--engine", bench.engine, kEngineHelp)
-      ->check(CLI::IsMember({"stepping", "resident"}))
+      ->check(CLI::IsMember({"auto", "stepping", "resident"}))
       ->capture_default_str();
   bench_cmd->add_option("--precision", bench.precision, kPrecisionHelp)
       ->check(CLI::IsMember({"auto", "float", "double"}))
