@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <type_traits>
@@ -115,6 +116,12 @@ std::vector<Point> copy_checked(std::size_t count, Coordinate coordinate) {
   return points;
 }
 
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
 struct Vec {
   double x, y, z;
 };
@@ -136,33 +143,40 @@ Vec as_vec(const Point& p) {
   return {static_cast<double>(p.x), static_cast<double>(p.y), static_cast<double>(p.z)};
 }
 
-// neighbors[f][k] = the face holding the reverse of the edge opposite corner k, found by sorting the
-// directed edges (each appears once in a closed 2-manifold with consistent orientation).
-std::vector<std::array<std::int32_t, 3>> face_neighbors(const std::vector<std::array<PointIndex, 3>>& faces) {
-  struct DirectedEdge {
-    std::uint64_t key;  // from << 32 | to
-    std::int32_t face;
-  };
-  std::vector<DirectedEdge> edges;
-  edges.reserve(faces.size() * 3);
-  auto key = [](PointIndex from, PointIndex to) { return std::uint64_t{from} << 32 | to; };
-  for (std::size_t f = 0; f < faces.size(); ++f) {
+// neighbors[f][k] = the face holding the reverse of the edge opposite corner k (each directed edge appears
+// once in a closed 2-manifold with consistent orientation).  `triangles` index `vertex_count` vertices: the
+// directed edges are grouped by their first vertex (a counting sort), so each reverse is found among a
+// vertex's few edges; sorting all edges took most of a 28K-face hull's time outside the engine.
+std::vector<std::array<std::int32_t, 3>> face_neighbors(const std::vector<Triangle>& triangles,
+                                                        std::size_t vertex_count) {
+  std::vector<std::uint32_t> start(vertex_count + 1, 0);
+  for (const Triangle& t : triangles) {
+    for (int k = 0; k < 3; ++k)
+      ++start[t[k] + 1];
+  }
+  for (std::size_t v = 0; v < vertex_count; ++v)
+    start[v + 1] += start[v];
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1), to(3 * triangles.size()),
+      face(3 * triangles.size());
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
     for (int k = 0; k < 3; ++k) {
-      edges.push_back({key(faces[f][k], faces[f][(k + 1) % 3]), static_cast<std::int32_t>(f)});
+      const std::uint32_t slot = fill[triangles[f][k]]++;
+      to[slot] = triangles[f][(k + 1) % 3];
+      face[slot] = static_cast<std::uint32_t>(f);
     }
   }
-  std::sort(edges.begin(), edges.end(),
-            [](const DirectedEdge& a, const DirectedEdge& b) { return a.key < b.key; });
-  std::vector<std::array<std::int32_t, 3>> neighbors(faces.size(), {-1, -1, -1});
-  for (std::size_t f = 0; f < faces.size(); ++f) {
+  std::vector<std::array<std::int32_t, 3>> neighbors(triangles.size(), {-1, -1, -1});
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
     for (int k = 0; k < 3; ++k) {
       // The edge opposite corner k runs from corner k+1 to corner k+2; its neighbour holds it reversed.
-      const std::uint64_t wanted = key(faces[f][(k + 2) % 3], faces[f][(k + 1) % 3]);
-      const auto it = std::lower_bound(edges.begin(), edges.end(), wanted,
-                                       [](const DirectedEdge& e, std::uint64_t k2) { return e.key < k2; });
-      if (it == edges.end() || it->key != wanted)
-        throw std::logic_error("convex_hull: the mesh is not closed");
-      neighbors[f][k] = it->face;
+      const std::uint32_t from = triangles[f][(k + 2) % 3], wanted = triangles[f][(k + 1) % 3];
+      for (std::uint32_t slot = start[from]; slot < start[from + 1]; ++slot) {
+        if (to[slot] == wanted) {
+          neighbors[f][k] = static_cast<std::int32_t>(face[slot]);
+          break;
+        }
+      }
+      if (neighbors[f][k] < 0) throw std::logic_error("convex_hull: the mesh is not closed");
     }
   }
   return neighbors;
@@ -220,7 +234,7 @@ ConvexHull describe(const BasicHullMesh<Point>& mesh, std::string backend) {
   }
   hull.volume = six_volume / 6;
   hull.area = twice_area / 2;
-  hull.neighbors = face_neighbors(hull.faces);
+  hull.neighbors = face_neighbors(mesh.triangles, mesh.vertices.size());
   return hull;
 }
 
@@ -277,7 +291,12 @@ ConvexHull device_hull_in(const Scalar* device_xyz, std::size_t count) {
   ResidentCudaHull<Point> resident;
   resident.use_device_points(checked.points, count);
   ResidentStats stats;
-  ConvexHull hull = describe(resident.run(&stats), "cuda-resident");
+  const Clock::time_point run_start = Clock::now();
+  const BasicHullMesh<Point> mesh = resident.run(&stats);
+  const Clock::time_point describe_start = Clock::now();
+  ConvexHull hull = describe(mesh, "cuda-resident");
+  hull.engine_ms = std::chrono::duration<double, std::milli>(describe_start - run_start).count();
+  hull.describe_ms = ms_since(describe_start);
   stats.host_syncs += checked.host_syncs;
   stats.bytes_from_device += checked.bytes_from_device;
   hull.resident_stats = std::move(stats);

@@ -74,7 +74,8 @@ def main():
         assert len(hull.vertices) == cli["hull_vertices"]
         record({"what": f"numpy {engine}", "ms": median, "times_ms": times, "backend": hull.backend,
                 "vs_cli_total_plus_upload": median / (cli["total_ms"] + cli["upload_ms"]),
-                "bytes_from_device": (hull.stats or {}).get("bytes_from_device")})
+                "bytes_from_device": (hull.stats or {}).get("bytes_from_device"),
+                "engine_ms": (hull.stats or {}).get("engine_ms"), "describe_ms": (hull.stats or {}).get("describe_ms")})
 
     for library in ("cupy", "torch"):
         try:
@@ -93,7 +94,8 @@ def main():
         assert np.array_equal(hull.vertices, reference.vertices)
         record({"what": f"{library} resident (in place)", "ms": median, "times_ms": times, "backend": hull.backend,
                 "bytes_from_device": hull.stats["bytes_from_device"], "host_syncs": hull.stats["host_syncs"],
-                "points_read_back": hull.stats["points_read_back"], "point_bytes": points.nbytes})
+                "points_read_back": hull.stats["points_read_back"], "point_bytes": points.nbytes,
+                "engine_ms": hull.stats["engine_ms"], "describe_ms": hull.stats["describe_ms"]})
 
     if not args.no_scipy:
         import scipy

@@ -97,7 +97,12 @@ nb::object stats_to_dict(const std::optional<ResidentStats>& stats) {
 
 nb::dict hull_to_dict(ConvexHull&& hull) {
   nb::dict d;
-  d["stats"] = stats_to_dict(hull.resident_stats);
+  nb::object stats = stats_to_dict(hull.resident_stats);
+  if (!stats.is_none() && hull.engine_ms > 0) {
+    stats["engine_ms"] = hull.engine_ms;
+    stats["describe_ms"] = hull.describe_ms;
+  }
+  d["stats"] = stats;
   d["dimension"] = hull.dimension;
   d["precision"] = precision_name(hull.precision);
   d["backend"] = hull.backend;

@@ -62,6 +62,9 @@ struct ConvexHull {
   // exact checks; resident.hpp), empty for the stepping engine.  For convex_hull_device() they include
   // the input check's wait and read-back.
   std::optional<ResidentStats> resident_stats;
+  // Where convex_hull_device()'s time went (host clock, ms): the engine's run, and making this result from
+  // its mesh (faces, neighbours, planes, measures).  Zero on the other paths.
+  double engine_ms = 0, describe_ms = 0;
 };
 
 // The exact convex hull of `points`.  Throws InputError (one line naming the point index) for a NaN or
