@@ -115,12 +115,15 @@ class _DeviceKind:
         return torch.cat([first, second]).contiguous()
 
 
-def _check_engine(engine, on_device):
+def _check_engine(engine, on_device, backend="auto"):
     if engine not in ("auto", "stepping", "resident"):
         raise ValueError(f"engine must be auto, stepping or resident, not '{engine}'")
     if engine == "auto":
-        # The stepping engine is the command line's default; only the resident engine reads GPU memory.
-        return "resident" if on_device else "stepping"
+        # As the command line's --engine auto: the resident engine where it runs on a GPU (only it reads
+        # GPU memory), the stepping engine on the CPU, whose worker threads make it the faster one there.
+        if on_device:
+            return "resident"
+        return "resident" if backend != "cpu" and _cuda_device()[0] else "stepping"
     if on_device and engine == "stepping":
         raise ValueError("the stepping engine edits the mesh on the host and takes host points: points in GPU "
                          "memory take engine 'resident' (or 'auto')")
@@ -173,12 +176,13 @@ def convex_hull(points, backend="auto", precision="auto", engine="auto", device_
     ``stats``: the resident engine's counters (``host_syncs``, ``bytes_from_device``,
     ``points_read_back``, ...), None for the stepping engine.
 
-    ``engine``: "auto" is "stepping" (the command line's default) for host points and "resident" for points
-    in GPU memory, which only it reads in place.  ``device_results=True`` returns the arrays of a CuPy or
+    ``engine``: "auto" is "resident" where the hull runs on a GPU (points in GPU memory, which only it reads
+    in place, or host points with a usable GPU and backend "auto" or "cuda") and "stepping" on the CPU, as
+    the command line's ``--engine auto``.  ``device_results=True`` returns the arrays of a CuPy or
     PyTorch input as CuPy arrays or tensors on its device.
     """
     protocol = _cuda_protocol(points)
-    engine = _check_engine(engine, protocol is not None)
+    engine = _check_engine(engine, protocol is not None, backend)
     if protocol is None:
         return _cudahull.convex_hull(_as_points(points), backend, precision, engine)
     kind = _DeviceKind(points)
@@ -218,8 +222,9 @@ class ConvexHull:
     incremental : bool
         Accepted for scipy's signature; ``add_points`` works either way.
     engine : "auto", "stepping" or "resident"
-        "auto": "stepping" (Algorithm 1 an iteration at a time, the command line's default) for host
-        points, "resident" (every phase on the device) for points in GPU memory.
+        "auto", as the command line's ``--engine auto``: "resident" (every phase on the device) where the
+        hull runs on a GPU, which points in GPU memory need; "stepping" (Algorithm 1 an iteration at a
+        time, the host editing the mesh) on the CPU.
     device_results : bool
         For a CuPy or PyTorch input: the array attributes (``vertices``, ``simplices``, ``neighbors``,
         ``equations``, ``polygon``, ``coplanar``, ``min_bound``, ``max_bound``) as arrays of the input's
@@ -262,7 +267,7 @@ class ConvexHull:
             raise ValueError("qhull_options has no meaning here: the hull is exact, with no tolerance")
         self._protocol = _cuda_protocol(points)
         self._kind = _DeviceKind(points) if self._protocol else None
-        self._engine_choice = _check_engine(engine, self._protocol is not None)
+        self._engine_choice = _check_engine(engine, self._protocol is not None, backend)
         self._device_results = bool(device_results) and self._kind is not None
         if self._device_results:
             self._kind.require_known("device_results=True")
@@ -331,7 +336,7 @@ class ConvexHull:
         self.vertices = self._result_array(self._host_vertices)
         self.simplices = self._result_array(original(result["simplices"]).reshape(-1, 3))
         self.polygon = self._result_array(original(result["polygon"]))
-        self.neighbors = self._result_array(result["neighbors"].astype(np.int32))
+        self.neighbors = self._result_array(result["neighbors"].astype(np.int32, copy=False))
         self.equations = self._result_array(result["equations"])
         self.volume = result["volume"]
         self.area = result["area"]

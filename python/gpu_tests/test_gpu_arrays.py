@@ -103,11 +103,13 @@ def test_same_hull_as_numpy(lib, name, dtype):
     assert got.backend == "cuda-resident" and got.stats["iterations"] >= 0
     # The same engine from host memory: the same mesh, face for face.
     assert_same_hull(got, cudahull.ConvexHull(points, engine="resident"))
-    # The stepping engine (the NumPy default): the same exact hull; the same triangles where they are unique.
-    assert_same_hull(got, cudahull.ConvexHull(points), exact_mesh=False)
+    # The stepping engine, host points checked on the host: the same exact hull; the same triangles where
+    # they are unique.
+    stepping = cudahull.ConvexHull(points, engine="stepping")
+    assert_same_hull(got, stepping, exact_mesh=False)
     # shifted in float32 rounds to a coarse grid, where four points on a plane are no longer rare.
     if name in GENERAL_POSITION and not (name == "shifted" and dtype == np.float32):
-        assert faces(got).keys() == faces(cudahull.ConvexHull(points)).keys()
+        assert faces(got).keys() == faces(stepping).keys()
         qhull = scipy.spatial.ConvexHull(points.astype(np.float64))
         assert np.array_equal(to_numpy(got.vertices), qhull.vertices)
         assert got.volume == pytest.approx(qhull.volume, rel=1e-9)
@@ -158,7 +160,7 @@ def test_non_finite_points_raise_the_numpy_paths_error(lib, dtype, bad):
     points[1234, 1] = bad
     points[5678, 0] = np.nan  # a later bad point: the first is named, as on the host
     with pytest.raises(ValueError) as host_error:
-        cudahull.ConvexHull(points)
+        cudahull.ConvexHull(points, engine="stepping")  # checked on the host
     with pytest.raises(ValueError) as device_error:
         cudahull.ConvexHull(on_device(lib, points))
     assert str(device_error.value) == str(host_error.value)
@@ -170,7 +172,7 @@ def test_out_of_range_doubles_raise_the_numpy_paths_error(lib, value, precision)
     points = DISTRIBUTIONS["gauss"].copy()
     points[42, 2] = value
     with pytest.raises(ValueError) as host_error:
-        cudahull.ConvexHull(points, precision=precision)
+        cudahull.ConvexHull(points, precision=precision, engine="stepping")
     with pytest.raises(ValueError) as device_error:
         cudahull.ConvexHull(on_device(lib, points), precision=precision)
     assert str(device_error.value) == str(host_error.value)
@@ -205,8 +207,9 @@ def test_add_points_on_the_device(lib):
     hull = cudahull.ConvexHull(on_device(lib, points[:half]))
     hull.add_points(on_device(lib, points[half:]))
     assert hull.npoints == len(points)
-    assert np.array_equal(hull.vertices, cudahull.ConvexHull(points).vertices)
-    assert hull.volume == pytest.approx(cudahull.ConvexHull(points).volume, rel=1e-12)
+    want = cudahull.ConvexHull(points, engine="stepping")
+    assert np.array_equal(hull.vertices, want.vertices)
+    assert hull.volume == pytest.approx(want.volume, rel=1e-12)
     with pytest.raises(ValueError, match="takes .* points in GPU memory"):
         hull.add_points(points[:10])
 

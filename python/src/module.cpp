@@ -58,6 +58,18 @@ nb::object rows_to_numpy(const Rows& rows, Get get) {
   return to_numpy(std::move(flat), {rows.size(), K});
 }
 
+// The same from rows already laid out as NumPy wants them: the vector's memory goes to NumPy uncopied (a
+// large hull's copies cost milliseconds).
+template <class T, std::size_t K>
+nb::object take_rows(std::vector<std::array<T, K>>&& rows) {
+  static_assert(sizeof(std::array<T, K>) == K * sizeof(T), "rows must be contiguous");
+  auto* owned = new std::vector<std::array<T, K>>(std::move(rows));
+  nb::capsule owner(owned, [](void* p) noexcept { delete static_cast<std::vector<std::array<T, K>>*>(p); });
+  return nb::ndarray<nb::numpy, T>(owned->empty() ? nullptr : owned->front().data(), {owned->size(), K},
+                                   owner)
+      .cast();
+}
+
 template <class T, class Rows, class Get>
 nb::object column_to_numpy(const Rows& rows, Get get) {
   std::vector<T> column;
@@ -110,11 +122,9 @@ nb::dict hull_to_dict(ConvexHull&& hull) {
   d["area"] = hull.area;
   d["vertices"] = to_numpy(std::move(hull.vertices));
   d["polygon"] = to_numpy(std::move(hull.polygon));
-  d["simplices"] =
-      rows_to_numpy<std::uint32_t, 3>(hull.faces, [](const auto& f, std::size_t k) { return f[k]; });
-  d["neighbors"] =
-      rows_to_numpy<std::int32_t, 3>(hull.neighbors, [](const auto& n, std::size_t k) { return n[k]; });
-  d["equations"] = rows_to_numpy<double, 4>(hull.planes, [](const auto& p, std::size_t k) { return p[k]; });
+  d["simplices"] = take_rows(std::move(hull.faces));
+  d["neighbors"] = take_rows(std::move(hull.neighbors));
+  d["equations"] = take_rows(std::move(hull.planes));
   return d;
 }
 

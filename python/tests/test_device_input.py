@@ -105,7 +105,7 @@ def test_device_array_without_a_gpu_is_a_clear_device_error(array):
 
 
 def test_host_engines_and_stats():
-    """engine="auto" is the stepping engine for host points (no counters); the resident engine reports
+    """engine="auto" on the CPU backend is the stepping engine (no counters); the resident engine reports
     its counters and gives the same exact hull."""
     points = np.random.default_rng(5).uniform(-1, 1, size=(3000, 3))
     stepping = cudahull.ConvexHull(points, backend="cpu")
