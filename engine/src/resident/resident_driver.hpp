@@ -750,13 +750,17 @@ class ResidentHull {
       won_.grow(work + 1);
       cands_.grow(work);
       won_rank_.grow(work + 1);
-      FindCandidate<Point> find{view(), {}};
       if (recording_) {
         recording_->round_first_entry.push_back(static_cast<u32>(entries_used_));
-        find.log = RejectionLog{rejections_.data(), rejection_count_.data(), rejection_capacity_, round_};
+        const FindCandidate<Point, RejectionLog> find{
+            view(), {rejections_.data(), rejection_count_.data(), rejection_capacity_, round_}};
+        exec_.for_each(work,
+                       Claim<Point, FindCandidate<Point, RejectionLog>>{
+                           find, work_list_.data(), round_, claim_.data(), look_.data(), cands_.data()});
+      } else {
+        exec_.for_each(work, Claim<Point>{FindCandidate<Point>{view(), {}}, work_list_.data(), round_,
+                                          claim_.data(), look_.data(), cands_.data()});
       }
-      exec_.for_each(
-          work, Claim<Point>{find, work_list_.data(), round_, claim_.data(), look_.data(), cands_.data()});
       exec_.for_each(work, Won{round_, claim_.data(), cands_.data(), won_.data()});
       const u32 winners = exec_.exclusive_scan(won_.data(), won_rank_.data(), work);
       // The normal end: no work face has a candidate (a round with candidates always has a winner, the

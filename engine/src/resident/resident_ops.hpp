@@ -397,7 +397,8 @@ struct Around {
 };
 
 // Records (the viewer, --trace): the candidates a round turned down, as FindCandidate meets them.  Only
-// the recording driver gives it somewhere to write; the fast paths leave `at` null.
+// the recording driver's rounds log them (FindCandidate<Point, RejectionLog>); the fast paths' NoLog
+// compiles the logging away.
 enum RejectionKind : u32 {
   kRejectFoldover = 0,     // a flip whose new faces would not keep c strictly below (Fig. 5, seen from c)
   kRejectNotManifold = 1,  // a flip whose new edge is already an edge of the mesh
@@ -406,6 +407,9 @@ enum RejectionKind : u32 {
 struct Rejection {
   u32 kind, round, id;  // id: 6 f + slot, as Candidate::id
   u32 vertex[4];        // flip: u, v, x, y; removal: v, a, b, d
+};
+struct NoLog {
+  CUDAHULL_HD void add(u32, u32, u32, u32, u32, u32) const {}
 };
 struct RejectionLog {
   Rejection* at = nullptr;
@@ -418,10 +422,10 @@ struct RejectionLog {
   }
 };
 
-template <class Point>
+template <class Point, class Log = NoLog>
 struct FindCandidate {
   MeshView<Point> m;
-  RejectionLog log;  // records only
+  Log log;
 
   // Edge i of f, owned by f when f is the lower of its two faces: a concave edge whose flip keeps both new
   // faces' cones proper.
@@ -530,9 +534,9 @@ struct FixLinks {
 };
 
 // Each work face finds its first candidate, keeps it, and claims the candidate's faces.
-template <class Point>
+template <class Point, class Find = FindCandidate<Point>>
 struct Claim {
-  FindCandidate<Point> find;
+  Find find;
   const u32* work_list;
   u32 round;
   u64* claim;
