@@ -85,6 +85,25 @@ TEST(ConvexHullApi, BallInEitherPrecisionMatchesQhullAndTheChecker) {
   EXPECT_EQ(from_array.volume, in_double.volume);
 }
 
+// The default engine, auto: the resident engine where a GPU runs the hull, the stepping engine (backend
+// "cpu (N threads)") otherwise; every engine gives Qhull's vertices.
+TEST(ConvexHullApi, DefaultEngineIsResidentOnAGpuAndSteppingOnTheCpu) {
+  const std::vector<Point3> points = generate_points(Distribution::kSphere, 3000, 4);
+  const ConvexHull automatic = convex_hull(points);
+  EXPECT_EQ(automatic.backend.substr(0, cuda_status().usable ? 13 : 4),
+            cuda_status().usable ? "cuda-resident" : "cpu ");
+  EXPECT_EQ(automatic.vertices, run_qhull(points).vertex_ids);
+  ConvexHullOptions cpu;
+  cpu.backend = BackendChoice::kCpu;
+  EXPECT_EQ(convex_hull(points, cpu).backend.substr(0, 4), "cpu ");  // "cpu (N threads)": the stepping one
+  cpu.engine = EngineChoice::kResident;
+  const ConvexHull resident = convex_hull(points, cpu);
+  EXPECT_EQ(resident.backend, "cpu-resident");
+  EXPECT_EQ(resident.vertices, automatic.vertices);
+  EXPECT_EQ(engine_from_name("auto"), EngineChoice::kAuto);
+  EXPECT_THROW(engine_from_name("fast"), std::invalid_argument);
+}
+
 TEST(ConvexHullApi, FlatInputGivesThePolygon) {
   const std::vector<Point3d> square{{0, 0, 5}, {2, 0, 5}, {1, 1, 5}, {2, 2, 5}, {0, 2, 5}};
   const ConvexHull hull = convex_hull(square, on_cpu());

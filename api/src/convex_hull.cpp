@@ -389,20 +389,29 @@ template ConvexHull hull_from_mesh(const HullMeshd&, std::string);
 template std::unique_ptr<BasicBackend<Point3>> make_backend(BackendChoice, std::string*);
 template std::unique_ptr<BasicBackend<Point3d>> make_backend(BackendChoice, std::string*);
 
+// EngineChoice::kAuto made definite: the resident engine where it runs on a GPU, else the stepping one.
+static ConvexHullOptions resolved(ConvexHullOptions options) {
+  if (options.engine == EngineChoice::kAuto)
+    options.engine = options.backend != BackendChoice::kCpu && cuda_device_present(nullptr)
+                         ? EngineChoice::kResident
+                         : EngineChoice::kStepping;
+  return options;
+}
+
 ConvexHull convex_hull(const std::vector<Point3>& points, const ConvexHullOptions& options) {
-  return checked_hull(points.size(), vector_coordinate(points), Precision::kFloat, options);
+  return checked_hull(points.size(), vector_coordinate(points), Precision::kFloat, resolved(options));
 }
 
 ConvexHull convex_hull(const std::vector<Point3d>& points, const ConvexHullOptions& options) {
-  return checked_hull(points.size(), vector_coordinate(points), Precision::kDouble, options);
+  return checked_hull(points.size(), vector_coordinate(points), Precision::kDouble, resolved(options));
 }
 
 ConvexHull convex_hull(const float* xyz, std::size_t count, const ConvexHullOptions& options) {
-  return array_hull(xyz, count, Precision::kFloat, options);
+  return array_hull(xyz, count, Precision::kFloat, resolved(options));
 }
 
 ConvexHull convex_hull(const double* xyz, std::size_t count, const ConvexHullOptions& options) {
-  return array_hull(xyz, count, Precision::kDouble, options);
+  return array_hull(xyz, count, Precision::kDouble, resolved(options));
 }
 
 ConvexHull convex_hull_device(const float* device_xyz, std::size_t count, const ConvexHullOptions& options) {
@@ -426,9 +435,10 @@ BackendChoice backend_from_name(const std::string& name) {
 }
 
 EngineChoice engine_from_name(const std::string& name) {
+  if (name == "auto") return EngineChoice::kAuto;
   if (name == "stepping") return EngineChoice::kStepping;
   if (name == "resident") return EngineChoice::kResident;
-  throw std::invalid_argument("engine must be stepping or resident, not '" + name + "'");
+  throw std::invalid_argument("engine must be auto, stepping or resident, not '" + name + "'");
 }
 
 Precision precision_from_name_strict(const std::string& name) {

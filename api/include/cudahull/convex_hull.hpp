@@ -25,13 +25,14 @@ namespace cudahull {
 
 // kAuto: the CUDA backend when a usable device is present, else the CPU (as `cudahull --backend auto`).
 enum class BackendChoice { kAuto, kCpu, kCuda };
-// kStepping: Algorithm 1 an iteration at a time, the host editing the mesh (the command line's default);
-// kResident: every phase where the points are (issue 15, `cudahull --engine resident`).
-enum class EngineChoice { kStepping, kResident };
+// kAuto: kResident where the hull runs on a GPU, kStepping on the CPU (as `cudahull --engine auto`, the
+// command line's default); kStepping: Algorithm 1 an iteration at a time, the host editing the mesh on all
+// cores; kResident: every phase where the points are (issue 15, `cudahull --engine resident`).
+enum class EngineChoice { kAuto, kStepping, kResident };
 
 struct ConvexHullOptions {
   BackendChoice backend = BackendChoice::kAuto;
-  EngineChoice engine = EngineChoice::kStepping;
+  EngineChoice engine = EngineChoice::kAuto;
   // The coordinates the hull is computed in.  kAuto: the input's own type (float stays float, double is
   // exact in double); kFloat rounds double input to float once; kDouble widens float input exactly.
   Precision precision = Precision::kAuto;
@@ -115,7 +116,7 @@ CudaStatus cuda_status();
 
 // "auto", "cpu", "cuda" and back; throws std::invalid_argument for another name.
 BackendChoice backend_from_name(const std::string& name);
-EngineChoice engine_from_name(const std::string& name);  // "stepping" or "resident"
+EngineChoice engine_from_name(const std::string& name);  // "auto", "stepping" or "resident"
 // "auto", "float", "double"; unlike precision_from_name() (types.hpp), a bad name throws.
 Precision precision_from_name_strict(const std::string& name);
 
