@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # An A/B of the resident engine in one run on the GPU machine (its host's times vary by up to 2x between runs):
 # .carry/bin/cudahull_OLD, built here from an earlier commit (e.g. cudahull_3ebe518), against .carry/bin/cudahull,
-# three alternating rounds of each input, Qhull beside the new one; then the gpu tests most affected.
+# first the gpu tests most affected, then three alternating rounds of each input, Qhull beside the new one.
 #   OLD=cudahull_3ebe518 bash bench/resident_ab_h100.sh
 export LD_LIBRARY_PATH=$PWD/.carry/lib
 B=.carry/bin; O=${OUT:-/tmp/out}; mkdir -p $O
