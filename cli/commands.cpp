@@ -305,6 +305,7 @@ int hull_in(const HullOptions& o) {
   if (recorded_resident) {
     resident_stepper->run(on_record);
     resident_run.hull = stepped_hull(*resident_stepper, points);
+    if (const ResidentStats* stats = resident_stepper->resident_stats()) resident_run.stats = *stats;
   } else if (resident) {
     resident_run = run_resident(points, o.backend, o.quiet);
     backend_name = resident_run.backend_name;

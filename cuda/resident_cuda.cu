@@ -804,15 +804,18 @@ class CudaResidentStepper final : public resident::ResidentStepper<Point, reside
   using Base = resident::ResidentStepper<Point, resident::CudaExec>;
 
  public:
-  explicit CudaResidentStepper(const std::vector<Point>& points)
-      : Base(points, nullptr, "cuda-resident", true) {
+  explicit CudaResidentStepper(const std::vector<Point>& points) : Base(points, "cuda-resident", true) {}
+
+ protected:
+  const Point* upload_points() override {
+    const std::vector<Point>& points = *this->points_;
     device_points_.grow(std::max<std::size_t>(points.size(), 1));
     if (!points.empty())
       resident::check(cudaMemcpy(device_points_.data(), points.data(), points.size() * sizeof(Point),
                                  cudaMemcpyHostToDevice),
                       "uploading the points");
     this->exec_.bytes_to_device += points.size() * sizeof(Point);
-    this->exec_points_ = device_points_.data();
+    return device_points_.data();
   }
 
  private:

@@ -22,7 +22,7 @@ class ResidentCudaHull {
   // Borrows `count` points already in this device's memory (a CuPy array, a PyTorch tensor): nothing is
   // copied, and run() reads back only the coordinates its exact checks need (all of them only for
   // lower-dimensional input or section 3.1's tetrahedron).  They must stay unchanged until run() returns.
-  // The caller checks them (finite, in range): resident_cuda.hpp takes them as they are.
+  // The caller checks them (finite, in range): run() uses them as they are.
   void use_device_points(const Point* device_points, std::size_t count);
   // The exact hull of the uploaded points; may run again on the same points.  Throws DeviceError.
   BasicHullMesh<Point> run(ResidentStats* stats = nullptr);

@@ -18,6 +18,7 @@
 #include "cudahull/parallel.hpp"
 #include "cudahull/point_io.hpp"
 #include "qhull_reference.hpp"
+#include "support/mesh_faces.hpp"
 #include "support/oracles.hpp"
 #include "support/point_sets.hpp"
 
@@ -464,17 +465,7 @@ TEST(EngineRestart, RepeatsABatchedRun) {
 // Batched swap rounds (phases/swaps.cpp, swap_edges()) make many swaps at once; their sequence numbers must
 // still be an order in which one swap at a time gives the same mesh (the viewer's sub-steps replay them so).
 // The same points, batched and not, give the same hull; the batched run needs no repair either.
-std::vector<std::array<PointIndex, 3>> face_set(const Mesh& mesh) {
-  std::vector<std::array<PointIndex, 3>> faces;
-  for (FaceId f = 0; f < mesh.face_capacity(); ++f) {
-    if (!mesh.alive(f)) continue;
-    std::array<PointIndex, 3> v = mesh.face(f).v;
-    std::rotate(v.begin(), std::min_element(v.begin(), v.end()), v.end());
-    faces.push_back(v);
-  }
-  std::sort(faces.begin(), faces.end());
-  return faces;
-}
+using testing::face_set;
 
 // The host's parallel helpers: every byte copied and every order sorted, for sizes around their chunking
 // (a trailing empty chunk once made parallel_memcpy copy a negative length).

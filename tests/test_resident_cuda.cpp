@@ -40,7 +40,10 @@ template <class Point>
 BasicHullMesh<Point> on_device_points(const std::vector<Point>& points, ResidentStats* stats) {
   Point* device = nullptr;
   const std::size_t bytes = std::max<std::size_t>(points.size(), 1) * sizeof(Point);
-  EXPECT_EQ(cudaMalloc(reinterpret_cast<void**>(&device), bytes), cudaSuccess);
+  if (cudaMalloc(reinterpret_cast<void**>(&device), bytes) != cudaSuccess) {
+    ADD_FAILURE() << "cudaMalloc of " << bytes << " bytes";
+    return {};
+  }
   EXPECT_EQ(cudaMemcpy(device, points.data(), points.size() * sizeof(Point), cudaMemcpyHostToDevice),
             cudaSuccess);
   BasicHullMesh<Point> out;
@@ -194,7 +197,7 @@ void expect_same_records(const std::vector<Point>& points, const std::string& wh
     const IterationRecord a = host->step(), b = device->step();
     ASSERT_EQ(record_contents(a), record_contents(b)) << what << ", step " << a.iteration;
     if (host->dimension() != 3) continue;
-    std::vector<MeshFace> ha, hb;
+    ASSERT_EQ(host->mesh().face_capacity(), device->mesh().face_capacity()) << what;
     for (FaceId f = 0; f < host->mesh().face_capacity(); ++f) {
       EXPECT_EQ(host->mesh().face(f).v, device->mesh().face(f).v) << what << ", face " << f;
       EXPECT_EQ(host->mesh().face(f).n, device->mesh().face(f).n) << what << ", face " << f;

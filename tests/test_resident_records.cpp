@@ -17,25 +17,11 @@
 #include "cudahull/exact_hull.hpp"
 #include "cudahull/generators.hpp"
 #include "cudahull/resident.hpp"
+#include "support/mesh_faces.hpp"
 #include "support/property_cases.hpp"
 
 namespace cudahull {
 namespace {
-
-using Faces = std::vector<std::array<PointIndex, 3>>;
-
-// The live faces, each rotated to start at its smallest corner, sorted: equal for equal meshes.
-Faces canonical_faces(const Mesh& mesh) {
-  Faces out;
-  for (FaceId f = 0; f < mesh.face_capacity(); ++f) {
-    if (!mesh.alive(f)) continue;
-    std::array<PointIndex, 3> v = mesh.face(f).v;
-    std::rotate(v.begin(), std::min_element(v.begin(), v.end()), v.end());
-    out.push_back(v);
-  }
-  std::sort(out.begin(), out.end());
-  return out;
-}
 
 FaceId face_with_edge(const Mesh& mesh, PointIndex a, PointIndex b, int& slot) {
   for (FaceId f = 0; f < mesh.face_capacity(); ++f) {
@@ -91,8 +77,15 @@ void expect_record_explains_step(const SteppingEngine& engine, Mesh before, cons
       EXPECT_GT(orient3d(P(u), P(v), P(x), P(y)), 0)
           << what << ": swap " << s.sequence << " of a convex edge";
       if (s.kind == SwapKind::kRegular || s.kind == SwapKind::kComplementary) {
-        EXPECT_EQ(s.kind == SwapKind::kRegular, old.adjacent(u, v))
-            << what << ": swap " << s.sequence << " is regular exactly when its edge was in the old mesh";
+        // Regular: an edge of a face refined this step (Fig. 3b), which was an edge of the mesh before it.
+        bool of_refined_face = false;
+        for (const auto& t : r.refined_faces) {
+          for (int k = 0; k < 3; ++k)
+            of_refined_face =
+                of_refined_face || (t[k] == u && t[(k + 1) % 3] == v) || (t[k] == v && t[(k + 1) % 3] == u);
+        }
+        EXPECT_EQ(s.kind == SwapKind::kRegular, of_refined_face) << what << ": swap " << s.sequence;
+        if (s.kind == SwapKind::kRegular) EXPECT_TRUE(old.adjacent(u, v)) << what << ": swap " << s.sequence;
         (s.kind == SwapKind::kRegular ? regular : complementary) += 1;
         const std::array<FaceId, 2> made = before.swap(f, slot);
         EXPECT_TRUE(before.edge_index(made[0], x, u) >= 0 || before.edge_index(made[1], x, u) >= 0) << what;
@@ -105,7 +98,7 @@ void expect_record_explains_step(const SteppingEngine& engine, Mesh before, cons
                      v_turns = orient3d(c, P(y), P(v), P(x)) <= 0;
           EXPECT_TRUE(u_turns || v_turns)
               << what << ": rejected foldover " << s.sequence << " would not fold";
-          EXPECT_EQ(s.beneath_vertex, u_turns ? u : v) << what;
+          EXPECT_EQ(s.beneath_vertex, u_turns == v_turns ? kNoPoint : u_turns ? u : v) << what;
         } else {
           EXPECT_EQ(s.kind, SwapKind::kRejectedEdgeExists) << what;
         }
@@ -131,7 +124,8 @@ void expect_record_explains_step(const SteppingEngine& engine, Mesh before, cons
   EXPECT_EQ(r.swaps_rejected, rejected) << what;
   EXPECT_EQ(r.vertices_removed, removed) << what;
   EXPECT_EQ(r.removals_rejected, removals_rejected) << what;
-  EXPECT_EQ(canonical_faces(before), canonical_faces(engine.mesh())) << what << ": the replayed mesh differs";
+  EXPECT_EQ(testing::face_set(before), testing::face_set(engine.mesh()))
+      << what << ": the replayed mesh differs";
   EXPECT_EQ(r.faces_after, engine.mesh().live_faces()) << what;
   // The decision array: one entry per performed swap and removal, each routing to a face of the new mesh
   // or a later entry.
@@ -163,19 +157,28 @@ void expect_stepped_records(const std::vector<Point>& points, const std::string&
     EXPECT_EQ(r.iteration, static_cast<int>(steps)) << what;
     if (steps > 0 && engine->dimension() == 3 && r.faces_refined > 0)
       expect_record_explains_step(*engine, before, r, what + ", step " + std::to_string(steps));
-    if (explain && steps > 0 && engine->dimension() == 3 && !engine->done()) {
-      // Explain point: its route through the step's entries ends where the engine put it.
-      const std::vector<std::int32_t> after = engine->point_faces();
-      for (PointIndex i = 0; i < points.size(); i += 7) {
-        const std::vector<std::string> lines = engine->explain_route(i, faces_before[i]);
-        ASSERT_FALSE(lines.empty());
-        if (faces_before[i] < 0) continue;
-        const std::string want = after[i] >= 0 ? "face " + std::to_string(after[i]) : "";
-        if (after[i] >= 0)
-          EXPECT_EQ(lines.back(), want) << what << ", point " << i;
-        else
-          EXPECT_TRUE(lines.back() == "internal" || lines.back() == "vertex") << what << ", point " << i;
+    if (steps > 0 && r.faces_refined == 0) {
+      // A stall: the mesh as it was, and the exact finish.
+      EXPECT_TRUE(engine->done()) << what;
+      EXPECT_EQ(r.faces_after, r.faces_before) << what;
+      EXPECT_GT(r.repairs, 0u) << what;
+    }
+    const std::vector<std::int32_t> after = explain ? engine->point_faces() : std::vector<std::int32_t>{};
+    for (PointIndex i = 0; i < after.size(); i += 7) {
+      // Explain point, at every step (the first distribution, the last, a stall): its route through the
+      // step's entries ends where the engine put it.
+      const std::vector<std::string> lines = engine->explain_route(i, steps == 0 ? 0 : faces_before[i]);
+      ASSERT_FALSE(lines.empty());
+      if (steps > 0 && faces_before[i] < 0) continue;
+      if (steps > 0 && r.faces_refined == 0) {
+        EXPECT_EQ(lines.size(), 1u) << what;
+        EXPECT_EQ(lines[0].rfind("the last step refined no face", 0), 0u) << what << ": " << lines[0];
+        continue;
       }
+      if (after[i] >= 0)
+        EXPECT_EQ(lines.back(), "face " + std::to_string(after[i])) << what << ", point " << i;
+      else
+        EXPECT_TRUE(lines.back() == "internal" || lines.back() == "vertex") << what << ", point " << i;
     }
     ++steps;
     ASSERT_LT(steps, 10000u) << what;
@@ -241,6 +244,15 @@ TEST(ResidentRecords, DegenerateAndTinyInputs) {
     const testing::Case c = testing::make_case(id);
     expect_stepped_records(c.points, "property case " + std::to_string(id) + " (" + c.kind + ")", true);
     if (HasFailure()) break;
+  }
+  // Cases whose local edits stall (cospherical points, a small lattice): the stall step, its record and
+  // explain-point, then the exact finish.
+  for (const std::uint64_t id : {2, 194, 513}) {
+    const testing::Case c = testing::make_case(id);
+    ResidentStats stats;
+    resident_hull_host(c.points, &stats);
+    EXPECT_EQ(stats.note.rfind("stalled", 0), 0u) << "property case " << id << ": " << stats.note;
+    expect_stepped_records(c.points, "property case " + std::to_string(id) + " (" + c.kind + ")", true);
   }
 }
 

@@ -683,6 +683,15 @@ std::set<std::array<std::string, 3>> obj_faces(const std::string& path) {
   return faces;
 }
 
+// The sub-steps' count from the viewer's log ("sub-step K of N: ..."): the phases go up to
+// "redistribution" (the step's result), and the one before it is the last edit.  -1 when not logged.
+int substep_count(const std::string& log) {
+  const std::size_t marker = log.find(": redistribution");
+  if (marker == std::string::npos) return -1;
+  const std::size_t of = log.rfind(" of ", marker);
+  return of == std::string::npos ? -1 : std::stoi(log.substr(of + 4));
+}
+
 // Issue 6, item 3: the sub-step mode plays a step phase by phase on the mesh before it.  Replaying the
 // engine's recorded refinements, swaps and removals in their order must end in the engine's own mesh; the
 // first phase is the mesh before the step.
@@ -704,12 +713,8 @@ TEST(ViewerHeadless, SubStepsReplayTheStepToTheEnginesMesh) {
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   EXPECT_THAT(r.err, HasSubstr("refinement: "));
   EXPECT_THAT(r.err, HasSubstr("(Fig. 4)"));  // a removal phase
-  // The phases go up to "redistribution" (the step's result); the one before it is the last edit.
-  const std::size_t marker = r.err.find(": redistribution");
-  ASSERT_NE(marker, std::string::npos) << r.err;
-  const std::size_t of = r.err.rfind(" of ", marker);
-  const int last = std::stoi(r.err.substr(of + 4));
-  ASSERT_GE(last, 3);
+  const int last = substep_count(r.err);
+  ASSERT_GE(last, 3) << r.err;
   const auto result = obj_faces(dir / "result.obj");
   EXPECT_EQ(obj_faces(dir / ("phase_" + std::to_string(last - 1) + ".obj")), result);
   EXPECT_NE(obj_faces(dir / "phase_0.obj"), result);
@@ -753,11 +758,8 @@ TEST(ViewerHeadless, ResidentEngineDebuggerViews) {
                   "--height", "48", "--script", dir.write("substeps.txt", script)});
   ASSERT_EQ(r.exit_code, 0) << describe(r);
   EXPECT_THAT(r.err, HasSubstr("(Fig. 4)"));  // a removal phase
-  const std::size_t marker = r.err.find(": redistribution");
-  ASSERT_NE(marker, std::string::npos) << r.err;
-  const std::size_t of = r.err.rfind(" of ", marker);
-  const int last = std::stoi(r.err.substr(of + 4));
-  ASSERT_GE(last, 3);
+  const int last = substep_count(r.err);
+  ASSERT_GE(last, 3) << r.err;
   ASSERT_LE(last, 60);
   const auto result = obj_faces(dir / "result.obj");
   EXPECT_EQ(obj_faces(dir / ("phase_" + std::to_string(last - 1) + ".obj")), result);

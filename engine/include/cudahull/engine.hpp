@@ -29,6 +29,7 @@ namespace cudahull {
 namespace phases {
 struct SwapScratch;
 }
+struct ResidentStats;
 
 // Each face's cell (section 3): its plane and its three separating planes (through edge i, containing the
 // average of the unit normals of the two faces of the edge), positive inside the cell.
@@ -78,6 +79,8 @@ class SteppingEngine {
   virtual const std::vector<RefinementEntry>& last_refinement() const = 0;
   virtual const std::vector<PointIndex>& removed_vertices() const = 0;
   virtual const IterationRecord& last_record() const = 0;
+  // The resident engine's counters (resident.hpp) when this steps it; null for the stepping Engine.
+  virtual const ResidentStats* resident_stats() const { return nullptr; }
   // result()'s vertex_ids and triangles (its coordinates are point(vertex_ids[k])); valid once done().
   virtual const std::vector<PointIndex>& result_vertex_ids() const = 0;
   virtual const std::vector<Triangle>& result_triangles() const = 0;

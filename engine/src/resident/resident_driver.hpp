@@ -144,7 +144,6 @@ struct RecordedIteration {
   std::vector<Entry> entries;          // the decision entries (Fig. 7): refinements first, then the edits
   std::vector<u32> round_first_entry;  // per round: its first entry
   std::vector<Rejection> rejections;   // what the rounds turned down, by round and candidate (repeats kept)
-  bool rejections_truncated = false;   // more than the log could hold
   std::vector<u32> new_id;             // per face id: its id after the compaction (live faces only)
 };
 
@@ -571,17 +570,8 @@ class ResidentHull {
 
   // One iteration, the host stepping the rounds (HostExec); false when no face could refine.
   bool iterate(ResidentStats& stats) {
-    mark_refined();
-    const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
-    if (refined == 0) return false;
-    stats.refined_faces += refined;
     const std::size_t first = faces_;
-    grow_faces(faces_ + 3 * std::size_t{refined});
-    grow_entries(refined);
-    split();
-    faces_ += 3 * std::size_t{refined};
-    entries_used_ = refined;
-    stats.refine_ms += lap();
+    if (refine_stepped(stats) == 0) return false;
 
     // Flip and flop rounds until no candidate is left (Figs. 3b, 4, 5).
     stepped_rounds(stats, first);
@@ -591,6 +581,22 @@ class ResidentHull {
     compact(faces_);
     stats.route_ms += lap();
     return true;
+  }
+
+  // Refinement with the host waiting for the refined count (the stepped paths): the children from face
+  // `faces_` on, one entry each.  Returns the count (0: no face refines, nothing changed).
+  u32 refine_stepped(ResidentStats& stats) {
+    mark_refined();
+    const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
+    if (refined == 0) return 0;
+    stats.refined_faces += refined;
+    grow_faces(faces_ + 3 * std::size_t{refined});
+    grow_entries(refined);
+    split();
+    faces_ += 3 * std::size_t{refined};
+    entries_used_ = refined;
+    stats.refine_ms += lap();
+    return refined;
   }
 
   // One iteration on an executor that loops the rounds itself (CudaExec), with one wait: the counts the
@@ -752,6 +758,16 @@ class ResidentHull {
       won_rank_.grow(work + 1);
       if (recording_) {
         recording_->round_first_entry.push_back(static_cast<u32>(entries_used_));
+        // Room for every rejection this round can log (six a work face at most), kept in full so that the
+        // records are the same on every executor (a log that overflowed would keep whichever came first).
+        u32 logged = 0;
+        exec_.download(&logged, rejection_count_.data(), 1);
+        if (std::size_t{logged} + 6 * std::size_t{work} > rejection_capacity_) {
+          const std::size_t room = 2 * (std::size_t{logged} + 6 * std::size_t{work});
+          if (room > 0xffffffffu) throw DeviceError("resident engine: too many rejections to record");
+          rejections_.grow(room, logged);
+          rejection_capacity_ = static_cast<u32>(room);
+        }
         const FindCandidate<Point, RejectionLog> find{
             view(), {rejections_.data(), rejection_count_.data(), rejection_capacity_, round_}};
         exec_.for_each(work,
@@ -947,21 +963,12 @@ bool ResidentHull<Point, Exec>::step(ResidentStats& stats, RecordedIteration& ou
   out = RecordedIteration{};
   out.faces_before = faces_;
   lap();
-  mark_refined();
-  const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
-  if (refined == 0) return false;
-  out.refined = refined;
-  stats.refined_faces += refined;
   const std::size_t first = faces_;
-  grow_faces(faces_ + 3 * std::size_t{refined});
-  grow_entries(refined);
-  split();
-  faces_ += 3 * std::size_t{refined};
-  entries_used_ = refined;
-  stats.refine_ms += lap();
+  out.refined = refine_stepped(stats);
+  if (out.refined == 0) return false;
 
   // The rounds, their rejections logged (a face may meet the same one in several rounds: all are kept
-  // here, in order, and the records keep the first).
+  // here, in order, and the records keep the first); stepped_rounds() makes room before each round.
   rejection_capacity_ = static_cast<u32>(std::max<std::size_t>(4096, 2 * faces_));
   rejections_.grow(rejection_capacity_);
   rejection_count_.grow(1);
@@ -978,8 +985,7 @@ bool ResidentHull<Point, Exec>::step(ResidentStats& stats, RecordedIteration& ou
   exec_.download(out.entries.data(), entries_.data(), out.entries.size());
   u32 rejected = 0;
   exec_.download(&rejected, rejection_count_.data(), 1);
-  out.rejections_truncated = rejected > rejection_capacity_;
-  out.rejections.resize(std::min(rejected, rejection_capacity_));
+  out.rejections.resize(rejected);  // all of them: stepped_rounds() made room
   exec_.download(out.rejections.data(), rejections_.data(), out.rejections.size());
   // The log is filled by atomics in any order: by round, then candidate, the same on every executor.
   std::sort(out.rejections.begin(), out.rejections.end(), [](const Rejection& a, const Rejection& b) {

@@ -38,8 +38,8 @@ template HullMeshd resident_hull_host(const std::vector<Point3d>&, ResidentStats
 template <class Point>
 std::unique_ptr<SteppingEngine> make_resident_stepping_engine(const std::vector<Point>& points) {
   if (points.size() >= 0xffffffffu) throw std::invalid_argument("too many points (at most 2^32 - 2)");
-  return std::make_unique<resident::ResidentStepper<Point, resident::HostExec>>(points, points.data(),
-                                                                                "cpu-resident", false);
+  return std::make_unique<resident::ResidentStepper<Point, resident::HostExec>>(points, "cpu-resident",
+                                                                                false);
 }
 template std::unique_ptr<SteppingEngine> make_resident_stepping_engine(const std::vector<Point3>&);
 template std::unique_ptr<SteppingEngine> make_resident_stepping_engine(const std::vector<Point3d>&);

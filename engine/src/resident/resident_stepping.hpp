@@ -10,8 +10,8 @@
 //                 IterationRecord the stepping Engine gives:
 //                   refinements     the entries of kind refine: the killed face's corners and the apex
 //                   swaps           flips, in round order, each round's rejections first; regular when
-//                                   the flipped edge was an edge of the mesh the iteration began with
-//                                   (a refined face's edge, Fig. 3b), complementary otherwise (Fig. 4)
+//                                   the flipped edge is an edge of a face refined this iteration (Fig.
+//                                   3b), complementary otherwise (Fig. 4)
 //                   removals        flops (Fig. 4); rejected ones where the new face would not keep c
 //                                   strictly below, or the surface would not stay a 2-manifold
 //                   decision array  the flip and flop entries as Fig. 7's entries: a flip's plane is the
@@ -24,6 +24,7 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -50,14 +51,10 @@ inline SeparatingPlane plane_through(const Vec3d& a, const Vec3d& b, const Vec3d
 template <class Point, class Exec>
 class ResidentStepper : public SteppingEngine {
  public:
-  // Borrows `points` (the host copy, for coordinates and exact checks); `exec_points` is where the
-  // executor reads them (the same vector on the host, a device copy on the GPU).
-  ResidentStepper(const std::vector<Point>& points, const Point* exec_points, std::string backend_name,
-                  bool device_point_states)
-      : points_(&points),
-        exec_points_(exec_points),
-        name_(std::move(backend_name)),
-        device_states_(device_point_states) {}
+  // Borrows `points` (the host copy, for coordinates and exact checks); upload_points() says where the
+  // executor reads them.
+  ResidentStepper(const std::vector<Point>& points, std::string backend_name, bool device_point_states)
+      : points_(&points), name_(std::move(backend_name)), device_states_(device_point_states) {}
 
   bool done() const override { return done_; }
   void restart() override {
@@ -82,12 +79,16 @@ class ResidentStepper : public SteppingEngine {
     const std::uint64_t to_before = exec_.bytes_to_device, from_before = exec_.bytes_from_device;
     IterationRecord r;
     r.iteration = iteration_++;
+    host_ms_ = 0;
     if (!hull_) {
       first_step(r);
     } else {
       next_step(r);
     }
-    r.backend_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    // host_ms: the records and the mesh made of what came back; backend_ms: the rest, the executor's.
+    r.host_ms = host_ms_;
+    r.backend_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() - host_ms_;
     r.bytes_to_backend = exec_.bytes_to_device - to_before;
     r.bytes_from_backend = exec_.bytes_from_device - from_before;
     record_ = r;
@@ -145,21 +146,33 @@ class ResidentStepper : public SteppingEngine {
   const std::vector<Triangle>& result_triangles() const override { return result_.triangles; }
 
   const BasicHullMesh<Point>& result() const { return result_; }
-  const ResidentStats& stats() const { return stats_; }
+  const ResidentStats* resident_stats() const override { return &stats_; }
 
  protected:
+  // Where the executor reads the points; called once, on the first step (the host executor reads the
+  // caller's vector and needs nothing; the GPU's stepper uploads them).
+  virtual const Point* upload_points() { return points_->data(); }
+
   Exec exec_;
   const std::vector<Point>* points_;
-  const Point* exec_points_;  // the executor's copy; a subclass that makes it sets it before step()
 
  private:
   void first_step(IterationRecord& r) {
+    if (!exec_points_) {
+      // The points go to the executor on the first step (and stay for restarts), counted in its record.
+      const auto t0 = std::chrono::steady_clock::now();
+      exec_points_ = upload_points();
+      r.upload_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    }
     hull_.emplace(exec_, exec_points_, points_->size(), points_);
     r.external_before = points_->size();
     BasicHullMesh<Point> answer;
     if (!hull_->begin(stats_, answer)) {
-      dimension_ = answer.dimension;
-      if (points_->empty()) dimension_ = -1;
+      // The answer already (no points, lower-dimensional input, or a tetrahedron too flat for an interior
+      // point: then the exact hull of all the points, a repair); no mesh to query.
+      hull_.reset();
+      dimension_ = points_->empty() ? -1 : answer.dimension;
+      if (dimension_ == 3) r.repairs = 1;
       result_ = std::move(answer);
       r.note = points_->empty() ? "no points" : stats_.note;
       done_ = true;
@@ -179,11 +192,18 @@ class ResidentStepper : public SteppingEngine {
   void next_step(IterationRecord& r) {
     r.faces_before = mesh_.live_faces();
     r.external_before = hull_->active_points();
+    refinement_.clear();
+    decisions_.clear();
     if (!hull_->step(stats_, last_)) {
+      // A stall: no face could refine, the mesh is as it was; the exact finish answers.
+      r.faces_after = r.faces_before;
+      r.external_after = r.external_before;
       finish(r, true);
       return;
     }
+    const auto t0 = std::chrono::steady_clock::now();
     describe(last_, r);
+    host_ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     read_mesh();
     r.faces_after = mesh_.live_faces();
     r.external_after = hull_->active_points();
@@ -202,6 +222,7 @@ class ResidentStepper : public SteppingEngine {
   void read_mesh() {
     std::vector<u32> fv, fn;
     hull_->read_mesh(fv, fn);
+    const auto t0 = std::chrono::steady_clock::now();
     std::vector<MeshFace> faces(fv.size() / 3);
     for (std::size_t f = 0; f < faces.size(); ++f) {
       for (int k = 0; k < 3; ++k) {
@@ -210,6 +231,7 @@ class ResidentStepper : public SteppingEngine {
       }
     }
     mesh_.assign(faces);
+    host_ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     hull_->read_face_extremes(extremes_);
   }
 
@@ -236,9 +258,15 @@ class ResidentStepper : public SteppingEngine {
       }
     }
     auto corner = [&](u32 f, int k) { return it.fv[3 * f + k]; };
-    // A flip of an edge of the mesh the iteration began with (mesh_, not yet replaced) is a regular swap:
-    // asked of that mesh's adjacency per flip (a set of all its edges cost seconds a step at 2M faces).
-    auto old_edge = [&](u32 a, u32 b) { return mesh_.has_vertex(a) && mesh_.adjacent(a, b); };
+    auto edge_key = [](u32 a, u32 b) { return (u64{std::min(a, b)} << 32) | std::max(a, b); };
+    // Regular swaps are of the refined faces' edges (Fig. 3b); complementary ones of edges made this
+    // iteration or of other faces around (Fig. 4).
+    std::unordered_set<u64> refined_edges;
+    refined_edges.reserve(3 * it.refined);
+    for (u32 e = 0; e < it.refined; ++e) {
+      for (int k = 0; k < 3; ++k)
+        refined_edges.insert(edge_key(corner(killed[e][0], k), corner(killed[e][0], (k + 1) % 3)));
+    }
 
     // Refinements (Fig. 3a): the old face, its apex, and the planes through c, the apex and each corner.
     refinement_.clear();
@@ -288,7 +316,7 @@ class ResidentStepper : public SteppingEngine {
     r.decisions = decisions_;
     r.decision_entries = decisions_.size();
 
-    std::unordered_set<std::string> seen;  // rejections already recorded this iteration
+    std::set<std::array<u32, 5>> seen;  // rejections already recorded this iteration
     int sequence = 0;
     std::size_t next_rejection = 0;
     const std::size_t rounds = it.round_first_entry.size();
@@ -297,10 +325,8 @@ class ResidentStepper : public SteppingEngine {
       for (; next_rejection < it.rejections.size() && it.rejections[next_rejection].round <= round;
            ++next_rejection) {
         const Rejection& rej = it.rejections[next_rejection];
-        const std::string key = std::to_string(rej.kind) + ":" + std::to_string(rej.vertex[0]) + ":" +
-                                std::to_string(rej.vertex[1]) + ":" + std::to_string(rej.vertex[2]) + ":" +
-                                std::to_string(rej.vertex[3]);
-        if (!seen.insert(key).second) continue;
+        if (!seen.insert({rej.kind, rej.vertex[0], rej.vertex[1], rej.vertex[2], rej.vertex[3]}).second)
+          continue;
         record_rejection(rej, sequence++, r);
       }
       const std::size_t begin = it.round_first_entry[k];
@@ -311,7 +337,7 @@ class ResidentStepper : public SteppingEngine {
         if (entry.kind == kFlip) {
           SwapRecord s;
           const u32 u = corner(entry.out[0], 1), v = corner(entry.out[1], 1);
-          s.kind = old_edge(u, v) ? SwapKind::kRegular : SwapKind::kComplementary;
+          s.kind = refined_edges.count(edge_key(u, v)) ? SwapKind::kRegular : SwapKind::kComplementary;
           s.sequence = sequence++;
           s.old_edge[0] = u;
           s.old_edge[1] = v;
@@ -342,9 +368,6 @@ class ResidentStepper : public SteppingEngine {
         }
       }
     }
-    if (it.rejections_truncated)
-      r.note = "more rejected candidates than the log holds: the records list the first " +
-               std::to_string(it.rejections.size());
   }
 
   void record_rejection(const Rejection& rej, int sequence, IterationRecord& r) const {
@@ -371,11 +394,16 @@ class ResidentStepper : public SteppingEngine {
     s.new_edge[1] = y;
     if (rej.kind == kRejectFoldover) {
       s.kind = SwapKind::kRejectedFoldover;
-      const bool u_turns = orient3d(c_, point(x), point(u), point(y)) <= 0;
-      s.beneath_vertex = u_turns ? u : v;
-      const std::array<PointIndex, 3> other =
-          u_turns ? std::array<PointIndex, 3>{y, v, x} : std::array<PointIndex, 3>{x, u, y};
-      std::copy(other.begin(), other.end(), s.beneath_triangle);
+      // One new face turned over: its old-edge vertex lies beneath the other.  Both (the four points
+      // coplanar with c, seen edge on): no single vertex is beneath, and none is named.
+      const bool u_turns = orient3d(c_, point(x), point(u), point(y)) <= 0,
+                 v_turns = orient3d(c_, point(y), point(v), point(x)) <= 0;
+      if (u_turns != v_turns) {
+        s.beneath_vertex = u_turns ? u : v;
+        const std::array<PointIndex, 3> other =
+            u_turns ? std::array<PointIndex, 3>{y, v, x} : std::array<PointIndex, 3>{x, u, y};
+        std::copy(other.begin(), other.end(), s.beneath_triangle);
+      }
     } else {
       s.kind = SwapKind::kRejectedEdgeExists;
     }
@@ -383,6 +411,8 @@ class ResidentStepper : public SteppingEngine {
     r.swaps.push_back(s);
   }
 
+  const Point* exec_points_ = nullptr;  // upload_points()'s answer, kept across restarts
+  double host_ms_ = 0;                  // this step's host work on what came back
   std::string name_;
   bool device_states_;
   mutable std::optional<ResidentHull<Point, Exec>> hull_;  // reads back on const queries
@@ -439,6 +469,8 @@ std::vector<std::string> ResidentStepper<Point, Exec>::explain_route(PointIndex 
     return verdict(f, lines);
   }
   const RecordedIteration& it = last_;
+  if (it.killer.empty())
+    return {"the last step refined no face (a stall): the exact finish answered, no point was routed"};
   if (old_face < 0 || static_cast<std::size_t>(old_face) >= it.faces_before)
     return {"point " + std::to_string(point_id) + " had no face before this step (inside, or a vertex)"};
   u32 f = static_cast<u32>(old_face);
