@@ -38,6 +38,9 @@ void Mesh::assign(const std::vector<MeshFace>& faces) {
   live_count_ = 0;
   vertex_face_.clear();
   vertex_count_ = 0;
+  faces_.reserve(faces.size());
+  alive_.reserve(faces.size());
+  vertex_face_.reserve(faces.size() / 2 + 2);  // a closed triangulation: V = F / 2 + 2
   for (const MeshFace& face : faces) {
     const FaceId id = add_face(face.v[0], face.v[1], face.v[2]);
     faces_[id].n = face.n;

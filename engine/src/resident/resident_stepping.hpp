@@ -91,6 +91,9 @@ class ResidentStepper : public SteppingEngine {
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count() - host_ms_;
     r.bytes_to_backend = exec_.bytes_to_device - to_before;
     r.bytes_from_backend = exec_.bytes_from_device - from_before;
+    stats_.host_syncs = exec_.host_syncs;
+    stats_.bytes_to_device = exec_.bytes_to_device;
+    stats_.bytes_from_device = exec_.bytes_from_device;
     record_ = r;
     return r;
   }
