@@ -25,6 +25,10 @@
 #include <stb/stb_image.h>
 
 #include "camera.hpp"
+#include "cudahull/exact_hull.hpp"
+#include "cudahull/generators.hpp"
+#include "cudahull/point_io.hpp"
+#include "cudahull/point_writer.hpp"
 #include "overlay.hpp"
 #include "png.hpp"
 #include "renderer.hpp"
@@ -767,6 +771,26 @@ TEST(ViewerHeadless, ResidentEngineDebuggerViews) {
   const std::vector<std::string> trace = lines_of(dir / "trace.jsonl");
   ASSERT_FALSE(trace.empty());
   EXPECT_GT(nlohmann::json::parse(trace.back())["swaps_rejected"].get<int>(), 0) << r.err;
+}
+
+// The resident engine's exported result after an exact finish (a lattice, whose flat faces stop the local
+// edits short) is the exact hull, not the last step's mesh (the scene shows the result once done).
+TEST(ViewerHeadless, ResidentEngineExportsItsExactResult) {
+  TempDir dir;
+  write_points(dir / "grid.xyz", generate_points(Distribution::kGrid, 3000, 2));
+  const std::vector<Point3d> points = read_points_double(dir / "grid.xyz").points;
+  const BasicHullMesh<Point3d> exact = exact_hull(points);
+  const ViewerRun r =
+      run_viewer({dir / "grid.xyz", "--engine", "resident", "--headless", "--width", "64", "--height", "48",
+                  "--script", dir.write("export.txt", "run\nexport-mesh " + (dir / "hull.obj") + "\n")});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  std::size_t faces = 0, vertices = 0;
+  for (const std::string& line : lines_of(dir / "hull.obj")) {
+    faces += line.rfind("f ", 0) == 0 ? 1 : 0;
+    vertices += line.rfind("v ", 0) == 0 ? 1 : 0;
+  }
+  EXPECT_EQ(faces, exact.triangles.size()) << r.err;
+  EXPECT_EQ(vertices, exact.vertex_ids.size()) << r.err;
 }
 
 TEST(ViewerHeadless, BadScriptLineExits2NamingTheLine) {
