@@ -180,7 +180,11 @@ class ResidentHull {
     return setup(stats, done, false, list, first_in_loop);
   }
   // One iteration, recorded; false when no face could refine (a stall: end(stats, true) finishes exactly).
-  bool step(ResidentStats& stats, RecordedIteration& out);
+  bool step(ResidentStats& stats, RecordedIteration& out) {
+    if (!iterate(stats, &out)) return false;
+    ++stats.iterations;
+    return true;
+  }
   // After the last step: the exact check and the result (the exact finish after a stall).
   BasicHullMesh<Point> end(ResidentStats& stats, bool stalled) {
     lap();
@@ -190,7 +194,6 @@ class ResidentHull {
     return out;
   }
   std::size_t active_points() const { return active_; }
-  std::size_t face_count() const { return faces_; }
   Vec3d interior() const { return c_; }
   // The current (compacted) mesh: corners and links, 3 per face.
   void read_mesh(std::vector<u32>& fv, std::vector<u32>& fn) {
@@ -568,36 +571,10 @@ class ResidentHull {
     exec_.for_each(active_, RoutePoints<Point>{view(), index_[0].data(), face_of_[0].data(), keep_.data()});
   }
 
-  // One iteration, the host stepping the rounds (HostExec); false when no face could refine.
-  bool iterate(ResidentStats& stats) {
-    const std::size_t first = faces_;
-    if (refine_stepped(stats) == 0) return false;
-
-    // Flip and flop rounds until no candidate is left (Figs. 3b, 4, 5).
-    stepped_rounds(stats, first);
-    stats.rounds_ms += lap();
-
-    route();
-    compact(faces_);
-    stats.route_ms += lap();
-    return true;
-  }
-
-  // Refinement with the host waiting for the refined count (the stepped paths): the children from face
-  // `faces_` on, one entry each.  Returns the count (0: no face refines, nothing changed).
-  u32 refine_stepped(ResidentStats& stats) {
-    mark_refined();
-    const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
-    if (refined == 0) return 0;
-    stats.refined_faces += refined;
-    grow_faces(faces_ + 3 * std::size_t{refined});
-    grow_entries(refined);
-    split();
-    faces_ += 3 * std::size_t{refined};
-    entries_used_ = refined;
-    stats.refine_ms += lap();
-    return refined;
-  }
+  // One iteration, the host stepping the rounds (HostExec, and step() on any executor); false when no face
+  // could refine.  With `out`, every candidate the rounds turn down is logged and what the iteration did
+  // is read back into it.
+  bool iterate(ResidentStats& stats, RecordedIteration* out = nullptr);
 
   // One iteration on an executor that loops the rounds itself (CudaExec), with one wait: the counts the
   // steps need stay where the executor computes (state_), and the host reads them once, after the
@@ -959,47 +936,64 @@ class ResidentHull {
 };
 
 template <class Point, class Exec>
-bool ResidentHull<Point, Exec>::step(ResidentStats& stats, RecordedIteration& out) {
-  out = RecordedIteration{};
-  out.faces_before = faces_;
+bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration* out) {
+  if (out) {
+    *out = RecordedIteration{};
+    out->faces_before = faces_;
+  }
   lap();
   const std::size_t first = faces_;
-  out.refined = refine_stepped(stats);
-  if (out.refined == 0) return false;
+  mark_refined();
+  const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
+  if (refined == 0) return false;
+  stats.refined_faces += refined;
+  grow_faces(faces_ + 3 * std::size_t{refined});
+  grow_entries(refined);
+  split();
+  faces_ += 3 * std::size_t{refined};
+  entries_used_ = refined;
+  stats.refine_ms += lap();
 
-  // The rounds, their rejections logged (a face may meet the same one in several rounds: all are kept
-  // here, in order, and the records keep the first); stepped_rounds() makes room before each round.
-  rejection_capacity_ = static_cast<u32>(std::max<std::size_t>(4096, 2 * faces_));
-  rejections_.grow(rejection_capacity_);
-  rejection_count_.grow(1);
-  exec_.fill(rejection_count_.data(), 1, u32{0});
-  recording_ = &out;
-  out.first_round = round_ + 1;
+  // Flip and flop rounds until no candidate is left (Figs. 3b, 4, 5).  Recording, their rejections are
+  // logged (a face may meet the same one in several rounds: all are kept here, in order, and the records
+  // keep the first); stepped_rounds() makes room before each round.
+  if (out) {
+    out->refined = refined;
+    rejection_capacity_ = static_cast<u32>(std::max<std::size_t>(4096, 2 * faces_));
+    rejections_.grow(rejection_capacity_);
+    rejection_count_.grow(1);
+    exec_.fill(rejection_count_.data(), 1, u32{0});
+    out->first_round = round_ + 1;
+  }
+  recording_ = out;
   stepped_rounds(stats, first);
   recording_ = nullptr;
-  out.fv.resize(3 * faces_);
-  out.killer.resize(faces_);
-  out.entries.resize(entries_used_);
-  exec_.download(out.fv.data(), fv_.data(), out.fv.size());
-  exec_.download(out.killer.data(), killer_.data(), out.killer.size());
-  exec_.download(out.entries.data(), entries_.data(), out.entries.size());
-  u32 rejected = 0;
-  exec_.download(&rejected, rejection_count_.data(), 1);
-  out.rejections.resize(rejected);  // all of them: stepped_rounds() made room
-  exec_.download(out.rejections.data(), rejections_.data(), out.rejections.size());
-  // The log is filled by atomics in any order: by round, then candidate, the same on every executor.
-  std::sort(out.rejections.begin(), out.rejections.end(), [](const Rejection& a, const Rejection& b) {
-    return a.round != b.round ? a.round < b.round : a.id != b.id ? a.id < b.id : a.kind < b.kind;
-  });
+  if (out) {
+    out->fv.resize(3 * faces_);
+    out->killer.resize(faces_);
+    out->entries.resize(entries_used_);
+    exec_.download(out->fv.data(), fv_.data(), out->fv.size());
+    exec_.download(out->killer.data(), killer_.data(), out->killer.size());
+    exec_.download(out->entries.data(), entries_.data(), out->entries.size());
+    u32 rejected = 0;
+    exec_.download(&rejected, rejection_count_.data(), 1);
+    out->rejections.resize(rejected);  // all of them: stepped_rounds() made room
+    exec_.download(out->rejections.data(), rejections_.data(), out->rejections.size());
+    // The log is filled by atomics in any order: by round, then candidate, the same on every executor.
+    std::sort(out->rejections.begin(), out->rejections.end(), [](const Rejection& a, const Rejection& b) {
+      return a.round != b.round ? a.round < b.round : a.id != b.id ? a.id < b.id : a.kind < b.kind;
+    });
+  }
   stats.rounds_ms += lap();
 
   route();
   const std::size_t face_ids = faces_;
   compact(face_ids);
-  out.new_id.resize(face_ids);
-  exec_.download(out.new_id.data(), face_rank_.data(), face_ids);
+  if (out) {
+    out->new_id.resize(face_ids);
+    exec_.download(out->new_id.data(), face_rank_.data(), face_ids);
+  }
   stats.route_ms += lap();
-  ++stats.iterations;
   return true;
 }
 
