@@ -22,7 +22,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -33,19 +32,15 @@
 #include <vector>
 
 #include "cudahull/engine.hpp"
+#include "phases/cells.hpp"
+#include "phases/vector_math.hpp"
 #include "resident/resident_driver.hpp"
 
 namespace cudahull::resident {
 
-// The plane through a, b, d (normal of unit length), oriented so that `inside` is on its positive side.
+// The plane through a, b, d (unit normal), positive on the side of `inside`.
 inline SeparatingPlane plane_through(const Vec3d& a, const Vec3d& b, const Vec3d& d, const Vec3d& inside) {
-  const Vec3d u{b.x - a.x, b.y - a.y, b.z - a.z}, w{d.x - a.x, d.y - a.y, d.z - a.z};
-  Vec3d n{u.y * w.z - u.z * w.y, u.z * w.x - u.x * w.z, u.x * w.y - u.y * w.x};
-  const double length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
-  if (length > 0) n = {n.x / length, n.y / length, n.z / length};
-  SeparatingPlane p{n.x, n.y, n.z, -(n.x * a.x + n.y * a.y + n.z * a.z)};
-  if (p.nx * inside.x + p.ny * inside.y + p.nz * inside.z + p.d < 0) p = {-p.nx, -p.ny, -p.nz, -p.d};
-  return p;
+  return phases::plane_through_edge(a, b, phases::sub(d, a), inside);
 }
 
 template <class Point, class Exec>
