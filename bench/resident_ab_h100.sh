@@ -3,14 +3,20 @@
 # .carry/bin/cudahull_OLD, built here from an earlier commit (e.g. cudahull_3ebe518), against .carry/bin/cudahull,
 # first the gpu tests most affected, then three alternating rounds of each input, Qhull beside the new one.
 #   OLD=cudahull_3ebe518 bash bench/resident_ab_h100.sh
+# INPUTS="ARGS|ARGS|..." and ROUNDS=N change the inputs and the rounds.
+# OLD=env:NAME=VALUE is the new binary with that tuning variable set (e.g. env:CUDAHULL_LOOP_POINTS=32768).
 export LD_LIBRARY_PATH=$PWD/.carry/lib
 B=.carry/bin; O=${OUT:-/tmp/out}; mkdir -p $O
 timeout 200 $B/test_resident_cuda --gtest_filter='*SteppedRecords*:*Generated*:*Seeded*' > $O/t.txt 2>&1; echo "test exit $?"; grep -E "^\[  (PASSED|FAILED)|Failure" $O/t.txt | head -5
-for round in 1 2 3; do
-  for a in "--dist sphere --n 100000 --repeat 5" "--dist sphere --n 1000000 --repeat 3" "--dist gauss --n 1000000 --repeat 9" ".carry/models/dragon_scans.ply --repeat 9" "--dist cube --n 10000000 --repeat 7" "--dist ball --n 10000000 --repeat 3"; do
+INPUTS=${INPUTS:-"--dist sphere --n 100000 --repeat 5|--dist sphere --n 1000000 --repeat 3|--dist gauss --n 1000000 --repeat 9|.carry/models/dragon_scans.ply --repeat 9|--dist cube --n 10000000 --repeat 7|--dist ball --n 10000000 --repeat 3"}
+IFS='|' read -ra args <<< "$INPUTS"
+for round in $(seq ${ROUNDS:-3}); do
+  for a in "${args[@]}"; do
     for bin in ${OLD:?name the old binary} cudahull; do
       vs=""; [ $bin = cudahull ] && vs="--vs qhull"
-      echo "{\"bin\": \"$bin\", \"round\": $round, \"result\": $($B/$bin bench $a --engine resident $vs --json)}" >> $O/ab2.jsonl
+      exe=$bin; env=""
+      if [[ $bin == env:* ]]; then exe=cudahull; env=${bin#env:}; fi
+      echo "{\"bin\": \"$bin\", \"round\": $round, \"result\": $(env $env $B/$exe bench $a --engine resident $vs --json)}" >> $O/ab2.jsonl
     done
   done
 done

@@ -478,7 +478,8 @@ struct FindCandidate {
     return true;
   }
 
-  // The first candidate of face f: its three edges, then its three corners.  slot receives 0..5.
+  // The first candidate of face f: its three edges, then its three corners.  slot receives 0..5.  (Two
+  // loops of three, which unroll: one loop over the six slots, tried on the H100, made the rounds slower.)
   CUDAHULL_HD bool operator()(u32 f, Candidate& out, int& slot) const {
     Around<Point> around;
     around.gather(m, f);
@@ -548,6 +549,10 @@ struct Claim {
       cand.kind = kNone;
       return;
     }
+    take(f, cand, slot);
+  }
+  // Face f's first candidate, found at `slot`: kept, and its faces claimed.
+  CUDAHULL_HD void take(u32 f, Candidate& cand, int slot) const {
     look[f] = round + 1;  // won (then killed) or lost (then tried again)
     cand.id = 6 * f + static_cast<u32>(slot);
     const u64 key = claim_key(round, cand.id);
