@@ -241,6 +241,13 @@ int run_gen(const GenOptions& o) {
 
 namespace {
 
+// The resident engine's stats as one JSON object (`hull --stats`, `bench --json`): every field.
+nlohmann::json resident_stats_json(const ResidentStats& stats) {
+  nlohmann::json j = nlohmann::json::object();
+  for_each_stat(stats, [&](const char* name, const auto& value) { j[name] = value; });
+  return j;
+}
+
 // `cudahull hull` in the precision of Point (Point3 or Point3d): one code path for both.
 template <class Point>
 int hull_in(const HullOptions& o) {
@@ -373,6 +380,7 @@ int hull_in(const HullOptions& o) {
       j["host_syncs"] = resident_run.stats.host_syncs;
       j["device_bytes_peak"] = resident_run.stats.device_bytes_peak;
       j["exact_finish"] = resident_run.stats.exact_finish;
+      j["resident"] = resident_stats_json(resident_run.stats);
     }
     if (o.stats == "-") {
       std::cout << j.dump(2) << "\n";
@@ -464,21 +472,7 @@ int bench_in(const BenchOptions& o) {
     // Where the last run's time went, for profiling: host-clock laps (on the GPU the phases are queued
     // without a wait between them, so a lap is where the host waited), and the device clock inside the
     // rounds (finding and claiming, judging, numbering, applying).
-    const ResidentStats& s = resident_stats;
-    j["resident"] = {{"iterations", s.iterations},
-                     {"refined_faces", s.refined_faces},
-                     {"rounds", s.rounds},
-                     {"edits", s.edits},
-                     {"work_items", s.work_items},
-                     {"dropped_by_polytope", s.dropped_by_polytope},
-                     {"loop_iterations", s.loop_iterations},
-                     {"exact_finish", s.exact_finish},
-                     {"setup_ms", s.setup_ms},
-                     {"refine_ms", s.refine_ms},
-                     {"rounds_ms", s.rounds_ms},
-                     {"route_ms", s.route_ms},
-                     {"finish_ms", s.finish_ms},
-                     {"round_phase_ms", std::vector<double>(s.round_phase_ms, s.round_phase_ms + 4)}};
+    j["resident"] = resident_stats_json(resident_stats);
   }
   double qhull_ms = 0;
   bool same = false;

@@ -347,6 +347,13 @@ TEST(CliHull, ResidentEngineMatchesQhullWithAndWithoutRecords) {
     EXPECT_EQ(stats.at("backend"), "cpu-resident");
     EXPECT_EQ(stats.at("verified"), true);
     EXPECT_GT(stats.at("host_syncs").get<int>(), 0);
+    // Every counter of the run (for_each_stat), agreeing with the summary's.
+    const nlohmann::json& counters = stats.at("resident");
+    EXPECT_EQ(counters.at("host_syncs"), stats.at("host_syncs"));
+    EXPECT_EQ(counters.at("iterations"), stats.at("iterations"));
+    EXPECT_EQ(counters.at("edits"), stats.at("swaps"));
+    EXPECT_GE(counters.at("work_items").get<std::uint64_t>(), counters.at("edits").get<std::uint64_t>());
+    EXPECT_EQ(counters.at("round_phase_ms").size(), 4u);  // the device's clock: zero on the host
   }
   TempDir dir;
   const auto sphere = generate_points(Distribution::kSphere, 3000, 2);

@@ -5,10 +5,13 @@
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
 
 #include <cstdint>
+#include <iterator>
 #include <memory>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "cudahull/convex_hull.hpp"
@@ -84,26 +87,14 @@ using CudaArray = nb::ndarray<nb::ro, nb::device::cuda>;
 
 nb::object stats_to_dict(const std::optional<ResidentStats>& stats) {
   if (!stats) return nb::none();
-  const ResidentStats& s = *stats;
   nb::dict d;
-  d["iterations"] = s.iterations;
-  d["refined_faces"] = s.refined_faces;
-  d["rounds"] = s.rounds;
-  d["edits"] = s.edits;
-  d["dropped_by_polytope"] = s.dropped_by_polytope;
-  d["polytope_first"] = s.polytope_first;
-  d["exact_finish"] = s.exact_finish;
-  d["note"] = s.note;
-  d["host_syncs"] = s.host_syncs;
-  d["bytes_to_device"] = s.bytes_to_device;
-  d["bytes_from_device"] = s.bytes_from_device;
-  d["device_bytes_peak"] = s.device_bytes_peak;
-  d["points_read_back"] = s.points_read_back;
-  d["setup_ms"] = s.setup_ms;
-  d["refine_ms"] = s.refine_ms;
-  d["rounds_ms"] = s.rounds_ms;
-  d["route_ms"] = s.route_ms;
-  d["finish_ms"] = s.finish_ms;
+  for_each_stat(*stats, [&](const char* name, const auto& value) {
+    if constexpr (std::is_array_v<std::remove_reference_t<decltype(value)>>) {
+      d[name] = std::vector<double>(std::begin(value), std::end(value));
+    } else {
+      d[name] = value;
+    }
+  });
   return d;
 }
 

@@ -117,7 +117,10 @@ def test_host_engines_and_stats():
     assert resident.volume == pytest.approx(stepping.volume, rel=1e-12)
     assert resident.area == pytest.approx(stepping.area, rel=1e-12)
     as_dict = cudahull.convex_hull(points, backend="cpu", engine="resident")
-    assert set(as_dict["stats"]) >= {"host_syncs", "bytes_from_device", "points_read_back", "device_bytes_peak"}
+    stats = as_dict["stats"]
+    assert set(stats) >= {"host_syncs", "bytes_from_device", "points_read_back", "device_bytes_peak", "work_items"}
+    assert stats["work_items"] >= stats["edits"] > 0
+    assert stats["round_phase_ms"] == [0.0] * 4  # the device's clock inside the rounds; none on the host
     assert cudahull.convex_hull(points, backend="cpu")["stats"] is None
 
 

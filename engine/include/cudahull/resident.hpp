@@ -38,6 +38,35 @@ struct ResidentStats {
   double round_phase_ms[4] = {0, 0, 0, 0};
 };
 
+// Every field of the stats with its name, in declaration order: visit(name, value) with a std::uint64_t,
+// bool, std::string, double or const double (&)[4].  The CLI's JSON and the Python module's dict are made
+// from it, so a field added here shows in both.
+template <class Visit>
+void for_each_stat(const ResidentStats& s, Visit&& visit) {
+  visit("iterations", s.iterations);
+  visit("refined_faces", s.refined_faces);
+  visit("rounds", s.rounds);
+  visit("edits", s.edits);
+  visit("work_items", s.work_items);
+  visit("dropped_by_polytope", s.dropped_by_polytope);
+  visit("loop_iterations", s.loop_iterations);
+  visit("polytope_first", s.polytope_first);
+  visit("faults", s.faults);
+  visit("exact_finish", s.exact_finish);
+  visit("note", s.note);
+  visit("host_syncs", s.host_syncs);
+  visit("bytes_to_device", s.bytes_to_device);
+  visit("bytes_from_device", s.bytes_from_device);
+  visit("device_bytes_peak", s.device_bytes_peak);
+  visit("points_read_back", s.points_read_back);
+  visit("setup_ms", s.setup_ms);
+  visit("refine_ms", s.refine_ms);
+  visit("rounds_ms", s.rounds_ms);
+  visit("route_ms", s.route_ms);
+  visit("finish_ms", s.finish_ms);
+  visit("round_phase_ms", s.round_phase_ms);
+}
+
 // How the host executor steps an iteration: kStepped, each round sized by the counts of the last (the
 // reference); kFused, as the GPU does (the counts stay in the executor's state, read once an iteration,
 // the rounds looped as one launch loops them).  Both give the same mesh; the tests compare them.
