@@ -217,18 +217,19 @@ class ResidentStepper : public SteppingEngine {
     done_ = true;
   }
 
+  // The mesh read back into buffers kept between steps: fresh ones of a few MB each step cost their
+  // pages' first touch again.
   void read_mesh() {
-    std::vector<u32> fv, fn;
-    hull_->read_mesh(fv, fn);
+    hull_->read_mesh(read_fv_, read_fn_);
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<MeshFace> faces(fv.size() / 3);
-    for (std::size_t f = 0; f < faces.size(); ++f) {
+    read_faces_.resize(read_fv_.size() / 3);
+    for (std::size_t f = 0; f < read_faces_.size(); ++f) {
       for (int k = 0; k < 3; ++k) {
-        faces[f].v[k] = fv[3 * f + k];
-        faces[f].n[k] = fn[3 * f + k];
+        read_faces_[f].v[k] = read_fv_[3 * f + k];
+        read_faces_[f].n[k] = read_fn_[3 * f + k];
       }
     }
-    mesh_.assign(faces);
+    mesh_.assign(read_faces_);
     host_ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     hull_->read_face_extremes(extremes_);
   }
@@ -426,6 +427,8 @@ class ResidentStepper : public SteppingEngine {
   std::vector<FaceExtreme> extremes_;
   std::vector<DecisionEntry> decisions_;
   std::vector<RefinementEntry> refinement_;
+  std::vector<u32> read_fv_, read_fn_;  // read_mesh()'s
+  std::vector<MeshFace> read_faces_;
   std::vector<PointIndex> removed_;
 };
 
