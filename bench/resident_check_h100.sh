@@ -12,7 +12,12 @@ timeout 60 $B/test_resident_cuda > $O/t_full.txt 2>&1; echo "test_resident_cuda 
 grep -E "^\[  (PASSED|FAILED)|Failure|OK \]" $O/t_full.txt | head -8
 CUDAHULL_PROPERTY_CASES=10000 timeout 90 $B/test_resident_cuda --gtest_filter='*Property*' > $O/property_10000.txt 2>&1
 echo "property 10000 exit $?"; grep -E "^\[  (PASSED|FAILED)|OK \]" $O/property_10000.txt
-bench() { echo "{\"round\": $1, \"result\": $($B/cudahull bench $2 --engine resident --vs qhull --json)}" >> $O/bench.jsonl; }
+: > $O/bench.jsonl
+bench() {
+  local result
+  result=$($B/cudahull bench $2 --engine resident --vs qhull --json) || result=null
+  echo "{\"round\": $1, \"args\": \"$2\", \"result\": $result}" >> $O/bench.jsonl
+}
 for r in 1 2 3; do
   bench $r ".carry/models/dragon_scans.ply --repeat 9"; bench $r "--dist gauss --n 1000000 --repeat 9"
 done
@@ -20,7 +25,9 @@ for a in "--dist cube --n 10000000 --repeat 5" "--dist ball --n 1000000 --repeat
 python3 - "$O/bench.jsonl" <<'PY'
 import json, sys
 for l in open(sys.argv[1]):
-    r = json.loads(l)['result']
+    j = json.loads(l); r = j['result']
+    if r is None:
+        print(j['args'], 'FAILED'); continue
     print(r['input'][-22:], round(r['total_ms'], 3), round(r['qhull_ms'], 1), r['same_vertices'], r.get('host_syncs'), r.get('bytes_from_device'))
 PY
 export CUDAHULL_PROPERTY_CASES=100

@@ -41,13 +41,14 @@ ScenePoints load_positions(const PointSource& source, Precision precision, const
     for (const Point3d& p : exact)
       positions.push_back({static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)});
     return {std::make_shared<const std::vector<Point3>>(std::move(positions)),
-            std::make_shared<const std::vector<Point3d>>(std::move(exact))};
+            std::make_shared<const std::vector<Point3d>>(std::move(exact)), nullptr};
   }
   if (!source.path.empty())
-    return {std::make_shared<const std::vector<Point3>>(read_points(source.path, progress)), nullptr};
+    return {std::make_shared<const std::vector<Point3>>(read_points(source.path, progress)), nullptr,
+            nullptr};
   return {std::make_shared<const std::vector<Point3>>(
               generate_points(distribution_from_name(source.distribution), source.count, source.seed)),
-          nullptr};
+          nullptr, nullptr};
 }
 
 }  // namespace

@@ -62,7 +62,7 @@ class Scene {
   Scene(ScenePoints points, BackendFactory make_backend, std::string label);
   // Float precision: the engine borrows the render positions.
   Scene(std::shared_ptr<const std::vector<Point3>> points, BackendFactory make_backend, std::string label)
-      : Scene(ScenePoints{std::move(points), nullptr}, std::move(make_backend), std::move(label)) {}
+      : Scene(ScenePoints{std::move(points), nullptr, nullptr}, std::move(make_backend), std::move(label)) {}
 
   const std::string& label() const { return label_; }
   // The render positions (float; in double precision the engine's points rounded).
