@@ -8,12 +8,19 @@
 
 #include <thrust/iterator/counting_iterator.h>
 #include <cstdlib>
+#include <cstring>
+#include <cub/block/block_radix_sort.cuh>
 #include <cub/block/block_scan.cuh>
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
 #include <cub/device/device_select.cuh>
 #include <cuda/std/utility>
+#include <map>
+#include <mutex>
 #include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
 
 #include "cuda_errors.hpp"
 #include "cudahull/errors.hpp"
@@ -68,6 +75,75 @@ void trim_pool() {
       cudaDeviceGetDefaultMemPool(&pool, device) == cudaSuccess)
     cudaMemPoolTrimTo(pool, kPoolKeep);
   cudaGetLastError();
+}
+
+// Small device blocks kept for reuse between buffers and runs (a caching allocator, as PyTorch's and CuPy's):
+// on the GPU machine a cudaMallocAsync costs the host 2-3 us even from a warm pool, and a run grows some 30
+// buffers, most of them small.  Blocks up to kLargest bytes, in power-of-two sizes, go back to the cache
+// when their buffer grows or dies and are taken again in stream order (the engine runs on the default
+// stream, so a block's last use is ordered before its next); the cache holds at most kKeep bytes and frees
+// what is beyond.  Larger blocks are allocated and freed as before.  It lives until the process ends.
+class BlockCache {
+ public:
+  static constexpr std::size_t kSmallest = 256, kLargest = std::size_t{4} << 20,
+                               kKeep = std::size_t{64} << 20;
+  // A block of at least `bytes` on the current device; its size into `size`, its device into `device`.
+  void* take(std::size_t bytes, std::size_t& size, int& device) {
+    cudaGetDevice(&device);
+    size = bytes;
+    if (bytes <= kLargest) {
+      size = kSmallest;
+      while (size < bytes)
+        size *= 2;
+      const std::lock_guard<std::mutex> lock(mutex_);
+      std::vector<void*>& list = free_[{device, size}];
+      if (!list.empty()) {
+        void* p = list.back();
+        list.pop_back();
+        kept_ -= size;
+        return p;
+      }
+    }
+    void* p = nullptr;
+    cudaError_t e = cudaMallocAsync(&p, size, 0);
+    if (e != cudaSuccess) {  // what the cache holds may be what is missing
+      cudaGetLastError();
+      release();
+      e = cudaMallocAsync(&p, size, 0);
+    }
+    if (e != cudaSuccess) throw_out_of_memory("resident engine", "a buffer", bytes, e);
+    return p;
+  }
+  void give(void* p, std::size_t size, int device) {
+    if (size <= kLargest) {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (kept_ + size <= kKeep) {
+        free_[{device, size}].push_back(p);
+        kept_ += size;
+        return;
+      }
+    }
+    cudaFreeAsync(p, 0);
+  }
+  // Everything held, freed.
+  void release() {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    for (auto& [key, list] : free_) {
+      for (void* p : list)
+        cudaFreeAsync(p, 0);
+      list.clear();
+    }
+    kept_ = 0;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<std::pair<int, std::size_t>, std::vector<void*>> free_;  // (device, size) -> blocks
+  std::size_t kept_ = 0;
+};
+BlockCache& block_cache() {
+  static BlockCache* cache = new BlockCache;  // never destroyed: the runtime may be gone at exit
+  return *cache;
 }
 
 unsigned blocks_for(std::size_t n) {
@@ -430,6 +506,90 @@ __device__ u32 block_exclusive_scan(const u32* in, u32* out, u32 n) {
   return carry;
 }
 
+// mark(i) for every i < n, the flags' exclusive prefix sum into ranks, then move(i) for every i: one block,
+// one launch (a compaction of a small mesh: MarkLive and MoveLive), where the general path is two for_each
+// launches around CUB's two.  On the GPU machine a launch costs the host about 4 us.
+template <int Block, class Mark, class Move>
+__global__ void __launch_bounds__(Block)
+    mark_scan_move_kernel(u32 n, Mark mark, u32* flags, u32* ranks, Move move) {
+  for (u32 i = threadIdx.x; i < n; i += Block)
+    mark(i);
+  block_exclusive_scan<Block, 4>(flags, ranks, n);
+  for (u32 i = threadIdx.x; i < n; i += Block)
+    move(i);
+}
+
+// The driver's finish() of a small mesh (3 * faces <= Block * Items corners) in one block, for one read:
+// out = [faults, vertices, the corners renumbered (3 * faces), the vertex list (ascending)].  The faults are
+// counted (CountFaults), the corners sorted (a block radix sort over the bits of ids below `bound`), the
+// distinct ones listed, and each corner renumbered by bisection in that list, in shared memory.  The same
+// result as the general path's CUB sort and select.
+template <class Point, int Block, int Items>
+__global__ void __launch_bounds__(Block)
+    finish_small_kernel(MeshView<Point> m, u32 faces, int bits, u32* out) {
+  using Sort = cub::BlockRadixSort<u32, Block, Items>;
+  using Scan = cub::BlockScan<u32, Block>;
+  // The sort's and the scan's storage and the sorted corners, one after another in the same bytes.
+  __shared__ union {
+    typename Sort::TempStorage sort;
+    typename Scan::TempStorage scan;
+    u32 sorted[Block * Items];
+  } shared;
+  __shared__ u32 faults;
+  const u32 corners = 3 * faces, first = threadIdx.x * Items;
+  if (threadIdx.x == 0) faults = 0;
+  __syncthreads();
+  const CountFaults<Point> count{m, &faults};
+  for (u32 f = threadIdx.x; f < faces; f += Block)
+    count(f);
+  // Past the corners, keys above every id (all ones in the sorted bits: a stable sort keeps them last).
+  u32 keys[Items];
+#pragma unroll
+  for (int k = 0; k < Items; ++k)
+    keys[k] = first + k < corners ? m.fv[first + k] : ~0u;
+  Sort(shared.sort).Sort(keys, 0, bits);
+  __syncthreads();
+#pragma unroll
+  for (int k = 0; k < Items; ++k)
+    shared.sorted[first + k] = keys[k];
+  __syncthreads();
+  u32 distinct[Items], ranks[Items];
+#pragma unroll
+  for (int k = 0; k < Items; ++k)
+    distinct[k] =
+        first + k < corners && (first + k == 0 || shared.sorted[first + k - 1] != keys[k]) ? 1u : 0u;
+  __syncthreads();
+  u32 vertices = 0;
+  Scan(shared.scan).ExclusiveSum(distinct, ranks, vertices);
+  __syncthreads();
+  u32* list = out + 2 + corners;
+#pragma unroll
+  for (int k = 0; k < Items; ++k) {
+    if (distinct[k]) {
+      shared.sorted[ranks[k]] = keys[k];
+      list[ranks[k]] = keys[k];
+    }
+  }
+  __syncthreads();
+  for (u32 c = threadIdx.x; c < corners; c += Block) {
+    const u32 v = m.fv[c];
+    u32 lo = 0, hi = vertices;  // sorted[lo..hi) holds v
+    while (hi - lo > 1) {
+      const u32 mid = lo + (hi - lo) / 2;
+      if (shared.sorted[mid] <= v) {
+        lo = mid;
+      } else {
+        hi = mid;
+      }
+    }
+    out[2 + c] = lo;
+  }
+  if (threadIdx.x == 0) {
+    out[0] = faults;
+    out[1] = vertices;
+  }
+}
+
 // Whole iterations of Algorithm 1 in one block (a small mesh and few points left): the driver's
 // iterate_fused() step for step with the same operations, a block-wide prefix sum where it takes CUB's,
 // and no host in the loop.  Before each iteration it checks that every face refining and the rounds
@@ -562,36 +722,41 @@ struct CudaExec {
     Buffer(const Buffer&) = delete;
     Buffer& operator=(const Buffer&) = delete;
     ~Buffer() {
-      if (ptr_) cudaFreeAsync(ptr_, 0);
+      if (ptr_) block_cache().give(ptr_, bytes_, device_);
       device_bytes.now -= capacity_ * sizeof(T);
     }
-    // Stream-ordered allocation from a pool that keeps freed memory (see pool()): growing between
-    // iterations neither waits for the device nor returns memory to the driver.
+    // Stream-ordered allocation (BlockCache, then a pool that keeps freed memory: see pool()): growing
+    // between iterations neither waits for the device nor returns memory to the driver.
     void grow(std::size_t n, std::size_t keep = 0) {
       if (n <= capacity_) return;
       pool();
-      T* fresh = nullptr;
-      const cudaError_t e = cudaMallocAsync(reinterpret_cast<void**>(&fresh), n * sizeof(T), 0);
-      if (e != cudaSuccess) throw_out_of_memory("resident engine", "a buffer", n * sizeof(T), e);
+      std::size_t bytes = 0;
+      int device = 0;
+      T* fresh = static_cast<T*>(block_cache().take(n * sizeof(T), bytes, device));
       if (keep > 0 && ptr_)
         check(
             cudaMemcpyAsync(fresh, ptr_, std::min(keep, capacity_) * sizeof(T), cudaMemcpyDeviceToDevice, 0),
             "growing a buffer");
       device_bytes.add(n * sizeof(T));
-      if (ptr_) cudaFreeAsync(ptr_, 0);
+      if (ptr_) block_cache().give(ptr_, bytes_, device_);
       device_bytes.now -= capacity_ * sizeof(T);
       ptr_ = fresh;
       capacity_ = n;
+      bytes_ = bytes;
+      device_ = device;
     }
     T* data() { return ptr_; }
     void swap(Buffer& other) {
       std::swap(ptr_, other.ptr_);
       std::swap(capacity_, other.capacity_);
+      std::swap(bytes_, other.bytes_);
+      std::swap(device_, other.device_);
     }
 
    private:
     T* ptr_ = nullptr;
-    std::size_t capacity_ = 0;
+    std::size_t capacity_ = 0, bytes_ = 0;  // elements asked for; bytes of the block
+    int device_ = 0;
   };
 
   template <class Op>
@@ -617,13 +782,15 @@ struct CudaExec {
     read(&out, scalar64_.data(), 1);
     return out;
   }
-  template <int K, class KeysOp>
-  std::array<u64, K> reduce_max_many(std::size_t n, const KeysOp& keys) {
+  // `meanwhile()` runs on the host while the device reduces (work that does not need the result).
+  template <int K, class KeysOp, class Meanwhile>
+  std::array<u64, K> reduce_max_many(std::size_t n, const KeysOp& keys, Meanwhile&& meanwhile) {
     scalar64_.grow(K);
     check(cudaMemsetAsync(scalar64_.data(), 0, K * sizeof(u64), 0), "clearing a reduction");
     const unsigned blocks = std::max(1u, std::min(blocks_for(n), 512u));
     reduce_max_many_kernel<K><<<blocks, kBlock>>>(n, keys, scalar64_.data());
     check(cudaGetLastError(), "launching a reduction");
+    meanwhile();
     std::array<u64, K> out{};
     read(out.data(), scalar64_.data(), K);
     return out;
@@ -677,6 +844,35 @@ struct CudaExec {
     scratch_.grow(bytes);
     check(cub::DeviceScan::ExclusiveSum(scratch_.data(), bytes, in, out, static_cast<std::int64_t>(n)),
           "a scan");
+  }
+  // mark(i) for i < n, flags' exclusive prefix sum into ranks, move(i) for i < n.  Up to kOneBlockScan
+  // items: one launch of one block; otherwise the two for_each launches around CUB's scan.
+  static constexpr std::size_t kOneBlockScan = 8192;
+  template <class Mark, class Move>
+  void mark_scan_move(std::size_t n, const Mark& mark, u32* flags, u32* ranks, const Move& move) {
+    if (n == 0) return;
+    if (n <= kOneBlockScan) {
+      mark_scan_move_kernel<kOneBlockThreads>
+          <<<1, kOneBlockThreads>>>(static_cast<u32>(n), mark, flags, ranks, move);
+      check(cudaGetLastError(), "launching a compaction");
+      return;
+    }
+    if constexpr (!std::is_same_v<Mark, AlreadyMarked>) for_each(n, mark);
+    scan(flags, ranks, n);
+    for_each(n, move);
+  }
+  // The finish of a mesh of at most kFinishFaces faces in one launch (finish_small_kernel; ids below
+  // `bound`): out = [faults, vertices, renumbered corners, vertex list], read back at once by the caller.
+  static constexpr int kFinishItems = 12;
+  static constexpr std::size_t kFinishFaces = kOneBlockThreads * kFinishItems / 3;
+  template <class Point>
+  void finish_small(const MeshView<Point>& m, std::size_t faces, std::size_t bound, u32* out) {
+    int bits = 1;
+    while (bits < 32 && (std::size_t{1} << bits) < bound)
+      ++bits;
+    finish_small_kernel<Point, kOneBlockThreads, kFinishItems>
+        <<<1, kOneBlockThreads>>>(m, static_cast<u32>(faces), bits, out);
+    check(cudaGetLastError(), "launching the finish");
   }
   u32 exclusive_scan(const u32* in, u32* out, std::size_t n) {
     if (n == 0) return 0;
@@ -772,9 +968,42 @@ struct CudaExec {
   std::uint64_t host_syncs = 0, bytes_to_device = 0, bytes_from_device = 0;
 
  private:
+  // Small reads go through a pinned buffer (one a thread, made once: pinning is slow there): on the GPU
+  // machine a read of a few bytes after a kernel took about 13 us from pageable memory, 9 from pinned.
+  class PinnedStage {
+   public:
+    static constexpr std::size_t kBytes = std::size_t{64} << 10;
+    PinnedStage() = default;
+    PinnedStage(const PinnedStage&) = delete;
+    PinnedStage& operator=(const PinnedStage&) = delete;
+    ~PinnedStage() {
+      if (ptr_) cudaFreeHost(ptr_);
+    }
+    void* get() {
+      if (!ptr_ && !failed_ && cudaMallocHost(&ptr_, kBytes) != cudaSuccess) {
+        ptr_ = nullptr;
+        failed_ = true;  // pageable reads then, as before
+        cudaGetLastError();
+      }
+      return ptr_;
+    }
+
+   private:
+    void* ptr_ = nullptr;
+    bool failed_ = false;
+  };
   template <class T>
   void read(T* to, const T* from, std::size_t n) {
-    if (n != 0) check(cudaMemcpy(to, from, n * sizeof(T), cudaMemcpyDeviceToHost), "a read-back");
+    const std::size_t bytes = n * sizeof(T);
+    thread_local PinnedStage stage;
+    if (n == 0) {
+    } else if (void* staged = bytes <= PinnedStage::kBytes ? stage.get() : nullptr) {
+      check(cudaMemcpyAsync(staged, from, bytes, cudaMemcpyDeviceToHost, 0), "a read-back");
+      check(cudaStreamSynchronize(0), "a read-back");
+      std::memcpy(static_cast<void*>(to), staged, bytes);
+    } else {
+      check(cudaMemcpy(to, from, bytes, cudaMemcpyDeviceToHost), "a read-back");
+    }
     ++host_syncs;
     bytes_from_device += n * sizeof(T);
   }

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "resident/resident_ops.hpp"
@@ -14,8 +15,9 @@
 namespace cudahull::resident {
 
 struct HostExec {
-  static constexpr bool kFusedRounds = false;  // the driver steps the rounds
-  static constexpr bool kDeviceLoop = false;   // no loop of whole iterations of its own
+  static constexpr bool kFusedRounds = false;     // the driver steps the rounds
+  static constexpr bool kDeviceLoop = false;      // no loop of whole iterations of its own
+  static constexpr std::size_t kFinishFaces = 0;  // no finish of its own (finish_small)
   template <class T>
   class Buffer {
    public:
@@ -49,9 +51,11 @@ struct HostExec {
     ++host_syncs;
     return best;
   }
-  // The largest of each of K keys over i < n (keys(i, out) writes point i's K keys).
-  template <int K, class KeysOp>
-  std::array<std::uint64_t, K> reduce_max_many(std::size_t n, const KeysOp& keys) {
+  // The largest of each of K keys over i < n (keys(i, out) writes point i's K keys); `meanwhile()` is the
+  // caller's work that does not need the result (the GPU's executor runs it while the device reduces).
+  template <int K, class KeysOp, class Meanwhile>
+  std::array<std::uint64_t, K> reduce_max_many(std::size_t n, const KeysOp& keys, Meanwhile&& meanwhile) {
+    meanwhile();
     std::array<std::uint64_t, K> best{};
     std::uint64_t mine[K];
     for (std::size_t i = 0; i < n; ++i) {
@@ -98,6 +102,14 @@ struct HostExec {
     exclusive_scan(in, out, n);
     --host_syncs;
   }
+  // mark(i) for every i < n, flags' exclusive prefix sum into ranks, then move(i) for every i < n.
+  template <class Mark, class Move>
+  void mark_scan_move(std::size_t n, const Mark& mark, std::uint32_t* flags, std::uint32_t* ranks,
+                      const Move& move) {
+    if constexpr (!std::is_same_v<Mark, AlreadyMarked>) for_each(n, mark);
+    scan(flags, ranks, n);
+    for_each(n, move);
+  }
   // The indices i with flags[i] != 0, in order, into list; returns how many (rank is scratch).
   std::uint32_t select(const std::uint32_t* flags, std::uint32_t* rank, std::uint32_t* list, std::size_t n) {
     const std::uint32_t count = exclusive_scan(flags, rank, n);
@@ -135,6 +147,19 @@ struct HostExec {
 // mesh with the stepped rounds' (HostExec) and so check the driver's device path without a GPU.
 struct FusedHostExec : HostExec {
   static constexpr bool kFusedRounds = true;
+  static constexpr std::size_t kFinishFaces = 2048;
+
+  // As the GPU's finish_small_kernel: out = [faults, vertices, the corners renumbered, the vertex list].
+  template <class Point>
+  void finish_small(const MeshView<Point>& m, std::size_t faces, std::size_t /*bound*/, u32* out) {
+    u32 faults = 0;
+    for_each(faces, CountFaults<Point>{m, &faults});
+    const std::size_t corners = 3 * faces;
+    u32* list = out + 2 + corners;
+    sort_unique_to(m.fv, corners, list, nullptr, 0, &out[1]);
+    for_each(corners, FindCorners{m.fv, list, &out[1], out + 2});
+    out[0] = faults;
+  }
 
   template <class Point>
   void fused_rounds(const FindCandidate<Point>& find, u64* claim, u32* look, Candidate* cands, u32* list,

@@ -360,8 +360,8 @@ class ResidentHull {
 
   // P (see DirectionKeys): the exact hull of the points extreme along kDirections, found in one pass.
   BasicHullMesh<Point> directional_polytope() {
-    const std::array<u64, kDirections> keys =
-        exec_.template reduce_max_many<kDirections>(n_, DirectionKeys<Point>{points_});
+    const std::array<u64, kDirections> keys = exec_.template reduce_max_many<kDirections>(
+        n_, DirectionKeys<Point>{points_}, [&] { reserve_first(); });
     std::vector<PointIndex> ids;
     for (const u64 key : keys)
       ids.push_back(rank_key_index(key));
@@ -379,6 +379,18 @@ class ResidentHull {
     }
     max_coordinate_ *= 1 + 0x1p-20;
     return hull_of(ids, at);
+  }
+
+  // Room for the first mesh and its first iterations (as setup() makes it) and for the points not proven
+  // inside P, made while the device finds P's points: none of it needs P, and on the GPU each allocation
+  // costs the host microseconds.
+  void reserve_first() {
+    grow_faces(kInitialFaces);
+    grow_entries(kInitialFaces);
+    state_.grow(1);
+    cands_.grow(capacity_);
+    won_.grow(capacity_);
+    index_[1].grow(n_);
   }
 
   // The coordinates of points `ids`: from the host copy, or gathered where the executor computes and read
@@ -778,17 +790,17 @@ class ResidentHull {
   // totals go to the state (state_'s live_faces and kept_points) for the caller to read.
   void compact_launch(std::size_t face_bound, const u32* face_count) {
     RoundsState* st = state_.data();
-    exec_.for_each(face_bound, MarkLive<Point>{view(), flags_.data(), face_count});
-    exec_.scan(flags_.data(), face_rank_.data(), face_bound);
-    exec_.for_each(face_bound, MoveLive<Point>{view(), flags_.data(), face_rank_.data(), fv_out_.data(),
-                                               fn_out_.data(), face_bound - 1, &st->live_faces});
+    exec_.mark_scan_move(face_bound, MarkLive<Point>{view(), flags_.data(), face_count}, flags_.data(),
+                         face_rank_.data(),
+                         MoveLive<Point>{view(), flags_.data(), face_rank_.data(), fv_out_.data(),
+                                         fn_out_.data(), face_bound - 1, &st->live_faces});
     if (active_ == 0) {
       exec_.fill(&st->kept_points, 1, u32{0});
     } else {
-      exec_.scan(keep_.data(), point_rank_.data(), active_);
-      exec_.for_each(active_, MovePoints{keep_.data(), point_rank_.data(), face_rank_.data(),
-                                         index_[0].data(), face_of_[0].data(), index_[1].data(),
-                                         face_of_[1].data(), active_ - 1, &st->kept_points});
+      exec_.mark_scan_move(active_, AlreadyMarked{}, keep_.data(), point_rank_.data(),
+                           MovePoints{keep_.data(), point_rank_.data(), face_rank_.data(), index_[0].data(),
+                                      face_of_[0].data(), index_[1].data(), face_of_[1].data(), active_ - 1,
+                                      &st->kept_points});
     }
     swap_spares();
   }
@@ -822,6 +834,9 @@ class ResidentHull {
   }
 
   BasicHullMesh<Point> finish(ResidentStats& stats) {
+    if constexpr (Exec::kFinishFaces > 0) {
+      if (faces_ <= Exec::kFinishFaces) return finish_small(stats);
+    }
     // The edges that are not strictly convex, counted into the state; then the vertices in index order
     // (ascending, as exact_hull gives them) with the corners renumbered to their ranks, where they are.
     // Fewer corners than points (most hulls): the corners sorted without repeats, each corner found there
@@ -879,6 +894,38 @@ class ResidentHull {
     exec_.download(reinterpret_cast<u32*>(out.triangles.data()), fv_out_.data(), 3 * faces_);
     out.vertices = vertex_coordinates(out.vertex_ids, vertex_list);
     return out;
+  }
+
+  // finish() of a small mesh in one launch and, as a rule, one read (the executor's finish_small): the
+  // counts, the renumbered corners and the vertex list lie one after another in fv_out_, and the host reads
+  // as many vertices as a closed mesh of genus 0 has (F / 2 + 2, Euler's formula), the rest only if there
+  // are more.
+  static_assert(kInitialFaces >= 2 * Exec::kFinishFaces + 1, "fv_out_ holds the counts, corners and list");
+  BasicHullMesh<Point> finish_small(ResidentStats& stats) {
+    const std::size_t corners = 3 * faces_, at = 2 + corners;
+    u32* out = fv_out_.data();
+    exec_.finish_small(view(), faces_, n_, out);
+    std::vector<u32> got(at + faces_ / 2 + 2);
+    exec_.download(got.data(), out, got.size());
+    const u32 faults = got[0], vertices = got[1];
+    if (faults != 0) {
+      stats.faults = faults;
+      return exact_finish(stats, std::to_string(faults) + " edges not strictly convex");
+    }
+    if (at + vertices > got.size()) {
+      const std::size_t had = got.size();
+      got.resize(at + vertices);
+      exec_.download(got.data() + had, out + had, got.size() - had);
+    }
+    BasicHullMesh<Point> result;
+    result.vertex_ids.assign(got.begin() + static_cast<std::ptrdiff_t>(at),
+                             got.begin() + static_cast<std::ptrdiff_t>(at + vertices));
+    result.triangles.resize(faces_);
+    static_assert(sizeof(Triangle) == 3 * sizeof(u32));
+    std::copy(got.begin() + 2, got.begin() + static_cast<std::ptrdiff_t>(at),
+              reinterpret_cast<u32*>(result.triangles.data()));
+    result.vertices = vertex_coordinates(result.vertex_ids, out + at);
+    return result;
   }
 
   // The result's coordinates: from the host copy, or gathered from the vertex list where it is.
