@@ -39,7 +39,8 @@ void check(cudaError_t e, const char* what) {
 constexpr int kBlock = 256;
 constexpr int kOneBlockThreads = 512;  // the rounds of a small mesh (fused_rounds_kernel)
 
-// Device memory the engine holds now and at most (the points included), for the stats.
+// Device memory the engine holds now and at most (the points included; whole blocks, see BlockCache, whose
+// idle blocks are not counted), for the stats.
 struct DeviceBytes {
   std::size_t now = 0, peak = 0;
   void add(std::size_t bytes) {
@@ -82,7 +83,12 @@ void trim_pool() {
 // buffers, most of them small.  Blocks up to kLargest bytes, in power-of-two sizes, go back to the cache
 // when their buffer grows or dies and are taken again in stream order (the engine runs on the default
 // stream, so a block's last use is ordered before its next); the cache holds at most kKeep bytes and frees
-// what is beyond.  Larger blocks are allocated and freed as before.  It lives until the process ends.
+// what is beyond.  Larger blocks are allocated and freed as before.  It lives until the process ends (a
+// program that resets the device with blocks in it must not run the engine again), and the pool's trim
+// after a run leaves what it holds in place.
+#if defined(CUDA_API_PER_THREAD_DEFAULT_STREAM)
+#error "BlockCache orders a block's reuse after its last use by the one legacy default stream"
+#endif
 class BlockCache {
  public:
   static constexpr std::size_t kSmallest = 256, kLargest = std::size_t{4} << 20,
@@ -106,9 +112,14 @@ class BlockCache {
     }
     void* p = nullptr;
     cudaError_t e = cudaMallocAsync(&p, size, 0);
-    if (e != cudaSuccess) {  // what the cache holds may be what is missing
+    if (e != cudaSuccess) {  // what the cache holds may be what is missing: back to the driver, then again
       cudaGetLastError();
-      release();
+      release(device);
+      cudaMemPool_t pool = nullptr;
+      if (cudaStreamSynchronize(0) == cudaSuccess &&
+          cudaDeviceGetDefaultMemPool(&pool, device) == cudaSuccess)
+        cudaMemPoolTrimTo(pool, 0);
+      cudaGetLastError();
       e = cudaMallocAsync(&p, size, 0);
     }
     if (e != cudaSuccess) throw_out_of_memory("resident engine", "a buffer", bytes, e);
@@ -125,15 +136,17 @@ class BlockCache {
     }
     cudaFreeAsync(p, 0);
   }
-  // Everything held, freed.
-  void release() {
+  // Everything held for `device` (the current one), freed.
+  void release(int device) {
     const std::lock_guard<std::mutex> lock(mutex_);
     for (auto& [key, list] : free_) {
-      for (void* p : list)
+      if (key.first != device) continue;
+      for (void* p : list) {
         cudaFreeAsync(p, 0);
+        kept_ -= key.second;
+      }
       list.clear();
     }
-    kept_ = 0;
   }
 
  private:
@@ -723,12 +736,16 @@ struct CudaExec {
     Buffer& operator=(const Buffer&) = delete;
     ~Buffer() {
       if (ptr_) block_cache().give(ptr_, bytes_, device_);
-      device_bytes.now -= capacity_ * sizeof(T);
+      device_bytes.now -= bytes_;
     }
     // Stream-ordered allocation (BlockCache, then a pool that keeps freed memory: see pool()): growing
     // between iterations neither waits for the device nor returns memory to the driver.
     void grow(std::size_t n, std::size_t keep = 0) {
       if (n <= capacity_) return;
+      if (n * sizeof(T) <= bytes_) {  // the block has room (its size is a power of two)
+        capacity_ = n;
+        return;
+      }
       pool();
       std::size_t bytes = 0;
       int device = 0;
@@ -737,9 +754,9 @@ struct CudaExec {
         check(
             cudaMemcpyAsync(fresh, ptr_, std::min(keep, capacity_) * sizeof(T), cudaMemcpyDeviceToDevice, 0),
             "growing a buffer");
-      device_bytes.add(n * sizeof(T));
+      device_bytes.add(bytes);
       if (ptr_) block_cache().give(ptr_, bytes_, device_);
-      device_bytes.now -= capacity_ * sizeof(T);
+      device_bytes.now -= bytes_;
       ptr_ = fresh;
       capacity_ = n;
       bytes_ = bytes;
@@ -755,7 +772,8 @@ struct CudaExec {
 
    private:
     T* ptr_ = nullptr;
-    std::size_t capacity_ = 0, bytes_ = 0;  // elements asked for; bytes of the block
+    std::size_t capacity_ = 0,
+                bytes_ = 0;  // elements asked for; bytes of the block (what device_bytes counts)
     int device_ = 0;
   };
 
@@ -864,7 +882,8 @@ struct CudaExec {
   // The finish of a mesh of at most kFinishFaces faces in one launch (finish_small_kernel; ids below
   // `bound`): out = [faults, vertices, renumbered corners, vertex list], read back at once by the caller.
   static constexpr int kFinishItems = 12;
-  static constexpr std::size_t kFinishFaces = kOneBlockThreads * kFinishItems / 3;
+  static constexpr std::size_t kFinishFaces = kSmallFinishFaces;
+  static_assert(kOneBlockThreads * kFinishItems >= 3 * kFinishFaces, "one block sorts every corner");
   template <class Point>
   void finish_small(const MeshView<Point>& m, std::size_t faces, std::size_t bound, u32* out) {
     int bits = 1;
@@ -992,12 +1011,15 @@ struct CudaExec {
     void* ptr_ = nullptr;
     bool failed_ = false;
   };
+  static PinnedStage& pinned_stage() {
+    thread_local PinnedStage stage;
+    return stage;
+  }
   template <class T>
   void read(T* to, const T* from, std::size_t n) {
     const std::size_t bytes = n * sizeof(T);
-    thread_local PinnedStage stage;
     if (n == 0) {
-    } else if (void* staged = bytes <= PinnedStage::kBytes ? stage.get() : nullptr) {
+    } else if (void* staged = bytes <= PinnedStage::kBytes ? pinned_stage().get() : nullptr) {
       check(cudaMemcpyAsync(staged, from, bytes, cudaMemcpyDeviceToHost, 0), "a read-back");
       check(cudaStreamSynchronize(0), "a read-back");
       std::memcpy(static_cast<void*>(to), staged, bytes);

@@ -147,7 +147,7 @@ struct HostExec {
 // mesh with the stepped rounds' (HostExec) and so check the driver's device path without a GPU.
 struct FusedHostExec : HostExec {
   static constexpr bool kFusedRounds = true;
-  static constexpr std::size_t kFinishFaces = 2048;
+  static constexpr std::size_t kFinishFaces = kSmallFinishFaces;
 
   // As the GPU's finish_small_kernel: out = [faults, vertices, the corners renumbered, the vertex list].
   template <class Point>

@@ -905,6 +905,7 @@ class ResidentHull {
     const std::size_t corners = 3 * faces_, at = 2 + corners;
     u32* out = fv_out_.data();
     exec_.finish_small(view(), faces_, n_, out);
+    // (Words past the list, when there are faults or fewer vertices, are read and not used.)
     std::vector<u32> got(at + faces_ / 2 + 2);
     exec_.download(got.data(), out, got.size());
     const u32 faults = got[0], vertices = got[1];

@@ -704,6 +704,10 @@ CUDAHULL_HD inline void start_rounds(RoundsState* st, const RoundsLaunch& launch
 // The first mesh (P's faces or the tetrahedron's), written where the executor computes from the
 // operation's own copy (a kernel parameter on the device: no upload and no wait), with the state zeroed.
 inline constexpr int kMaxFirstFaces = kMaxDropPlanes;
+
+// The finish of a mesh of at most this many faces runs in one launch (the GPU's finish_small_kernel, one
+// block) and one read; FusedHostExec mirrors it for the CPU tests.
+inline constexpr std::size_t kSmallFinishFaces = 2048;
 struct FirstMesh {
   u32 faces;
   u32 fv[3 * kMaxFirstFaces], fn[3 * kMaxFirstFaces];
