@@ -268,7 +268,10 @@ class ResidentHull {
       } else {
         refined = iterate(stats);
       }
-      if (!refined) return exact_finish(stats, "stalled: no face could refine");
+      if (!refined) {
+        if (active_ == 0) break;  // no point was left outside (only after setup() left them uncompacted)
+        return exact_finish(stats, "stalled: no face could refine");
+      }
       ++stats.iterations;
     }
     lap();
@@ -281,7 +284,6 @@ class ResidentHull {
   // from the points at `list`).  False when `done` is already the answer.
   bool setup(ResidentStats& stats, BasicHullMesh<Point>& done, bool loop_allowed, const u32*& list,
              bool& first_in_loop) {
-    (void)loop_allowed;  // only an executor with a device loop asks
     const std::size_t n = n_;
     if (n == 0) {
       done = exact_hull(std::vector<Point>{});
@@ -333,6 +335,8 @@ class ResidentHull {
     first.fv_out = fv_.data();
     first.fn_out = fn_.data();
     first.killer = killer_.data();
+    first.look = look_.data();
+    first.extreme = extreme_.data();
     first.st = state_.data();
     exec_.for_each(fv.size(), first);
     // The points not proven inside P (all, without P), listed in index order (one wait for the count).
@@ -352,7 +356,16 @@ class ResidentHull {
     if (!first_in_loop) {
       exec_.for_each(active_, AssignFirst<Point>{view(), first_faces, list, index_[0].data(),
                                                  face_of_[0].data(), keep_.data()});
-      compact(faces_);
+      // A run without records takes the points to the first iteration as they are: the ones not kept
+      // (below their face, so inside P) count for nothing in its furthest points and go in its
+      // compaction, which is one compaction and one wait fewer.  (On a device loop: more points than it
+      // takes, so the first iteration is the host's.)  With records, the points are compacted here, for
+      // the states the first step shows.
+      if (loop_allowed) {
+        unkept_listed_ = true;
+      } else {
+        compact(faces_);
+      }
     }
     stats.setup_ms = lap();
     return true;
@@ -565,18 +578,27 @@ class ResidentHull {
 
   // The furthest point per face (extreme_ is zero), and the faces that refine (flags_).
   void mark_refined() {
-    exec_.segmented_max(
-        active_, FurthestPerFace<Point>{view(), index_[0].data(), face_of_[0].data(), extreme_.data()});
+    furthest_points();
     exec_.for_each(faces_, MarkRefined<Point>{view(), extreme_.data(), flags_.data()});
+  }
+  // The furthest point per face into extreme_ (zero before), the points listed but not kept skipped after
+  // setup() left them in (unkept_listed_).
+  void furthest_points() {
+    exec_.segmented_max(active_,
+                        FurthestPerFace<Point>{view(), index_[0].data(), face_of_[0].data(), extreme_.data(),
+                                               unkept_listed_ ? keep_.data() : nullptr});
     marks_in_use_ = faces_;
   }
   // Refinement (Fig. 3a) of the marked faces, their children from face `faces_` on; the count of refined
   // faces goes to the state where the executor computes.
   void split() {
-    exec_.for_each(faces_, SplitFaces<Point>{view(), extreme_.data(), flags_.data(), face_rank_.data(),
-                                             static_cast<u32>(faces_), 0, look_.data(), round_ + 1,
-                                             &state_.data()->refined});
+    exec_.for_each(faces_, split_faces());
     marks_in_use_ = 0;
+  }
+  SplitFaces<Point> split_faces() {
+    return SplitFaces<Point>{
+        view(), extreme_.data(), flags_.data(), face_rank_.data(),      static_cast<u32>(faces_),
+        0,      look_.data(),    round_ + 1,    &state_.data()->refined};
   }
   // Algorithm 2: every kept point to its face after the iteration's edits.
   void route() {
@@ -596,17 +618,24 @@ class ResidentHull {
   static constexpr std::size_t kInitialFaces = std::size_t{1} << 13;
   static constexpr std::size_t kSpeculateFaces = std::size_t{1} << 18;
   bool iterate_fused(ResidentStats& stats) {
-    mark_refined();
     const std::size_t first = faces_;
     std::size_t bound = 4 * faces_, entry_bound = faces_;
     if (bound <= kSpeculateFaces) {
-      exec_.scan(flags_.data(), face_rank_.data(), faces_);
-    } else {
-      const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
-      if (refined == 0) return false;
-      bound = faces_ + 3 * std::size_t{refined};
-      entry_bound = refined;
+      // Room first, then the marks, their prefix sum and the split in one mark_scan_move (one launch for a
+      // small mesh).
+      furthest_points();
+      grow_for_rounds(bound, entry_bound);
+      exec_.mark_scan_move(faces_, MarkRefined<Point>{view(), extreme_.data(), flags_.data()}, flags_.data(),
+                           face_rank_.data(), split_faces());
+      marks_in_use_ = 0;
+      stats.refine_ms += lap();
+      return finish_fused(stats, first, true);
     }
+    mark_refined();
+    const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
+    if (refined == 0) return no_face_refined();
+    bound = faces_ + 3 * std::size_t{refined};
+    entry_bound = refined;
     // Everything grows before the split: the faces in use are then more than the host knows to keep.
     grow_for_rounds(bound, entry_bound);
     split();
@@ -803,6 +832,13 @@ class ResidentHull {
                                       &st->kept_points});
     }
     swap_spares();
+    unkept_listed_ = false;
+  }
+  // An iteration that refines no face, before its compaction: the points setup() left in uncompacted are
+  // compacted now (all of them may be inside: then the hull is done, not stalled).  False.
+  bool no_face_refined() {
+    if (unkept_listed_) compact(faces_);
+    return false;
   }
   // The compaction's outputs become the current faces and points (and back, to undo it).
   void swap_spares() {
@@ -971,6 +1007,7 @@ class ResidentHull {
   Vec3d c_{};
   double max_coordinate_ = 0;     // every point's coordinates are at most this in size
   std::size_t work_in_use_ = 0;   // entries of work_list_ that grow_faces() keeps
+  bool unkept_listed_ = false;    // setup() left the points not kept in the list (see furthest_points())
   std::size_t marks_in_use_ = 0;  // entries of flags_ and face_rank_ that grow_faces() keeps
   std::size_t faces_ = 0, capacity_ = 0, entries_used_ = 0, entry_capacity_ = 0, active_ = 0;
   u32 round_ = 0;
@@ -993,7 +1030,7 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
   const std::size_t first = faces_;
   mark_refined();
   const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
-  if (refined == 0) return false;
+  if (refined == 0) return no_face_refined();
   stats.refined_faces += refined;
   grow_faces(faces_ + 3 * std::size_t{refined});
   grow_entries(refined);

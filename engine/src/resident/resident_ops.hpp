@@ -259,8 +259,10 @@ struct FurthestPerFace {
   const u32* point_index;
   const u32* point_face;
   u64* extreme;
+  const u32* keep = nullptr;  // optional: the points listed but not kept count for nothing (key 0)
   CUDAHULL_HD u32 segment(std::size_t j) const { return point_face[j]; }
   CUDAHULL_HD u64 key(std::size_t j) const {
+    if (keep && !keep[j]) return 0;
     const u32 f = point_face[j], i = point_index[j];
     const double h = orient3d_fast(m.P(m.fv[3 * f]), m.P(m.fv[3 * f + 1]), m.P(m.fv[3 * f + 2]), m.P(i));
     return rank_key(h > 0 ? h : 0, i);
@@ -711,12 +713,17 @@ inline constexpr std::size_t kSmallFinishFaces = 2048;
 struct FirstMesh {
   u32 faces;
   u32 fv[3 * kMaxFirstFaces], fn[3 * kMaxFirstFaces];
-  u32 *fv_out, *fn_out, *killer;
+  u32 *fv_out, *fn_out, *killer, *look;
+  u64* extreme;
   RoundsState* st;
   CUDAHULL_HD void operator()(std::size_t i) const {
     fv_out[i] = fv[i];
     fn_out[i] = fn[i];
-    if (i < faces) killer[i] = kAlive;
+    if (i < faces) {  // live, unstamped, no furthest point yet (as ResetFaces leaves a compacted face)
+      killer[i] = kAlive;
+      look[i] = 0;
+      extreme[i] = 0;
+    }
     if (i == 0) *st = RoundsState{};
   }
 };
