@@ -563,8 +563,9 @@ class ResidentHull {
     exec_.fill(claim_.data() + old, capacity_ - old, u64{0});
     for (auto* b : {&fv_out_, &fn_out_})
       b->grow(3 * capacity_);
-    // The refinement marks and their prefix sum (one per face) and the stepped rounds' work list may be in
-    // use: those entries move along, and only those (nothing unwritten is copied).
+    // The refinement marks and their prefix sum (one per face), the furthest points and the stepped rounds'
+    // work list may be in use: those entries move along (in a small mesh's fused iteration the marks'
+    // entries are copied before they are written: harmless, and never more than the faces in use).
     flags_.grow(capacity_ + 1, marks_in_use_);
     face_rank_.grow(capacity_ + 1, marks_in_use_);
     work_list_.grow(capacity_ + 1, work_in_use_);
