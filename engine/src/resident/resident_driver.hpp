@@ -320,14 +320,10 @@ class ResidentHull {
       }
     }
 
-    // The first mesh, and the first distribution (section 3.1).  Room for a hull of a few thousand faces
-    // from the start: growing is a round of allocations and copies, most of an iteration's host time on a
-    // small hull.
+    // The first mesh, and the first distribution (section 3.1), in the room reserve_first() made.
+    static_assert(static_cast<std::size_t>(kMaxFirstFaces) <= kInitialFaces, "the first mesh fits");
     faces_ = fv.size() / 3;
     const u32 first_faces = static_cast<u32>(faces_);
-    grow_faces(std::max(kInitialFaces, faces_));
-    grow_entries(kInitialFaces);
-    state_.grow(1);
     FirstMesh first{};
     first.faces = first_faces;
     std::copy(fv.begin(), fv.end(), first.fv);
@@ -394,9 +390,10 @@ class ResidentHull {
     return hull_of(ids, at);
   }
 
-  // Room for the first mesh and its first iterations (as setup() makes it) and for the points not proven
-  // inside P, made while the device finds P's points: none of it needs P, and on the GPU each allocation
-  // costs the host microseconds.
+  // Room for the first mesh and its first iterations (a hull of a few thousand faces: growing is a round of
+  // allocations and copies, most of an iteration's host time on a small hull) and for the points not
+  // proven inside P, made while the device finds P's points: none of it needs P, and on the GPU each
+  // allocation costs the host microseconds.
   void reserve_first() {
     grow_faces(kInitialFaces);
     grow_entries(kInitialFaces);
@@ -629,17 +626,16 @@ class ResidentHull {
       exec_.mark_scan_move(faces_, MarkRefined<Point>{view(), extreme_.data(), flags_.data()}, flags_.data(),
                            face_rank_.data(), split_faces());
       marks_in_use_ = 0;
-      stats.refine_ms += lap();
-      return finish_fused(stats, first, true);
+    } else {
+      mark_refined();
+      const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
+      if (refined == 0) return no_face_refined();
+      bound = faces_ + 3 * std::size_t{refined};
+      entry_bound = refined;
+      // Everything grows before the split: the faces in use are then more than the host knows to keep.
+      grow_for_rounds(bound, entry_bound);
+      split();
     }
-    mark_refined();
-    const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
-    if (refined == 0) return no_face_refined();
-    bound = faces_ + 3 * std::size_t{refined};
-    entry_bound = refined;
-    // Everything grows before the split: the faces in use are then more than the host knows to keep.
-    grow_for_rounds(bound, entry_bound);
-    split();
     stats.refine_ms += lap();
     return finish_fused(stats, first, true);
   }
@@ -896,14 +892,7 @@ class ResidentHull {
       if (counts[0] == 0) {
         std::vector<u32> both(corners + counts[1]);
         exec_.download(both.data(), fv_out_.data(), both.size());
-        BasicHullMesh<Point> out;
-        out.vertex_ids.assign(both.begin() + static_cast<std::ptrdiff_t>(corners), both.end());
-        out.triangles.resize(faces_);
-        static_assert(sizeof(Triangle) == 3 * sizeof(u32));
-        std::copy(both.begin(), both.begin() + static_cast<std::ptrdiff_t>(corners),
-                  reinterpret_cast<u32*>(out.triangles.data()));
-        out.vertices = vertex_coordinates(out.vertex_ids, list);
-        return out;
+        return result_mesh(both.data(), counts[1], list);
       }
     } else {
       exec_.download(counts, &st->faults, 1);
@@ -955,15 +944,21 @@ class ResidentHull {
       got.resize(at + vertices);
       exec_.download(got.data() + had, out + had, got.size() - had);
     }
-    BasicHullMesh<Point> result;
-    result.vertex_ids.assign(got.begin() + static_cast<std::ptrdiff_t>(at),
-                             got.begin() + static_cast<std::ptrdiff_t>(at + vertices));
-    result.triangles.resize(faces_);
+    return result_mesh(got.data() + 2, vertices, out + at);
+  }
+
+  // The result from what the finish read back: the renumbered corners (3 a face), then `vertices` vertex
+  // ids; the coordinates from the host copy, or gathered from the vertex list at `list` where it is.
+  BasicHullMesh<Point> result_mesh(const u32* corners_then_vertices, std::size_t vertices, const u32* list) {
+    const std::size_t corners = 3 * faces_;
+    BasicHullMesh<Point> out;
+    out.vertex_ids.assign(corners_then_vertices + corners, corners_then_vertices + corners + vertices);
+    out.triangles.resize(faces_);
     static_assert(sizeof(Triangle) == 3 * sizeof(u32));
-    std::copy(got.begin() + 2, got.begin() + static_cast<std::ptrdiff_t>(at),
-              reinterpret_cast<u32*>(result.triangles.data()));
-    result.vertices = vertex_coordinates(result.vertex_ids, out + at);
-    return result;
+    std::copy(corners_then_vertices, corners_then_vertices + corners,
+              reinterpret_cast<u32*>(out.triangles.data()));
+    out.vertices = vertex_coordinates(out.vertex_ids, list);
+    return out;
   }
 
   // The result's coordinates: from the host copy, or gathered from the vertex list where it is.
