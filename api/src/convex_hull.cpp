@@ -14,9 +14,13 @@
 #include "cudahull/engine.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/parallel.hpp"
+#include "cudahull/plane.hpp"
 #include "cudahull/resident.hpp"
 #include "device_info.hpp"
 #include "device_points.hpp"
+#include "facet_merge.hpp"
+#include "planar_filter.hpp"
+#include "planar_hull.hpp"
 #include "resident_cuda.hpp"
 
 namespace cudahull {
@@ -183,7 +187,7 @@ std::vector<std::array<std::int32_t, 3>> face_neighbors(const std::vector<Triang
 }
 
 template <class Point>
-ConvexHull describe(const BasicHullMesh<Point>& mesh, std::string backend) {
+ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend) {
   ConvexHull hull;
   hull.dimension = mesh.dimension;
   hull.precision = std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
@@ -223,19 +227,86 @@ ConvexHull describe(const BasicHullMesh<Point>& mesh, std::string backend) {
     hull.faces.push_back({mesh.vertex_ids[t[0]], mesh.vertex_ids[t[1]], mesh.vertex_ids[t[2]]});
     const Vec a = as_vec(mesh.vertices[t[0]]), b = as_vec(mesh.vertices[t[1]]),
               c = as_vec(mesh.vertices[t[2]]);
-    const Vec normal = cross(b - a, c - a);
-    const double length = norm(normal);
-    twice_area += length;
+    twice_area += norm(cross(b - a, c - a));
     six_volume += dot(cross(b - centroid, c - centroid), a - centroid);
-    const Vec unit{normal.x / length, normal.y / length, normal.z / length};
-    // The offset from the three corners' mean: the plane's rounding error shared out evenly.
-    const double offset = -(dot(unit, a) + dot(unit, b) + dot(unit, c)) / 3;
-    hull.planes.push_back({unit.x, unit.y, unit.z, offset});
+    // Not cross(b - a, c - a): on a sliver that cancels, and a vertex could lie far outside its own face's
+    // plane.  plane_through() rounds the exact normal.
+    hull.planes.push_back(plane_through(to_vec3d(mesh.vertices[t[0]]), to_vec3d(mesh.vertices[t[1]]),
+                                        to_vec3d(mesh.vertices[t[2]])));
   }
   hull.volume = six_volume / 6;
   hull.area = twice_area / 2;
   hull.neighbors = face_neighbors(mesh.triangles, mesh.vertices.size());
   return hull;
+}
+
+// The absolute merge tolerance that `options` ask for, from the exact hull's vertices (the input's bounding
+// box and largest magnitudes are its vertices').
+template <class Point>
+double merge_tolerance(const std::vector<Point>& vertices, const ConvexHullOptions& options) {
+  if (options.merge == MergeMode::kQhull) return qhull_default_tolerance(vertices);
+  double largest_side = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    double low = INFINITY, high = -INFINITY;
+    for (const Point& p : vertices) {
+      const double x = axis == 0 ? p.x : axis == 1 ? p.y : p.z;
+      low = std::min(low, x);
+      high = std::max(high, x);
+    }
+    largest_side = std::max(largest_side, high - low);
+  }
+  return options.tolerance * largest_side;
+}
+
+// A merged hull (issue 25) from the exact one: merge_facets() works on the exact hull's vertices alone,
+// since every input point is a convex combination of them, and its indices are mapped back to the input's.
+template <class Point>
+ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend, const ConvexHullOptions& options) {
+  BasicHullMesh<Point> local = mesh;
+  for (std::size_t k = 0; k < local.vertex_ids.size(); ++k)
+    local.vertex_ids[k] = static_cast<PointIndex>(k);
+  const MergedHull merged = merge_facets(mesh.vertices, local, merge_tolerance(mesh.vertices, options));
+  ConvexHull hull;
+  hull.dimension = 3;
+  hull.precision = std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
+  hull.backend = std::move(backend);
+  hull.tolerance = merged.tolerance;
+  hull.max_outside = merged.max_outside;
+  for (PointIndex v : merged.vertices)
+    hull.vertices.push_back(mesh.vertex_ids[v]);
+  std::sort(hull.vertices.begin(), hull.vertices.end());
+  std::vector<Triangle> local_faces;
+  Vec centroid{0, 0, 0};
+  for (PointIndex v : merged.vertices) {
+    const Vec p = as_vec(mesh.vertices[v]);
+    centroid = {centroid.x + p.x, centroid.y + p.y, centroid.z + p.z};
+  }
+  const double n = static_cast<double>(merged.vertices.size());
+  centroid = {centroid.x / n, centroid.y / n, centroid.z / n};
+  double six_volume = 0, twice_area = 0;
+  for (const auto& face : merged.faces) {
+    local_faces.push_back({face[0], face[1], face[2]});
+    hull.faces.push_back({mesh.vertex_ids[face[0]], mesh.vertex_ids[face[1]], mesh.vertex_ids[face[2]]});
+    const Vec a = as_vec(mesh.vertices[face[0]]), b = as_vec(mesh.vertices[face[1]]),
+              c = as_vec(mesh.vertices[face[2]]);
+    twice_area += norm(cross(b - a, c - a));
+    six_volume += dot(cross(b - centroid, c - centroid), a - centroid);
+  }
+  hull.volume = six_volume / 6;
+  hull.area = twice_area / 2;
+  hull.planes = merged.planes;
+  hull.neighbors = face_neighbors(local_faces, mesh.vertices.size());
+  for (const auto& row : merged.coplanar)
+    hull.coplanar.push_back({mesh.vertex_ids[row[0]], row[1], mesh.vertex_ids[row[2]]});
+  return hull;
+}
+
+// The result convex_hull() returns for the exact hull `mesh`, merged where `options` ask for it (a flat hull
+// has nothing to merge).
+template <class Point>
+ConvexHull describe(const BasicHullMesh<Point>& mesh, std::string backend, const ConvexHullOptions& options) {
+  if (options.merge == MergeMode::kExact || mesh.dimension != 3) return describe_exact(mesh, std::move(backend));
+  return describe_merged(mesh, std::move(backend), options);
 }
 
 template <class Point>
@@ -247,7 +318,7 @@ ConvexHull hull_in(const std::vector<Point>& points, const ConvexHullOptions& op
         ResidentCudaHull<Point> resident;
         resident.upload(points);
         ResidentStats stats;
-        ConvexHull hull = describe(resident.run(&stats), "cuda-resident");
+        ConvexHull hull = describe(resident.run(&stats), "cuda-resident", options);
         hull.resident_stats = std::move(stats);
         return hull;
       }
@@ -255,7 +326,7 @@ ConvexHull hull_in(const std::vector<Point>& points, const ConvexHullOptions& op
         throw DeviceError("backend cuda: no usable CUDA device: " + device.reason);
     }
     ResidentStats stats;
-    ConvexHull hull = describe(resident_hull_host(points, &stats), "cpu-resident");
+    ConvexHull hull = describe(resident_hull_host(points, &stats), "cpu-resident", options);
     hull.resident_stats = std::move(stats);
     return hull;
   }
@@ -263,7 +334,7 @@ ConvexHull hull_in(const std::vector<Point>& points, const ConvexHullOptions& op
   std::string name = backend->name();
   BasicEngine<Point> engine(points, std::move(backend), EngineOptions{.keep_decisions = false});
   engine.run();
-  return describe(engine.result(), std::move(name));
+  return describe(engine.result(), std::move(name), options);
 }
 
 // The hull of `count` points read by `coordinate(i, axis)`, whose own precision is `own`.
@@ -278,7 +349,7 @@ ConvexHull checked_hull(std::size_t count, Coordinate coordinate, Precision own,
 // The hull of points that only the current device holds, in Point: checked (and converted) there, then
 // borrowed by the resident engine.
 template <class Point, class Scalar>
-ConvexHull device_hull_in(const Scalar* device_xyz, std::size_t count) {
+ConvexHull device_hull_in(const Scalar* device_xyz, std::size_t count, const ConvexHullOptions& options) {
   CheckedDevicePoints<Point> checked = check_device_points<Point>(device_xyz, count);
   if (checked.first_bad != count) {
     // Named from its own coordinates by the host path's check, so the message is the same word for word.
@@ -294,7 +365,7 @@ ConvexHull device_hull_in(const Scalar* device_xyz, std::size_t count) {
   const Clock::time_point run_start = Clock::now();
   const BasicHullMesh<Point> mesh = resident.run(&stats);
   const Clock::time_point describe_start = Clock::now();
-  ConvexHull hull = describe(mesh, "cuda-resident");
+  ConvexHull hull = describe(mesh, "cuda-resident", options);
   hull.engine_ms = std::chrono::duration<double, std::milli>(describe_start - run_start).count();
   hull.describe_ms = ms_since(describe_start);
   stats.host_syncs += checked.host_syncs;
@@ -315,8 +386,8 @@ ConvexHull device_hull(const Scalar* device_xyz, std::size_t count, Precision ow
     throw DeviceError("points in GPU memory, but no usable CUDA device: " + why_not);
   if (count != 0) require_current_device_memory(device_xyz);
   const Precision precision = options.precision == Precision::kAuto ? own : options.precision;
-  if (precision == Precision::kDouble) return device_hull_in<Point3d>(device_xyz, count);
-  return device_hull_in<Point3>(device_xyz, count);
+  if (precision == Precision::kDouble) return device_hull_in<Point3d>(device_xyz, count, options);
+  return device_hull_in<Point3>(device_xyz, count, options);
 }
 
 template <class Scalar>
@@ -344,6 +415,227 @@ auto vector_coordinate(const std::vector<Point>& points) {
   return [&points](std::size_t i, int axis) -> double {
     return axis == 0 ? points[i].x : axis == 1 ? points[i].y : points[i].z;
   };
+}
+
+
+// --- 2-D input (issue 25) ------------------------------------------------------------------------------
+
+// The 2-D points as Scalar (float for kFloat, else the input's own), checked as the 3-D points are: the
+// first bad point named, with its coordinate.
+template <class Scalar, class Input>
+std::vector<Scalar> checked_planar(const Input* xy, std::size_t count) {
+  check_count(count);
+  using Point = std::conditional_t<std::is_same_v<Scalar, float>, Point3, Point3d>;
+  std::vector<Scalar> out(2 * count);
+  const unsigned workers = hardware_workers();
+  std::vector<std::size_t> first_bad(workers, count);
+  parallel_chunks(
+      count, workers,
+      [&](std::size_t begin, std::size_t end, unsigned worker) {
+        for (std::size_t i = begin; i < end; ++i) {
+          const double widened[3] = {static_cast<double>(xy[2 * i]), static_cast<double>(xy[2 * i + 1]), 0};
+          int axis = 0;
+          Point p;
+          if (rejection(widened, axis, p)) {
+            first_bad[worker] = i;
+            return;
+          }
+          out[2 * i] = static_cast<Scalar>(p.x);
+          out[2 * i + 1] = static_cast<Scalar>(p.y);
+        }
+      },
+      std::size_t{1} << 16);
+  const std::size_t bad = *std::min_element(first_bad.begin(), first_bad.end());
+  if (bad != count) {
+    const double widened[3] = {static_cast<double>(xy[2 * bad]), static_cast<double>(xy[2 * bad + 1]), 0};
+    throw_if_rejected<Point>(bad, widened);
+  }
+  return out;
+}
+
+struct Vec2 {
+  double x, y;
+};
+
+// The outward line of the counter-clockwise edge a -> b: each difference is rounded once, so the normal's
+// direction is accurate to the last place, and the offset puts both ends on or just below it.
+std::array<double, 3> outward_line(Vec2 a, Vec2 b) {
+  const double dx = b.x - a.x, dy = b.y - a.y, length = std::hypot(dx, dy);
+  const double nx = dy / length, ny = -dx / length;
+  return {nx, ny, -std::max(nx * a.x + ny * a.y, nx * b.x + ny * b.y)};
+}
+
+// A corner's distance beyond the line through its neighbours: how far the polygon moves if it is dropped.
+double corner_height(Vec2 previous, Vec2 corner, Vec2 next) {
+  const std::array<double, 3> line = outward_line(previous, next);
+  return line[0] * corner.x + line[1] * corner.y + line[2];
+}
+
+// Qhull's roundoff tolerance for 2-D input: its MINoutside, 4 x DISTround, with qh_distround()'s 2-D
+// constants (qhull_default_tolerance() in facet_merge.hpp has the 3-D ones and the source).  The largest
+// magnitudes are the corners': |x| is convex, so its maximum over the points is at a corner.
+template <class Scalar>
+double planar_qhull_tolerance(const std::vector<Scalar>& xy, const std::vector<PointIndex>& corners) {
+  double largest[2] = {0, 0};
+  for (PointIndex v : corners) {
+    for (int axis = 0; axis < 2; ++axis)
+      largest[axis] = std::max(largest[axis], std::fabs(static_cast<double>(xy[2 * v + axis])));
+  }
+  const double maxabs = std::max(largest[0], largest[1]);
+  const double maxsumabs = largest[0] + largest[1];
+  const double distround =
+      std::numeric_limits<double>::epsilon() * (2 * std::min(std::sqrt(2.0) * maxabs, maxsumabs) * 1.01 + maxabs);
+  return 4 * distround;
+}
+
+template <class Scalar>
+ConvexHull describe_planar(const std::vector<Scalar>& xy, PlanarHull planar, const ConvexHullOptions& options,
+                           const std::vector<PointIndex>* original = nullptr) {
+  ConvexHull hull;
+  hull.input_dimension = 2;
+  hull.dimension = planar.dimension;
+  hull.precision = std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat;
+  hull.backend = "cpu";
+  auto at = [&](PointIndex i) { return Vec2{static_cast<double>(xy[2 * i]), static_cast<double>(xy[2 * i + 1])}; };
+  std::vector<PointIndex> corners = std::move(planar.polygon);
+  std::vector<PointIndex> dropped;
+  if (planar.dimension == 2 && options.merge != MergeMode::kExact) {
+    // Merging in the plane: drop the flattest corner while it lies within the tolerance of the line through
+    // its neighbours, and while a triangle is left.  The result stays convex: a dropped corner only cuts a
+    // cap off the polygon.
+    double largest_side = 0;
+    for (int axis = 0; axis < 2; ++axis) {
+      double low = INFINITY, high = -INFINITY;
+      for (PointIndex v : corners) {
+        low = std::min(low, static_cast<double>(xy[2 * v + axis]));
+        high = std::max(high, static_cast<double>(xy[2 * v + axis]));
+      }
+      largest_side = std::max(largest_side, high - low);
+    }
+    hull.tolerance = options.merge == MergeMode::kQhull ? planar_qhull_tolerance(xy, corners)
+                                                        : options.tolerance * largest_side;
+    while (corners.size() > 3) {
+      const std::size_t m = corners.size();
+      std::size_t flattest = m;
+      double lowest = hull.tolerance;
+      for (std::size_t k = 0; k < m; ++k) {
+        const double h = corner_height(at(corners[(k + m - 1) % m]), at(corners[k]), at(corners[(k + 1) % m]));
+        if (h <= lowest) {
+          lowest = h;
+          flattest = k;
+        }
+      }
+      if (flattest == m) break;
+      dropped.push_back(corners[flattest]);
+      corners.erase(corners.begin() + static_cast<std::ptrdiff_t>(flattest));
+    }
+  }
+  hull.polygon = corners;
+  hull.vertices = corners;
+  std::sort(hull.vertices.begin(), hull.vertices.end());
+  if (planar.dimension != 2) return hull;
+  const std::size_t m = corners.size();
+  for (std::size_t k = 0; k < m; ++k) {
+    const PointIndex a = corners[k], b = corners[(k + 1) % m];
+    hull.edges.push_back({a, b});
+    // Opposite a lies the edge that goes on from b; opposite b the one that comes into a.
+    hull.edge_neighbors.push_back({static_cast<std::int32_t>((k + 1) % m), static_cast<std::int32_t>((k + m - 1) % m)});
+    hull.lines.push_back(outward_line(at(a), at(b)));
+    const Vec2 pa = at(a), pb = at(b);
+    hull.area += std::hypot(pb.x - pa.x, pb.y - pa.y);
+    // The shoelace sum from the first corner: every term's triangle lies inside the convex polygon.
+    const Vec2 origin = at(corners[0]);
+    hull.volume += ((pa.x - origin.x) * (pb.y - origin.y) - (pa.y - origin.y) * (pb.x - origin.x)) / 2;
+  }
+  // The certificate: every input point is a convex combination of the exact corners, so the largest height
+  // of a dropped corner over any edge's line bounds them all (a kept corner is on or below every line but
+  // for rounding: counted too), plus the rounding of each evaluation.
+  constexpr double kUnit = 0x1p-53;
+  for (PointIndex v : hull.vertices)
+    dropped.push_back(v);
+  for (PointIndex v : dropped) {
+    const Vec2 p = at(v);
+    double nearest = -INFINITY;
+    std::size_t nearest_edge = 0;
+    for (std::size_t e = 0; e < m; ++e) {
+      const auto& line = hull.lines[e];
+      const double h = line[0] * p.x + line[1] * p.y + line[2];
+      const double error = 4 * kUnit * (std::fabs(line[0] * p.x) + std::fabs(line[1] * p.y) + std::fabs(line[2]));
+      hull.max_outside = std::max(hull.max_outside, h + error);
+      if (h > nearest) {
+        nearest = h;
+        nearest_edge = e;
+      }
+    }
+    if (std::binary_search(hull.vertices.begin(), hull.vertices.end(), v)) continue;
+    const auto& edge = hull.edges[nearest_edge];
+    const Vec2 a = at(edge[0]), b = at(edge[1]);
+    const bool nearer_a = std::hypot(p.x - a.x, p.y - a.y) <= std::hypot(p.x - b.x, p.y - b.y);
+    hull.coplanar.push_back({v, static_cast<PointIndex>(nearest_edge), nearer_a ? edge[0] : edge[1]});
+  }
+  if (options.merge == MergeMode::kExact) hull.max_outside = 0;
+  if (original) {
+    auto map = [&](PointIndex& i) { i = (*original)[i]; };
+    std::for_each(hull.polygon.begin(), hull.polygon.end(), map);
+    std::for_each(hull.vertices.begin(), hull.vertices.end(), map);
+    for (auto& edge : hull.edges)
+      map(edge[0]), map(edge[1]);
+    for (auto& row : hull.coplanar)
+      map(row[0]), map(row[2]);
+  }
+  return hull;
+}
+
+// 2-D points in device memory: the device filters them (planar_filter.hpp) and the host finishes on the
+// survivors, which keep every corner and, in input order, every duplicate of one.
+template <class Scalar>
+ConvexHull device_planar_hull(const Scalar* device_xy, std::size_t count, const ConvexHullOptions& options) {
+  if (options.backend == BackendChoice::kCpu)
+    throw std::invalid_argument("points in GPU memory need backend auto or cuda, not cpu");
+  check_count(count);
+  std::string why_not;
+  if (!cuda_device_present(&why_not))
+    throw DeviceError("points in GPU memory, but no usable CUDA device: " + why_not);
+  if (count != 0) require_current_device_memory(device_xy);
+  const bool rounded_first = options.precision == Precision::kFloat && std::is_same_v<Scalar, double>;
+  if (count > static_cast<std::size_t>(std::numeric_limits<int>::max()) || rounded_first) {
+    // Beyond the device selection's count, or rounded to float first: on the host.
+    std::vector<Scalar> host = download_planar(device_xy, count);
+    ConvexHull hull = convex_hull_2d(host.data(), count, options);
+    return hull;
+  }
+  PlanarCandidates<Scalar> candidates = planar_candidates(device_xy, count);
+  if (candidates.first_bad != count) {
+    const std::array<double, 3> p = read_device_point_2d(device_xy, candidates.first_bad);
+    const double widened[3] = {p[0], p[1], 0};
+    throw_if_rejected<std::conditional_t<std::is_same_v<Scalar, float>, Point3, Point3d>>(candidates.first_bad,
+                                                                                          widened);
+  }
+  if (candidates.degenerate) {
+    std::vector<Scalar> host = download_planar(device_xy, count);
+    ConvexHull hull = convex_hull_2d(host.data(), count, options);
+    hull.backend = "cuda";
+    return hull;
+  }
+  const std::size_t survivors = candidates.indices.size();
+  ConvexHull hull =
+      describe_planar(candidates.xy, planar_hull(candidates.xy.data(), survivors), options, &candidates.indices);
+  hull.backend = "cuda";
+  if (options.precision == Precision::kDouble) hull.precision = Precision::kDouble;
+  return hull;
+}
+
+template <class Input>
+ConvexHull planar_hull_of(const Input* xy, std::size_t count, Precision own, const ConvexHullOptions& options) {
+  if (options.backend == BackendChoice::kCuda && !cuda_device_present(nullptr))
+    throw DeviceError("backend cuda: no usable CUDA device");
+  const Precision precision = options.precision == Precision::kAuto ? own : options.precision;
+  if (precision == Precision::kFloat) {
+    const std::vector<float> points = checked_planar<float>(xy, count);
+    return describe_planar(points, planar_hull(points.data(), count), options);
+  }
+  const std::vector<double> points = checked_planar<double>(xy, count);
+  return describe_planar(points, planar_hull(points.data(), count), options);
 }
 
 }  // namespace
@@ -380,7 +672,7 @@ template std::vector<Point3d> checked_points<Point3d>(const double*, std::size_t
 
 template <class Point>
 ConvexHull hull_from_mesh(const BasicHullMesh<Point>& mesh, std::string backend) {
-  return describe(mesh, std::move(backend));
+  return describe_exact(mesh, std::move(backend));
 }
 
 template ConvexHull hull_from_mesh(const HullMesh&, std::string);
@@ -422,6 +714,22 @@ ConvexHull convex_hull_device(const double* device_xyz, std::size_t count, const
   return device_hull(device_xyz, count, Precision::kDouble, options);
 }
 
+ConvexHull convex_hull_2d(const float* xy, std::size_t count, const ConvexHullOptions& options) {
+  return planar_hull_of(xy, count, Precision::kFloat, options);
+}
+
+ConvexHull convex_hull_2d(const double* xy, std::size_t count, const ConvexHullOptions& options) {
+  return planar_hull_of(xy, count, Precision::kDouble, options);
+}
+
+ConvexHull convex_hull_2d_device(const float* device_xy, std::size_t count, const ConvexHullOptions& options) {
+  return device_planar_hull(device_xy, count, options);
+}
+
+ConvexHull convex_hull_2d_device(const double* device_xy, std::size_t count, const ConvexHullOptions& options) {
+  return device_planar_hull(device_xy, count, options);
+}
+
 CudaStatus cuda_status() {
   const CudaDeviceInfo device = query_cuda_device();
   return {device.usable, device.name, device.reason};
@@ -439,6 +747,13 @@ EngineChoice engine_from_name(const std::string& name) {
   if (name == "stepping") return EngineChoice::kStepping;
   if (name == "resident") return EngineChoice::kResident;
   throw std::invalid_argument("engine must be auto, stepping or resident, not '" + name + "'");
+}
+
+MergeMode merge_from_name(const std::string& name) {
+  if (name == "exact") return MergeMode::kExact;
+  if (name == "qhull") return MergeMode::kQhull;
+  if (name == "relative") return MergeMode::kRelative;
+  throw std::invalid_argument("merge must be exact, qhull or relative, not '" + name + "'");
 }
 
 Precision precision_from_name_strict(const std::string& name) {

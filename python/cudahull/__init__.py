@@ -1,7 +1,9 @@
-"""Exact 3-D convex hulls with the CudaHull algorithm (Stein, Geva, El-Sana 2012).
+"""Exact 2-D and 3-D convex hulls with the CudaHull algorithm (Stein, Geva, El-Sana 2012).
 
-``ConvexHull`` has the attributes and methods of ``scipy.spatial.ConvexHull`` for 3-D points; ``Engine``
-steps the algorithm one iteration at a time (for notebooks); ``convex_hull`` returns the hull as a dict.
+``ConvexHull`` is a drop-in for ``scipy.spatial.ConvexHull`` in 2-D and 3-D: the same arguments
+(``qhull_options`` included), attributes, methods and errors (``QhullError``); ``Engine`` steps the
+algorithm one iteration at a time (for notebooks); ``convex_hull`` returns the hull as a dict, with the
+lower-dimensional answer for flat input.
 
 Points already on the GPU (a CuPy array, a PyTorch CUDA tensor, anything with ``__dlpack__`` or
 ``__cuda_array_interface__`` in CUDA memory) are read in place: no host copy of them is made, and the
@@ -9,13 +11,26 @@ results come back as NumPy arrays, or, with ``device_results=True``, as arrays o
 """
 
 import functools
+import math
 
 import numpy as np
 
-from . import _cudahull
+from . import _cudahull, qhull_options as _qhull_options
 from ._cudahull import SWAP_KINDS, DeviceError, InputError
 
-__all__ = ["ConvexHull", "Engine", "convex_hull", "InputError", "DeviceError", "SWAP_KINDS"]
+__all__ = ["ConvexHull", "Engine", "convex_hull", "InputError", "DeviceError", "QhullError", "SWAP_KINDS"]
+
+try:  # scipy's own, where scipy is importable, so that code catching it catches ours
+    from scipy.spatial import QhullError as _QhullErrorBase
+except ImportError:  # pragma: no cover - exercised where scipy is absent
+    _QhullErrorBase = RuntimeError
+
+
+class QhullError(_QhullErrorBase):
+    """Raised where ``scipy.spatial.ConvexHull`` raises ``QhullError``: too few points, flat input (their
+    lower-dimensional hull is ``cudahull.convex_hull()``'s answer), and ``qhull_options`` with an option
+    that has no defined behaviour here.  A subclass of ``scipy.spatial.QhullError`` where scipy is
+    importable, else of ``RuntimeError``."""
 
 _DLPACK_CPU, _DLPACK_CUDA = 1, 2  # DLPack's device types (kDLCPU, kDLCUDA)
 
@@ -36,14 +51,22 @@ def _cuda_protocol(points):
     return None
 
 
-def _as_points(points):
-    """(n, 3) C-contiguous float32 (kept) or float64 (anything else numeric, converted) points."""
+def _as_points(points, dimensions=(3,)):
+    """(n, d) C-contiguous float32 (kept) or float64 (anything else numeric, converted) points, d one of
+    ``dimensions``."""
     if _cuda_protocol(points) is not None:
         raise ValueError("these points are in GPU memory: this function takes host points (cupy.asnumpy(x), "
                          "x.cpu().numpy())")
+    if isinstance(points, np.ma.MaskedArray):
+        raise ValueError("masked arrays are not supported: pass the points to keep (points.compressed() or "
+                         "points[~points.mask.any(axis=1)])")
     array = np.asarray(points)
-    if array.ndim != 2 or array.shape[1] != 3:
-        raise ValueError(f"points must be an (n, 3) array of 3-D points, not one of shape {array.shape}")
+    if array.ndim == 2 and array.shape[1] >= 4 and 2 in dimensions:
+        raise ValueError(f"points are {array.shape[1]}-dimensional: cudahull computes 2-D and 3-D hulls only "
+                         f"(scipy.spatial.ConvexHull takes {array.shape[1]}-D points)")
+    if array.ndim != 2 or array.shape[1] not in dimensions:
+        wanted = " or ".join(f"(n, {d})" for d in dimensions)
+        raise ValueError(f"points must be an {wanted} array, not one of shape {array.shape}")
     if array.dtype != np.float32 and array.dtype != np.float64:
         if array.dtype.kind not in "biuf":
             raise ValueError(f"points must be numbers, not {array.dtype}")
@@ -130,33 +153,39 @@ def _check_engine(engine, on_device, backend="auto"):
     return engine
 
 
-def _device_hull(points, protocol, backend, precision):
-    """The hull dict of (n, 3) points in CUDA memory, read in place by the resident engine."""
+def _device_hull(points, protocol, backend, precision, merge=("exact", 0.0)):
+    """The hull dict of (n, 3) or (n, 2) points in CUDA memory: 3-D read in place by the resident engine,
+    2-D filtered on the device with only the possible corners read back."""
     if backend == "cpu":
         raise ValueError("points in GPU memory need backend 'auto' or 'cuda', not 'cpu' (for the CPU backend, "
                          "pass them as NumPy: cupy.asnumpy(x), x.cpu().numpy())")
+    shape = tuple(points.shape)
+    if len(shape) == 2 and shape[1] >= 4:
+        raise ValueError(f"points are {shape[1]}-dimensional: cudahull computes 2-D and 3-D hulls only")
+    if len(shape) != 2 or shape[1] not in (2, 3):
+        raise ValueError(f"points must be an (n, 3) or (n, 2) array, not one of shape {shape}")
+    planar = shape[1] == 2
     if protocol == "cuda_array_interface":
         # Checked here, before any data is read; a DLPack array is checked by the module (it sees its
         # dtype, shape and strides).
         interface = points.__cuda_array_interface__
-        shape, typestr, strides = tuple(interface["shape"]), interface["typestr"], interface.get("strides")
-        if len(shape) != 2 or shape[1] != 3:
-            raise ValueError(f"points must be an (n, 3) array of 3-D points, not one of shape {shape}")
+        typestr, strides = interface["typestr"], interface.get("strides")
         if typestr not in ("<f4", "<f8"):
             raise ValueError("points in GPU memory must be float32 or float64 (convert with .astype())")
         itemsize = int(typestr[2])
         if strides is not None and shape[0] > 0 and (
-                strides[1] != itemsize or (shape[0] > 1 and strides[0] != 3 * itemsize)):
+                strides[1] != itemsize or (shape[0] > 1 and strides[0] != shape[1] * itemsize)):
             raise ValueError("points in GPU memory must be C-contiguous: the engine reads them in place")
     usable, why_not = _cuda_device()
     if not usable:
         raise DeviceError(f"points in GPU memory, but no usable CUDA device: {why_not}")
     if protocol == "cuda_array_interface":
-        return _cudahull.convex_hull_cuda_pointer(interface["data"][0], shape[0], itemsize == 8, backend,
-                                                  precision)
+        call = _cudahull.convex_hull_2d_cuda_pointer if planar else _cudahull.convex_hull_cuda_pointer
+        return call(interface["data"][0], shape[0], itemsize == 8, backend, precision, *merge)
     if getattr(points, "requires_grad", False):
         points = points.detach()  # PyTorch exports no tensor that requires grad; the hull reads values only
-    return _cudahull.convex_hull_cuda(points, backend, precision)
+    call = _cudahull.convex_hull_2d_cuda if planar else _cudahull.convex_hull_cuda
+    return call(points, backend, precision, *merge)
 
 
 @functools.lru_cache(maxsize=None)
@@ -165,30 +194,63 @@ def _cuda_device():
     return _cudahull.cuda_device()
 
 
-_RESULT_ARRAYS = ("vertices", "simplices", "neighbors", "equations", "polygon")
+_RESULT_ARRAYS = ("vertices", "simplices", "neighbors", "equations", "polygon", "coplanar")
 
 
-def convex_hull(points, backend="auto", precision="auto", engine="auto", device_results=False):
-    """The exact hull of (n, 3) ``points`` as a dict of NumPy arrays and numbers.
+def _merge_arguments(tolerance, low=None, high=None):
+    """The module's (merge, tolerance) for a ``tolerance``: None (exact), "qhull", a float (relative to the
+    bounding box's largest side), or ("absolute", distance, angle_cosine) from qhull_options' C and A,
+    which needs the bounding box (``low``, ``high``) to become relative."""
+    if tolerance is None:
+        return ("exact", 0.0)
+    if isinstance(tolerance, str):
+        if tolerance != "qhull":
+            raise ValueError(f"tolerance must be None, 'qhull' or a number, not '{tolerance}'")
+        return ("qhull", 0.0)
+    if isinstance(tolerance, tuple):
+        _, distance, cosine = tolerance
+        low, high = np.asarray(low, dtype=np.float64), np.asarray(high, dtype=np.float64)
+        side = float(np.max(high - low)) if low.size else 0.0
+        if cosine is not None:
+            distance = max(distance, math.sqrt(max(0.0, 1 - cosine * cosine)) * float(np.linalg.norm(high - low)))
+        return ("relative", distance / side if side > 0 else 0.0)
+    value = float(tolerance)
+    if not math.isfinite(value) or value < 0:
+        raise ValueError(f"tolerance must be None, 'qhull' or a finite number >= 0, not {tolerance!r}")
+    return ("relative", value)
 
-    Keys: ``dimension``, ``precision``, ``backend``, ``vertices``, ``simplices``, ``neighbors``,
-    ``equations``, ``polygon``, ``volume``, ``area`` (as on ``ConvexHull``; indices are uint32 here), and
-    ``stats``: the resident engine's counters (``host_syncs``, ``bytes_from_device``,
-    ``points_read_back``, ...), None for the stepping engine.
+
+def convex_hull(points, backend="auto", precision="auto", engine="auto", device_results=False, tolerance=None):
+    """The hull of (n, 3) or (n, 2) ``points`` as a dict of NumPy arrays and numbers.
+
+    Keys: ``dimension``, ``input_dimension``, ``precision``, ``backend``, ``vertices``, ``simplices``,
+    ``neighbors``, ``equations``, ``polygon``, ``coplanar``, ``volume``, ``area``, ``tolerance``,
+    ``max_outside`` (as on ``ConvexHull``; indices are uint32 here), and ``stats``: the resident engine's
+    counters (``host_syncs``, ``bytes_from_device``, ``points_read_back``, ...), None otherwise.  Flat
+    input gives its lower-dimensional hull (``dimension`` below the input's; ``polygon`` the corners in
+    order), where ``ConvexHull`` raises QhullError as scipy does.
 
     ``engine``: "auto" is "resident" where the hull runs on a GPU (points in GPU memory, which only it reads
     in place, or host points with a usable GPU and backend "auto" or "cuda") and "stepping" on the CPU, as
     the command line's ``--engine auto``.  ``device_results=True`` returns the arrays of a CuPy or
-    PyTorch input as CuPy arrays or tensors on its device.
+    PyTorch input as CuPy arrays or tensors on its device.  ``tolerance``: None (the exact hull), "qhull"
+    (merged as Qhull's default merging does) or a number (merged within that fraction of the bounding
+    box's largest side).  2-D points in GPU memory are filtered there: only the points that can be corners
+    come back.
     """
     protocol = _cuda_protocol(points)
     engine = _check_engine(engine, protocol is not None, backend)
     if protocol is None:
-        return _cudahull.convex_hull(_as_points(points), backend, precision, engine)
+        array = _as_points(points, (2, 3))
+        merge = _merge_arguments(tolerance, *_bounds_of(array, tolerance))
+        if array.shape[1] == 2:
+            return _cudahull.convex_hull_2d(array, backend, precision, *merge)
+        return _cudahull.convex_hull(array, backend, precision, engine, *merge)
     kind = _DeviceKind(points)
     if device_results:
         kind.require_known("device_results=True")
-    result = _device_hull(points, protocol, backend, precision)
+    merge = _merge_arguments(tolerance, *_bounds_of(points, tolerance, kind))
+    result = _device_hull(points, protocol, backend, precision, merge)
     if device_results:
         for key in _RESULT_ARRAYS:
             array = result[key]
@@ -197,74 +259,96 @@ def convex_hull(points, backend="auto", precision="auto", engine="auto", device_
     return result
 
 
+def _bounds_of(points, tolerance, kind=None):
+    """The bounding box, only where an absolute tolerance needs it (else (None, None))."""
+    if not isinstance(tolerance, tuple) or points.shape[0] == 0:
+        return None, None
+    if kind is None:
+        return points.min(axis=0), points.max(axis=0)
+    low, high = kind.bounds(points)
+    return kind.to_numpy(low), kind.to_numpy(high)
+
+
 def _index_array(values, npoints):
     # scipy's index arrays are int32; beyond 2**31 - 1 points they could not hold every index.
     return np.asarray(values, dtype=np.int32 if npoints < 2**31 else np.int64)
 
 
+_DEFAULT = object()  # tolerance not given: None without qhull_options, "qhull" with them
+
+
 class ConvexHull:
-    """Exact convex hull of 3-D points, with the interface of ``scipy.spatial.ConvexHull``.
+    """Convex hull of 2-D or 3-D points, a drop-in for ``scipy.spatial.ConvexHull``.
 
     Parameters
     ----------
-    points : (n, 3) array_like, or an (n, 3) array in GPU memory
+    points : (n, 3) or (n, 2) array_like, or an (n, 3) array in GPU memory
         float32 input is computed in float, float64 (and integer) input in double: the hull is exact for
-        those values, with no tolerance (a point on a face is not a vertex).  A CuPy array, a PyTorch CUDA
-        tensor or another array in CUDA memory (``__dlpack__`` or ``__cuda_array_interface__``;
-        C-contiguous float32 or float64, on the current device) is read in place by the resident engine:
-        no host copy of it is made, and only the coordinates the exact checks need are read back
-        (``stats`` counts them).
+        those values (a point on a face is not a vertex) unless a ``tolerance`` asks for merging.  A CuPy
+        array, a PyTorch CUDA tensor or another array in CUDA memory (``__dlpack__`` or
+        ``__cuda_array_interface__``; C-contiguous float32 or float64, on the current device) is read in
+        place (3-D by the resident engine; 2-D filtered on the device, only the possible corners read back):
+        no host copy of it is made.  Masked arrays raise ValueError, as in scipy.
+    incremental : bool
+        scipy's: accepted; ``add_points`` works either way.
+    qhull_options : str, optional
+        Parsed as Qhull parses it; every option has a documented meaning here (the README's table,
+        ``cudahull.qhull_options``), and one without raises ``QhullError`` naming it.  Giving any options
+        makes the default ``tolerance`` "qhull": such code expects Qhull's merged output.
+    tolerance : None, "qhull" or float
+        None: the exact hull, every strictly extreme point a vertex (the default without
+        ``qhull_options``).  "qhull": facets merged as Qhull's default roundoff-based merging does (the
+        default with ``qhull_options``).  A float: merged within that fraction of the bounding box's
+        largest side.  A merged hull has no facet thinner than the tolerance, is triangulated as Qhull's
+        Qt, lists the points merging set aside in ``coplanar``, and is checked: every input point lies
+        within ``max_outside`` of every facet's plane.
     backend : "auto", "cpu" or "cuda"
         "auto" takes the CUDA backend when a usable GPU is present.  Points in GPU memory need the GPU.
     precision : "auto", "float" or "double"
         "auto" takes the input's own; "float" rounds double input once, "double" widens float input
         (for points in GPU memory, into a temporary array on the device).
-    incremental : bool
-        Accepted for scipy's signature; ``add_points`` works either way.
     engine : "auto", "stepping" or "resident"
         "auto", as the command line's ``--engine auto``: "resident" (every phase on the device) where the
         hull runs on a GPU, which points in GPU memory need; "stepping" (Algorithm 1 an iteration at a
         time, the host editing the mesh) on the CPU.
     device_results : bool
-        For a CuPy or PyTorch input: the array attributes (``vertices``, ``simplices``, ``neighbors``,
-        ``equations``, ``polygon``, ``coplanar``, ``min_bound``, ``max_bound``) as arrays of the input's
-        kind on its device instead of NumPy arrays.
+        For a CuPy or PyTorch input: the array attributes as arrays of the input's kind on its device
+        instead of NumPy arrays.
 
     Attributes
     ----------
     points : the input points as given: float32 input stays float32, and points in GPU memory stay there
-        (the CuPy array or tensor itself)
-    vertices : (nvertices,) int32, the indices of the hull's vertices, sorted ascending
-    simplices : (nsimplex, 3) int32, the triangles, counter-clockwise seen from outside
-    neighbors : (nsimplex, 3) int32, the k-th neighbour is opposite the k-th vertex
-    equations : (nsimplex, 4) float64, unit outward normal and offset: normal . x + offset <= 0 inside
-    volume, area : the hull's volume and surface area
+    vertices : int32 indices of the hull's vertices: sorted ascending in 3-D, counter-clockwise in 2-D (as
+        scipy's)
+    simplices : (nsimplex, ndim) int32: triangles counter-clockwise seen from outside in 3-D, edges
+        counter-clockwise in 2-D
+    neighbors : (nsimplex, ndim) int32, the k-th neighbour is opposite the k-th vertex
+    equations : (nsimplex, ndim + 1) float64, unit outward normal and offset: normal . x + offset <= 0
+        inside; the exact normal rounded, so every point lies within a few units in the last place of them
+    volume, area : volume and surface area (in 2-D: area and perimeter, as scipy's)
     npoints, nsimplex, ndim, min_bound, max_bound : as scipy
-    coplanar : an empty (0, 3) int32 array (no point is set aside: the hull is exact)
-    good : None
-    dimension : the input's affine dimension (3, or lower for flat input: see below)
-    precision, backend : what the hull was computed in and on ("cuda-resident" for the resident engine)
-    stats : the resident engine's counters as a dict (``iterations``, ``host_syncs``,
-        ``bytes_from_device``, ``points_read_back``, ``device_bytes_peak``, phase times in ms, ...), None
-        for the stepping engine
+    coplanar : (ncoplanar, 3) int32: the points merging set aside (with Qi, also the interior points),
+        each with its nearest facet and nearest vertex, as scipy's; empty for the exact hull
+    good : with qhull_options QGn / QG-n, which facets point n sees (does not see), as scipy's; else None
+    tolerance, max_outside : the absolute merge tolerance (0 when exact) and the proven bound on every
+        input point's height above every facet's plane (0 when exact)
+    dimension : the input's dimension (3 or 2); precision, backend : what the hull was computed in and on
+    stats : the resident engine's counters as a dict, None for the others
 
-    Flat input
-    ----------
-    Where scipy raises QhullError (QH6154), the lower-dimensional hull comes back: ``dimension`` is 2 for
-    coplanar points (``vertices`` are the polygon's corners, ``polygon`` lists them in order, ``simplices``,
-    ``neighbors`` and ``equations`` are empty, ``volume`` is 0 and ``area`` counts both sides of the
-    polygon), 1 for collinear points (the segment's two ends), 0 when every point is the same, and -1 for
-    no points.  Fewer than 4 points are flat.
-
-    Raises ValueError for NaN or infinite coordinates (and for doubles outside exact arithmetic's range,
-    nonzero magnitudes from 2**-250 to 2**250), on the host or the device alike, ``DeviceError`` (a
-    RuntimeError) for backend="cuda", or points in GPU memory, without a usable GPU.
+    Raises
+    ------
+    ValueError for no points, as scipy; QhullError (a ``scipy.spatial.QhullError``) for fewer than ndim + 1 points, flat input (its
+    lower-dimensional hull is ``cudahull.convex_hull()``'s answer) and unknown ``qhull_options``;
+    ValueError for NaN or infinite coordinates, masked arrays, and points of other than 2 or 3 dimensions;
+    ``DeviceError`` (a RuntimeError) for backend="cuda", or points in GPU memory, without a usable GPU.
     """
 
-    def __init__(self, points, backend="auto", precision="auto", incremental=False, qhull_options=None, *,
-                 engine="auto", device_results=False):
-        if qhull_options is not None:
-            raise ValueError("qhull_options has no meaning here: the hull is exact, with no tolerance")
+    def __init__(self, points, incremental=False, qhull_options=None, *, tolerance=_DEFAULT, backend="auto",
+                 precision="auto", engine="auto", device_results=False):
+        self._options = _qhull_options.parse(qhull_options, QhullError) if qhull_options is not None else None
+        if tolerance is _DEFAULT:
+            tolerance = self._options.merge("qhull") if self._options is not None else None
+        self._tolerance_choice = tolerance
         self._protocol = _cuda_protocol(points)
         self._kind = _DeviceKind(points) if self._protocol else None
         self._engine_choice = _check_engine(engine, self._protocol is not None, backend)
@@ -274,23 +358,137 @@ class ConvexHull:
         self._backend_choice = backend
         self._precision_choice = precision
         self._closed = False
-        self._set_points(points if self._protocol else _as_points(points))
-        self._compute(None)
+        points = points if self._protocol else _as_points(points, (2, 3))
+        self._commit(points, self._compute(points, None))
 
-    def _set_points(self, points):
+    # --- computing ------------------------------------------------------------------------------------
+
+    @property
+    def _good_point(self):
+        return None if self._options is None else self._options.good_point
+
+    def _compute(self, points, subset):
+        """The hull of ``points[subset]`` (all of them for None; ``subset`` ascending, so the lowest index
+        of duplicates stays it), less the QGn point, as the attributes' values: nothing is changed here,
+        so a failure leaves the object as it was."""
+        npoints = int(points.shape[0])
+        ndim = int(points.shape[1])
+        good = self._good_point
+        if good is not None and not 0 <= good < npoints:
+            raise QhullError(f"qhull_options QG{good}: there is no point {good} among {npoints} points")
+        if good is not None:
+            subset = np.arange(npoints) if subset is None else np.asarray(subset)
+            subset = subset[subset != good]
+        if subset is None:
+            chosen = points
+        elif self._protocol:
+            chosen = self._kind.take(points, subset)
+        else:
+            chosen = np.ascontiguousarray(points[subset])
+        if npoints == 0:
+            raise ValueError("No points given")  # scipy's words and type
+        if int(chosen.shape[0]) <= ndim:
+            raise QhullError(f"QH6214 qhull input error: not enough points({int(chosen.shape[0])}) to construct "
+                             f"initial simplex (need {ndim + 1})")
+        if self._protocol:
+            merge = _merge_arguments(self._tolerance_choice, *_bounds_of(chosen, self._tolerance_choice,
+                                                                         self._kind))
+            result = _device_hull(chosen, self._protocol, self._backend_choice, self._precision_choice, merge)
+        else:
+            merge = _merge_arguments(self._tolerance_choice, *_bounds_of(chosen, self._tolerance_choice))
+            if ndim == 2:
+                result = _cudahull.convex_hull_2d(chosen, self._backend_choice, self._precision_choice, *merge)
+            else:
+                result = _cudahull.convex_hull(chosen, self._backend_choice, self._precision_choice,
+                                               self._engine_choice, *merge)
+        if result["dimension"] < ndim:
+            raise QhullError(
+                f"QH6154 qhull precision error: initial simplex is flat: the points span {result['dimension']} "
+                f"of {ndim} dimensions (cudahull.convex_hull() gives their lower-dimensional hull)")
+
+        def original(indices):
+            indices = np.asarray(indices, dtype=np.int64)
+            return _index_array(indices if subset is None else np.asarray(subset)[indices], npoints)
+
+        values = {
+            "dimension": ndim,
+            "precision": result["precision"],
+            "backend": result["backend"],
+            "stats": result["stats"],
+            "tolerance": result["tolerance"],
+            "max_outside": result["max_outside"],
+            "volume": result["volume"],
+            "area": result["area"],
+            # scipy's vertices run counter-clockwise in 2-D (the polygon), ascending in 3-D.
+            "vertices": original(result["polygon"] if ndim == 2 else result["vertices"]),
+            "simplices": original(result["simplices"]).reshape(-1, ndim),
+            "neighbors": result["neighbors"].astype(np.int32, copy=False),
+            "equations": result["equations"],
+        }
+        coplanar = result["coplanar"].astype(np.int64)
+        if coplanar.size:
+            coplanar[:, 0] = original(coplanar[:, 0])
+            coplanar[:, 2] = original(coplanar[:, 2])
+        if self._options is not None and self._options.interior:
+            coplanar = self._with_interior(points, values, coplanar)
+        values["coplanar"] = _index_array(coplanar.reshape(-1, 3), npoints)
+        values["good"] = None
+        if good is not None:
+            values["good"] = self._good(points, values, good)
+        return values
+
+    def _host(self, points):
+        return self._kind.to_numpy(points) if self._protocol else points
+
+    def _good(self, points, values, good):
+        """QGn: the facets point n sees (strictly above their planes, decided exactly); QG-n: the others."""
+        host = np.ascontiguousarray(self._host(points), dtype=np.float64)
+        visible = _cudahull.facets_visible(host, np.ascontiguousarray(values["simplices"], dtype=np.int64),
+                                           host[good].copy())
+        return visible if self._options.good_visible else ~visible
+
+    def _with_interior(self, points, values, coplanar):
+        """Qi: every point that is neither a vertex nor already listed, with its nearest facet (the one it is
+        least below) and that facet's nearest vertex."""
+        host = np.asarray(self._host(points), dtype=np.float64)
+        listed = np.zeros(host.shape[0], dtype=bool)
+        listed[values["vertices"]] = True
+        listed[coplanar[:, 0]] = True
+        if self._good_point is not None:
+            listed[self._good_point] = True
+        rest = np.flatnonzero(~listed)
+        equations, simplices = values["equations"], values["simplices"]
+        rows = [coplanar]
+        for begin in range(0, rest.size, 4096):
+            chunk = rest[begin:begin + 4096]
+            facet = np.argmax(host[chunk] @ equations[:, :-1].T + equations[:, -1], axis=1)
+            corners = simplices[facet]
+            distance = np.linalg.norm(host[corners] - host[chunk][:, None, :], axis=2)
+            vertex = corners[np.arange(chunk.size), np.argmin(distance, axis=1)]
+            rows.append(np.column_stack([chunk, facet, vertex]))
+        return np.concatenate(rows).astype(np.int64)
+
+    def _commit(self, points, values):
         self.points = points
         self.npoints = int(points.shape[0])
-        self.ndim = 3
+        self.ndim = int(points.shape[1])
         self._bounds = None
+        self.nsimplex = int(values["simplices"].shape[0])
+        self._host_vertices = values["vertices"]
+        for key in ("dimension", "precision", "backend", "stats", "tolerance", "max_outside", "volume", "area",
+                    "good"):
+            setattr(self, key, values[key])
+        for key in ("vertices", "simplices", "neighbors", "equations", "coplanar"):
+            setattr(self, key, self._result_array(values[key]))
 
     def _result_array(self, array):
         return self._kind.like_input(array) if self._device_results else array
 
     def _compute_bounds(self):
         if self.npoints == 0:
-            empty = np.full(3, np.nan)
+            empty = np.full(self.ndim, np.nan)
             return self._result_array(empty), self._result_array(empty)
-        if self._kind is None:
+        if self._kind is None or not self._protocol:
             return self.points.min(axis=0), self.points.max(axis=0)
         low, high = self._kind.bounds(self.points)
         if self._device_results:
@@ -310,60 +508,43 @@ class ConvexHull:
             self._bounds = self._compute_bounds()
         return self._bounds[1]
 
-    def _compute(self, subset):
-        """The hull of ``points[subset]`` (all of them for None); ``subset`` ascending, so the lowest index
-        of duplicates stays it."""
-        if subset is None:
-            points = self.points
-        elif self._protocol:
-            points = self._kind.take(self.points, subset)
-        else:
-            points = np.ascontiguousarray(self.points[subset])
-        if self._protocol:
-            result = _device_hull(points, self._protocol, self._backend_choice, self._precision_choice)
-        else:
-            result = _cudahull.convex_hull(points, self._backend_choice, self._precision_choice,
-                                           self._engine_choice)
-
-        def original(indices):
-            return _index_array(indices if subset is None else subset[indices], self.npoints)
-
-        self.dimension = result["dimension"]
-        self.precision = result["precision"]
-        self.backend = result["backend"]
-        self.stats = result["stats"]
-        self._host_vertices = original(result["vertices"])
-        self.vertices = self._result_array(self._host_vertices)
-        self.simplices = self._result_array(original(result["simplices"]).reshape(-1, 3))
-        self.polygon = self._result_array(original(result["polygon"]))
-        self.neighbors = self._result_array(result["neighbors"].astype(np.int32, copy=False))
-        self.equations = self._result_array(result["equations"])
-        self.volume = result["volume"]
-        self.area = result["area"]
-        self.nsimplex = int(result["simplices"].shape[0])
-        self.coplanar = self._result_array(np.empty((0, 3), dtype=np.int32))
-        self.good = None
-
     def add_points(self, points, restart=False):
-        """Add (m, 3) points and update the hull: afterwards it is the hull of all the points.
+        """Add (m, ndim) points and update the hull: afterwards it is the hull of all the points.
 
         The hull of a union is the hull of the old hull's vertices and the new points, so only those are
         computed on (or every point, with ``restart=True``: the same answer).  A hull of CuPy or PyTorch
-        points in GPU memory takes new points of the same kind, joined on the device.
+        points in GPU memory takes new points of the same kind, joined on the device.  Atomic: a batch that
+        is rejected (a bad coordinate, named by its row in the batch) changes nothing.
         """
         if self._closed:
             raise RuntimeError("the hull is closed: add_points is no longer possible")
         old_count = self.npoints
         if self._protocol:
-            self._set_points(self._kind.concatenate(self.points, points))
+            joined = self._kind.concatenate(self.points, points)
         else:
-            new = _as_points(points)
-            self._set_points(np.ascontiguousarray(np.concatenate([self.points, new])))
+            new = _as_points(points, (self.ndim,))
+            self._check_batch(new)
+            joined = np.ascontiguousarray(np.concatenate([self.points, new]))
         if restart:
-            self._compute(None)
+            values = self._compute(joined, None)
         else:
-            self._compute(np.concatenate([self._host_vertices.astype(np.int64),
-                                          np.arange(old_count, self.npoints)]))
+            subset = np.concatenate([self._host_vertices.astype(np.int64),
+                                     np.arange(old_count, int(joined.shape[0]))])
+            subset.sort()
+            if self._good_point is not None:
+                subset = np.unique(np.append(subset, self._good_point))
+            if self._options is not None and self._options.interior:
+                subset = None  # Qi lists every interior point: all of them are looked at
+            values = self._compute(joined, subset)
+        self._commit(joined, values)
+
+    def _check_batch(self, new):
+        """A new batch's coordinates checked alone, so that an error names its row in the batch."""
+        lifted = new if new.shape[1] == 3 else np.column_stack([new, np.zeros(new.shape[0], dtype=new.dtype)])
+        try:
+            _cudahull.check_points(np.ascontiguousarray(lifted))
+        except ValueError as error:
+            raise type(error)(f"add_points: {error} (a row of the new points; nothing was added)") from None
 
     def close(self):
         """Finish: ``add_points`` raises afterwards (as in scipy); the attributes stay."""

@@ -17,6 +17,7 @@
 #include "cudahull/convex_hull.hpp"
 #include "cudahull/engine.hpp"
 #include "cudahull/errors.hpp"
+#include "cudahull/predicates.hpp"
 #include "cudahull/resident.hpp"
 
 namespace nb = nanobind;
@@ -27,6 +28,8 @@ namespace {
 
 template <class Scalar>
 using PointArray = nb::ndarray<const Scalar, nb::shape<-1, 3>, nb::c_contig, nb::device::cpu>;
+template <class Scalar>
+using PlanarArray = nb::ndarray<const Scalar, nb::shape<-1, 2>, nb::c_contig, nb::device::cpu>;
 
 // A NumPy array that owns `values` (moved into the array's capsule), of the given shape.
 template <class T>
@@ -111,27 +114,45 @@ nb::dict hull_to_dict(ConvexHull&& hull) {
   d["backend"] = hull.backend;
   d["volume"] = hull.volume;
   d["area"] = hull.area;
+  d["input_dimension"] = hull.input_dimension;
+  d["tolerance"] = hull.tolerance;
+  d["max_outside"] = hull.max_outside;
   d["vertices"] = to_numpy(std::move(hull.vertices));
   d["polygon"] = to_numpy(std::move(hull.polygon));
-  d["simplices"] = take_rows(std::move(hull.faces));
-  d["neighbors"] = take_rows(std::move(hull.neighbors));
-  d["equations"] = take_rows(std::move(hull.planes));
+  d["coplanar"] = take_rows(std::move(hull.coplanar));
+  if (hull.input_dimension == 2) {
+    d["simplices"] = take_rows(std::move(hull.edges));
+    d["neighbors"] = take_rows(std::move(hull.edge_neighbors));
+    d["equations"] = take_rows(std::move(hull.lines));
+  } else {
+    d["simplices"] = take_rows(std::move(hull.faces));
+    d["neighbors"] = take_rows(std::move(hull.neighbors));
+    d["equations"] = take_rows(std::move(hull.planes));
+  }
   return d;
 }
 
+// How a hull is merged, from the package's words: "exact", "qhull" or "relative" with its tolerance.
+struct Merge {
+  std::string mode = "exact";
+  double tolerance = 0;
+};
+
 ConvexHullOptions options_from(const std::string& backend, const std::string& precision,
-                               const std::string& engine) {
+                               const std::string& engine, const Merge& merge) {
   ConvexHullOptions options;
   options.backend = backend_from_name(backend);
   options.precision = precision_from_name_strict(precision);
   options.engine = engine_from_name(engine);
+  options.merge = merge_from_name(merge.mode);
+  options.tolerance = merge.tolerance;
   return options;
 }
 
 template <class Scalar>
 nb::dict convex_hull_of(PointArray<Scalar> points, const std::string& backend, const std::string& precision,
-                        const std::string& engine) {
-  const ConvexHullOptions options = options_from(backend, precision, engine);
+                        const std::string& engine, const std::string& merge, double tolerance) {
+  const ConvexHullOptions options = options_from(backend, precision, engine, {merge, tolerance});
   ConvexHull hull;
   {
     nb::gil_scoped_release unlocked;  // the caller's array stays alive: the call holds a reference to it
@@ -141,9 +162,55 @@ nb::dict convex_hull_of(PointArray<Scalar> points, const std::string& backend, c
 }
 
 template <class Scalar>
+nb::dict convex_hull_2d_of(PlanarArray<Scalar> points, const std::string& backend, const std::string& precision,
+                           const std::string& merge, double tolerance) {
+  const ConvexHullOptions options = options_from(backend, precision, "auto", {merge, tolerance});
+  ConvexHull hull;
+  {
+    nb::gil_scoped_release unlocked;
+    hull = convex_hull_2d(points.data(), points.shape(0), options);
+  }
+  return hull_to_dict(std::move(hull));
+}
+
+// Checks points as convex_hull() would, raising its InputError (naming the row) for the first bad one: for
+// add_points, which checks a new batch alone before it changes anything.
+template <class Scalar>
+void check_points_of(PointArray<Scalar> points) {
+  (void)checked_points<Point3d>(points.data(), points.shape(0));
+}
+
+// Which facets `query` sees: strictly above each simplex's line (2-D) or plane (3-D), decided exactly
+// (orient2d, orient3d), for scipy's `good` (QGn).  The simplices are oriented as ConvexHull's.
+nb::object facets_visible(nb::ndarray<const double, nb::c_contig, nb::device::cpu> points,
+                          nb::ndarray<const std::int64_t, nb::c_contig, nb::device::cpu> simplices,
+                          nb::ndarray<const double, nb::c_contig, nb::device::cpu> query) {
+  const std::size_t dim = points.ndim() == 2 ? points.shape(1) : 0;
+  if ((dim != 2 && dim != 3) || simplices.ndim() != 2 || simplices.shape(1) != dim || query.size() != dim)
+    throw std::invalid_argument("facets_visible: points (n, d), simplices (m, d) and a point (d,), d 2 or 3");
+  const double* p = points.data();
+  const double* q = query.data();
+  const std::size_t n = points.shape(0);
+  std::vector<std::uint8_t> visible(simplices.shape(0));
+  for (std::size_t f = 0; f < visible.size(); ++f) {
+    const std::int64_t* s = simplices.data() + f * dim;
+    for (std::size_t k = 0; k < dim; ++k)
+      if (s[k] < 0 || static_cast<std::size_t>(s[k]) >= n) throw std::invalid_argument("facets_visible: index");
+    if (dim == 2) {
+      // A counter-clockwise edge a -> b: the outside is on its right.
+      visible[f] = orient2d(p[2 * s[0]], p[2 * s[0] + 1], p[2 * s[1]], p[2 * s[1] + 1], q[0], q[1]) < 0;
+    } else {
+      auto at = [&](std::int64_t i) { return Vec3d{p[3 * i], p[3 * i + 1], p[3 * i + 2]}; };
+      visible[f] = orient3d(at(s[0]), at(s[1]), at(s[2]), Vec3d{q[0], q[1], q[2]}) > 0;
+    }
+  }
+  return to_numpy(std::move(visible), true);
+}
+
+template <class Scalar>
 nb::dict device_hull_of(const Scalar* xyz, std::size_t count, const std::string& backend,
-                        const std::string& precision) {
-  const ConvexHullOptions options = options_from(backend, precision, "resident");
+                        const std::string& precision, const Merge& merge) {
+  const ConvexHullOptions options = options_from(backend, precision, "resident", merge);
   ConvexHull hull;
   {
     nb::gil_scoped_release unlocked;  // the caller holds the array for the call
@@ -153,7 +220,8 @@ nb::dict device_hull_of(const Scalar* xyz, std::size_t count, const std::string&
 }
 
 // An (n, 3) array in CUDA memory, through DLPack: C-contiguous float32 or float64, as the engine reads it.
-nb::dict convex_hull_cuda(const CudaArray& points, const std::string& backend, const std::string& precision) {
+nb::dict convex_hull_cuda(const CudaArray& points, const std::string& backend, const std::string& precision,
+                          const std::string& merge, double tolerance) {
   const bool is_float = points.dtype() == nb::dtype<float>(),
              is_double = points.dtype() == nb::dtype<double>();
   if (!is_float && !is_double)
@@ -174,16 +242,59 @@ nb::dict convex_hull_cuda(const CudaArray& points, const std::string& backend, c
         "(cupy.ascontiguousarray(x) "
         "or x.contiguous() copies them on the device)");
   }
-  if (is_float) return device_hull_of(static_cast<const float*>(points.data()), n, backend, precision);
-  return device_hull_of(static_cast<const double*>(points.data()), n, backend, precision);
+  const Merge how{merge, tolerance};
+  if (is_float) return device_hull_of(static_cast<const float*>(points.data()), n, backend, precision, how);
+  return device_hull_of(static_cast<const double*>(points.data()), n, backend, precision, how);
+}
+
+// An (n, 2) array in CUDA memory: the device filters it, and only the possible corners cross to the host.
+nb::dict convex_hull_2d_cuda(const CudaArray& points, const std::string& backend, const std::string& precision,
+                             const std::string& merge, double tolerance) {
+  const bool is_float = points.dtype() == nb::dtype<float>(),
+             is_double = points.dtype() == nb::dtype<double>();
+  if (!is_float && !is_double)
+    throw std::invalid_argument("points in GPU memory must be float32 or float64 (convert with .astype())");
+  const std::size_t n = points.ndim() == 2 ? points.shape(0) : 0;
+  if (points.ndim() != 2 || points.shape(1) != 2)
+    throw std::invalid_argument("points must be an (n, 2) array of 2-D points");
+  if (n != 0 && (points.stride(1) != 1 || (n > 1 && points.stride(0) != 2)))
+    throw std::invalid_argument("points in GPU memory must be C-contiguous (cupy.ascontiguousarray(x) or x.contiguous())");
+  const ConvexHullOptions options = options_from(backend, precision, "auto", {merge, tolerance});
+  ConvexHull hull;
+  {
+    nb::gil_scoped_release unlocked;
+    if (is_float)
+      hull = convex_hull_2d_device(static_cast<const float*>(points.data()), n, options);
+    else
+      hull = convex_hull_2d_device(static_cast<const double*>(points.data()), n, options);
+  }
+  return hull_to_dict(std::move(hull));
+}
+
+nb::dict convex_hull_2d_cuda_pointer(std::uintptr_t pointer, std::size_t count, bool is_double,
+                                     const std::string& backend, const std::string& precision,
+                                     const std::string& merge, double tolerance) {
+  const ConvexHullOptions options = options_from(backend, precision, "auto", {merge, tolerance});
+  ConvexHull hull;
+  {
+    nb::gil_scoped_release unlocked;
+    if (is_double)
+      hull = convex_hull_2d_device(reinterpret_cast<const double*>(pointer), count, options);
+    else
+      hull = convex_hull_2d_device(reinterpret_cast<const float*>(pointer), count, options);
+  }
+  return hull_to_dict(std::move(hull));
 }
 
 // The same from __cuda_array_interface__'s pointer, for arrays that offer no DLPack (the package checks
 // the interface's shape, type and strides).
 nb::dict convex_hull_cuda_pointer(std::uintptr_t pointer, std::size_t count, bool is_double,
-                                  const std::string& backend, const std::string& precision) {
-  if (is_double) return device_hull_of(reinterpret_cast<const double*>(pointer), count, backend, precision);
-  return device_hull_of(reinterpret_cast<const float*>(pointer), count, backend, precision);
+                                  const std::string& backend, const std::string& precision,
+                                  const std::string& merge, double tolerance) {
+  const Merge how{merge, tolerance};
+  if (is_double)
+    return device_hull_of(reinterpret_cast<const double*>(pointer), count, backend, precision, how);
+  return device_hull_of(reinterpret_cast<const float*>(pointer), count, backend, precision, how);
 }
 
 // The stepping engine for notebooks: one iteration per step(), its record as a dict of NumPy arrays.
@@ -337,14 +448,29 @@ NB_MODULE(_cudahull, m) {
   nb::exception<DeviceError>(m, "DeviceError", PyExc_RuntimeError);
 
   m.def("convex_hull", &convex_hull_of<float>, nb::arg("points"), nb::arg("backend"), nb::arg("precision"),
-        nb::arg("engine"));
+        nb::arg("engine"), nb::arg("merge"), nb::arg("tolerance"));
   m.def("convex_hull", &convex_hull_of<double>, nb::arg("points"), nb::arg("backend"), nb::arg("precision"),
-        nb::arg("engine"));
+        nb::arg("engine"), nb::arg("merge"), nb::arg("tolerance"));
+  // 2-D input (issue 25): edges as simplices, lines as equations.
+  m.def("convex_hull_2d", &convex_hull_2d_of<float>, nb::arg("points"), nb::arg("backend"),
+        nb::arg("precision"), nb::arg("merge"), nb::arg("tolerance"));
+  m.def("convex_hull_2d", &convex_hull_2d_of<double>, nb::arg("points"), nb::arg("backend"),
+        nb::arg("precision"), nb::arg("merge"), nb::arg("tolerance"));
+  m.def("facets_visible", &facets_visible, nb::arg("points"), nb::arg("simplices"), nb::arg("query"));
+  m.def("check_points", &check_points_of<float>, nb::arg("points"));
+  m.def("check_points", &check_points_of<double>, nb::arg("points"));
 
   // Arrays in CUDA memory (issue 16): read in place by the resident engine.
-  m.def("convex_hull_cuda", &convex_hull_cuda, nb::arg("points"), nb::arg("backend"), nb::arg("precision"));
+  m.def("convex_hull_cuda", &convex_hull_cuda, nb::arg("points"), nb::arg("backend"), nb::arg("precision"),
+        nb::arg("merge"), nb::arg("tolerance"));
   m.def("convex_hull_cuda_pointer", &convex_hull_cuda_pointer, nb::arg("pointer"), nb::arg("count"),
-        nb::arg("is_double"), nb::arg("backend"), nb::arg("precision"));
+        nb::arg("is_double"), nb::arg("backend"), nb::arg("precision"), nb::arg("merge"),
+        nb::arg("tolerance"));
+  m.def("convex_hull_2d_cuda", &convex_hull_2d_cuda, nb::arg("points"), nb::arg("backend"),
+        nb::arg("precision"), nb::arg("merge"), nb::arg("tolerance"));
+  m.def("convex_hull_2d_cuda_pointer", &convex_hull_2d_cuda_pointer, nb::arg("pointer"), nb::arg("count"),
+        nb::arg("is_double"), nb::arg("backend"), nb::arg("precision"), nb::arg("merge"),
+        nb::arg("tolerance"));
   // Whether a CUDA array can be taken here at all: (usable, why not), before its data is touched.
   m.def("cuda_device", []() {
     const CudaStatus cuda = cuda_status();

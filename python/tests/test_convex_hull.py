@@ -140,13 +140,16 @@ def test_add_points_equals_one_run():
         growing.add_points(points[:10])
 
 
-def test_add_points_to_flat_hull():
+def test_flat_input_is_a_qhull_error_as_in_scipy():
     square = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0.5, 0.5, 0]], dtype=float)
-    hull = cudahull.ConvexHull(square, backend="cpu")
-    assert hull.dimension == 2
-    hull.add_points([[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]])
-    assert hull.dimension == 3 and hull.vertices.tolist() == [0, 1, 2, 3, 5, 6, 7, 8]
-    assert hull.volume == 1.0 and hull.area == 6.0
+    with pytest.raises(scipy.spatial.QhullError):
+        scipy.spatial.ConvexHull(square, incremental=True)
+    with pytest.raises(scipy.spatial.QhullError, match="QH6154.*cudahull.convex_hull"):
+        cudahull.ConvexHull(square, True, backend="cpu")  # incremental, positionally, as scipy's
+    assert issubclass(cudahull.QhullError, scipy.spatial.QhullError)
+    # The lower-dimensional answer stays in convex_hull().
+    flat = cudahull.convex_hull(square, backend="cpu")
+    assert flat["dimension"] == 2 and sorted(flat["polygon"].tolist()) == [0, 1, 2, 3]
 
 
 def test_flat_input_gives_a_polygon():
@@ -157,29 +160,31 @@ def test_flat_input_gives_a_polygon():
     points = np.column_stack([uv, 2 * uv[:, 0] - 3 * uv[:, 1] + 1])
     with pytest.raises(scipy.spatial.QhullError):
         scipy.spatial.ConvexHull(points)  # QH6154: what cudahull answers instead
-    hull = cudahull.ConvexHull(points, backend="cpu")
+    with pytest.raises(cudahull.QhullError):
+        cudahull.ConvexHull(points, backend="cpu")
+    hull = cudahull.convex_hull(points, backend="cpu")
     flat = scipy.spatial.ConvexHull(uv)  # the oracle: the 2-D hull of the projection onto x, y
-    assert hull.dimension == 2
-    assert np.array_equal(hull.vertices, np.sort(flat.vertices))
-    assert sorted(hull.polygon.tolist()) == hull.vertices.tolist()
+    assert hull["dimension"] == 2
+    assert np.array_equal(hull["vertices"], np.sort(flat.vertices))
+    assert sorted(hull["polygon"].tolist()) == hull["vertices"].tolist()
     # The polygon goes round in order: the same cycle as Qhull's (either direction).
-    ring = hull.polygon.tolist()
+    ring = hull["polygon"].tolist()
     start = ring.index(flat.vertices[0])
     ring = ring[start:] + ring[:start]
     assert ring == flat.vertices.tolist() or ring[:1] + ring[1:][::-1] == flat.vertices.tolist()
     # Both sides of the polygon; its area in the plane is the projected area times |n| / |n_z|.
-    assert hull.area == pytest.approx(2 * flat.volume * np.sqrt(1 + 4 + 9), rel=1e-12)
-    assert hull.volume == 0 and hull.nsimplex == 0 and hull.simplices.shape == (0, 3)
-    assert hull.equations.shape == (0, 4)
+    assert hull["area"] == pytest.approx(2 * flat.volume * np.sqrt(1 + 4 + 9), rel=1e-12)
+    assert hull["volume"] == 0 and hull["simplices"].shape == (0, 3)
+    assert hull["equations"].shape == (0, 4)
 
 
 def test_collinear_input_gives_a_segment():
     t = np.random.default_rng(5).permutation(np.arange(-50, 50)) / 8.0
     points = np.column_stack([t, 2 * t + 1, -t])
-    hull = cudahull.ConvexHull(points, backend="cpu")
-    assert hull.dimension == 1
-    assert hull.vertices.tolist() == sorted([int(np.argmin(t)), int(np.argmax(t))])
-    assert hull.volume == 0 and hull.area == 0 and hull.nsimplex == 0
+    hull = cudahull.convex_hull(points, backend="cpu")
+    assert hull["dimension"] == 1
+    assert hull["vertices"].tolist() == sorted([int(np.argmin(t)), int(np.argmax(t))])
+    assert hull["volume"] == 0 and hull["area"] == 0 and len(hull["simplices"]) == 0
 
 
 def test_duplicates_keep_the_lowest_index():
@@ -190,23 +195,28 @@ def test_duplicates_keep_the_lowest_index():
     assert hull.vertices.tolist() == list(range(200, 208))
     assert hull.volume == 1.0 and hull.area == 6.0
     assert_consistent(hull)
-    same = cudahull.ConvexHull(np.repeat([[1.5, -2.0, 3.0]], 5, axis=0), backend="cpu")
-    assert same.dimension == 0 and same.vertices.tolist() == [0]
+    same = cudahull.convex_hull(np.repeat([[1.5, -2.0, 3.0]], 5, axis=0), backend="cpu")
+    assert same["dimension"] == 0 and same["vertices"].tolist() == [0]
 
 
 @pytest.mark.parametrize("count", [0, 1, 2, 3, 4])
 def test_fewer_than_four_points(count):
     points = np.array([[0, 0, 0], [2, 0, 0], [0, 3, 0], [0, 0, 4]], dtype=float)[:count]
-    hull = cudahull.ConvexHull(points, backend="cpu")
-    assert hull.dimension == count - 1
-    assert hull.vertices.tolist() == list(range(count))
+    hull = cudahull.convex_hull(points, backend="cpu")
+    assert hull["dimension"] == count - 1
+    assert hull["vertices"].tolist() == list(range(count))
     if count == 4:
-        assert hull.volume == 4.0 and hull.nsimplex == 4  # 2 * 3 * 4 / 6
-        assert_consistent(hull)
+        assert hull["volume"] == 4.0 and len(hull["simplices"]) == 4  # 2 * 3 * 4 / 6
+        assert_consistent(cudahull.ConvexHull(points, backend="cpu"))
     else:
-        assert hull.volume == 0 and hull.nsimplex == 0
+        assert hull["volume"] == 0 and len(hull["simplices"]) == 0
+        # scipy raises QhullError for too few points (QH6214); so does ConvexHull.
+        with pytest.raises(scipy.spatial.QhullError):
+            scipy.spatial.ConvexHull(points)
+        with pytest.raises(cudahull.QhullError, match="QH6214|QH6154"):
+            cudahull.ConvexHull(points, backend="cpu")
     if count == 3:
-        assert hull.area == 2 * 3.0  # both sides of the triangle of area 3
+        assert hull["area"] == 2 * 3.0  # both sides of the triangle of area 3
 
 
 @pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
@@ -220,8 +230,10 @@ def test_non_finite_input_is_a_value_error(bad):
 
 
 def test_other_bad_input():
-    with pytest.raises(ValueError, match=r"\(n, 3\)"):
-        cudahull.ConvexHull(np.zeros((5, 2)))
+    with pytest.raises(ValueError, match="points are 4-dimensional: cudahull computes 2-D and 3-D hulls only"):
+        cudahull.ConvexHull(np.zeros((5, 4)))
+    with pytest.raises(ValueError, match="masked arrays"):
+        cudahull.ConvexHull(np.ma.masked_all((5, 3)))
     with pytest.raises(ValueError, match="outside the range of exact double arithmetic"):
         cudahull.ConvexHull(np.vstack([CUBE, [[1e300, 0, 0]]]))
     with pytest.raises(ValueError, match="does not fit in float"):

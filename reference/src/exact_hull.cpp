@@ -5,7 +5,12 @@
 // Every combinatorial decision is an exact predicate (orient3d, orient2d, collinear3d) on the input's own
 // coordinates, float (Point3) or double (Point3d): one implementation, instantiated for both.  Other
 // arithmetic appears only to rank candidates (furthest point), which needs no exactness: a wrong ranking
-// costs time, never correctness, because every choice is re-checked exactly.
+// costs time, never correctness, because every choice is re-checked exactly.  (Ranking may overflow to
+// infinity or NaN, or underflow to zero, on huge or tiny doubles; every such pick is re-checked too.)
+//
+// The predicates are a policy (FastPredicates, WidePredicates): exact_hull() is the fast one;
+// exact_hull_any() takes every finite double, scaling the input by a power of two where that is enough, else
+// on the wide predicates.
 #include "cudahull/exact_hull.hpp"
 
 #include <algorithm>
@@ -20,11 +25,40 @@
 #include <vector>
 
 #include "cudahull/predicates.hpp"
+#include "cudahull/wide_predicates.hpp"
 
 namespace cudahull {
 namespace {
 
 constexpr std::uint32_t kNone = 0xffffffffu;
+
+// The exact predicates behind every combinatorial decision, as a policy of static functions.
+// FastPredicates (exact_hull) calls the inline predicates themselves, so its instantiations compile to the
+// same code as direct calls; WidePredicates (exact_hull_any, when no power-of-two scale brings the input
+// into the fast range) is exact for every finite double, slower.
+struct FastPredicates {
+  static int orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
+    return cudahull::orient3d(a, b, c, d);
+  }
+  static int orient2d(double ax, double ay, double bx, double by, double cx, double cy) {
+    return cudahull::orient2d(ax, ay, bx, by, cx, cy);
+  }
+  static bool collinear3d(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+    return cudahull::collinear3d(a, b, c);
+  }
+};
+
+struct WidePredicates {
+  static int orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
+    return orient3d_wide(a, b, c, d);
+  }
+  static int orient2d(double ax, double ay, double bx, double by, double cx, double cy) {
+    return orient2d_wide(ax, ay, bx, by, cx, cy);
+  }
+  static bool collinear3d(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+    return collinear3d_wide(a, b, c);
+  }
+};
 
 // A distinct input point: coordinates (float for Point3, double for Point3d) plus the lowest input index
 // among the points with these coordinates.
@@ -62,7 +96,7 @@ struct Basis {
   std::uint32_t a = kNone, b = kNone, c = kNone, d = kNone;
 };
 
-template <class Get>
+template <class Pred, class Get>
 Basis find_basis(std::size_t n, const Get& get) {
   Basis r;
   if (n == 0) return r;
@@ -88,10 +122,10 @@ Basis find_basis(std::size_t n, const Get& get) {
   }
   // The approximate pick may be exactly collinear (or missing, when a huge double input overflows the
   // ranking to NaN): scan exactly.
-  if (best == kNone || collinear3d(a, b, get(best))) {
+  if (best == kNone || Pred::collinear3d(a, b, get(best))) {
     best = kNone;
     for (std::uint32_t i = 0; i < n && best == kNone; ++i)
-      if (!collinear3d(a, b, get(i))) best = i;
+      if (!Pred::collinear3d(a, b, get(i))) best = i;
     if (best == kNone) return r;
   }
   r.c = best;
@@ -105,10 +139,10 @@ Basis find_basis(std::size_t n, const Get& get) {
     const double d = std::fabs(dot(nrm, sub(get(i), a)));
     if (d > best_d) best_d = d, best = i;
   }
-  if (best == kNone || orient3d(a, b, c, get(best)) == 0) {
+  if (best == kNone || Pred::orient3d(a, b, c, get(best)) == 0) {
     best = kNone;
     for (std::uint32_t i = 0; i < n && best == kNone; ++i)
-      if (orient3d(a, b, c, get(i)) != 0) best = i;
+      if (Pred::orient3d(a, b, c, get(i)) != 0) best = i;
     if (best == kNone) return r;
   }
   r.d = best;
@@ -213,7 +247,8 @@ void sort_and_dedupe(std::vector<Site<Point>>& sites) {
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// Exact QuickHull on distinct points.
+// Exact QuickHull on distinct points, deciding with the predicates of Pred.
+template <class Pred>
 class QuickHull {
  public:
   explicit QuickHull(const std::vector<Vec3d>& p) : p_(p), start_face_(p.size(), kNone) {}
@@ -238,7 +273,7 @@ class QuickHull {
   };
 
   int side(const Face& f, std::uint32_t q) const {
-    return orient3d(p_[f.v[0]], p_[f.v[1]], p_[f.v[2]], p_[q]);
+    return Pred::orient3d(p_[f.v[0]], p_[f.v[1]], p_[f.v[2]], p_[q]);
   }
   std::uint32_t new_face(std::uint32_t a, std::uint32_t b, std::uint32_t c);
   // Assigns each point of `pts` to the first face of `cands` it is strictly above (or drops it), storing
@@ -274,7 +309,8 @@ class QuickHull {
   std::vector<std::uint32_t> which_, counts_;
 };
 
-std::uint32_t QuickHull::new_face(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+template <class Pred>
+std::uint32_t QuickHull<Pred>::new_face(std::uint32_t a, std::uint32_t b, std::uint32_t c) {
   std::uint32_t f;
   if (!free_.empty()) {
     f = free_.back();
@@ -293,7 +329,9 @@ std::uint32_t QuickHull::new_face(std::uint32_t a, std::uint32_t b, std::uint32_
   return f;
 }
 
-void QuickHull::distribute(const std::vector<std::uint32_t>& pts, const std::vector<std::uint32_t>& cands) {
+template <class Pred>
+void QuickHull<Pred>::distribute(const std::vector<std::uint32_t>& pts,
+                                 const std::vector<std::uint32_t>& cands) {
   const std::size_t nc = cands.size();
   which_.resize(pts.size());
   counts_.assign(nc, 0);
@@ -331,7 +369,8 @@ void QuickHull::distribute(const std::vector<std::uint32_t>& pts, const std::vec
     }
 }
 
-void QuickHull::compact_arena() {
+template <class Pred>
+void QuickHull<Pred>::compact_arena() {
   std::vector<std::uint32_t> fresh;
   fresh.reserve(live_ + live_ / 2);
   for (Face& F : faces_) {
@@ -343,9 +382,10 @@ void QuickHull::compact_arena() {
   arena_.swap(fresh);
 }
 
-void QuickHull::build(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+template <class Pred>
+void QuickHull<Pred>::build(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
   faces_.reserve(2 * p_.size() + 8);
-  if (orient3d(p_[a], p_[b], p_[c], p_[d]) > 0) std::swap(b, c);  // now d is below (a, b, c)
+  if (Pred::orient3d(p_[a], p_[b], p_[c], p_[d]) > 0) std::swap(b, c);  // now d is below (a, b, c)
   const std::uint32_t f0 = new_face(a, b, c), f1 = new_face(b, a, d), f2 = new_face(c, b, d),
                       f3 = new_face(a, c, d);
   // Link the tetrahedron by matching opposite edges.
@@ -374,7 +414,8 @@ void QuickHull::build(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::ui
 
 // Adds the furthest outside point of face f: removes every face it is strictly above (a connected set
 // bounded by one simple horizon cycle, by convexity), and connects the horizon to it.
-void QuickHull::add_point(std::uint32_t f0) {
+template <class Pred>
+void QuickHull<Pred>::add_point(std::uint32_t f0) {
   const std::uint32_t eye = faces_[f0].far;
   const std::uint32_t stamp = ++stamp_;
 
@@ -431,7 +472,8 @@ void QuickHull::add_point(std::uint32_t f0) {
   distribute(pending_, created_);
 }
 
-std::vector<Triangle> QuickHull::polish() const {
+template <class Pred>
+std::vector<Triangle> QuickHull<Pred>::polish() const {
   const std::uint32_t nf = static_cast<std::uint32_t>(faces_.size());
   // Union-find over faces: adjacent faces with exactly coplanar planes belong to one facet.
   std::vector<std::uint32_t> parent(nf);
@@ -487,7 +529,7 @@ std::vector<Triangle> QuickHull::polish() const {
       corners.clear();
       for (std::size_t t = 0; t < len; ++t) {
         const std::uint32_t prev = cycle[(t + len - 1) % len], cur = cycle[t], next = cycle[(t + 1) % len];
-        if (!collinear3d(p_[prev], p_[cur], p_[next])) corners.push_back(cur);
+        if (!Pred::collinear3d(p_[prev], p_[cur], p_[next])) corners.push_back(cur);
       }
       if (corners.size() < 3) throw std::logic_error("exact_hull: degenerate facet");
       for (std::size_t t = 1; t + 1 < corners.size(); ++t)
@@ -504,13 +546,14 @@ std::vector<Triangle> QuickHull::polish() const {
 // Output: the strict corners, counter-clockwise seen from the side of the plane's canonical normal n, which
 // is the normal whose first non-zero component (x, then y, then z) is positive; the polygon starts at its
 // lexicographically smallest corner.
+template <class Pred>
 std::vector<std::uint32_t> hull_2d(const std::vector<Vec3d>& p, const Basis& bs) {
   const Vec3d a = p[bs.a], b = p[bs.b], c = p[bs.c];
   auto coord = [](const Vec3d& v, int axis) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; };
   int sign_n[3];
   for (int k = 0; k < 3; ++k) {
     const int u = (k + 1) % 3, v = (k + 2) % 3;
-    sign_n[k] = orient2d(coord(a, u), coord(a, v), coord(b, u), coord(b, v), coord(c, u), coord(c, v));
+    sign_n[k] = Pred::orient2d(coord(a, u), coord(a, v), coord(b, u), coord(b, v), coord(c, u), coord(c, v));
   }
   const int sigma = sign_n[0] != 0 ? sign_n[0] : sign_n[1] != 0 ? sign_n[1] : sign_n[2];
   // Drop the dominant axis (better conditioned projection) among those with an exactly non-zero component.
@@ -532,8 +575,8 @@ std::vector<std::uint32_t> hull_2d(const std::vector<Vec3d>& p, const Basis& bs)
     return coord(p[i], v) < coord(p[j], v);
   });
   auto turn = [&](std::uint32_t i, std::uint32_t j, std::uint32_t l) {
-    return orient2d(coord(p[i], u), coord(p[i], v), coord(p[j], u), coord(p[j], v), coord(p[l], u),
-                    coord(p[l], v));
+    return Pred::orient2d(coord(p[i], u), coord(p[i], v), coord(p[j], u), coord(p[j], v), coord(p[l], u),
+                          coord(p[l], v));
   };
   // Distinct coplanar points project to distinct points, so the chain is well defined; popping on <= 0
   // removes collinear points, leaving strict corners.
@@ -559,17 +602,9 @@ std::vector<std::uint32_t> hull_2d(const std::vector<Vec3d>& p, const Basis& bs)
   return h;
 }
 
-}  // namespace
-
-// ---------------------------------------------------------------------------------------------------------
-
-template <class Point>
-int affine_dimension(const std::vector<Point>& points) {
-  return find_basis(points.size(), [&](std::uint32_t i) { return to_vec3d(points[i]); }).dim;
-}
-
-template <class Point>
-BasicHullMesh<Point> exact_hull(const std::vector<Point>& points, const std::vector<PointIndex>& ids) {
+// exact_hull() deciding with the predicates of Pred.
+template <class Pred, class Point>
+BasicHullMesh<Point> hull_with(const std::vector<Point>& points, const std::vector<PointIndex>& ids) {
   const std::size_t n = ids.empty() ? points.size() : ids.size();
   if (n >= kNone) throw std::length_error("exact_hull: too many points");
 
@@ -594,7 +629,7 @@ BasicHullMesh<Point> exact_hull(const std::vector<Point>& points, const std::vec
   std::vector<Vec3d> p(m);
   for (std::size_t i = 0; i < m; ++i)
     p[i] = {sites[i].x, sites[i].y, sites[i].z};
-  const Basis bs = find_basis(m, [&](std::uint32_t i) { return p[i]; });
+  const Basis bs = find_basis<Pred>(m, [&](std::uint32_t i) { return p[i]; });
 
   std::vector<std::uint32_t> out_index;
   switch (bs.dim) {
@@ -608,7 +643,7 @@ BasicHullMesh<Point> exact_hull(const std::vector<Point>& points, const std::vec
     case 1:
       return make_mesh<Point>(sites, {bs.a, bs.b}, 1, out_index);
     case 2: {
-      const std::vector<std::uint32_t> poly = hull_2d(p, bs);
+      const std::vector<std::uint32_t> poly = hull_2d<Pred>(p, bs);
       BasicHullMesh<Point> mesh = make_mesh(sites, poly, 2, out_index);
       for (std::uint32_t s : poly)
         mesh.polygon.push_back(out_index[s]);
@@ -618,7 +653,7 @@ BasicHullMesh<Point> exact_hull(const std::vector<Point>& points, const std::vec
       break;
   }
 
-  QuickHull qh(p);
+  QuickHull<Pred> qh(p);
   qh.build(bs.a, bs.b, bs.c, bs.d);
   std::vector<Triangle> tris = qh.polish();
   std::vector<std::uint8_t> used(m, 0);
@@ -633,6 +668,62 @@ BasicHullMesh<Point> exact_hull(const std::vector<Point>& points, const std::vec
   for (const Triangle& t : tris)
     mesh.triangles.push_back({out_index[t[0]], out_index[t[1]], out_index[t[2]]});
   return mesh;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------------------
+
+template <class Point>
+int affine_dimension(const std::vector<Point>& points) {
+  return find_basis<FastPredicates>(points.size(), [&](std::uint32_t i) { return to_vec3d(points[i]); }).dim;
+}
+
+template <class Point>
+BasicHullMesh<Point> exact_hull(const std::vector<Point>& points, const std::vector<PointIndex>& ids) {
+  return hull_with<FastPredicates>(points, ids);
+}
+
+HullMeshd exact_hull_any(const std::vector<Point3d>& points, const std::vector<PointIndex>& ids) {
+  const std::size_t n = ids.empty() ? points.size() : ids.size();
+  // The binades (floor(log2 |c|)) of the nonzero coordinates that take part; ids out of range are left to
+  // exact_hull(), which reports them.
+  bool fast = true;
+  int lo = std::numeric_limits<int>::max(), hi = std::numeric_limits<int>::min();
+  for (std::size_t i = 0; i < n; ++i) {
+    const PointIndex id = ids.empty() ? static_cast<PointIndex>(i) : ids[i];
+    if (id >= points.size()) continue;
+    for (const double c : {points[id].x, points[id].y, points[id].z}) {
+      if (!std::isfinite(c))
+        throw std::invalid_argument("exact_hull_any: point " + std::to_string(id) +
+                                    " has a coordinate that is not finite");
+      fast = fast && in_fast_exact_range(c);
+      if (c == 0.0) continue;
+      const int b = std::ilogb(c);  // exact for subnormals too
+      lo = std::min(lo, b), hi = std::max(hi, b);
+    }
+  }
+  if (fast) return hull_with<FastPredicates>(points, ids);
+
+  // One power of two 2^k that moves every binade into -250..249 (the fast range) exists when
+  // -250 - lo <= 249 - hi; the scaled coordinates are normal doubles, so the scaling is exact, keeps
+  // equality and order (dedupe, tie-breaks, the lexicographic extremes) and the sign of every predicate.
+  const int k_min = -250 - lo, k_max = 249 - hi;
+  if (k_min <= k_max) {
+    const int k = k_min + (k_max - k_min) / 2;   // centred: leaves the ranking arithmetic room both ways
+    std::vector<Point3d> scaled(points.size());  // only the points taking part are read
+    for (std::size_t i = 0; i < n; ++i) {
+      const PointIndex id = ids.empty() ? static_cast<PointIndex>(i) : ids[i];
+      if (id >= points.size()) continue;
+      const Point3d& q = points[id];
+      scaled[id] = {std::ldexp(q.x, k), std::ldexp(q.y, k), std::ldexp(q.z, k)};
+    }
+    HullMeshd mesh = hull_with<FastPredicates>(scaled, ids);
+    for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+      mesh.vertices[v] = points[mesh.vertex_ids[v]];  // the input's own coordinates, -0 included
+    return mesh;
+  }
+  return hull_with<WidePredicates>(points, ids);
 }
 
 // The two point types; one implementation.

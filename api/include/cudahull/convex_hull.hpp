@@ -29,6 +29,7 @@ enum class BackendChoice { kAuto, kCpu, kCuda };
 // command line's default); kStepping: Algorithm 1 an iteration at a time, the host editing the mesh on all
 // cores; kResident: every phase where the points are (issue 15, `cudahull --engine resident`).
 enum class EngineChoice { kAuto, kStepping, kResident };
+enum class MergeMode { kExact, kQhull, kRelative };
 
 struct ConvexHullOptions {
   BackendChoice backend = BackendChoice::kAuto;
@@ -36,11 +37,19 @@ struct ConvexHullOptions {
   // The coordinates the hull is computed in.  kAuto: the input's own type (float stays float, double is
   // exact in double); kFloat rounds double input to float once; kDouble widens float input exactly.
   Precision precision = Precision::kAuto;
+  // Facet merging (scipy's drop-in, issue 25).  kExact: the exact hull, every strictly extreme point a
+  // vertex.  kQhull: merged as Qhull's default roundoff-based merging would (its tolerance from the input's
+  // magnitudes, qhull_default_tolerance()).  kRelative: merged within `tolerance` times the bounding box's
+  // largest side.  A merged hull is checked, not guessed: ConvexHull::max_outside bounds every input point.
+  MergeMode merge = MergeMode::kExact;
+  double tolerance = 0;  // kRelative only
 };
 
 struct ConvexHull {
-  // The input's affine dimension: 3, or 2 (a convex polygon), 1 (a segment), 0 (one point), -1 (no points).
+  // The input's affine dimension: 3 (2 for 2-D input), or lower: 2 (a convex polygon), 1 (a segment), 0 (one
+  // point), -1 (no points).
   int dimension = -1;
+  int input_dimension = 3;  // 3, or 2 for convex_hull_2d()
   Precision precision = Precision::kFloat;  // what it was computed in (never kAuto)
   std::string backend;                      // the backend that ran, e.g. "cpu" or "cuda"
   // Input indices of the hull's vertices, ascending: exactly the strictly extreme points (a point inside a
@@ -54,11 +63,26 @@ struct ConvexHull {
   // rounding of the normal, computed in double from the exact corners).
   std::vector<std::array<double, 4>> planes;
   // Dimension 2: the polygon's corners (input indices) in counter-clockwise order seen from the side its
-  // normal points to (exact_hull.hpp).  Empty otherwise.
+  // normal points to (exact_hull.hpp); for 2-D input counter-clockwise in the plane, from the lowest (x, y)
+  // corner.  Dimension 1: the segment's two ends.  Empty otherwise.
   std::vector<PointIndex> polygon;
-  // Dimension 3: the solid's volume and surface area.  Dimension 2: volume 0, area both sides of the
-  // polygon (the surface area of the flat solid, twice the polygon's area).  Lower: 0 and 0.
+  // 2-D input of dimension 2 only: the edges (polygon[k], polygon[k + 1]), counter-clockwise; the edge across
+  // each end (edge_neighbors[e][k] is opposite edges[e][k], scipy's convention); each edge's line as unit
+  // outward normal and offset (nx, ny, d: n . x + d <= 0 inside).
+  std::vector<std::array<PointIndex, 2>> edges;
+  std::vector<std::array<std::int32_t, 2>> edge_neighbors;
+  std::vector<std::array<double, 3>> lines;
+  // Dimension 3: the solid's volume and surface area.  Dimension 2 of 3-D input: volume 0, area both sides
+  // of the polygon (the surface area of the flat solid, twice the polygon's area).  2-D input: volume is the
+  // polygon's area and area its perimeter, as scipy's.  Lower: 0 and 0.
   double volume = 0, area = 0;
+  // A merged hull (ConvexHullOptions::merge): the points merging left out that the exact hull had as
+  // vertices, each as {point, nearest face (or edge), nearest vertex}, as scipy's `coplanar`; the absolute
+  // tolerance used; and a proven bound: every input point p lies within max_outside of every face's plane
+  // (n . p + d <= max_outside, the evaluation's rounding included).  Zero for the exact hull, whose planes
+  // are the exact normals rounded (every point within a few units in the last place of them).
+  std::vector<std::array<PointIndex, 3>> coplanar;
+  double tolerance = 0, max_outside = 0;
   // The resident engine's counters (iterations, host waits, bytes each way, coordinates read back for its
   // exact checks; resident.hpp), empty for the stepping engine.  For convex_hull_device() they include
   // the input check's wait and read-back.
@@ -77,6 +101,16 @@ ConvexHull convex_hull(const std::vector<Point3d>& points, const ConvexHullOptio
 // The same on `count` points given as x, y, z triples in one contiguous array (e.g. a NumPy array).
 ConvexHull convex_hull(const float* xyz, std::size_t count, const ConvexHullOptions& options = {});
 ConvexHull convex_hull(const double* xyz, std::size_t count, const ConvexHullOptions& options = {});
+
+// The exact convex hull of `count` 2-D points given as x, y pairs: ConvexHull's polygon, edges, lines,
+// volume (area) and area (perimeter), input_dimension 2.  Exact (orient2d); the same checks and errors.
+ConvexHull convex_hull_2d(const float* xy, std::size_t count, const ConvexHullOptions& options = {});
+ConvexHull convex_hull_2d(const double* xy, std::size_t count, const ConvexHullOptions& options = {});
+// The same on 2-D points in the current CUDA device's memory: the device checks them and drops every point
+// strictly inside a polygon of extreme points, and only the survivors cross to the host (backend "cuda").
+// Throws as convex_hull_device().
+ConvexHull convex_hull_2d_device(const float* device_xy, std::size_t count, const ConvexHullOptions& options = {});
+ConvexHull convex_hull_2d_device(const double* device_xy, std::size_t count, const ConvexHullOptions& options = {});
 
 // The same on `count` x, y, z triples already in the memory of the current CUDA device (a CuPy array, a
 // PyTorch tensor), read in place: the resident engine on the CUDA backend borrows them, whatever
@@ -119,5 +153,7 @@ BackendChoice backend_from_name(const std::string& name);
 EngineChoice engine_from_name(const std::string& name);  // "auto", "stepping" or "resident"
 // "auto", "float", "double"; unlike precision_from_name() (types.hpp), a bad name throws.
 Precision precision_from_name_strict(const std::string& name);
+// "exact", "qhull" or "relative"; throws std::invalid_argument for another name.
+MergeMode merge_from_name(const std::string& name);
 
 }  // namespace cudahull

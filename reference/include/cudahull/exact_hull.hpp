@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cudahull/types.hpp"
+#include "cudahull/wide_predicates.hpp"  // in_fast_exact_range() and the wide predicates
 
 namespace cudahull {
 
@@ -25,6 +26,19 @@ BasicHullMesh<Point> exact_hull(const std::vector<Point>& points, const std::vec
 // The affine dimension (-1 for no points, 0..3) of the point set, exactly.  Point3 or Point3d.
 template <class Point = Point3>
 int affine_dimension(const std::vector<Point>& points);
+
+// The exact hull of double points with ANY finite coordinates: where every nonzero magnitude lies in
+// 2^-250..2^250 this is exact_hull(); where the input's nonzero magnitudes span few enough binades (their
+// floor(log2 |c|) within 499 of each other) it is exact_hull() of the points scaled by one power of two
+// (exact), reported in the input's coordinates; else exact_hull() on the wide predicates
+// (wide_predicates.hpp: a filter, and GMP where a predicate's own coordinates need it), slower.  Same
+// contract as exact_hull(): the vertices are the input's own coordinates, unscaled.  Only the points taking
+// part (points[ids[i]], or all) are looked at; a NaN or infinite coordinate among them throws
+// std::invalid_argument.
+HullMeshd exact_hull_any(const std::vector<Point3d>& points, const std::vector<PointIndex>& ids = {});
+
+// in_fast_exact_range(double coordinate) (wide_predicates.hpp, included above) says whether a coordinate is
+// inside the fast exact range: where every coordinate is, exact_hull() and the engines are exact.
 
 extern template HullMesh exact_hull(const std::vector<Point3>&, const std::vector<PointIndex>&);
 extern template HullMeshd exact_hull(const std::vector<Point3d>&, const std::vector<PointIndex>&);

@@ -1,0 +1,255 @@
+// planar_candidates(): the 2-D hull's filter on the device (design in planar_filter.hpp).
+#include "planar_filter.hpp"
+
+#include <cuda_runtime.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cub/device/device_select.cuh>
+#include <thrust/iterator/counting_iterator.h>
+#include <memory>
+#include <type_traits>
+
+#include "cuda_errors.hpp"
+#include "cudahull/predicates.hpp"
+
+namespace cudahull {
+
+namespace {
+
+constexpr const char* kWho = "2-D filter";
+constexpr unsigned kThreads = 256;
+constexpr int kDirections = 16;            // each searched both ways: 32 extremes
+constexpr int kExtremes = 2 * kDirections;
+
+__constant__ double c_directions[kDirections][2];
+__constant__ double c_polygon[kExtremes][2];  // the inner polygon, counter-clockwise
+__constant__ int c_corners;
+
+void check(cudaError_t e, const char* what) {
+  if (e != cudaSuccess) throw_cuda_error(kWho, what, e);
+}
+
+template <class T>
+std::shared_ptr<T> device_array(std::size_t count, const char* what) {
+  void* p = nullptr;
+  const std::size_t bytes = std::max<std::size_t>(count, 1) * sizeof(T);
+  const cudaError_t e = cudaMalloc(&p, bytes);
+  if (e != cudaSuccess) throw_out_of_memory(kWho, what, bytes, e);
+  return std::shared_ptr<T>(static_cast<T*>(p), [](T* q) { cudaFree(q); });
+}
+
+// The same bounds as the host's check (api/src/convex_hull.cpp): double's exact predicates are exact for
+// these magnitudes; a float is finite or not.
+template <class Scalar>
+__device__ bool acceptable(Scalar c) {
+  const double v = static_cast<double>(c);
+  if (!isfinite(v)) return false;
+  if constexpr (std::is_same_v<Scalar, double>) {
+    const double m = fabs(v);
+    return m == 0 || (m >= 0x1p-250 && m <= 0x1p+250);
+  }
+  return true;
+}
+
+// A key that orders like the value (rounded to float: the extremes need no exactness), with the index in
+// its low half, so that one 64-bit atomicMax keeps a point of (nearly) greatest value.
+__device__ unsigned long long extreme_key(double value, unsigned index) {
+  const unsigned bits = __float_as_uint(__double2float_rn(value));
+  const unsigned ordered = (bits & 0x80000000u) ? ~bits : (bits | 0x80000000u);
+  return (static_cast<unsigned long long>(ordered) << 32) | index;
+}
+
+template <class Scalar>
+__global__ void check_and_find_extremes(const Scalar* xy, std::size_t count, unsigned long long* keys,
+                                        unsigned long long* first_bad) {
+  unsigned long long best[kExtremes];
+  for (int k = 0; k < kExtremes; ++k)
+    best[k] = 0;
+  const std::size_t stride = static_cast<std::size_t>(gridDim.x) * blockDim.x;
+  for (std::size_t i = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x; i < count;
+       i += stride) {
+    const Scalar x = xy[2 * i], y = xy[2 * i + 1];
+    if (!acceptable(x) || !acceptable(y)) {
+      atomicMin(first_bad, static_cast<unsigned long long>(i));
+      continue;
+    }
+    for (int d = 0; d < kDirections; ++d) {
+      const double along = static_cast<double>(x) * c_directions[d][0] + static_cast<double>(y) * c_directions[d][1];
+      best[2 * d] = max(best[2 * d], extreme_key(along, static_cast<unsigned>(i)));
+      best[2 * d + 1] = max(best[2 * d + 1], extreme_key(-along, static_cast<unsigned>(i)));
+    }
+  }
+  for (int k = 0; k < kExtremes; ++k) {
+    unsigned long long v = best[k];
+    for (int offset = 16; offset > 0; offset /= 2)
+      v = max(v, __shfl_xor_sync(0xffffffffu, v, offset));
+    if ((threadIdx.x & 31) == 0 && v != 0) atomicMax(&keys[k], v);
+  }
+}
+
+// Keeps a point unless it is strictly inside the inner polygon (strictly left of every edge, exactly).
+template <class Scalar>
+struct NotStrictlyInside {
+  const Scalar* xy;
+  __device__ bool operator()(unsigned i) const {
+    const double x = xy[2 * static_cast<std::size_t>(i)], y = xy[2 * static_cast<std::size_t>(i) + 1];
+    for (int k = 0; k < c_corners; ++k) {
+      const int next = k + 1 == c_corners ? 0 : k + 1;
+      if (orient2d(c_polygon[k][0], c_polygon[k][1], c_polygon[next][0], c_polygon[next][1], x, y) <= 0)
+        return true;
+    }
+    return false;
+  }
+};
+
+template <class Scalar>
+__global__ void gather(const Scalar* xy, const unsigned* indices, const unsigned* count, Scalar* out) {
+  for (unsigned k = blockIdx.x * blockDim.x + threadIdx.x; k < *count; k += gridDim.x * blockDim.x) {
+    out[2 * k] = xy[2 * static_cast<std::size_t>(indices[k])];
+    out[2 * k + 1] = xy[2 * static_cast<std::size_t>(indices[k]) + 1];
+  }
+}
+
+unsigned grid_for(std::size_t count) {
+  int device = 0, sms = 1;
+  check(cudaGetDevice(&device), "reading the current device");
+  check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), "reading the SM count");
+  const std::size_t needed = (count + kThreads - 1) / kThreads;
+  return static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(needed, 8u * sms)));
+}
+
+struct Corner {
+  double x, y;
+};
+
+// The strict corners of a few points' hull, counter-clockwise (Andrew's monotone chain, exact orient2d).
+std::vector<Corner> small_hull(std::vector<Corner> p) {
+  std::sort(p.begin(), p.end(), [](const Corner& a, const Corner& b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
+  p.erase(std::unique(p.begin(), p.end(), [](const Corner& a, const Corner& b) { return a.x == b.x && a.y == b.y; }),
+          p.end());
+  if (p.size() < 3) return p;
+  std::vector<Corner> hull(2 * p.size());
+  std::size_t k = 0;
+  auto turn = [&](const Corner& a, const Corner& b, const Corner& c) { return orient2d(a.x, a.y, b.x, b.y, c.x, c.y); };
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    while (k >= 2 && turn(hull[k - 2], hull[k - 1], p[i]) <= 0)
+      --k;
+    hull[k++] = p[i];
+  }
+  for (std::size_t i = p.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && turn(hull[k - 2], hull[k - 1], p[i]) <= 0)
+      --k;
+    hull[k++] = p[i];
+  }
+  hull.resize(k - 1);
+  return hull;
+}
+
+}  // namespace
+
+template <class Scalar>
+PlanarCandidates<Scalar> planar_candidates(const Scalar* xy, std::size_t count) {
+  PlanarCandidates<Scalar> out;
+  out.first_bad = count;
+  if (count == 0) return out;
+  check(cudaDeviceSynchronize(), "waiting for the points' producer");
+  static const bool directions_set = [] {
+    double directions[kDirections][2];
+    for (int d = 0; d < kDirections; ++d) {
+      const double angle = 3.14159265358979323846 * d / kDirections;
+      directions[d][0] = std::cos(angle);
+      directions[d][1] = std::sin(angle);
+    }
+    check(cudaMemcpyToSymbol(c_directions, directions, sizeof directions), "setting the directions");
+    return true;
+  }();
+  (void)directions_set;
+
+  // One pass: the check and the extremes, then one read of both.
+  auto scratch = device_array<unsigned long long>(kExtremes + 1, "the extremes");
+  unsigned long long initial[kExtremes + 1] = {};
+  initial[kExtremes] = count;
+  check(cudaMemcpy(scratch.get(), initial, sizeof initial, cudaMemcpyHostToDevice), "clearing the extremes");
+  check_and_find_extremes<<<grid_for(count), kThreads>>>(xy, count, scratch.get(), scratch.get() + kExtremes);
+  check(cudaGetLastError(), "launching the extremes' search");
+  unsigned long long found[kExtremes + 1];
+  check(cudaMemcpy(found, scratch.get(), sizeof found, cudaMemcpyDeviceToHost), "reading the extremes");
+  out.host_syncs += 1;
+  out.bytes_from_device += sizeof found;
+  out.first_bad = static_cast<std::size_t>(found[kExtremes]);
+  if (out.first_bad != count) return out;
+
+  std::vector<Corner> extremes;
+  for (int k = 0; k < kExtremes; ++k) {
+    if (found[k] == 0) continue;
+    Scalar p[2];
+    const std::size_t i = static_cast<std::uint32_t>(found[k]);
+    check(cudaMemcpy(p, xy + 2 * i, sizeof p, cudaMemcpyDeviceToHost), "reading an extreme point");
+    extremes.push_back({static_cast<double>(p[0]), static_cast<double>(p[1])});
+    out.bytes_from_device += sizeof p;
+  }
+  const std::vector<Corner> polygon = small_hull(extremes);
+  if (polygon.size() < 3) {
+    out.degenerate = true;
+    return out;
+  }
+  double corners[kExtremes][2];
+  for (std::size_t k = 0; k < polygon.size(); ++k)
+    corners[k][0] = polygon[k].x, corners[k][1] = polygon[k].y;
+  const int corner_count = static_cast<int>(polygon.size());
+  check(cudaMemcpyToSymbol(c_polygon, corners, sizeof corners), "setting the inner polygon");
+  check(cudaMemcpyToSymbol(c_corners, &corner_count, sizeof corner_count), "setting the inner polygon");
+
+  // The survivors, in input order, and their coordinates.
+  auto indices = device_array<unsigned>(count, "the survivors' indices");
+  auto selected = device_array<unsigned>(1, "the survivors' count");
+  thrust::counting_iterator<unsigned> all(0);
+  std::size_t temp_bytes = 0;
+  const NotStrictlyInside<Scalar> keep{xy};
+  check(cub::DeviceSelect::If(nullptr, temp_bytes, all, indices.get(), selected.get(), static_cast<int>(count), keep),
+        "sizing the selection");
+  auto temp = device_array<unsigned char>(temp_bytes, "the selection's scratch");
+  check(cub::DeviceSelect::If(temp.get(), temp_bytes, all, indices.get(), selected.get(), static_cast<int>(count),
+                              keep),
+        "selecting the survivors");
+  auto coordinates = device_array<Scalar>(2 * count, "the survivors' coordinates");
+  gather<<<grid_for(count), kThreads>>>(xy, indices.get(), selected.get(), coordinates.get());
+  check(cudaGetLastError(), "launching the gather");
+  unsigned survivors = 0;
+  check(cudaMemcpy(&survivors, selected.get(), sizeof survivors, cudaMemcpyDeviceToHost), "reading the count");
+  out.indices.resize(survivors);
+  out.xy.resize(2 * static_cast<std::size_t>(survivors));
+  check(cudaMemcpy(out.indices.data(), indices.get(), survivors * sizeof(unsigned), cudaMemcpyDeviceToHost),
+        "reading the survivors");
+  check(cudaMemcpy(out.xy.data(), coordinates.get(), 2 * static_cast<std::size_t>(survivors) * sizeof(Scalar),
+                   cudaMemcpyDeviceToHost),
+        "reading the survivors' coordinates");
+  out.host_syncs += 2;
+  out.bytes_from_device += sizeof survivors + survivors * (sizeof(unsigned) + 2 * sizeof(Scalar));
+  return out;
+}
+
+template <class Scalar>
+std::vector<Scalar> download_planar(const Scalar* xy, std::size_t count) {
+  std::vector<Scalar> host(2 * count);
+  check(cudaDeviceSynchronize(), "waiting for the points' producer");
+  check(cudaMemcpy(host.data(), xy, host.size() * sizeof(Scalar), cudaMemcpyDeviceToHost), "reading the points");
+  return host;
+}
+
+template <class Scalar>
+std::array<double, 3> read_device_point_2d(const Scalar* xy, std::size_t index) {
+  Scalar p[2];
+  check(cudaMemcpy(p, xy + 2 * index, sizeof p, cudaMemcpyDeviceToHost), "reading a point");
+  return {static_cast<double>(p[0]), static_cast<double>(p[1]), 0};
+}
+
+template std::vector<float> download_planar(const float*, std::size_t);
+template std::vector<double> download_planar(const double*, std::size_t);
+template std::array<double, 3> read_device_point_2d(const float*, std::size_t);
+template std::array<double, 3> read_device_point_2d(const double*, std::size_t);
+template PlanarCandidates<float> planar_candidates(const float*, std::size_t);
+template PlanarCandidates<double> planar_candidates(const double*, std::size_t);
+
+}  // namespace cudahull

@@ -1,0 +1,282 @@
+"""cudahull.ConvexHull as scipy's drop-in (issue 25): 2-D hulls against an exact brute force, qhull_options,
+Qhull-like merging with its certificate against Qhull's own output, planes on slivers, scipy's errors."""
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+import scipy.spatial
+
+import cudahull
+
+
+# --- oracles -----------------------------------------------------------------------------------------------
+
+
+def exact_corners_2d(points):
+    """The strict corners of the 2-D hull, counter-clockwise from the lowest (x, y), by Andrew's monotone
+    chain in exact rational arithmetic (every double is a Fraction exactly); lowest index among duplicates."""
+    exact = [(Fraction(float(x)), Fraction(float(y)), i) for i, (x, y) in enumerate(points)]
+    exact.sort()
+    unique = []
+    for p in exact:
+        if not unique or unique[-1][:2] != p[:2]:
+            unique.append(p)
+    if len(unique) < 3:
+        return [p[2] for p in unique]
+
+    def cross(o, a, b):
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+    lower, upper = [], []
+    for p in unique:
+        while len(lower) >= 2 and cross(lower[-2], lower[-1], p) <= 0:
+            lower.pop()
+        lower.append(p)
+    for p in reversed(unique):
+        while len(upper) >= 2 and cross(upper[-2], upper[-1], p) <= 0:
+            upper.pop()
+        upper.append(p)
+    return [p[2] for p in lower[:-1] + upper[:-1]]
+
+
+def random_planar_sets(seed, count):
+    rng = np.random.default_rng(seed)
+    for case in range(count):
+        n = int(rng.integers(3, 300))
+        kind = case % 5
+        if kind == 0:
+            points = rng.uniform(-1, 1, size=(n, 2))
+        elif kind == 1:  # an integer grid: many collinear points on the hull's edges
+            points = rng.integers(-4, 5, size=(n, 2)).astype(float)
+        elif kind == 2:  # a circle: every point a corner, some nearly collinear
+            angle = rng.uniform(0, 2 * np.pi, size=n)
+            points = np.column_stack([np.cos(angle), np.sin(angle)]) * 1e3 + [1e6, -7]
+        elif kind == 3:  # duplicates
+            points = rng.uniform(-1, 1, size=(n, 2))
+            points = np.vstack([points, points[rng.integers(0, n, size=n // 2)]])
+        else:  # near-collinear doubles along a line, a few units in the last place off it
+            t = rng.uniform(0, 1, size=n)
+            points = np.column_stack([t, 0.5 + t * np.float64(1 / 3)])
+            points[:, 1] += rng.integers(-2, 3, size=n) * np.spacing(points[:, 1])
+        yield case, points
+
+
+# --- 2-D -----------------------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_2d_hull_is_exact_against_a_rational_brute_force(seed):
+    for case, points in random_planar_sets(seed, 150):
+        expected = exact_corners_2d(points)
+        hull = cudahull.convex_hull(points, backend="cpu")
+        assert hull["input_dimension"] == 2
+        if len(expected) >= 3:
+            assert hull["dimension"] == 2, case
+            assert hull["polygon"].tolist() == expected, case
+        else:
+            assert hull["dimension"] == len(expected) - 1, case
+            assert sorted(hull["vertices"].tolist()) == sorted(expected), case
+            with pytest.raises(cudahull.QhullError):
+                cudahull.ConvexHull(points)
+
+
+def test_2d_hull_has_scipys_attributes():
+    rng = np.random.default_rng(7)
+    points = rng.uniform(-1, 1, size=(500, 2))
+    hull = cudahull.ConvexHull(points)
+    reference = scipy.spatial.ConvexHull(points)
+    # Uniform doubles in general position: Qhull is exact here, so the vertex sets agree.
+    assert sorted(hull.vertices.tolist()) == sorted(reference.vertices.tolist())
+    # scipy's 2-D vertices run counter-clockwise: the same cycle as Qhull's.
+    ring = hull.vertices.tolist()
+    start = ring.index(reference.vertices[0])
+    assert ring[start:] + ring[:start] == reference.vertices.tolist()
+    assert hull.simplices.shape == (len(ring), 2) and hull.neighbors.shape == (len(ring), 2)
+    assert hull.equations.shape == (len(ring), 3) and hull.ndim == 2 and hull.dimension == 2
+    assert hull.volume == pytest.approx(reference.volume, rel=1e-13)  # the area
+    assert hull.area == pytest.approx(reference.area, rel=1e-13)  # the perimeter
+    assert {tuple(sorted(e)) for e in hull.simplices.tolist()} == {tuple(sorted(e)) for e in
+                                                                  reference.simplices.tolist()}
+    for e, (a, b) in enumerate(hull.simplices.tolist()):
+        # neighbors[e][k] is the edge opposite vertex k: it shares the other end.
+        assert b in hull.simplices[hull.neighbors[e, 0]] and a not in hull.simplices[hull.neighbors[e, 0]]
+        assert a in hull.simplices[hull.neighbors[e, 1]] and b not in hull.simplices[hull.neighbors[e, 1]]
+    heights = points @ hull.equations[:, :2].T + hull.equations[:, 2]
+    assert heights.max() <= 1e-15
+    np.testing.assert_allclose(np.linalg.norm(hull.equations[:, :2], axis=1), 1, atol=1e-15)
+    # add_points, as scipy's.
+    more = rng.uniform(-1.5, 1.5, size=(100, 2))
+    hull.add_points(more)
+    whole = np.vstack([points, more])
+    assert hull.vertices.tolist() == exact_corners_2d(whole)
+
+
+def test_2d_float32_stays_exact_in_float():
+    rng = np.random.default_rng(3)
+    points = rng.uniform(-1, 1, size=(2000, 2)).astype(np.float32)
+    hull = cudahull.ConvexHull(points)
+    assert hull.precision == "float"
+    assert hull.vertices.tolist() == exact_corners_2d(points.astype(np.float64))
+
+
+# --- qhull_options ----------------------------------------------------------------------------------------
+
+
+def test_qhull_options_that_scipy_callers_pass_are_accepted():
+    rng = np.random.default_rng(11)
+    points = rng.normal(size=(400, 3))
+    exact = cudahull.ConvexHull(points)
+    for options in ("Qt QbB Pp", "QbB", "QbB Pp", "QJ", "Qbb Qc Qz Qx Q12", "Qt", "Qx Qi", "C-0", "Qbb Qc Qz"):
+        hull = cudahull.ConvexHull(points, qhull_options=options)
+        reference = scipy.spatial.ConvexHull(points, qhull_options=options)
+        # A random Gaussian cloud has no near-coplanar facets: merging changes nothing, and Qhull agrees.
+        assert hull.vertices.tolist() == exact.vertices.tolist(), options
+        assert sorted(hull.vertices.tolist()) == sorted(reference.vertices.tolist()), options
+    qi = cudahull.ConvexHull(points, qhull_options="Qi")
+    # Qi: every point that is not a vertex is listed, with a facet and a vertex.
+    assert sorted(qi.coplanar[:, 0].tolist() + qi.vertices.tolist()) == list(range(len(points)))
+
+
+def test_unknown_qhull_options_raise_qhull_error_naming_them():
+    points = np.random.default_rng(1).normal(size=(20, 3))
+    for options, name in (("Qt Fv", "Fv"), ("Q3", "Q3"), ("d", "d"), ("QbB Tz", "Tz")):
+        with pytest.raises(cudahull.QhullError, match=f"'{name}'"):
+            cudahull.ConvexHull(points, qhull_options=options)
+        with pytest.raises(scipy.spatial.QhullError):  # code that catches scipy's error catches ours
+            cudahull.ConvexHull(points, qhull_options=options)
+
+
+@pytest.mark.parametrize("visible", [True, False])
+def test_good_is_the_facets_point_n_sees(visible):
+    rng = np.random.default_rng(5)
+    for points in (rng.uniform(0, 1, size=(40, 2)), rng.uniform(0, 1, size=(60, 3))):
+        points = np.vstack([points, np.full(points.shape[1], 1.2)])  # point n, outside
+        n = len(points) - 1
+        option = f"QG{n}" if visible else f"QG-{n}"
+        hull = cudahull.ConvexHull(points, qhull_options=option)
+        reference = scipy.spatial.ConvexHull(points, qhull_options=option)
+        assert n not in hull.vertices  # point n is left out of the hull, as in Qhull
+        ours = {tuple(sorted(s)) for s, g in zip(hull.simplices.tolist(), hull.good) if g}
+        theirs = {tuple(sorted(s)) for s, g in zip(reference.simplices.tolist(), reference.good) if g}
+        assert ours == theirs and len(ours) > 0
+
+
+# --- errors --------------------------------------------------------------------------------------------------
+
+
+def test_add_points_is_atomic_and_names_the_row_in_the_batch():
+    rng = np.random.default_rng(2)
+    points = rng.normal(size=(100, 3))
+    hull = cudahull.ConvexHull(points, incremental=True)
+    before = (hull.points.copy(), hull.vertices.copy(), hull.simplices.copy(), hull.npoints)
+    batch = rng.normal(size=(10, 3)) * 5
+    batch[6, 2] = np.nan
+    with pytest.raises(ValueError, match=r"^add_points: point 6: z coordinate nan is not finite"):
+        hull.add_points(batch)
+    assert np.array_equal(hull.points, before[0]) and hull.npoints == before[3]
+    assert np.array_equal(hull.vertices, before[1]) and np.array_equal(hull.simplices, before[2])
+    batch[6, 2] = 0.0
+    hull.add_points(batch)  # the batch's valid points all count afterwards
+    assert hull.vertices.tolist() == cudahull.ConvexHull(np.vstack([points, batch])).vertices.tolist()
+
+
+def test_positional_arguments_follow_scipy():
+    points = np.random.default_rng(4).normal(size=(50, 3))
+    hull = cudahull.ConvexHull(points, True, "Qt")
+    assert hull.vertices.tolist() == cudahull.ConvexHull(points).vertices.tolist()
+
+
+# --- merging ----------------------------------------------------------------------------------------------
+
+
+def rotation(rng):
+    q, r = np.linalg.qr(rng.normal(size=(3, 3)))
+    return q * np.sign(np.diag(r))
+
+
+def chamfered_box(rng, size=(2.0, 1.0, 0.5), chamfer=0.1, per_face=200):
+    """A box with chamfered edges and corners (a truncated box, convex), densely sampled on its faces and
+    edges, rotated arbitrarily in double: its planar faces' points are no longer exactly coplanar."""
+    a = np.array(size) / 2
+    corners = []
+    for sx in (-1, 1):
+        for sy in (-1, 1):
+            for sz in (-1, 1):
+                s = np.array([sx, sy, sz])
+                for axis in range(3):
+                    p = s * a
+                    p[axis] -= s[axis] * chamfer
+                    corners.append(p)
+    corners = np.array(corners)
+    hull = scipy.spatial.ConvexHull(corners)  # on the unrotated corners, Qhull is exact: 24 of them
+    samples = [corners]
+    for tri in hull.simplices:
+        w = rng.dirichlet(np.ones(3), size=per_face // 4)
+        samples.append(w @ corners[tri])
+        t = rng.uniform(0, 1, size=(per_face // 8, 1))
+        samples.append(corners[tri[0]] + t * (corners[tri[1]] - corners[tri[0]]))
+    points = np.vstack(samples)
+    return points @ rotation(rng).T + rng.normal(size=3) * 10
+
+
+def test_merged_hull_matches_qhull_on_rotated_chamfered_boxes():
+    rng = np.random.default_rng(25)
+    for part in range(6):
+        points = chamfered_box(rng, chamfer=0.05 + 0.05 * part)
+        exact = cudahull.ConvexHull(points)
+        merged = cudahull.ConvexHull(points, tolerance="qhull")
+        reference = scipy.spatial.ConvexHull(points)  # Qhull's default merging
+        assert len(merged.vertices) == len(reference.vertices), part
+        assert len(exact.vertices) >= len(merged.vertices)
+        # The certificate, checked independently: every input point within max_outside of every plane.
+        heights = points @ merged.equations[:, :3].T + merged.equations[:, 3]
+        assert heights.max() <= merged.max_outside
+        assert merged.max_outside < 1e3 * merged.tolerance + 1e-12
+        # No triangle thinner than the tolerance: each altitude at least it.
+        corners = points[merged.simplices]
+        edges = np.linalg.norm(corners[:, [1, 2, 0]] - corners, axis=2)
+        twice_area = np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]), axis=1)
+        assert (twice_area / edges.max(axis=1)).min() >= merged.tolerance
+        # The exact hull's vertices that merging left out are listed in coplanar.
+        dropped = sorted(set(exact.vertices.tolist()) - set(merged.vertices.tolist()))
+        assert sorted(merged.coplanar[:, 0].tolist()) == dropped
+
+
+def test_merged_hull_of_a_sphere_changes_nothing():
+    rng = np.random.default_rng(8)
+    points = rng.normal(size=(2000, 3))
+    points /= np.linalg.norm(points, axis=1, keepdims=True)
+    exact = cudahull.ConvexHull(points)
+    merged = cudahull.ConvexHull(points, tolerance="qhull")
+    assert merged.vertices.tolist() == exact.vertices.tolist()
+    assert len(merged.coplanar) == 0
+
+
+def test_merged_2d_drops_nearly_collinear_corners():
+    rng = np.random.default_rng(6)
+    t = rng.uniform(0, 1, size=(300, 1))
+    square = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], dtype=float)
+    points = np.vstack([square, square[0] + t * (square[1] - square[0]), square[1] + t * (square[2] - square[1])])
+    angle = 0.3
+    points = points @ np.array([[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]]).T
+    merged = cudahull.ConvexHull(points, tolerance="qhull")
+    assert sorted(merged.vertices.tolist()) == [0, 1, 2, 3]
+    assert len(scipy.spatial.ConvexHull(points).vertices) == 4
+    heights = points @ merged.equations[:, :2].T + merged.equations[:, 2]
+    assert heights.max() <= merged.max_outside
+
+
+# --- planes -------------------------------------------------------------------------------------------------
+
+
+def test_planes_are_accurate_on_slivers():
+    rng = np.random.default_rng(9)
+    worst = 0.0
+    for _ in range(20):
+        points = chamfered_box(rng, per_face=100)
+        hull = cudahull.ConvexHull(points)  # exact: slivers kept
+        scale = np.abs(points).max()
+        heights = points @ hull.equations[:, :3].T + hull.equations[:, 3]
+        worst = max(worst, heights.max() / scale)
+    assert worst <= 1e-13
