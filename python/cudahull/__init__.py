@@ -153,17 +153,23 @@ def _check_engine(engine, on_device, backend="auto"):
     return engine
 
 
+def _device_shape(points, protocol):
+    """The shape of an array in CUDA memory, checked to be (n, 2) or (n, 3)."""
+    shape = tuple(points.__cuda_array_interface__["shape"] if protocol == "cuda_array_interface" else points.shape)
+    if len(shape) == 2 and shape[1] >= 4:
+        raise ValueError(f"points are {shape[1]}-dimensional: cudahull computes 2-D and 3-D hulls only")
+    if len(shape) != 2 or shape[1] not in (2, 3):
+        raise ValueError(f"points must be an (n, 3) or (n, 2) array, not one of shape {shape}")
+    return shape
+
+
 def _device_hull(points, protocol, backend, precision, merge=("exact", 0.0)):
     """The hull dict of (n, 3) or (n, 2) points in CUDA memory: 3-D read in place by the resident engine,
     2-D filtered on the device with only the possible corners read back."""
     if backend == "cpu":
         raise ValueError("points in GPU memory need backend 'auto' or 'cuda', not 'cpu' (for the CPU backend, "
                          "pass them as NumPy: cupy.asnumpy(x), x.cpu().numpy())")
-    shape = tuple(points.shape)
-    if len(shape) == 2 and shape[1] >= 4:
-        raise ValueError(f"points are {shape[1]}-dimensional: cudahull computes 2-D and 3-D hulls only")
-    if len(shape) != 2 or shape[1] not in (2, 3):
-        raise ValueError(f"points must be an (n, 3) or (n, 2) array, not one of shape {shape}")
+    shape = _device_shape(points, protocol)
     planar = shape[1] == 2
     if protocol == "cuda_array_interface":
         # Checked here, before any data is read; a DLPack array is checked by the module (it sees its
@@ -358,7 +364,10 @@ class ConvexHull:
         self._backend_choice = backend
         self._precision_choice = precision
         self._closed = False
-        points = points if self._protocol else _as_points(points, (2, 3))
+        if self._protocol:
+            _device_shape(points, self._protocol)
+        else:
+            points = _as_points(points, (2, 3))
         self._commit(points, self._compute(points, None))
 
     # --- computing ------------------------------------------------------------------------------------

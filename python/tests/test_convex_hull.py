@@ -210,10 +210,11 @@ def test_fewer_than_four_points(count):
         assert_consistent(cudahull.ConvexHull(points, backend="cpu"))
     else:
         assert hull["volume"] == 0 and len(hull["simplices"]) == 0
-        # scipy raises QhullError for too few points (QH6214); so does ConvexHull.
-        with pytest.raises(scipy.spatial.QhullError):
+        # scipy raises ValueError for no points and QhullError for too few (QH6214); so does ConvexHull.
+        expected = ValueError if count == 0 else scipy.spatial.QhullError
+        with pytest.raises(expected):
             scipy.spatial.ConvexHull(points)
-        with pytest.raises(cudahull.QhullError, match="QH6214|QH6154"):
+        with pytest.raises(expected, match="No points given" if count == 0 else "QH6214|QH6154"):
             cudahull.ConvexHull(points, backend="cpu")
     if count == 3:
         assert hull["area"] == 2 * 3.0  # both sides of the triangle of area 3

@@ -82,7 +82,8 @@ def test_device_arrays_refuse_the_stepping_engine_and_the_cpu(array):
 @pytest.mark.parametrize(
     "interface, message",
     [
-        (dict(shape=(8, 2)), r"^points must be an \(n, 3\) array of 3-D points, not one of shape \(8, 2\)"),
+        (dict(shape=(8, 4)), r"^points are 4-dimensional: cudahull computes 2-D and 3-D hulls only"),
+        (dict(shape=(8,)), r"^points must be an \(n, 3\) or \(n, 2\) array, not one of shape \(8,\)"),
         (dict(typestr="<f2"), "^points in GPU memory must be float32 or float64"),
         (dict(typestr="<i4"), "^points in GPU memory must be float32 or float64"),
         (dict(strides=(48, 8)), "^points in GPU memory must be C-contiguous"),
@@ -132,5 +133,5 @@ def test_bounds_are_computed_when_asked_for():
     assert hull.min_bound.dtype == np.float32
     hull.add_points(points * 2)
     assert np.array_equal(hull.max_bound, np.maximum(points.max(axis=0), (points * 2).max(axis=0)))
-    empty = cudahull.ConvexHull(np.empty((0, 3)), backend="cpu")
-    assert np.isnan(empty.min_bound).all() and np.isnan(empty.max_bound).all()
+    with pytest.raises(ValueError, match="No points given"):  # as scipy
+        cudahull.ConvexHull(np.empty((0, 3)), backend="cpu")

