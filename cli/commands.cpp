@@ -144,7 +144,7 @@ constexpr Precision precision_of() {
 }
 
 // The points of `path` in Point's precision: float as read_points() rounds them; double as the file gives
-// them, each coordinate inside the range the exact predicates are exact on (check_double_range(), exit 3).
+// them, any finite value (hull_in() takes coordinates outside the engines' exact range to exact_hull_any()).
 template <class Point>
 std::vector<Point> read_input(const std::string& path, bool quiet);
 
@@ -156,7 +156,6 @@ std::vector<Point3> read_input<Point3>(const std::string& path, bool quiet) {
 template <>
 std::vector<Point3d> read_input<Point3d>(const std::string& path, bool quiet) {
   DoublePoints read = read_points_double(path, stderr_progress("reading " + path, quiet));
-  check_double_range(read.points, path == "-" ? "<stdin>" : path);
   return std::move(read.points);
 }
 
@@ -248,6 +247,18 @@ nlohmann::json resident_stats_json(const ResidentStats& stats) {
   return j;
 }
 
+// Whether some coordinate lies outside the range the engines' exact predicates are exact on (only double
+// coordinates can: every float is inside).
+template <class Point>
+bool outside_fast_range(const std::vector<Point>& points) {
+  if constexpr (std::is_same_v<Point, Point3d>) {
+    return std::any_of(points.begin(), points.end(), [](const Point3d& p) {
+      return !in_fast_exact_range(p.x) || !in_fast_exact_range(p.y) || !in_fast_exact_range(p.z);
+    });
+  }
+  return false;
+}
+
 // `cudahull hull` in the precision of Point (Point3 or Point3d): one code path for both.
 template <class Point>
 int hull_in(const HullOptions& o) {
@@ -255,9 +266,15 @@ int hull_in(const HullOptions& o) {
   const auto t_read = Clock::now();
   const std::vector<Point> points = read_input<Point>(o.input, o.quiet);
   const double read_ms = ms_since(t_read);
+  // Coordinates outside the engines' exact range (a subnormal, 1e300): exact_hull_any() on the host, exact
+  // for every finite double (exponent scaling, else GMP), with no iterations to record.
+  const bool wide = outside_fast_range(points);
+  if (wide && !o.quiet)
+    std::fprintf(stderr,
+                 "note: coordinates outside 2^-250..2^250: the wide-range exact hull (host, slower)\n");
   // The resident engine with records (--trace, --table) steps an iteration at a time and reads back what
   // each did; without them it runs in one go, hearing O(1) bytes an iteration.
-  const bool resident = o.engine == "resident";
+  const bool resident = o.engine == "resident" && !wide;
   const bool recorded_resident = resident && (!o.trace.empty() || o.table);
   std::string device, backend_name;
   std::unique_ptr<BasicBackend<Point>> backend;
@@ -271,14 +288,15 @@ int hull_in(const HullOptions& o) {
     backend_name = resident_stepper->backend_name();
     if (!o.quiet) std::fprintf(stderr, "backend: %s (%s)\n", backend_name.c_str(), why.c_str());
   }
-  if (!resident) {
+  if (!resident && !wide) {
     backend = choose_backend<Point>(o.backend, o.quiet, &device);
     backend_name = backend->name();
   }
+  if (wide) backend_name = device = "cpu-wide";
   const std::size_t point_count = points.size();
 
   std::optional<BasicEngine<Point>> engine;
-  if (!resident) engine.emplace(points, std::move(backend));  // borrows the points
+  if (!resident && !wide) engine.emplace(points, std::move(backend));  // borrows the points
   ResidentRun<Point> resident_run;
   std::ostringstream trace;
   double host_ms = 0, backend_ms = 0;
@@ -323,11 +341,13 @@ int hull_in(const HullOptions& o) {
     bytes_to = resident_run.stats.bytes_to_device;
     bytes_from = resident_run.stats.bytes_from_device;
     backend_ms = resident_run.upload_ms + resident_run.run_ms;
+  } else if (wide) {
+    if constexpr (std::is_same_v<Point, Point3d>) resident_run.hull = exact_hull_any(points);
   } else {
     engine->run(on_record);
   }
   const double run_ms = ms_since(t_run);
-  const BasicHullMesh<Point>& hull = resident ? resident_run.hull : engine->result();
+  const BasicHullMesh<Point>& hull = resident || wide ? resident_run.hull : engine->result();
   if (!o.quiet && hull.dimension < 3) {
     std::fprintf(stderr, "warning: the input is %d-dimensional; its hull is %s\n", hull.dimension,
                  dimension_name(hull.dimension));
@@ -335,7 +355,10 @@ int hull_in(const HullOptions& o) {
 
   bool verified = false;
   double verify_ms = 0;
-  if (o.verify) {
+  if (o.verify && wide) {
+    // The checker's predicates are the fast ones: on these coordinates their answer would prove nothing.
+    if (!o.quiet) std::fprintf(stderr, "verify: not run: the checker is exact only within 2^-250..2^250\n");
+  } else if (o.verify) {
     const auto t_verify = Clock::now();
     const CheckResult check = check_hull(points, hull);
     verify_ms = ms_since(t_verify);
@@ -402,6 +425,9 @@ template <class Point>
 int bench_in(const BenchOptions& o) {
   constexpr Precision precision = precision_of<Point>();
   const std::vector<Point> points = load_or_generate<Point>(o.input, o.distribution, o.count, o.seed, o.json);
+  // The engines are what bench times: they are exact only inside their range (`hull` takes the rest).
+  if constexpr (std::is_same_v<Point, Point3d>)
+    check_double_range(points, o.input == "-" ? "<stdin>" : o.input);
   const std::string label = o.input.empty() ? o.distribution + " " + std::to_string(points.size()) : o.input;
   std::string device;
   std::string backend_name;

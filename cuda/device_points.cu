@@ -155,6 +155,17 @@ template CheckedDevicePoints<Point3> check_device_points<Point3>(const float*, s
 template CheckedDevicePoints<Point3> check_device_points<Point3>(const double*, std::size_t);
 template CheckedDevicePoints<Point3d> check_device_points<Point3d>(const float*, std::size_t);
 template CheckedDevicePoints<Point3d> check_device_points<Point3d>(const double*, std::size_t);
+template <class Scalar>
+std::vector<Scalar> download_points(const Scalar* xyz, std::size_t count) {
+  std::vector<Scalar> host(3 * count);
+  check(cudaDeviceSynchronize(), "waiting for the points' producer");
+  check(cudaMemcpy(host.data(), xyz, host.size() * sizeof(Scalar), cudaMemcpyDeviceToHost),
+        "reading the points");
+  return host;
+}
+
+template std::vector<float> download_points(const float*, std::size_t);
+template std::vector<double> download_points(const double*, std::size_t);
 template std::array<double, 3> read_device_point(const float*, std::size_t);
 template std::array<double, 3> read_device_point(const double*, std::size_t);
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cudahull/types.hpp"
 
@@ -44,6 +45,10 @@ struct CheckedDevicePoints {
 // first: the array's producer may have written it on any stream.  Throws DeviceError.
 template <class Point, class Scalar>
 CheckedDevicePoints<Point> check_device_points(const Scalar* xyz, std::size_t count);
+
+// All `count` x, y, z triples at `xyz` in device memory, copied to the host (for the wide-range path).
+template <class Scalar>
+std::vector<Scalar> download_points(const Scalar* xyz, std::size_t count);
 
 // Point `index`'s coordinates, read back (24 bytes at most), for the error message that names it.
 template <class Scalar>

@@ -3,10 +3,10 @@
 
 #include <cuda_runtime.h>
 
+#include <thrust/iterator/counting_iterator.h>
 #include <algorithm>
 #include <cmath>
 #include <cub/device/device_select.cuh>
-#include <thrust/iterator/counting_iterator.h>
 #include <memory>
 #include <type_traits>
 
@@ -19,7 +19,7 @@ namespace {
 
 constexpr const char* kWho = "2-D filter";
 constexpr unsigned kThreads = 256;
-constexpr int kDirections = 16;            // each searched both ways: 32 extremes
+constexpr int kDirections = 16;  // each searched both ways: 32 extremes
 constexpr int kExtremes = 2 * kDirections;
 
 __constant__ double c_directions[kDirections][2];
@@ -75,7 +75,8 @@ __global__ void check_and_find_extremes(const Scalar* xy, std::size_t count, uns
       continue;
     }
     for (int d = 0; d < kDirections; ++d) {
-      const double along = static_cast<double>(x) * c_directions[d][0] + static_cast<double>(y) * c_directions[d][1];
+      const double along =
+          static_cast<double>(x) * c_directions[d][0] + static_cast<double>(y) * c_directions[d][1];
       best[2 * d] = max(best[2 * d], extreme_key(along, static_cast<unsigned>(i)));
       best[2 * d + 1] = max(best[2 * d + 1], extreme_key(-along, static_cast<unsigned>(i)));
     }
@@ -125,13 +126,17 @@ struct Corner {
 
 // The strict corners of a few points' hull, counter-clockwise (Andrew's monotone chain, exact orient2d).
 std::vector<Corner> small_hull(std::vector<Corner> p) {
-  std::sort(p.begin(), p.end(), [](const Corner& a, const Corner& b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
-  p.erase(std::unique(p.begin(), p.end(), [](const Corner& a, const Corner& b) { return a.x == b.x && a.y == b.y; }),
+  std::sort(p.begin(), p.end(),
+            [](const Corner& a, const Corner& b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
+  p.erase(std::unique(p.begin(), p.end(),
+                      [](const Corner& a, const Corner& b) { return a.x == b.x && a.y == b.y; }),
           p.end());
   if (p.size() < 3) return p;
   std::vector<Corner> hull(2 * p.size());
   std::size_t k = 0;
-  auto turn = [&](const Corner& a, const Corner& b, const Corner& c) { return orient2d(a.x, a.y, b.x, b.y, c.x, c.y); };
+  auto turn = [&](const Corner& a, const Corner& b, const Corner& c) {
+    return orient2d(a.x, a.y, b.x, b.y, c.x, c.y);
+  };
   for (std::size_t i = 0; i < p.size(); ++i) {
     while (k >= 2 && turn(hull[k - 2], hull[k - 1], p[i]) <= 0)
       --k;
@@ -207,17 +212,19 @@ PlanarCandidates<Scalar> planar_candidates(const Scalar* xy, std::size_t count) 
   thrust::counting_iterator<unsigned> all(0);
   std::size_t temp_bytes = 0;
   const NotStrictlyInside<Scalar> keep{xy};
-  check(cub::DeviceSelect::If(nullptr, temp_bytes, all, indices.get(), selected.get(), static_cast<int>(count), keep),
+  check(cub::DeviceSelect::If(nullptr, temp_bytes, all, indices.get(), selected.get(),
+                              static_cast<int>(count), keep),
         "sizing the selection");
   auto temp = device_array<unsigned char>(temp_bytes, "the selection's scratch");
-  check(cub::DeviceSelect::If(temp.get(), temp_bytes, all, indices.get(), selected.get(), static_cast<int>(count),
-                              keep),
+  check(cub::DeviceSelect::If(temp.get(), temp_bytes, all, indices.get(), selected.get(),
+                              static_cast<int>(count), keep),
         "selecting the survivors");
   auto coordinates = device_array<Scalar>(2 * count, "the survivors' coordinates");
   gather<<<grid_for(count), kThreads>>>(xy, indices.get(), selected.get(), coordinates.get());
   check(cudaGetLastError(), "launching the gather");
   unsigned survivors = 0;
-  check(cudaMemcpy(&survivors, selected.get(), sizeof survivors, cudaMemcpyDeviceToHost), "reading the count");
+  check(cudaMemcpy(&survivors, selected.get(), sizeof survivors, cudaMemcpyDeviceToHost),
+        "reading the count");
   out.indices.resize(survivors);
   out.xy.resize(2 * static_cast<std::size_t>(survivors));
   check(cudaMemcpy(out.indices.data(), indices.get(), survivors * sizeof(unsigned), cudaMemcpyDeviceToHost),
@@ -234,7 +241,8 @@ template <class Scalar>
 std::vector<Scalar> download_planar(const Scalar* xy, std::size_t count) {
   std::vector<Scalar> host(2 * count);
   check(cudaDeviceSynchronize(), "waiting for the points' producer");
-  check(cudaMemcpy(host.data(), xy, host.size() * sizeof(Scalar), cudaMemcpyDeviceToHost), "reading the points");
+  check(cudaMemcpy(host.data(), xy, host.size() * sizeof(Scalar), cudaMemcpyDeviceToHost),
+        "reading the points");
   return host;
 }
 

@@ -734,33 +734,52 @@ TEST(CliPrecision, PointsEqualInFloatAreTwoVerticesInDouble) {
   }
 }
 
-// (d) A double coordinate outside [2^-250, 2^250] (and not 0) is refused: exit 3, one line naming the file
-// and the point.  In float the same file is rounded as always (1e-300 is 0).  The ends of the range are fine.
-TEST(CliPrecision, DoublesOutsideTheExactRangeAreRefused) {
+// (d) A double coordinate outside [2^-250, 2^250] (and not 0) is taken exactly (issue 25): `hull` computes
+// such an input on the wide-range path (exponent scaling, else GMP), says so, and gives the brute force's
+// vertices; `bench`, which times the engines, still refuses it (exit 3, one line naming the point).
+TEST(CliPrecision, DoublesOutsideTheExactRangeAreExact) {
   TempDir dir;
-  std::vector<Point3d> points{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}, {0.5, 0.25, 1e-300}};
+  // Point 5 is 1e-300 below the face z = 0 (a vertex), point 6 1e-300 above it (inside); in float both are 0.
+  std::vector<Point3d> points{
+      {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}, {0.5, 0.25, -1e-300}, {0.25, 0.25, 1e-300}};
   const fs::path tiny = dir / "tiny.xyz";
   write_xyz17(tiny, points);
   for (const std::vector<std::string>& extra :
        std::vector<std::vector<std::string>>{{}, {"--precision", "double"}}) {
-    std::vector<std::string> args{"hull", tiny.string(),    "--backend",
-                                  "cpu",  "--vertices-out", (dir / "v.txt").string()};
+    std::vector<std::string> args{
+        "hull", tiny.string(), "--backend", "cpu", "--vertices-out", (dir / "v.txt").string(), "--stats",
+        "-"};
     args.insert(args.end(), extra.begin(), extra.end());
     const CliRun r = run_cli(args);
-    EXPECT_EQ(r.exit_code, kExitBadInput) << describe(r);
-    EXPECT_EQ(r.err, "cudahull: error: " + tiny.string() +
-                         ": point 5: z coordinate 1e-300 is outside the range of exact double arithmetic "
-                         "(nonzero magnitudes from 2^-250 to 2^250)\n");
-    EXPECT_FALSE(fs::exists(dir / "v.txt"));
+    ASSERT_EQ(r.exit_code, kExitOk) << describe(r);
+    EXPECT_THAT(r.err, HasSubstr("note: coordinates outside 2^-250..2^250"));
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j.value("backend", ""), "cpu-wide");
+    std::vector<PointIndex> ids;
+    for (const auto& [id, p] : read_vertices_double(dir / "v.txt"))
+      ids.push_back(id);
+    EXPECT_EQ(ids, (std::vector<PointIndex>{0, 1, 2, 3, 4, 5}));
   }
   const CliRun f = run_cli({"hull", tiny.string(), "--backend", "cpu", "--precision", "float"});
   EXPECT_EQ(f.exit_code, kExitOk) << describe(f);
 
-  points.back().z = -0x1p251;
+  const CliRun bench = run_cli({"bench", tiny.string(), "--backend", "cpu"});
+  EXPECT_EQ(bench.exit_code, kExitBadInput) << describe(bench);
+  EXPECT_EQ(bench.err, "cudahull: error: " + tiny.string() +
+                           ": point 5: z coordinate -1e-300 is outside the range of exact double arithmetic "
+                           "(nonzero magnitudes from 2^-250 to 2^250)\n");
+
+  // A point at z = -2^251 below the corner at the origin: the origin falls on the segment from it to
+  // (0, 0, 1) and point 5 inside the cone over the face z = 0, so the vertices are 1, 2, 3, 4 and it.
+  points.back() = {0, 0, -0x1p251};
   write_xyz17(dir / "huge.xyz", points);
-  const CliRun huge = run_cli({"hull", (dir / "huge.xyz").string(), "--backend", "cpu"});
-  EXPECT_EQ(huge.exit_code, kExitBadInput) << describe(huge);
-  EXPECT_THAT(huge.err, HasSubstr("huge.xyz: point 5: z coordinate -"));
+  const CliRun huge = run_cli(
+      {"hull", (dir / "huge.xyz").string(), "--backend", "cpu", "--vertices-out", (dir / "v.txt").string()});
+  EXPECT_EQ(huge.exit_code, kExitOk) << describe(huge);
+  std::vector<PointIndex> ids;
+  for (const auto& [id, p] : read_vertices_double(dir / "v.txt"))
+    ids.push_back(id);
+  EXPECT_EQ(ids, (std::vector<PointIndex>{1, 2, 3, 4, 6}));
 
   // The ends of the range, and zeros, are accepted and exact.
   std::vector<Point3d> ends;

@@ -128,11 +128,11 @@ TEST(ConvexHullApi, BadInputIsOneInputError) {
   std::vector<Point3d> points{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   points[2].y = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(message([&] { convex_hull(points); }), "point 2: y coordinate nan is not finite");
+  // Every finite double is taken (issue 25): 1e300 goes to the wide-range path, exactly.
   points[2].y = 1e300;
-  EXPECT_EQ(
-      message([&] { convex_hull(points); }),
-      "point 2: y coordinate 1e+300 is outside the range of exact double arithmetic (nonzero magnitudes "
-      "from 2^-250 to 2^250)");
+  const ConvexHull far = convex_hull(points, on_cpu());
+  EXPECT_EQ(far.backend, "cpu-wide");
+  EXPECT_EQ(far.vertices, (std::vector<PointIndex>{0, 1, 2, 3}));
   points[2].y = 1e39;
   EXPECT_EQ(message([&] { convex_hull(points, on_cpu(Precision::kFloat)); }),
             "point 2: y coordinate 1e+39 does not fit in float");

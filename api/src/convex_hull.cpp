@@ -6,6 +6,7 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <type_traits>
 
@@ -13,6 +14,7 @@
 #include "cudahull/cpu_backend.hpp"
 #include "cudahull/engine.hpp"
 #include "cudahull/errors.hpp"
+#include "cudahull/exact_hull.hpp"
 #include "cudahull/parallel.hpp"
 #include "cudahull/plane.hpp"
 #include "cudahull/resident.hpp"
@@ -26,11 +28,6 @@
 namespace cudahull {
 
 namespace {
-
-// The range of double coordinates the exact predicates are exact on, as io's check_double_range()
-// (point_io.hpp) enforces it for files; the package does not link the file readers.
-constexpr double kMinExactMagnitude = 0x1p-250;
-constexpr double kMaxExactMagnitude = 0x1p+250;
 
 const char* axis_name(int axis) {
   return axis == 0 ? "x" : axis == 1 ? "y" : "z";
@@ -56,11 +53,7 @@ const char* rejection(const double (&widened)[3], int& axis, Point& out) {
     if (!std::isfinite(widened[axis])) return "is not finite";
   }
   if constexpr (std::is_same_v<Point, Point3d>) {
-    for (axis = 0; axis < 3; ++axis) {
-      const double m = std::fabs(widened[axis]);
-      if (m != 0 && (m < kMinExactMagnitude || m > kMaxExactMagnitude))
-        return "is outside the range of exact double arithmetic (nonzero magnitudes from 2^-250 to 2^250)";
-    }
+    // Every finite double: outside the engines' range (in_fast_exact_range) the hull takes the wide path.
     out = Point3d{widened[0], widened[1], widened[2]};
   } else {
     // Rounded once to float (a float input is unchanged); a double beyond float's range cannot be.
@@ -186,6 +179,24 @@ std::vector<std::array<std::int32_t, 3>> face_neighbors(const std::vector<Triang
   return neighbors;
 }
 
+// plane_through() for any finite corners: a facet outside the exact range is scaled by one power of two
+// (exactly) to its largest corner coordinate first, which leaves the normal and scales the offset back.
+std::array<double, 4> facet_plane(Vec3d a, Vec3d b, Vec3d c) {
+  const double coordinates[9] = {a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z};
+  if (std::all_of(std::begin(coordinates), std::end(coordinates), in_fast_exact_range))
+    return plane_through(a, b, c);
+  double largest = 0;
+  for (double v : coordinates)
+    largest = std::max(largest, std::fabs(v));
+  const int shift = -std::ilogb(largest);
+  auto scaled = [&](Vec3d p) {
+    return Vec3d{std::ldexp(p.x, shift), std::ldexp(p.y, shift), std::ldexp(p.z, shift)};
+  };
+  std::array<double, 4> plane = plane_through(scaled(a), scaled(b), scaled(c));
+  plane[3] = std::ldexp(plane[3], -shift);
+  return plane;
+}
+
 template <class Point>
 ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend) {
   ConvexHull hull;
@@ -231,8 +242,8 @@ ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend)
     six_volume += dot(cross(b - centroid, c - centroid), a - centroid);
     // Not cross(b - a, c - a): on a sliver that cancels, and a vertex could lie far outside its own face's
     // plane.  plane_through() rounds the exact normal.
-    hull.planes.push_back(plane_through(to_vec3d(mesh.vertices[t[0]]), to_vec3d(mesh.vertices[t[1]]),
-                                        to_vec3d(mesh.vertices[t[2]])));
+    hull.planes.push_back(facet_plane(to_vec3d(mesh.vertices[t[0]]), to_vec3d(mesh.vertices[t[1]]),
+                                      to_vec3d(mesh.vertices[t[2]])));
   }
   hull.volume = six_volume / 6;
   hull.area = twice_area / 2;
@@ -261,7 +272,8 @@ double merge_tolerance(const std::vector<Point>& vertices, const ConvexHullOptio
 // A merged hull (issue 25) from the exact one: merge_facets() works on the exact hull's vertices alone,
 // since every input point is a convex combination of them, and its indices are mapped back to the input's.
 template <class Point>
-ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend, const ConvexHullOptions& options) {
+ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend,
+                           const ConvexHullOptions& options) {
   BasicHullMesh<Point> local = mesh;
   for (std::size_t k = 0; k < local.vertex_ids.size(); ++k)
     local.vertex_ids[k] = static_cast<PointIndex>(k);
@@ -305,7 +317,8 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
 // has nothing to merge).
 template <class Point>
 ConvexHull describe(const BasicHullMesh<Point>& mesh, std::string backend, const ConvexHullOptions& options) {
-  if (options.merge == MergeMode::kExact || mesh.dimension != 3) return describe_exact(mesh, std::move(backend));
+  if (options.merge == MergeMode::kExact || mesh.dimension != 3)
+    return describe_exact(mesh, std::move(backend));
   return describe_merged(mesh, std::move(backend), options);
 }
 
@@ -337,12 +350,37 @@ ConvexHull hull_in(const std::vector<Point>& points, const ConvexHullOptions& op
   return describe(engine.result(), std::move(name), options);
 }
 
+template <class Scalar>
+auto array_coordinate(const Scalar* xyz) {
+  return [xyz](std::size_t i, int axis) -> double { return xyz[3 * i + axis]; };
+}
+
+bool outside_fast_range(const std::vector<Point3d>& points) {
+  return std::any_of(points.begin(), points.end(), [](const Point3d& p) {
+    return !in_fast_exact_range(p.x) || !in_fast_exact_range(p.y) || !in_fast_exact_range(p.z);
+  });
+}
+
+// Double points with a coordinate outside the engines' exact range (a subnormal, 1e300): exact_hull_any()
+// on the host, exact for every finite double.  Merging needs plane_through()'s range for its heights and
+// certificate: where the hull's vertices are outside it the exact hull is returned (tolerance 0).
+ConvexHull wide_hull(const std::vector<Point3d>& points, const ConvexHullOptions& options) {
+  const HullMeshd mesh = exact_hull_any(points);
+  ConvexHullOptions exact = options;
+  if (outside_fast_range(mesh.vertices)) exact.merge = MergeMode::kExact;
+  return describe(mesh, "cpu-wide", exact);
+}
+
 // The hull of `count` points read by `coordinate(i, axis)`, whose own precision is `own`.
 template <class Coordinate>
 ConvexHull checked_hull(std::size_t count, Coordinate coordinate, Precision own,
                         const ConvexHullOptions& options) {
   const Precision precision = options.precision == Precision::kAuto ? own : options.precision;
-  if (precision == Precision::kDouble) return hull_in(copy_checked<Point3d>(count, coordinate), options);
+  if (precision == Precision::kDouble) {
+    const std::vector<Point3d> points = copy_checked<Point3d>(count, coordinate);
+    if (outside_fast_range(points)) return wide_hull(points, options);
+    return hull_in(points, options);
+  }
   return hull_in(copy_checked<Point3>(count, coordinate), options);
 }
 
@@ -356,6 +394,12 @@ ConvexHull device_hull_in(const Scalar* device_xyz, std::size_t count, const Con
     const std::array<double, 3> p = read_device_point(device_xyz, checked.first_bad);
     const double widened[3] = {p[0], p[1], p[2]};
     throw_if_rejected<Point>(checked.first_bad, widened);
+    // Finite, but outside the engines' exact range (the device's check refuses that too): the host's wide
+    // path, on a copy of every point, checked there again.
+    if constexpr (std::is_same_v<Point, Point3d>) {
+      const std::vector<Scalar> host = download_points(device_xyz, count);
+      return checked_hull(count, array_coordinate(host.data()), Precision::kDouble, options);
+    }
     throw std::logic_error("convex_hull_device: point " + std::to_string(checked.first_bad) +
                            " failed the device's check but passes the host's");
   }
@@ -390,11 +434,6 @@ ConvexHull device_hull(const Scalar* device_xyz, std::size_t count, Precision ow
   return device_hull_in<Point3>(device_xyz, count, options);
 }
 
-template <class Scalar>
-auto array_coordinate(const Scalar* xyz) {
-  return [xyz](std::size_t i, int axis) -> double { return xyz[3 * i + axis]; };
-}
-
 // The hull of `count` x, y, z triples in host memory.  For the resident engine on the GPU they are uploaded
 // as they are and checked (or converted) there, as convex_hull_device() does: the engine needs no host
 // copy of them (it reads back the few coordinates its exact checks need), and the copy would cost more
@@ -416,7 +455,6 @@ auto vector_coordinate(const std::vector<Point>& points) {
     return axis == 0 ? points[i].x : axis == 1 ? points[i].y : points[i].z;
   };
 }
-
 
 // --- 2-D input (issue 25) ------------------------------------------------------------------------------
 
@@ -483,8 +521,8 @@ double planar_qhull_tolerance(const std::vector<Scalar>& xy, const std::vector<P
   }
   const double maxabs = std::max(largest[0], largest[1]);
   const double maxsumabs = largest[0] + largest[1];
-  const double distround =
-      std::numeric_limits<double>::epsilon() * (2 * std::min(std::sqrt(2.0) * maxabs, maxsumabs) * 1.01 + maxabs);
+  const double distround = std::numeric_limits<double>::epsilon() *
+                           (2 * std::min(std::sqrt(2.0) * maxabs, maxsumabs) * 1.01 + maxabs);
   return 4 * distround;
 }
 
@@ -496,7 +534,9 @@ ConvexHull describe_planar(const std::vector<Scalar>& xy, PlanarHull planar, con
   hull.dimension = planar.dimension;
   hull.precision = std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat;
   hull.backend = "cpu";
-  auto at = [&](PointIndex i) { return Vec2{static_cast<double>(xy[2 * i]), static_cast<double>(xy[2 * i + 1])}; };
+  auto at = [&](PointIndex i) {
+    return Vec2{static_cast<double>(xy[2 * i]), static_cast<double>(xy[2 * i + 1])};
+  };
   std::vector<PointIndex> corners = std::move(planar.polygon);
   std::vector<PointIndex> dropped;
   if (planar.dimension == 2 && options.merge != MergeMode::kExact) {
@@ -519,7 +559,8 @@ ConvexHull describe_planar(const std::vector<Scalar>& xy, PlanarHull planar, con
       std::size_t flattest = m;
       double lowest = hull.tolerance;
       for (std::size_t k = 0; k < m; ++k) {
-        const double h = corner_height(at(corners[(k + m - 1) % m]), at(corners[k]), at(corners[(k + 1) % m]));
+        const double h =
+            corner_height(at(corners[(k + m - 1) % m]), at(corners[k]), at(corners[(k + 1) % m]));
         if (h <= lowest) {
           lowest = h;
           flattest = k;
@@ -539,7 +580,8 @@ ConvexHull describe_planar(const std::vector<Scalar>& xy, PlanarHull planar, con
     const PointIndex a = corners[k], b = corners[(k + 1) % m];
     hull.edges.push_back({a, b});
     // Opposite a lies the edge that goes on from b; opposite b the one that comes into a.
-    hull.edge_neighbors.push_back({static_cast<std::int32_t>((k + 1) % m), static_cast<std::int32_t>((k + m - 1) % m)});
+    hull.edge_neighbors.push_back(
+        {static_cast<std::int32_t>((k + 1) % m), static_cast<std::int32_t>((k + m - 1) % m)});
     hull.lines.push_back(outward_line(at(a), at(b)));
     const Vec2 pa = at(a), pb = at(b);
     hull.area += std::hypot(pb.x - pa.x, pb.y - pa.y);
@@ -560,7 +602,8 @@ ConvexHull describe_planar(const std::vector<Scalar>& xy, PlanarHull planar, con
     for (std::size_t e = 0; e < m; ++e) {
       const auto& line = hull.lines[e];
       const double h = line[0] * p.x + line[1] * p.y + line[2];
-      const double error = 4 * kUnit * (std::fabs(line[0] * p.x) + std::fabs(line[1] * p.y) + std::fabs(line[2]));
+      const double error =
+          4 * kUnit * (std::fabs(line[0] * p.x) + std::fabs(line[1] * p.y) + std::fabs(line[2]));
       hull.max_outside = std::max(hull.max_outside, h + error);
       if (h > nearest) {
         nearest = h;
@@ -608,25 +651,58 @@ ConvexHull device_planar_hull(const Scalar* device_xy, std::size_t count, const 
   if (candidates.first_bad != count) {
     const std::array<double, 3> p = read_device_point_2d(device_xy, candidates.first_bad);
     const double widened[3] = {p[0], p[1], 0};
-    throw_if_rejected<std::conditional_t<std::is_same_v<Scalar, float>, Point3, Point3d>>(candidates.first_bad,
-                                                                                          widened);
+    throw_if_rejected<std::conditional_t<std::is_same_v<Scalar, float>, Point3, Point3d>>(
+        candidates.first_bad, widened);
   }
-  if (candidates.degenerate) {
+  // Finite but outside the exact range (the device refuses that too), or a degenerate input: on the host.
+  if (candidates.first_bad != count || candidates.degenerate) {
     std::vector<Scalar> host = download_planar(device_xy, count);
     ConvexHull hull = convex_hull_2d(host.data(), count, options);
     hull.backend = "cuda";
     return hull;
   }
   const std::size_t survivors = candidates.indices.size();
-  ConvexHull hull =
-      describe_planar(candidates.xy, planar_hull(candidates.xy.data(), survivors), options, &candidates.indices);
+  ConvexHull hull = describe_planar(candidates.xy, planar_hull(candidates.xy.data(), survivors), options,
+                                    &candidates.indices);
   hull.backend = "cuda";
   if (options.precision == Precision::kDouble) hull.precision = Precision::kDouble;
   return hull;
 }
 
+// planar_hull() for double points with coordinates outside the exact range: the points lifted to z = 0
+// and exact_hull_any() (exact for every finite double), its polygon turned counter-clockwise in the plane
+// and started at the lowest (x, y) corner, as planar_hull() gives it.
+PlanarHull wide_planar_hull(const std::vector<double>& xy) {
+  const std::size_t count = xy.size() / 2;
+  std::vector<Point3d> lifted(count);
+  for (std::size_t i = 0; i < count; ++i)
+    lifted[i] = {xy[2 * i], xy[2 * i + 1], 0};
+  const HullMeshd mesh = exact_hull_any(lifted);
+  PlanarHull planar;
+  planar.dimension = mesh.dimension;
+  if (mesh.dimension == 2) {
+    for (std::uint32_t corner : mesh.polygon)
+      planar.polygon.push_back(mesh.vertex_ids[corner]);
+    auto at = [&](PointIndex i) { return std::pair{xy[2 * i], xy[2 * i + 1]}; };
+    const auto [ax, ay] = at(planar.polygon[0]);
+    const auto [bx, by] = at(planar.polygon[1]);
+    const auto [cx, cy] = at(planar.polygon[2]);
+    if (orient2d_wide(ax, ay, bx, by, cx, cy) < 0) std::reverse(planar.polygon.begin(), planar.polygon.end());
+  } else {
+    planar.polygon = mesh.vertex_ids;
+  }
+  auto lower = [&](PointIndex a, PointIndex b) {
+    return xy[2 * a] != xy[2 * b] ? xy[2 * a] < xy[2 * b] : xy[2 * a + 1] < xy[2 * b + 1];
+  };
+  if (!planar.polygon.empty())
+    std::rotate(planar.polygon.begin(), std::min_element(planar.polygon.begin(), planar.polygon.end(), lower),
+                planar.polygon.end());
+  return planar;
+}
+
 template <class Input>
-ConvexHull planar_hull_of(const Input* xy, std::size_t count, Precision own, const ConvexHullOptions& options) {
+ConvexHull planar_hull_of(const Input* xy, std::size_t count, Precision own,
+                          const ConvexHullOptions& options) {
   if (options.backend == BackendChoice::kCuda && !cuda_device_present(nullptr))
     throw DeviceError("backend cuda: no usable CUDA device");
   const Precision precision = options.precision == Precision::kAuto ? own : options.precision;
@@ -635,6 +711,11 @@ ConvexHull planar_hull_of(const Input* xy, std::size_t count, Precision own, con
     return describe_planar(points, planar_hull(points.data(), count), options);
   }
   const std::vector<double> points = checked_planar<double>(xy, count);
+  if (!std::all_of(points.begin(), points.end(), in_fast_exact_range)) {
+    ConvexHullOptions exact = options;
+    exact.merge = MergeMode::kExact;  // the merge's heights need the exact range: the exact hull instead
+    return describe_planar(points, wide_planar_hull(points), exact);
+  }
   return describe_planar(points, planar_hull(points.data(), count), options);
 }
 
@@ -722,11 +803,13 @@ ConvexHull convex_hull_2d(const double* xy, std::size_t count, const ConvexHullO
   return planar_hull_of(xy, count, Precision::kDouble, options);
 }
 
-ConvexHull convex_hull_2d_device(const float* device_xy, std::size_t count, const ConvexHullOptions& options) {
+ConvexHull convex_hull_2d_device(const float* device_xy, std::size_t count,
+                                 const ConvexHullOptions& options) {
   return device_planar_hull(device_xy, count, options);
 }
 
-ConvexHull convex_hull_2d_device(const double* device_xy, std::size_t count, const ConvexHullOptions& options) {
+ConvexHull convex_hull_2d_device(const double* device_xy, std::size_t count,
+                                 const ConvexHullOptions& options) {
   return device_planar_hull(device_xy, count, options);
 }
 

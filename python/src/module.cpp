@@ -162,8 +162,8 @@ nb::dict convex_hull_of(PointArray<Scalar> points, const std::string& backend, c
 }
 
 template <class Scalar>
-nb::dict convex_hull_2d_of(PlanarArray<Scalar> points, const std::string& backend, const std::string& precision,
-                           const std::string& merge, double tolerance) {
+nb::dict convex_hull_2d_of(PlanarArray<Scalar> points, const std::string& backend,
+                           const std::string& precision, const std::string& merge, double tolerance) {
   const ConvexHullOptions options = options_from(backend, precision, "auto", {merge, tolerance});
   ConvexHull hull;
   {
@@ -195,7 +195,8 @@ nb::object facets_visible(nb::ndarray<const double, nb::c_contig, nb::device::cp
   for (std::size_t f = 0; f < visible.size(); ++f) {
     const std::int64_t* s = simplices.data() + f * dim;
     for (std::size_t k = 0; k < dim; ++k)
-      if (s[k] < 0 || static_cast<std::size_t>(s[k]) >= n) throw std::invalid_argument("facets_visible: index");
+      if (s[k] < 0 || static_cast<std::size_t>(s[k]) >= n)
+        throw std::invalid_argument("facets_visible: index");
     if (dim == 2) {
       // A counter-clockwise edge a -> b: the outside is on its right.
       visible[f] = orient2d(p[2 * s[0]], p[2 * s[0] + 1], p[2 * s[1]], p[2 * s[1] + 1], q[0], q[1]) < 0;
@@ -248,8 +249,8 @@ nb::dict convex_hull_cuda(const CudaArray& points, const std::string& backend, c
 }
 
 // An (n, 2) array in CUDA memory: the device filters it, and only the possible corners cross to the host.
-nb::dict convex_hull_2d_cuda(const CudaArray& points, const std::string& backend, const std::string& precision,
-                             const std::string& merge, double tolerance) {
+nb::dict convex_hull_2d_cuda(const CudaArray& points, const std::string& backend,
+                             const std::string& precision, const std::string& merge, double tolerance) {
   const bool is_float = points.dtype() == nb::dtype<float>(),
              is_double = points.dtype() == nb::dtype<double>();
   if (!is_float && !is_double)
@@ -258,7 +259,8 @@ nb::dict convex_hull_2d_cuda(const CudaArray& points, const std::string& backend
   if (points.ndim() != 2 || points.shape(1) != 2)
     throw std::invalid_argument("points must be an (n, 2) array of 2-D points");
   if (n != 0 && (points.stride(1) != 1 || (n > 1 && points.stride(0) != 2)))
-    throw std::invalid_argument("points in GPU memory must be C-contiguous (cupy.ascontiguousarray(x) or x.contiguous())");
+    throw std::invalid_argument(
+        "points in GPU memory must be C-contiguous (cupy.ascontiguousarray(x) or x.contiguous())");
   const ConvexHullOptions options = options_from(backend, precision, "auto", {merge, tolerance});
   ConvexHull hull;
   {

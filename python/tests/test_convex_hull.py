@@ -235,14 +235,26 @@ def test_other_bad_input():
         cudahull.ConvexHull(np.zeros((5, 4)))
     with pytest.raises(ValueError, match="masked arrays"):
         cudahull.ConvexHull(np.ma.masked_all((5, 3)))
-    with pytest.raises(ValueError, match="outside the range of exact double arithmetic"):
-        cudahull.ConvexHull(np.vstack([CUBE, [[1e300, 0, 0]]]))
     with pytest.raises(ValueError, match="does not fit in float"):
         cudahull.ConvexHull(np.vstack([CUBE, [[1e39, 0, 0]]]), precision="float")
     with pytest.raises(ValueError, match="precision must be auto, float or double, not 'half'"):
         cudahull.ConvexHull(CUBE, precision="half")
     with pytest.raises(ValueError, match="backend must be auto, cpu or cuda"):
         cudahull.ConvexHull(CUBE, backend="gpu")
+
+
+def test_every_finite_double_is_taken_exactly():
+    # A point at x = 1e300: the cube's far corners stay vertices by 1e-300 (a rounding would lose them),
+    # except (1, 0, 0), which lies on the edge from (0, 0, 0) to it.
+    far = cudahull.ConvexHull(np.vstack([CUBE, [[1e300, 0, 0]]]))
+    assert far.backend == "cpu-wide"
+    assert far.vertices.tolist() == [0, 1, 2, 3, 5, 6, 7, 8]
+    # Subnormal coordinates: one just below the bottom face is a vertex, one just above it is not.
+    tiny = np.nextafter(0.0, 1.0)
+    hull = cudahull.ConvexHull(np.vstack([CUBE, [[0.5, 0.5, -tiny], [0.25, 0.5, tiny]]]))
+    assert hull.vertices.tolist() == list(range(9))
+    flat = cudahull.convex_hull(np.array([[0, 0], [1, 0], [1, 1], [0, 1], [0.5, -tiny]]))
+    assert flat["polygon"].tolist() == [0, 4, 1, 2, 3]
 
 
 def gpu_present():

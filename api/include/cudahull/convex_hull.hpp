@@ -49,7 +49,7 @@ struct ConvexHull {
   // The input's affine dimension: 3 (2 for 2-D input), or lower: 2 (a convex polygon), 1 (a segment), 0 (one
   // point), -1 (no points).
   int dimension = -1;
-  int input_dimension = 3;  // 3, or 2 for convex_hull_2d()
+  int input_dimension = 3;                  // 3, or 2 for convex_hull_2d()
   Precision precision = Precision::kFloat;  // what it was computed in (never kAuto)
   std::string backend;                      // the backend that ran, e.g. "cpu" or "cuda"
   // Input indices of the hull's vertices, ascending: exactly the strictly extreme points (a point inside a
@@ -92,10 +92,11 @@ struct ConvexHull {
   double engine_ms = 0, describe_ms = 0;
 };
 
-// The exact convex hull of `points`.  Throws InputError (one line naming the point index) for a NaN or
-// infinite coordinate, a double coordinate outside exact double arithmetic's range (nonzero magnitudes from
-// 2^-250 to 2^250, as `cudahull hull`), a double that does not fit in float with kFloat, or 2^32 - 1 points
-// or more; DeviceError for kCuda without a usable GPU, or a failure on the device.
+// The exact convex hull of `points`.  Every finite double is taken: where a coordinate lies outside the
+// engines' exact range (nonzero magnitudes 2^-250..2^250) the hull is exact_hull_any()'s, on the host
+// (backend "cpu-wide"; exponent scaling, else GMP).  Throws InputError (one line naming the point index) for
+// a NaN or infinite coordinate, a double that does not fit in float with kFloat, or 2^32 - 1 points or
+// more; DeviceError for kCuda without a usable GPU, or a failure on the device.
 ConvexHull convex_hull(const std::vector<Point3>& points, const ConvexHullOptions& options = {});
 ConvexHull convex_hull(const std::vector<Point3d>& points, const ConvexHullOptions& options = {});
 // The same on `count` points given as x, y, z triples in one contiguous array (e.g. a NumPy array).
@@ -109,8 +110,10 @@ ConvexHull convex_hull_2d(const double* xy, std::size_t count, const ConvexHullO
 // The same on 2-D points in the current CUDA device's memory: the device checks them and drops every point
 // strictly inside a polygon of extreme points, and only the survivors cross to the host (backend "cuda").
 // Throws as convex_hull_device().
-ConvexHull convex_hull_2d_device(const float* device_xy, std::size_t count, const ConvexHullOptions& options = {});
-ConvexHull convex_hull_2d_device(const double* device_xy, std::size_t count, const ConvexHullOptions& options = {});
+ConvexHull convex_hull_2d_device(const float* device_xy, std::size_t count,
+                                 const ConvexHullOptions& options = {});
+ConvexHull convex_hull_2d_device(const double* device_xy, std::size_t count,
+                                 const ConvexHullOptions& options = {});
 
 // The same on `count` x, y, z triples already in the memory of the current CUDA device (a CuPy array, a
 // PyTorch tensor), read in place: the resident engine on the CUDA backend borrows them, whatever
