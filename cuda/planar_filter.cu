@@ -22,9 +22,12 @@ constexpr unsigned kThreads = 256;
 constexpr int kDirections = 16;  // each searched both ways: 32 extremes
 constexpr int kExtremes = 2 * kDirections;
 
-__constant__ double c_directions[kDirections][2];
-__constant__ double c_polygon[kExtremes][2];  // the inner polygon, counter-clockwise
-__constant__ int c_corners;
+// The inner polygon, counter-clockwise, passed by value to the selection (not in __constant__ memory: two
+// host threads filtering at once would overwrite each other's).
+struct InnerPolygon {
+  double corner[kExtremes][2];
+  int corners;
+};
 
 void check(cudaError_t e, const char* what) {
   if (e != cudaSuccess) throw_cuda_error(kWho, what, e);
@@ -63,6 +66,13 @@ __device__ unsigned long long extreme_key(double value, unsigned index) {
 template <class Scalar>
 __global__ void check_and_find_extremes(const Scalar* xy, std::size_t count, unsigned long long* keys,
                                         unsigned long long* first_bad) {
+  // The directions k pi / kDirections, and point 0 as the origin the values are taken from, so that a cloud
+  // far from the origin (UTM coordinates, say) still spreads its keys over many floats.
+  double directions[kDirections][2];
+  for (int d = 0; d < kDirections; ++d)
+    sincospi(static_cast<double>(d) / kDirections, &directions[d][1], &directions[d][0]);
+  const double ox = static_cast<double>(xy[0]), oy = static_cast<double>(xy[1]);
+  const bool from_origin = !(isfinite(ox) && isfinite(oy));
   unsigned long long best[kExtremes];
   for (int k = 0; k < kExtremes; ++k)
     best[k] = 0;
@@ -74,9 +84,10 @@ __global__ void check_and_find_extremes(const Scalar* xy, std::size_t count, uns
       atomicMin(first_bad, static_cast<unsigned long long>(i));
       continue;
     }
+    const double rx = from_origin ? static_cast<double>(x) : static_cast<double>(x) - ox;
+    const double ry = from_origin ? static_cast<double>(y) : static_cast<double>(y) - oy;
     for (int d = 0; d < kDirections; ++d) {
-      const double along =
-          static_cast<double>(x) * c_directions[d][0] + static_cast<double>(y) * c_directions[d][1];
+      const double along = rx * directions[d][0] + ry * directions[d][1];
       best[2 * d] = max(best[2 * d], extreme_key(along, static_cast<unsigned>(i)));
       best[2 * d + 1] = max(best[2 * d + 1], extreme_key(-along, static_cast<unsigned>(i)));
     }
@@ -93,20 +104,32 @@ __global__ void check_and_find_extremes(const Scalar* xy, std::size_t count, uns
 template <class Scalar>
 struct NotStrictlyInside {
   const Scalar* xy;
+  InnerPolygon inner;
   __device__ bool operator()(unsigned i) const {
     const double x = xy[2 * static_cast<std::size_t>(i)], y = xy[2 * static_cast<std::size_t>(i) + 1];
-    for (int k = 0; k < c_corners; ++k) {
-      const int next = k + 1 == c_corners ? 0 : k + 1;
-      if (orient2d(c_polygon[k][0], c_polygon[k][1], c_polygon[next][0], c_polygon[next][1], x, y) <= 0)
-        return true;
+    for (int k = 0; k < inner.corners; ++k) {
+      const int next = k + 1 == inner.corners ? 0 : k + 1;
+      const double(&a)[2] = inner.corner[k];
+      const double(&b)[2] = inner.corner[next];
+      if (orient2d(a[0], a[1], b[0], b[1], x, y) <= 0) return true;
     }
     return false;
   }
 };
 
+// The extremes' coordinates, beside their keys, so that one read brings both (a key of 0: no point).
 template <class Scalar>
-__global__ void gather(const Scalar* xy, const unsigned* indices, const unsigned* count, Scalar* out) {
-  for (unsigned k = blockIdx.x * blockDim.x + threadIdx.x; k < *count; k += gridDim.x * blockDim.x) {
+__global__ void extreme_points(const Scalar* xy, const unsigned long long* keys, double* out) {
+  const int k = threadIdx.x;
+  if (k >= kExtremes) return;
+  const std::size_t i = static_cast<std::uint32_t>(keys[k]);
+  out[2 * k] = keys[k] ? static_cast<double>(xy[2 * i]) : 0;
+  out[2 * k + 1] = keys[k] ? static_cast<double>(xy[2 * i + 1]) : 0;
+}
+
+template <class Scalar>
+__global__ void gather(const Scalar* xy, const unsigned* indices, unsigned count, Scalar* out) {
+  for (unsigned k = blockIdx.x * blockDim.x + threadIdx.x; k < count; k += gridDim.x * blockDim.x) {
     out[2 * k] = xy[2 * static_cast<std::size_t>(indices[k])];
     out[2 * k + 1] = xy[2 * static_cast<std::size_t>(indices[k]) + 1];
   }
@@ -159,72 +182,64 @@ PlanarCandidates<Scalar> planar_candidates(const Scalar* xy, std::size_t count) 
   out.first_bad = count;
   if (count == 0) return out;
   check(cudaDeviceSynchronize(), "waiting for the points' producer");
-  static const bool directions_set = [] {
-    double directions[kDirections][2];
-    for (int d = 0; d < kDirections; ++d) {
-      const double angle = 3.14159265358979323846 * d / kDirections;
-      directions[d][0] = std::cos(angle);
-      directions[d][1] = std::sin(angle);
-    }
-    check(cudaMemcpyToSymbol(c_directions, directions, sizeof directions), "setting the directions");
-    return true;
-  }();
-  (void)directions_set;
 
-  // One pass: the check and the extremes, then one read of both.
-  auto scratch = device_array<unsigned long long>(kExtremes + 1, "the extremes");
-  unsigned long long initial[kExtremes + 1] = {};
-  initial[kExtremes] = count;
-  check(cudaMemcpy(scratch.get(), initial, sizeof initial, cudaMemcpyHostToDevice), "clearing the extremes");
-  check_and_find_extremes<<<grid_for(count), kThreads>>>(xy, count, scratch.get(), scratch.get() + kExtremes);
+  // One pass: the check and the extremes; their coordinates beside them; one read of all.
+  struct Found {
+    unsigned long long keys[kExtremes];
+    unsigned long long first_bad;
+    double xy[kExtremes][2];
+  };
+  auto scratch = device_array<Found>(1, "the extremes");
+  Found found{};
+  found.first_bad = count;
+  check(cudaMemcpy(scratch.get(), &found, sizeof found, cudaMemcpyHostToDevice), "clearing the extremes");
+  check_and_find_extremes<<<grid_for(count), kThreads>>>(xy, count, scratch.get()->keys,
+                                                         &scratch.get()->first_bad);
   check(cudaGetLastError(), "launching the extremes' search");
-  unsigned long long found[kExtremes + 1];
-  check(cudaMemcpy(found, scratch.get(), sizeof found, cudaMemcpyDeviceToHost), "reading the extremes");
+  extreme_points<<<1, kExtremes>>>(xy, scratch.get()->keys, &scratch.get()->xy[0][0]);
+  check(cudaGetLastError(), "launching the extremes' read");
+  check(cudaMemcpy(&found, scratch.get(), sizeof found, cudaMemcpyDeviceToHost), "reading the extremes");
   out.host_syncs += 1;
   out.bytes_from_device += sizeof found;
-  out.first_bad = static_cast<std::size_t>(found[kExtremes]);
+  out.first_bad = static_cast<std::size_t>(found.first_bad);
   if (out.first_bad != count) return out;
 
   std::vector<Corner> extremes;
   for (int k = 0; k < kExtremes; ++k) {
-    if (found[k] == 0) continue;
-    Scalar p[2];
-    const std::size_t i = static_cast<std::uint32_t>(found[k]);
-    check(cudaMemcpy(p, xy + 2 * i, sizeof p, cudaMemcpyDeviceToHost), "reading an extreme point");
-    extremes.push_back({static_cast<double>(p[0]), static_cast<double>(p[1])});
-    out.bytes_from_device += sizeof p;
+    if (found.keys[k] != 0) extremes.push_back({found.xy[k][0], found.xy[k][1]});
   }
   const std::vector<Corner> polygon = small_hull(extremes);
   if (polygon.size() < 3) {
     out.degenerate = true;
     return out;
   }
-  double corners[kExtremes][2];
-  for (std::size_t k = 0; k < polygon.size(); ++k)
-    corners[k][0] = polygon[k].x, corners[k][1] = polygon[k].y;
-  const int corner_count = static_cast<int>(polygon.size());
-  check(cudaMemcpyToSymbol(c_polygon, corners, sizeof corners), "setting the inner polygon");
-  check(cudaMemcpyToSymbol(c_corners, &corner_count, sizeof corner_count), "setting the inner polygon");
+  NotStrictlyInside<Scalar> keep{xy, {}};
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    keep.inner.corner[k][0] = polygon[k].x;
+    keep.inner.corner[k][1] = polygon[k].y;
+  }
+  keep.inner.corners = static_cast<int>(polygon.size());
 
-  // The survivors, in input order, and their coordinates.
+  // The survivors, in input order (DeviceSelect is stable), then their coordinates, gathered into a buffer
+  // of their number only.
   auto indices = device_array<unsigned>(count, "the survivors' indices");
-  auto selected = device_array<unsigned>(1, "the survivors' count");
+  auto selected = device_array<std::int64_t>(1, "the survivors' count");
   thrust::counting_iterator<unsigned> all(0);
   std::size_t temp_bytes = 0;
-  const NotStrictlyInside<Scalar> keep{xy};
-  check(cub::DeviceSelect::If(nullptr, temp_bytes, all, indices.get(), selected.get(),
-                              static_cast<int>(count), keep),
+  const auto items = static_cast<std::int64_t>(count);
+  check(cub::DeviceSelect::If(nullptr, temp_bytes, all, indices.get(), selected.get(), items, keep),
         "sizing the selection");
   auto temp = device_array<unsigned char>(temp_bytes, "the selection's scratch");
-  check(cub::DeviceSelect::If(temp.get(), temp_bytes, all, indices.get(), selected.get(),
-                              static_cast<int>(count), keep),
+  check(cub::DeviceSelect::If(temp.get(), temp_bytes, all, indices.get(), selected.get(), items, keep),
         "selecting the survivors");
-  auto coordinates = device_array<Scalar>(2 * count, "the survivors' coordinates");
-  gather<<<grid_for(count), kThreads>>>(xy, indices.get(), selected.get(), coordinates.get());
-  check(cudaGetLastError(), "launching the gather");
-  unsigned survivors = 0;
-  check(cudaMemcpy(&survivors, selected.get(), sizeof survivors, cudaMemcpyDeviceToHost),
+  std::int64_t selected_count = 0;
+  check(cudaMemcpy(&selected_count, selected.get(), sizeof selected_count, cudaMemcpyDeviceToHost),
         "reading the count");
+  const auto survivors = static_cast<unsigned>(selected_count);
+  auto coordinates =
+      device_array<Scalar>(2 * static_cast<std::size_t>(survivors), "the survivors' coordinates");
+  gather<<<grid_for(survivors), kThreads>>>(xy, indices.get(), survivors, coordinates.get());
+  check(cudaGetLastError(), "launching the gather");
   out.indices.resize(survivors);
   out.xy.resize(2 * static_cast<std::size_t>(survivors));
   check(cudaMemcpy(out.indices.data(), indices.get(), survivors * sizeof(unsigned), cudaMemcpyDeviceToHost),
@@ -232,8 +247,8 @@ PlanarCandidates<Scalar> planar_candidates(const Scalar* xy, std::size_t count) 
   check(cudaMemcpy(out.xy.data(), coordinates.get(), 2 * static_cast<std::size_t>(survivors) * sizeof(Scalar),
                    cudaMemcpyDeviceToHost),
         "reading the survivors' coordinates");
-  out.host_syncs += 2;
-  out.bytes_from_device += sizeof survivors + survivors * (sizeof(unsigned) + 2 * sizeof(Scalar));
+  out.host_syncs += 3;
+  out.bytes_from_device += sizeof selected_count + survivors * (sizeof(unsigned) + 2 * sizeof(Scalar));
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <queue>
 #include <stdexcept>
 #include <type_traits>
 
@@ -179,22 +180,41 @@ std::vector<std::array<std::int32_t, 3>> face_neighbors(const std::vector<Triang
   return neighbors;
 }
 
-// plane_through() for any finite corners: a facet outside the exact range is scaled by one power of two
-// (exactly) to its largest corner coordinate first, which leaves the normal and scales the offset back.
+// A facet's plane, accurate on slivers too (issue 25).  The cross product in double first: each component
+// is within 3u of its permanent (|products| summed; Shewchuk's orient2d bound), so where the permanents are
+// within 8 times the normal's length its direction is within about 24u of the exact one, and every point
+// lies within ~1e-15 x scale of the plane.  Otherwise (a sliver, where the products cancel) plane_through()
+// evaluates the normal exactly and rounds it.
 std::array<double, 4> facet_plane(Vec3d a, Vec3d b, Vec3d c) {
   const double coordinates[9] = {a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z};
-  if (std::all_of(std::begin(coordinates), std::end(coordinates), in_fast_exact_range))
+  if (std::all_of(std::begin(coordinates), std::end(coordinates), in_fast_exact_range)) {
+    const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
+    const double vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
+    const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+    const double px = std::fabs(uy * vz) + std::fabs(uz * vy), py = std::fabs(uz * vx) + std::fabs(ux * vz),
+                 pz = std::fabs(ux * vy) + std::fabs(uy * vx);
+    const double length2 = nx * nx + ny * ny + nz * nz;
+    if (length2 > 0 && px * px + py * py + pz * pz <= 64 * length2) {
+      const double length = std::sqrt(length2);
+      const double n[3] = {nx / length, ny / length, nz / length};
+      auto height = [&](Vec3d p) { return n[0] * p.x + n[1] * p.y + n[2] * p.z; };
+      return {n[0], n[1], n[2], -std::max({height(a), height(b), height(c)})};
+    }
     return plane_through(a, b, c);
-  double largest = 0;
-  for (double v : coordinates)
-    largest = std::max(largest, std::fabs(v));
-  const int shift = -std::ilogb(largest);
-  auto scaled = [&](Vec3d p) {
-    return Vec3d{std::ldexp(p.x, shift), std::ldexp(p.y, shift), std::ldexp(p.z, shift)};
-  };
-  std::array<double, 4> plane = plane_through(scaled(a), scaled(b), scaled(c));
-  plane[3] = std::ldexp(plane[3], -shift);
-  return plane;
+  }
+  // Outside the exact range (the wide path's hulls): the cross product in long double, whose exponent range
+  // holds every product of double differences (none over- or underflows), rounded; accurate to the last
+  // place but where the products cancel (a sliver of such coordinates: then a few ulps of the products).
+  using Wide = long double;
+  const Wide ux = Wide(b.x) - a.x, uy = Wide(b.y) - a.y, uz = Wide(b.z) - a.z;
+  const Wide vx = Wide(c.x) - a.x, vy = Wide(c.y) - a.y, vz = Wide(c.z) - a.z;
+  const Wide nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+  const Wide length = std::sqrt(nx * nx + ny * ny + nz * nz);
+  if (length == 0) return {0, 0, 0, 0};
+  const double n[3] = {static_cast<double>(nx / length), static_cast<double>(ny / length),
+                       static_cast<double>(nz / length)};
+  auto height = [&](Vec3d p) { return Wide(n[0]) * p.x + Wide(n[1]) * p.y + Wide(n[2]) * p.z; };
+  return {n[0], n[1], n[2], static_cast<double>(-std::max({height(a), height(b), height(c)}))};
 }
 
 template <class Point>
@@ -240,11 +260,20 @@ ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend)
               c = as_vec(mesh.vertices[t[2]]);
     twice_area += norm(cross(b - a, c - a));
     six_volume += dot(cross(b - centroid, c - centroid), a - centroid);
-    // Not cross(b - a, c - a): on a sliver that cancels, and a vertex could lie far outside its own face's
-    // plane.  plane_through() rounds the exact normal.
-    hull.planes.push_back(facet_plane(to_vec3d(mesh.vertices[t[0]]), to_vec3d(mesh.vertices[t[1]]),
-                                      to_vec3d(mesh.vertices[t[2]])));
   }
+  // Each face's plane on its own (on all cores: a sliver's is exact, and a hull of millions of faces has
+  // some), so the result does not depend on the worker count.
+  hull.planes.resize(mesh.triangles.size());
+  parallel_chunks(
+      mesh.triangles.size(), hardware_workers(),
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t f = begin; f < end; ++f) {
+          const Triangle& t = mesh.triangles[f];
+          hull.planes[f] = facet_plane(to_vec3d(mesh.vertices[t[0]]), to_vec3d(mesh.vertices[t[1]]),
+                                       to_vec3d(mesh.vertices[t[2]]));
+        }
+      },
+      std::size_t{1} << 14);
   hull.volume = six_volume / 6;
   hull.area = twice_area / 2;
   hull.neighbors = face_neighbors(mesh.triangles, mesh.vertices.size());
@@ -457,166 +486,227 @@ auto vector_coordinate(const std::vector<Point>& points) {
 }
 
 // --- 2-D input (issue 25) ------------------------------------------------------------------------------
+//
+// design:
+//   check the points in place (finite; rounded to float first only for kFloat on double input, a copy)
+//   double input outside the exact range: wide_planar_hull() (exact_hull_any on the points lifted to z = 0)
+//   else planar_hull(): the corners, counter-clockwise from the lowest (x, y)
+//   merged (tolerance): drop the flattest corner while it lies within the tolerance of the line through its
+//     neighbours (a heap of heights, neighbours updated); a triangle still that thin is reported flat
+//   the edges, their lines (unit outward normal and offset), area and perimeter; for a merged polygon the
+//     dropped corners in coplanar and max_outside, the proven bound on every point's height
 
-// The 2-D points as Scalar (float for kFloat, else the input's own), checked as the 3-D points are: the
-// first bad point named, with its coordinate.
-template <class Scalar, class Input>
-std::vector<Scalar> checked_planar(const Input* xy, std::size_t count) {
+// Where the points fail: the first one the exact hull cannot take (or `count`), and whether any double
+// coordinate is outside the engines' exact range.
+struct PlanarCheck {
+  std::size_t first_bad;
+  bool wide = false;
+};
+
+template <class Input>
+PlanarCheck check_planar(const Input* xy, std::size_t count) {
   check_count(count);
-  using Point = std::conditional_t<std::is_same_v<Scalar, float>, Point3, Point3d>;
-  std::vector<Scalar> out(2 * count);
   const unsigned workers = hardware_workers();
   std::vector<std::size_t> first_bad(workers, count);
+  std::vector<char> wide(workers, 0);
   parallel_chunks(
       count, workers,
       [&](std::size_t begin, std::size_t end, unsigned worker) {
+        bool outside = false;
         for (std::size_t i = begin; i < end; ++i) {
-          const double widened[3] = {static_cast<double>(xy[2 * i]), static_cast<double>(xy[2 * i + 1]), 0};
-          int axis = 0;
-          Point p;
-          if (rejection(widened, axis, p)) {
+          const double x = static_cast<double>(xy[2 * i]), y = static_cast<double>(xy[2 * i + 1]);
+          if (!std::isfinite(x) || !std::isfinite(y)) {
             first_bad[worker] = i;
-            return;
+            break;
           }
-          out[2 * i] = static_cast<Scalar>(p.x);
-          out[2 * i + 1] = static_cast<Scalar>(p.y);
+          if constexpr (std::is_same_v<Input, double>)
+            outside = outside || !in_fast_exact_range(x) || !in_fast_exact_range(y);
         }
+        wide[worker] = outside;
       },
       std::size_t{1} << 16);
   const std::size_t bad = *std::min_element(first_bad.begin(), first_bad.end());
   if (bad != count) {
     const double widened[3] = {static_cast<double>(xy[2 * bad]), static_cast<double>(xy[2 * bad + 1]), 0};
-    throw_if_rejected<Point>(bad, widened);
+    throw_if_rejected<Point3d>(bad, widened);
+  }
+  return {count, std::any_of(wide.begin(), wide.end(), [](char w) { return w != 0; })};
+}
+
+// Double points rounded to float once, checked as the 3-D points are (one beyond float's range named).
+std::vector<float> rounded_planar(const double* xy, std::size_t count) {
+  std::vector<float> out(2 * count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const double widened[3] = {xy[2 * i], xy[2 * i + 1], 0};
+    int axis = 0;
+    Point3 p;
+    if (rejection(widened, axis, p)) throw_if_rejected<Point3>(i, widened);
+    out[2 * i] = p.x;
+    out[2 * i + 1] = p.y;
   }
   return out;
 }
 
-struct Vec2 {
-  double x, y;
-};
+using Wide = long double;  // 64-bit significand, 15-bit exponent: no double difference over- or underflows
 
-// The outward line of the counter-clockwise edge a -> b: each difference is rounded once, so the normal's
-// direction is accurate to the last place, and the offset puts both ends on or just below it.
-std::array<double, 3> outward_line(Vec2 a, Vec2 b) {
-  const double dx = b.x - a.x, dy = b.y - a.y, length = std::hypot(dx, dy);
-  const double nx = dy / length, ny = -dx / length;
-  return {nx, ny, -std::max(nx * a.x + ny * a.y, nx * b.x + ny * b.y)};
-}
-
-// A corner's distance beyond the line through its neighbours: how far the polygon moves if it is dropped.
-double corner_height(Vec2 previous, Vec2 corner, Vec2 next) {
-  const std::array<double, 3> line = outward_line(previous, next);
-  return line[0] * corner.x + line[1] * corner.y + line[2];
+// The outward line of the counter-clockwise edge a -> b, for any finite doubles: the normal from the
+// difference in long double (exact unless the coordinates' exponents are 64 apart), rounded once, and the
+// offset that puts both ends on or just below the line.
+std::array<double, 3> outward_line(double ax, double ay, double bx, double by) {
+  const Wide dx = Wide(bx) - Wide(ax), dy = Wide(by) - Wide(ay);
+  const Wide length = std::sqrt(dx * dx + dy * dy);
+  const double nx = static_cast<double>(dy / length), ny = static_cast<double>(-dx / length);
+  return {nx, ny,
+          static_cast<double>(-std::max(Wide(nx) * ax + Wide(ny) * ay, Wide(nx) * bx + Wide(ny) * by))};
 }
 
 // Qhull's roundoff tolerance for 2-D input: its MINoutside, 4 x DISTround, with qh_distround()'s 2-D
 // constants (qhull_default_tolerance() in facet_merge.hpp has the 3-D ones and the source).  The largest
 // magnitudes are the corners': |x| is convex, so its maximum over the points is at a corner.
-template <class Scalar>
-double planar_qhull_tolerance(const std::vector<Scalar>& xy, const std::vector<PointIndex>& corners) {
-  double largest[2] = {0, 0};
-  for (PointIndex v : corners) {
-    for (int axis = 0; axis < 2; ++axis)
-      largest[axis] = std::max(largest[axis], std::fabs(static_cast<double>(xy[2 * v + axis])));
-  }
-  const double maxabs = std::max(largest[0], largest[1]);
-  const double maxsumabs = largest[0] + largest[1];
-  const double distround = std::numeric_limits<double>::epsilon() *
-                           (2 * std::min(std::sqrt(2.0) * maxabs, maxsumabs) * 1.01 + maxabs);
-  return 4 * distround;
+double planar_qhull_tolerance(double largest_x, double largest_y) {
+  const double maxabs = std::max(largest_x, largest_y), maxsumabs = largest_x + largest_y;
+  return 4 * std::numeric_limits<double>::epsilon() *
+         (2 * std::min(std::sqrt(2.0) * maxabs, maxsumabs) * 1.01 + maxabs);
 }
 
+// `xy` holds the points planar_hull() saw; `original`, where given, maps their indices to the input's (the
+// device filter's survivors).
 template <class Scalar>
-ConvexHull describe_planar(const std::vector<Scalar>& xy, PlanarHull planar, const ConvexHullOptions& options,
-                           const std::vector<PointIndex>* original = nullptr) {
+ConvexHull describe_planar(const Scalar* xy, PlanarHull planar, const ConvexHullOptions& options,
+                           std::string backend, const std::vector<PointIndex>* original = nullptr) {
   ConvexHull hull;
   hull.input_dimension = 2;
   hull.dimension = planar.dimension;
   hull.precision = std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat;
-  hull.backend = "cpu";
-  auto at = [&](PointIndex i) {
-    return Vec2{static_cast<double>(xy[2 * i]), static_cast<double>(xy[2 * i + 1])};
+  hull.backend = std::move(backend);
+  auto x = [&](PointIndex i) { return static_cast<double>(xy[2 * i]); };
+  auto y = [&](PointIndex i) { return static_cast<double>(xy[2 * i + 1]); };
+  // A corner's height over the line through its neighbours: how far the polygon moves if it is dropped.
+  auto height = [&](PointIndex previous, PointIndex corner, PointIndex next) {
+    const std::array<double, 3> line = outward_line(x(previous), y(previous), x(next), y(next));
+    return static_cast<double>(Wide(line[0]) * x(corner) + Wide(line[1]) * y(corner) + Wide(line[2]));
   };
-  std::vector<PointIndex> corners = std::move(planar.polygon);
-  std::vector<PointIndex> dropped;
-  if (planar.dimension == 2 && options.merge != MergeMode::kExact) {
-    // Merging in the plane: drop the flattest corner while it lies within the tolerance of the line through
-    // its neighbours, and while a triangle is left.  The result stays convex: a dropped corner only cuts a
-    // cap off the polygon.
-    double largest_side = 0;
-    for (int axis = 0; axis < 2; ++axis) {
-      double low = INFINITY, high = -INFINITY;
-      for (PointIndex v : corners) {
-        low = std::min(low, static_cast<double>(xy[2 * v + axis]));
-        high = std::max(high, static_cast<double>(xy[2 * v + axis]));
+  const std::vector<PointIndex> exact = std::move(planar.polygon);
+  std::vector<char> kept(exact.size(), 1);
+  const bool merging = planar.dimension == 2 && options.merge != MergeMode::kExact;
+  if (merging) {
+    double largest[2] = {0, 0}, low[2] = {INFINITY, INFINITY}, high[2] = {-INFINITY, -INFINITY};
+    for (PointIndex v : exact) {
+      const double c[2] = {x(v), y(v)};
+      for (int axis = 0; axis < 2; ++axis) {
+        largest[axis] = std::max(largest[axis], std::fabs(c[axis]));
+        low[axis] = std::min(low[axis], c[axis]);
+        high[axis] = std::max(high[axis], c[axis]);
       }
-      largest_side = std::max(largest_side, high - low);
     }
-    hull.tolerance = options.merge == MergeMode::kQhull ? planar_qhull_tolerance(xy, corners)
-                                                        : options.tolerance * largest_side;
-    while (corners.size() > 3) {
-      const std::size_t m = corners.size();
-      std::size_t flattest = m;
-      double lowest = hull.tolerance;
-      for (std::size_t k = 0; k < m; ++k) {
-        const double h =
-            corner_height(at(corners[(k + m - 1) % m]), at(corners[k]), at(corners[(k + 1) % m]));
-        if (h <= lowest) {
-          lowest = h;
-          flattest = k;
-        }
+    hull.tolerance = options.merge == MergeMode::kQhull
+                         ? planar_qhull_tolerance(largest[0], largest[1])
+                         : options.tolerance * std::max(high[0] - low[0], high[1] - low[1]);
+    // The flattest corner first; a dropped corner changes only its two neighbours' heights.
+    const std::size_t m = exact.size();
+    std::vector<std::size_t> previous(m), next(m);
+    std::vector<double> heights(m);
+    using Entry = std::pair<double, std::size_t>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+    for (std::size_t k = 0; k < m; ++k) {
+      previous[k] = (k + m - 1) % m;
+      next[k] = (k + 1) % m;
+      heights[k] = height(exact[previous[k]], exact[k], exact[next[k]]);
+      queue.push({heights[k], k});
+    }
+    std::size_t left = m;
+    while (!queue.empty()) {
+      const auto [h, k] = queue.top();
+      queue.pop();
+      if (!kept[k] || h != heights[k]) continue;  // dropped, or an old height
+      if (h > hull.tolerance) break;
+      if (left == 3) {
+        // Thinner than the tolerance: flat.  The segment's ends are the other two corners.
+        hull.dimension = 1;
+        break;
       }
-      if (flattest == m) break;
-      dropped.push_back(corners[flattest]);
-      corners.erase(corners.begin() + static_cast<std::ptrdiff_t>(flattest));
+      kept[k] = 0;
+      --left;
+      const std::size_t a = previous[k], b = next[k];
+      next[a] = b;
+      previous[b] = a;
+      for (const std::size_t c : {a, b}) {
+        heights[c] = height(exact[previous[c]], exact[c], exact[next[c]]);
+        queue.push({heights[c], c});
+      }
     }
+  }
+  std::vector<PointIndex> corners;
+  for (std::size_t k = 0; k < exact.size(); ++k)
+    if (kept[k]) corners.push_back(exact[k]);
+  if (hull.dimension == 1 && planar.dimension == 2) {
+    // The flattest of the last three corners dropped: the two others are the segment's ends.
+    std::size_t flattest = 0;
+    double lowest = INFINITY;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const double h = height(corners[(k + 2) % 3], corners[k], corners[(k + 1) % 3]);
+      if (h < lowest) lowest = h, flattest = k;
+    }
+    corners.erase(corners.begin() + static_cast<std::ptrdiff_t>(flattest));
   }
   hull.polygon = corners;
   hull.vertices = corners;
   std::sort(hull.vertices.begin(), hull.vertices.end());
-  if (planar.dimension != 2) return hull;
-  const std::size_t m = corners.size();
-  for (std::size_t k = 0; k < m; ++k) {
-    const PointIndex a = corners[k], b = corners[(k + 1) % m];
-    hull.edges.push_back({a, b});
-    // Opposite a lies the edge that goes on from b; opposite b the one that comes into a.
-    hull.edge_neighbors.push_back(
-        {static_cast<std::int32_t>((k + 1) % m), static_cast<std::int32_t>((k + m - 1) % m)});
-    hull.lines.push_back(outward_line(at(a), at(b)));
-    const Vec2 pa = at(a), pb = at(b);
-    hull.area += std::hypot(pb.x - pa.x, pb.y - pa.y);
-    // The shoelace sum from the first corner: every term's triangle lies inside the convex polygon.
-    const Vec2 origin = at(corners[0]);
-    hull.volume += ((pa.x - origin.x) * (pb.y - origin.y) - (pa.y - origin.y) * (pb.x - origin.x)) / 2;
-  }
-  // The certificate: every input point is a convex combination of the exact corners, so the largest height
-  // of a dropped corner over any edge's line bounds them all (a kept corner is on or below every line but
-  // for rounding: counted too), plus the rounding of each evaluation.
-  constexpr double kUnit = 0x1p-53;
-  for (PointIndex v : hull.vertices)
-    dropped.push_back(v);
-  for (PointIndex v : dropped) {
-    const Vec2 p = at(v);
-    double nearest = -INFINITY;
-    std::size_t nearest_edge = 0;
-    for (std::size_t e = 0; e < m; ++e) {
-      const auto& line = hull.lines[e];
-      const double h = line[0] * p.x + line[1] * p.y + line[2];
-      const double error =
-          4 * kUnit * (std::fabs(line[0] * p.x) + std::fabs(line[1] * p.y) + std::fabs(line[2]));
-      hull.max_outside = std::max(hull.max_outside, h + error);
-      if (h > nearest) {
-        nearest = h;
-        nearest_edge = e;
-      }
+  if (hull.dimension == 2) {
+    const std::size_t m = corners.size();
+    std::vector<std::size_t> edge_of(exact.size());  // the edge that covers each exact corner
+    for (std::size_t k = 0, e = 0; k < exact.size(); ++k) {
+      if (kept[k] && k != 0 && exact[k] != corners[0]) ++e;
+      edge_of[k] = e % m;
     }
-    if (std::binary_search(hull.vertices.begin(), hull.vertices.end(), v)) continue;
-    const auto& edge = hull.edges[nearest_edge];
-    const Vec2 a = at(edge[0]), b = at(edge[1]);
-    const bool nearer_a = std::hypot(p.x - a.x, p.y - a.y) <= std::hypot(p.x - b.x, p.y - b.y);
-    hull.coplanar.push_back({v, static_cast<PointIndex>(nearest_edge), nearer_a ? edge[0] : edge[1]});
+    // Corners before the first kept one lie on the last edge.
+    for (std::size_t k = 0; k < exact.size() && !kept[k]; ++k)
+      edge_of[k] = m - 1;
+    Wide perimeter = 0, twice_area = 0;
+    for (std::size_t k = 0; k < m; ++k) {
+      const PointIndex a = corners[k], b = corners[(k + 1) % m];
+      hull.edges.push_back({a, b});
+      // Opposite a lies the edge that goes on from b; opposite b the one that comes into a.
+      hull.edge_neighbors.push_back(
+          {static_cast<std::int32_t>((k + 1) % m), static_cast<std::int32_t>((k + m - 1) % m)});
+      hull.lines.push_back(outward_line(x(a), y(a), x(b), y(b)));
+      const Wide dx = Wide(x(b)) - x(a), dy = Wide(y(b)) - y(a);
+      perimeter += std::sqrt(dx * dx + dy * dy);
+      // The shoelace sum from the first corner: every term's triangle lies inside the convex polygon.
+      twice_area += (Wide(x(a)) - x(corners[0])) * (Wide(y(b)) - y(corners[0])) -
+                    (Wide(y(a)) - y(corners[0])) * (Wide(x(b)) - x(corners[0]));
+    }
+    hull.area = static_cast<double>(perimeter);
+    hull.volume = static_cast<double>(twice_area / 2);
+    if (merging) {
+      // The certificate.  A dropped corner p lies beyond the edge that covers it: a point of that segment
+      // is on or below every line (the merged polygon is convex), so p's height over any line is at most
+      // its distance to the segment.  A kept corner is on its own lines and below the others, but for the
+      // lines' rounding: a normal within a few ulps of the exact one, so 16u (|x| + |y| + |d|) bounds it.
+      constexpr double kUnit = 0x1p-53;
+      double rounding = 0;
+      for (std::size_t e = 0; e < m; ++e) {
+        const PointIndex a = corners[e];
+        rounding = std::max(rounding,
+                            16 * kUnit * (std::fabs(x(a)) + std::fabs(y(a)) + std::fabs(hull.lines[e][2])));
+      }
+      double beyond = 0;
+      for (std::size_t k = 0; k < exact.size(); ++k) {
+        if (kept[k]) continue;
+        const PointIndex p = exact[k];
+        const std::size_t e = edge_of[k];
+        const PointIndex a = hull.edges[e][0], b = hull.edges[e][1];
+        const Wide ux = Wide(x(b)) - x(a), uy = Wide(y(b)) - y(a), px = Wide(x(p)) - x(a),
+                   py = Wide(y(p)) - y(a);
+        const Wide t = std::clamp((px * ux + py * uy) / (ux * ux + uy * uy), Wide(0), Wide(1));
+        const Wide distance = std::hypot(px - t * ux, py - t * uy);
+        beyond = std::max(beyond, static_cast<double>(distance * (1 + 8 * Wide(kUnit))));
+        const Wide to_a = std::hypot(px, py), to_b = std::hypot(Wide(x(p)) - x(b), Wide(y(p)) - y(b));
+        hull.coplanar.push_back({p, static_cast<PointIndex>(e), to_a <= to_b ? a : b});
+      }
+      hull.max_outside = beyond + rounding;
+    }
   }
-  if (options.merge == MergeMode::kExact) hull.max_outside = 0;
   if (original) {
     auto map = [&](PointIndex& i) { i = (*original)[i]; };
     std::for_each(hull.polygon.begin(), hull.polygon.end(), map);
@@ -625,55 +715,15 @@ ConvexHull describe_planar(const std::vector<Scalar>& xy, PlanarHull planar, con
       map(edge[0]), map(edge[1]);
     for (auto& row : hull.coplanar)
       map(row[0]), map(row[2]);
+    std::sort(hull.vertices.begin(), hull.vertices.end());
   }
-  return hull;
-}
-
-// 2-D points in device memory: the device filters them (planar_filter.hpp) and the host finishes on the
-// survivors, which keep every corner and, in input order, every duplicate of one.
-template <class Scalar>
-ConvexHull device_planar_hull(const Scalar* device_xy, std::size_t count, const ConvexHullOptions& options) {
-  if (options.backend == BackendChoice::kCpu)
-    throw std::invalid_argument("points in GPU memory need backend auto or cuda, not cpu");
-  check_count(count);
-  std::string why_not;
-  if (!cuda_device_present(&why_not))
-    throw DeviceError("points in GPU memory, but no usable CUDA device: " + why_not);
-  if (count != 0) require_current_device_memory(device_xy);
-  const bool rounded_first = options.precision == Precision::kFloat && std::is_same_v<Scalar, double>;
-  if (count > static_cast<std::size_t>(std::numeric_limits<int>::max()) || rounded_first) {
-    // Beyond the device selection's count, or rounded to float first: on the host.
-    std::vector<Scalar> host = download_planar(device_xy, count);
-    ConvexHull hull = convex_hull_2d(host.data(), count, options);
-    return hull;
-  }
-  PlanarCandidates<Scalar> candidates = planar_candidates(device_xy, count);
-  if (candidates.first_bad != count) {
-    const std::array<double, 3> p = read_device_point_2d(device_xy, candidates.first_bad);
-    const double widened[3] = {p[0], p[1], 0};
-    throw_if_rejected<std::conditional_t<std::is_same_v<Scalar, float>, Point3, Point3d>>(
-        candidates.first_bad, widened);
-  }
-  // Finite but outside the exact range (the device refuses that too), or a degenerate input: on the host.
-  if (candidates.first_bad != count || candidates.degenerate) {
-    std::vector<Scalar> host = download_planar(device_xy, count);
-    ConvexHull hull = convex_hull_2d(host.data(), count, options);
-    hull.backend = "cuda";
-    return hull;
-  }
-  const std::size_t survivors = candidates.indices.size();
-  ConvexHull hull = describe_planar(candidates.xy, planar_hull(candidates.xy.data(), survivors), options,
-                                    &candidates.indices);
-  hull.backend = "cuda";
-  if (options.precision == Precision::kDouble) hull.precision = Precision::kDouble;
   return hull;
 }
 
 // planar_hull() for double points with coordinates outside the exact range: the points lifted to z = 0
 // and exact_hull_any() (exact for every finite double), its polygon turned counter-clockwise in the plane
 // and started at the lowest (x, y) corner, as planar_hull() gives it.
-PlanarHull wide_planar_hull(const std::vector<double>& xy) {
-  const std::size_t count = xy.size() / 2;
+PlanarHull wide_planar_hull(const double* xy, std::size_t count) {
   std::vector<Point3d> lifted(count);
   for (std::size_t i = 0; i < count; ++i)
     lifted[i] = {xy[2 * i], xy[2 * i + 1], 0};
@@ -683,11 +733,9 @@ PlanarHull wide_planar_hull(const std::vector<double>& xy) {
   if (mesh.dimension == 2) {
     for (std::uint32_t corner : mesh.polygon)
       planar.polygon.push_back(mesh.vertex_ids[corner]);
-    auto at = [&](PointIndex i) { return std::pair{xy[2 * i], xy[2 * i + 1]}; };
-    const auto [ax, ay] = at(planar.polygon[0]);
-    const auto [bx, by] = at(planar.polygon[1]);
-    const auto [cx, cy] = at(planar.polygon[2]);
-    if (orient2d_wide(ax, ay, bx, by, cx, cy) < 0) std::reverse(planar.polygon.begin(), planar.polygon.end());
+    const PointIndex a = planar.polygon[0], b = planar.polygon[1], c = planar.polygon[2];
+    if (orient2d_wide(xy[2 * a], xy[2 * a + 1], xy[2 * b], xy[2 * b + 1], xy[2 * c], xy[2 * c + 1]) < 0)
+      std::reverse(planar.polygon.begin(), planar.polygon.end());
   } else {
     planar.polygon = mesh.vertex_ids;
   }
@@ -706,17 +754,61 @@ ConvexHull planar_hull_of(const Input* xy, std::size_t count, Precision own,
   if (options.backend == BackendChoice::kCuda && !cuda_device_present(nullptr))
     throw DeviceError("backend cuda: no usable CUDA device");
   const Precision precision = options.precision == Precision::kAuto ? own : options.precision;
-  if (precision == Precision::kFloat) {
-    const std::vector<float> points = checked_planar<float>(xy, count);
-    return describe_planar(points, planar_hull(points.data(), count), options);
+  if constexpr (std::is_same_v<Input, double>) {
+    if (precision == Precision::kFloat) {
+      check_planar(xy, count);  // a NaN named before a value beyond float's range, as in 3-D
+      const std::vector<float> rounded = rounded_planar(xy, count);
+      return describe_planar(rounded.data(), planar_hull(rounded.data(), count), options, "cpu");
+    }
   }
-  const std::vector<double> points = checked_planar<double>(xy, count);
-  if (!std::all_of(points.begin(), points.end(), in_fast_exact_range)) {
-    ConvexHullOptions exact = options;
-    exact.merge = MergeMode::kExact;  // the merge's heights need the exact range: the exact hull instead
-    return describe_planar(points, wide_planar_hull(points), exact);
+  // In place: float input in double is the same points (widening is exact), and so the same hull.
+  const PlanarCheck checked = check_planar(xy, count);
+  ConvexHull hull;
+  if constexpr (std::is_same_v<Input, double>) {
+    if (checked.wide) {
+      ConvexHullOptions exact = options;
+      exact.merge = MergeMode::kExact;  // the merge's heights need the exact range: the exact hull instead
+      return describe_planar(xy, wide_planar_hull(xy, count), exact, "cpu-wide");
+    }
   }
-  return describe_planar(points, planar_hull(points.data(), count), options);
+  hull = describe_planar(xy, planar_hull(xy, count), options, "cpu");
+  hull.precision = precision;
+  return hull;
+}
+
+// 2-D points in device memory: the device filters them (planar_filter.hpp) and the host finishes on the
+// survivors, which keep every corner and, in input order, every duplicate of one.
+template <class Scalar>
+ConvexHull device_planar_hull(const Scalar* device_xy, std::size_t count, const ConvexHullOptions& options) {
+  if (options.backend == BackendChoice::kCpu)
+    throw std::invalid_argument("points in GPU memory need backend auto or cuda, not cpu");
+  check_count(count);
+  std::string why_not;
+  if (!cuda_device_present(&why_not))
+    throw DeviceError("points in GPU memory, but no usable CUDA device: " + why_not);
+  if (count != 0) require_current_device_memory(device_xy);
+  if (options.precision == Precision::kFloat && std::is_same_v<Scalar, double>) {
+    // Rounded to float first: on the host, which rounds as the NumPy path does.
+    const std::vector<Scalar> host = download_planar(device_xy, count);
+    return convex_hull_2d(host.data(), count, options);
+  }
+  PlanarCandidates<Scalar> candidates = planar_candidates(device_xy, count);
+  if (candidates.first_bad != count) {
+    const std::array<double, 3> p = read_device_point_2d(device_xy, candidates.first_bad);
+    const double widened[3] = {p[0], p[1], 0};
+    throw_if_rejected<Point3d>(candidates.first_bad, widened);
+  }
+  // Finite but outside the exact range (the device refuses that too), or a degenerate input: the host's
+  // path on a copy, and its backend's name.
+  if (candidates.first_bad != count || candidates.degenerate) {
+    const std::vector<Scalar> host = download_planar(device_xy, count);
+    return convex_hull_2d(host.data(), count, options);
+  }
+  ConvexHull hull =
+      describe_planar(candidates.xy.data(), planar_hull(candidates.xy.data(), candidates.indices.size()),
+                      options, "cuda", &candidates.indices);
+  if (options.precision == Precision::kDouble) hull.precision = Precision::kDouble;
+  return hull;
 }
 
 }  // namespace

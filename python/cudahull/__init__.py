@@ -352,6 +352,8 @@ class ConvexHull:
     def __init__(self, points, incremental=False, qhull_options=None, *, tolerance=_DEFAULT, backend="auto",
                  precision="auto", engine="auto", device_results=False):
         self._options = _qhull_options.parse(qhull_options, QhullError) if qhull_options is not None else None
+        if self._options is not None and not self._options.words:
+            self._options = None  # "" asks for nothing, as None (scipy treats them alike)
         if tolerance is _DEFAULT:
             tolerance = self._options.merge("qhull") if self._options is not None else None
         self._tolerance_choice = tolerance
@@ -434,12 +436,14 @@ class ConvexHull:
             "neighbors": result["neighbors"].astype(np.int32, copy=False),
             "equations": result["equations"],
         }
-        coplanar = result["coplanar"].astype(np.int64)
+        coplanar = result["coplanar"].astype(np.int64).reshape(-1, 3)
         if coplanar.size:
             coplanar[:, 0] = original(coplanar[:, 0])
             coplanar[:, 2] = original(coplanar[:, 2])
-        if self._options is not None and self._options.interior:
-            coplanar = self._with_interior(points, values, coplanar)
+        # The exact hull's vertices, merged away or not: what add_points computes on next.
+        values["exact_vertices"] = np.union1d(values["vertices"], coplanar[:, 0]).astype(np.int64)
+        if self._options is not None and (self._options.interior or self._options.coplanar):
+            coplanar = self._with_other_points(points, values, coplanar, result["tolerance"])
         values["coplanar"] = _index_array(coplanar.reshape(-1, 3), npoints)
         values["good"] = None
         if good is not None:
@@ -456,9 +460,11 @@ class ConvexHull:
                                            host[good].copy())
         return visible if self._options.good_visible else ~visible
 
-    def _with_interior(self, points, values, coplanar):
-        """Qi: every point that is neither a vertex nor already listed, with its nearest facet (the one it is
-        least below) and that facet's nearest vertex."""
+    def _with_other_points(self, points, values, coplanar, tolerance):
+        """Qc: also every point that is neither a vertex nor already listed but lies within the tolerance of
+        a facet (within rounding, 8 units in the last place of the largest coordinate, for the exact hull),
+        as scipy's coplanar points; Qi: every other point too (the interior ones).  Each with its nearest
+        facet (the one it is least below) and that facet's nearest vertex.  O(n x facets), on the host."""
         host = np.asarray(self._host(points), dtype=np.float64)
         listed = np.zeros(host.shape[0], dtype=bool)
         listed[values["vertices"]] = True
@@ -466,11 +472,16 @@ class ConvexHull:
         if self._good_point is not None:
             listed[self._good_point] = True
         rest = np.flatnonzero(~listed)
+        within = max(tolerance, 8 * np.finfo(np.float64).eps * float(np.abs(host).max(initial=0.0)))
         equations, simplices = values["equations"], values["simplices"]
         rows = [coplanar]
         for begin in range(0, rest.size, 4096):
             chunk = rest[begin:begin + 4096]
-            facet = np.argmax(host[chunk] @ equations[:, :-1].T + equations[:, -1], axis=1)
+            heights = host[chunk] @ equations[:, :-1].T + equations[:, -1]
+            facet = np.argmax(heights, axis=1)
+            if not self._options.interior:
+                near = heights[np.arange(chunk.size), facet] >= -within
+                chunk, facet = chunk[near], facet[near]
             corners = simplices[facet]
             distance = np.linalg.norm(host[corners] - host[chunk][:, None, :], axis=2)
             vertex = corners[np.arange(chunk.size), np.argmin(distance, axis=1)]
@@ -483,7 +494,7 @@ class ConvexHull:
         self.ndim = int(points.shape[1])
         self._bounds = None
         self.nsimplex = int(values["simplices"].shape[0])
-        self._host_vertices = values["vertices"]
+        self._exact_vertices = values["exact_vertices"]
         for key in ("dimension", "precision", "backend", "stats", "tolerance", "max_outside", "volume", "area",
                     "good"):
             setattr(self, key, values[key])
@@ -537,21 +548,27 @@ class ConvexHull:
         if restart:
             values = self._compute(joined, None)
         else:
-            subset = np.concatenate([self._host_vertices.astype(np.int64),
-                                     np.arange(old_count, int(joined.shape[0]))])
+            subset = np.concatenate([self._exact_vertices, np.arange(old_count, int(joined.shape[0]))])
             subset.sort()
             if self._good_point is not None:
                 subset = np.unique(np.append(subset, self._good_point))
-            if self._options is not None and self._options.interior:
-                subset = None  # Qi lists every interior point: all of them are looked at
+            if self._options is not None and (self._options.interior or self._options.coplanar):
+                subset = None  # Qi and Qc look at every point
             values = self._compute(joined, subset)
         self._commit(joined, values)
 
     def _check_batch(self, new):
-        """A new batch's coordinates checked alone, so that an error names its row in the batch."""
+        """A new batch's coordinates checked alone, so that an error names its row in the batch (in float,
+        a value beyond float's range too)."""
         lifted = new if new.shape[1] == 3 else np.column_stack([new, np.zeros(new.shape[0], dtype=new.dtype)])
         try:
             _cudahull.check_points(np.ascontiguousarray(lifted))
+            if self.precision == "float" and new.dtype == np.float64:
+                beyond = np.argwhere(np.abs(new) > np.finfo(np.float32).max)
+                if beyond.size:
+                    row, axis = beyond[0]
+                    raise InputError(f"point {row}: {'xyz'[axis]} coordinate {new[row, axis]!r} does not fit in "
+                                     f"float")
         except ValueError as error:
             raise type(error)(f"add_points: {error} (a row of the new points; nothing was added)") from None
 

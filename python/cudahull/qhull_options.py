@@ -1,8 +1,10 @@
 """scipy's ``qhull_options`` string, parsed as Qhull parses it, into what cudahull does with each option.
 
 design:
-    split the string on white space, then read each word as Qhull does: a word may run several options
-    together ("QbBPp" is "QbB" and "Pp"), and an option may carry a number ("QG4", "C-0", "A0.99")
+    split the string on white space; each word is read as Qhull's qh_initflags reads it: its first letter
+    names a group (Q, P, T, C, A; a leading '-' is allowed), and the rest of the word continues that group
+    ("Qcx" is Qc and Qx, "QbB" one option; "QbBPp" is an error in Qhull too, P not being a Q option)
+    C and A take a number ("C-0", "A0.99"); QG takes a point ("QG4", "QG-4"); QJ an optional number
     for each option, look up its meaning here (the README's table says the same in words)
     an option with no meaning here raises QhullError naming it: code that passes it expects something
     cudahull would silently not do
@@ -10,10 +12,11 @@ design:
 What the options mean here (the hull itself is exact unless a tolerance asks for merging):
     Qt             triangulated output: always so; accepted
     Qbb, QbB, Qbk:n, QBk:n
-                   Qhull scales the input to reduce its own roundoff; the exact hull does not need it, and the
-                   output is in the input's coordinates either way: accepted, no effect
-    Qc             coplanar points: ``coplanar`` lists the points merging set aside (always kept)
-    Qi             ``coplanar`` also lists the interior points, each with its nearest facet and vertex
+                   Qhull scales the input against its own roundoff; the exact hull needs none: no effect.
+                   Unlike scipy's, the equations stay in the input's coordinates
+    Qc             ``coplanar`` also lists every point that is not a vertex but lies within the tolerance of
+                   a facet (scipy's Qc), with its facet and nearest vertex
+    Qi             ``coplanar`` also lists every interior point, with its nearest facet and vertex
     Qx, Qz, Q12, Qs, Qv, Pp, Tv
                    Qhull's internal search, checks and warnings: accepted, no effect on the result
     QJ, QJn        joggle the input so that the output is simplicial: the exact hull already is, without
@@ -22,37 +25,32 @@ What the options mean here (the hull itself is exact unless a tolerance asks for
                    of the hull, as in Qhull
     Cn, C-n        merge facets within the distance n (absolute, as in Qhull); C0 and C-0 are Qhull's
                    roundoff-based tolerance (tolerance "qhull")
-    An, A-n        merge facets whose normals' angle has cosine above n: taken as the distance
-                   sqrt(1 - n^2) x the bounding box's diagonal (the most such a tilt moves a facet);
-                   the larger of C's and A's distances is used
+    A0, A-0        Qhull's default angle test: accepted, as C-0.  An angle of n > 0 raises QhullError:
+                   cudahull merges by distance only (use Cn or ``tolerance=``)
 """
 
 import math
 import re
 
-_NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
-_TOKEN = re.compile(
-    r"(?P<good>QG)(?P<good_value>[-+]?\d+)"
-    r"|(?P<joggle>QJ)(?P<joggle_value>" + _NUMBER + r")?"
-    r"|(?P<flag>Qt|Qbb|QbB|Qx|Qz|Q12|Qs|Qv|Qc|Qi|Pp|Tv)"
-    r"|(?P<scale>Q[bB])(?P<scale_axis>\d)(?::(?P<scale_value>" + _NUMBER + r"))?"
-    r"|(?P<centrum>C)(?P<centrum_value>" + _NUMBER + r")"
-    r"|(?P<angle>A)(?P<angle_value>" + _NUMBER + r")"
-)
+_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+_INTEGER = re.compile(r"[-+]?\d+")
+# Q's one-letter options with no effect here, and those whose meaning ParsedOptions records.
+_Q_FLAGS = {"t", "x", "z", "s", "v", "c", "i"}
 
 
 class ParsedOptions:
     """What a ``qhull_options`` string asks for.
 
     ``good_point``: n of QGn (None without); ``good_visible``: True for QGn, False for QG-n;
-    ``interior``: Qi; ``joggle``: QJ; ``centrum``: the distance of Cn / C-n (None without);
-    ``angle_cosine``: n of An / A-n (None without); ``words``: the options as read.
+    ``interior``: Qi; ``coplanar``: Qc; ``joggle``: QJ; ``centrum``: the distance of Cn / C-n (None
+    without; 0 for C-0 and A-0); ``words``: the options as read.
     """
 
     def __init__(self):
         self.good_point = None
         self.good_visible = True
         self.interior = False
+        self.coplanar = False
         self.joggle = False
         self.centrum = None
         self.angle_cosine = None
@@ -82,36 +80,91 @@ def parse(options, error):
         raise TypeError(f"qhull_options must be a string, not {type(options).__name__}")
     parsed = ParsedOptions()
     for word in options.split():
-        position = 0
-        while position < len(word):
-            match = _TOKEN.match(word, position)
-            if match is None or match.end() == position:
-                rest = word[position:]
-                raise error(f"qhull_options: the option '{rest}' has no defined behaviour in cudahull "
-                            f"(see the README's table of options)")
-            _apply(parsed, match, error)
-            parsed.words.append(match.group(0))
-            position = match.end()
+        _parse_word(word[1:] if word.startswith("-") and len(word) > 1 else word, parsed, error)
     return parsed
 
 
-def _apply(parsed, match, error):
-    if match.group("good"):
-        value = int(match.group("good_value"))
-        parsed.good_visible = not match.group("good_value").startswith("-")
-        parsed.good_point = abs(value)
-    elif match.group("joggle"):
-        parsed.joggle = True
-    elif match.group("flag") == "Qi":
-        parsed.interior = True
-    elif match.group("centrum"):
-        value = abs(float(match.group("centrum_value")))
+def _unknown(name, error, word=None):
+    where = f" (in '{word}': a word continues its first letter's group, as in Qhull)" if word and word != name else ""
+    raise error(f"qhull_options: the option '{name}'{where} has no defined behaviour in cudahull "
+                f"(see the README's table of options)")
+
+
+def _number(word, at, name, pattern, error):
+    match = pattern.match(word, at)
+    if match is None:
+        raise error(f"qhull_options: '{name}' needs a number")
+    return match.group(0), match.end()
+
+
+def _parse_word(word, parsed, error):
+    group = word[0]
+    if group in "CA":
+        text, end = _number(word, 1, word, _NUMBER, error)
+        if end != len(word):
+            _unknown(word, error)
+        value = abs(float(text))
         if not math.isfinite(value):
-            raise error(f"qhull_options: '{match.group(0)}' needs a finite distance")
-        parsed.centrum = max(parsed.centrum or 0.0, value)
-    elif match.group("angle"):
-        value = abs(float(match.group("angle_value")))
-        if not 0 <= value <= 1:
-            raise error(f"qhull_options: '{match.group(0)}' needs a cosine between 0 and 1")
-        parsed.angle_cosine = value if parsed.angle_cosine is None else min(parsed.angle_cosine, value)
-    # Everything else (Qt, Qbb, QbB, Qx, Qz, Q12, Qs, Qv, Qc, Pp, Tv, Qb/QB scaling) changes nothing here.
+            raise error(f"qhull_options: '{word}' needs a finite number")
+        if group == "C":
+            parsed.centrum = max(parsed.centrum or 0.0, value)
+        elif value != 0:
+            raise error(f"qhull_options: '{word}' (merging by angle) is not supported: cudahull merges by "
+                        f"distance (use C-n or tolerance=)")
+        else:
+            parsed.centrum = parsed.centrum or 0.0  # A-0: Qhull's default test, as C-0
+        parsed.words.append(word)
+        return
+    if group == "P":
+        for letter in word[1:] or "?":
+            if letter != "p":
+                _unknown("P" + letter, error)
+            parsed.words.append("Pp")
+        return
+    if group == "T":
+        for letter in word[1:] or "?":
+            if letter != "v":
+                _unknown("T" + letter, error)
+            parsed.words.append("Tv")
+        return
+    if group != "Q":
+        _unknown(word, error)
+    at = 1
+    if at == len(word):
+        _unknown(word, error)
+    while at < len(word):
+        letter = word[at]
+        at += 1
+        if letter in _Q_FLAGS:
+            parsed.words.append("Q" + letter)
+            parsed.interior = parsed.interior or letter == "i"
+            parsed.coplanar = parsed.coplanar or letter == "c"
+        elif letter == "b" and at < len(word) and word[at] in "bB":
+            parsed.words.append("Qb" + word[at])
+            at += 1
+        elif letter in "bB" and at < len(word) and word[at].isdigit():
+            # Qbk:n, QBk:n: scale coordinate k's bound to n (no effect here); without ":n", Qhull's default.
+            axis, at = _number(word, at, "Q" + letter, _INTEGER, error)
+            name = "Q" + letter + axis
+            if at < len(word) and word[at] == ":":
+                value, at = _number(word, at + 1, name + ":", _NUMBER, error)
+                name += ":" + value
+            parsed.words.append(name)
+        elif letter == "J":
+            match = _NUMBER.match(word, at)
+            at = match.end() if match else at
+            parsed.joggle = True
+            parsed.words.append("QJ")
+        elif letter == "G":
+            text, at = _number(word, at, "QG", _INTEGER, error)
+            parsed.good_visible = not text.startswith("-")
+            parsed.good_point = abs(int(text))
+            parsed.words.append("QG" + text)
+        elif letter.isdigit():
+            match = re.compile(r"\d+").match(word, at - 1)
+            at = match.end()
+            if match.group(0) != "12":
+                _unknown("Q" + match.group(0), error, word)
+            parsed.words.append("Q12")
+        else:
+            _unknown("Q" + letter, error, word)

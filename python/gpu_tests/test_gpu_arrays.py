@@ -88,13 +88,34 @@ def assert_same_hull(got, want, exact_mesh=True):
     assert np.array_equal(to_numpy(got.vertices), want.vertices)
     if exact_mesh:
         assert faces(got) == faces(want)
-        assert np.array_equal(to_numpy(got.polygon), want.polygon)
     assert got.volume == pytest.approx(want.volume, rel=1e-12, abs=0)
     assert got.area == pytest.approx(want.area, rel=1e-12, abs=0)
 
 
+FLAT = {"flat", "tilted_flat", "collinear", "one_point", "three", "empty"}
+
+
 @pytest.mark.parametrize("dtype", [np.float32, np.float64])
-@pytest.mark.parametrize("name", sorted(DISTRIBUTIONS))
+@pytest.mark.parametrize("name", sorted(FLAT))
+def test_flat_input_as_numpys(lib, name, dtype):
+    """ConvexHull raises scipy's error for flat input (QhullError; ValueError for none), on the device as on
+    the host; convex_hull() gives the same lower-dimensional hull from both."""
+    points = DISTRIBUTIONS[name].astype(dtype)
+    device_points = on_device(lib, points)
+    expected = ValueError if len(points) == 0 else cudahull.QhullError
+    with pytest.raises(expected):
+        cudahull.ConvexHull(points)
+    with pytest.raises(expected):
+        cudahull.ConvexHull(device_points)
+    got, want = cudahull.convex_hull(device_points), cudahull.convex_hull(points, engine="resident")
+    assert got["dimension"] == want["dimension"] < 3
+    for key in ("vertices", "polygon"):
+        assert np.array_equal(got[key], want[key]), key
+    assert got["area"] == pytest.approx(want["area"], rel=1e-12, abs=0)
+
+
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+@pytest.mark.parametrize("name", sorted(set(DISTRIBUTIONS) - FLAT))
 def test_same_hull_as_numpy(lib, name, dtype):
     points = DISTRIBUTIONS[name].astype(dtype)
     device_points = on_device(lib, points)
@@ -114,13 +135,12 @@ def test_same_hull_as_numpy(lib, name, dtype):
         assert np.array_equal(to_numpy(got.vertices), qhull.vertices)
         assert got.volume == pytest.approx(qhull.volume, rel=1e-9)
         assert got.area == pytest.approx(qhull.area, rel=1e-9)
-    if len(points):
-        assert np.array_equal(got.min_bound, points.min(axis=0))
-        assert np.array_equal(got.max_bound, points.max(axis=0))
+    assert np.array_equal(got.min_bound, points.min(axis=0))
+    assert np.array_equal(got.max_bound, points.max(axis=0))
 
 
 @pytest.mark.parametrize("dtype, precision", [(np.float64, "float"), (np.float32, "double")])
-@pytest.mark.parametrize("name", ["ball", "grid", "shifted", "tilted_flat"])
+@pytest.mark.parametrize("name", ["ball", "grid", "shifted"])
 def test_precision_conversion_on_the_device(lib, name, dtype, precision):
     points = DISTRIBUTIONS[name].astype(dtype)
     got = cudahull.ConvexHull(on_device(lib, points), precision=precision)
@@ -167,16 +187,29 @@ def test_non_finite_points_raise_the_numpy_paths_error(lib, dtype, bad):
     assert str(device_error.value).startswith("point 1234: y coordinate ")
 
 
-@pytest.mark.parametrize("value, precision", [(1e300, "auto"), (-1e-300, "auto"), (1e39, "float")])
-def test_out_of_range_doubles_raise_the_numpy_paths_error(lib, value, precision):
+def test_a_double_beyond_float_raises_the_numpy_paths_error(lib):
     points = DISTRIBUTIONS["gauss"].copy()
-    points[42, 2] = value
+    points[42, 2] = 1e39
     with pytest.raises(ValueError) as host_error:
-        cudahull.ConvexHull(points, precision=precision, engine="stepping")
+        cudahull.ConvexHull(points, precision="float", engine="stepping")
     with pytest.raises(ValueError) as device_error:
-        cudahull.ConvexHull(on_device(lib, points), precision=precision)
+        cudahull.ConvexHull(on_device(lib, points), precision="float")
     assert str(device_error.value) == str(host_error.value)
     assert str(device_error.value).startswith("point 42: z coordinate ")
+
+
+@pytest.mark.parametrize("value", [1e300, -1e-300, 5e-324])
+@pytest.mark.parametrize("columns", [3, 2])
+def test_doubles_outside_the_engines_range_take_the_wide_path(lib, value, columns):
+    """Every finite double (issue 25): the device's check sends such input to the host's exact wide path,
+    which gives the NumPy path's hull."""
+    points = np.ascontiguousarray(DISTRIBUTIONS["gauss"][:, :columns])
+    points[42, columns - 1] = value
+    got = cudahull.ConvexHull(on_device(lib, points))
+    want = cudahull.ConvexHull(points)
+    assert want.backend == "cpu-wide" or columns == 2
+    assert np.array_equal(got.vertices, want.vertices)
+    assert np.array_equal(got.simplices, want.simplices)
 
 
 def test_device_results_are_arrays_of_the_inputs_kind(lib):
@@ -184,8 +217,7 @@ def test_device_results_are_arrays_of_the_inputs_kind(lib):
     device_points = on_device(lib, points)
     got = cudahull.ConvexHull(device_points, device_results=True)
     want = cudahull.ConvexHull(points, engine="resident")
-    for name in ("vertices", "simplices", "neighbors", "equations", "polygon", "coplanar", "min_bound",
-                 "max_bound"):
+    for name in ("vertices", "simplices", "neighbors", "equations", "coplanar", "min_bound", "max_bound"):
         value = getattr(got, name)
         assert type(value) is type(device_points), name
         assert value.device == device_points.device, name
@@ -235,8 +267,8 @@ def test_layouts_and_types_the_engine_cannot_read(lib):
         cudahull.ConvexHull(points[::2])
     with pytest.raises(ValueError, match="must be float32 or float64"):
         cudahull.ConvexHull(points[:, :3].to(lib.float16) if lib.__name__ == "torch" else points.astype("f2"))
-    with pytest.raises(ValueError, match=r"must be an \(n, 3\) array"):
-        cudahull.ConvexHull(points[:, :2].copy() if lib.__name__ == "cupy" else points[:, :2].contiguous())
+    with pytest.raises(ValueError, match=r"must be an \(n, 3\) or \(n, 2\) array"):
+        cudahull.ConvexHull(points[:, 0].copy() if lib.__name__ == "cupy" else points[:, 0].contiguous())
     with pytest.raises(ValueError, match="need backend 'auto' or 'cuda'"):
         cudahull.ConvexHull(points, backend="cpu")
 
@@ -257,3 +289,73 @@ def test_torch_specifics():
     got = cudahull.ConvexHull(late)
     assert np.array_equal(got.vertices, want.vertices)
     assert got.volume == pytest.approx(want.volume * 8, rel=1e-12)
+
+
+def planar_sets():
+    rng = np.random.default_rng(25)
+    n = 200_000
+    angle = rng.uniform(0, 2 * np.pi, size=n)
+    radius = np.sqrt(rng.uniform(0, 1, size=n))
+    circle = rng.uniform(0, 2 * np.pi, size=3000)
+    t = rng.integers(-500, 500, size=5000).astype(np.float64)
+    square = rng.uniform(-1, 1, size=(n, 2))
+    return {
+        "square": square,
+        "disc": np.column_stack([radius * np.cos(angle), radius * np.sin(angle)]),
+        "gauss": rng.normal(size=(n, 2)) * [1e3, 1e-3] + [1e6, -5],
+        "circle": np.column_stack([np.cos(circle), np.sin(circle)]),  # every point a corner
+        "grid": rng.integers(-20, 21, size=(n, 2)).astype(np.float64),  # collinear points on every edge
+        "duplicates": np.concatenate([square[:1000], square[:1000], [[2, 2], [2, 2], [-2, -2]]]),
+        "collinear": np.column_stack([t, 3 * t - 1]),  # degenerate: the device leaves it to the host
+        "one_point": np.full((50, 2), 0.25),
+    }
+
+
+PLANAR = planar_sets()
+
+
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+@pytest.mark.parametrize("name", sorted(PLANAR))
+def test_2d_points_on_the_device_give_the_numpy_paths_hull(lib, name, dtype):
+    """2-D points in GPU memory (issue 25): filtered on the device, finished on the host, the same hull as
+    from NumPy (vertices counter-clockwise, edges, lines, area, perimeter), and few bytes read back."""
+    points = PLANAR[name].astype(dtype)
+    device_points = on_device(lib, points)
+    want = cudahull.convex_hull(points)
+    got = cudahull.convex_hull(device_points)
+    assert got["dimension"] == want["dimension"] and got["precision"] == want["precision"]
+    for key in ("vertices", "polygon", "simplices", "neighbors", "equations"):
+        assert np.array_equal(got[key], want[key]), key
+    assert got["volume"] == want["volume"] and got["area"] == want["area"]
+    if want["dimension"] == 2:
+        hull = cudahull.ConvexHull(device_points)
+        assert hull.backend == "cuda" and np.array_equal(hull.vertices, want["polygon"])
+        if name in ("square", "disc", "gauss"):
+            reference = scipy.spatial.ConvexHull(points.astype(np.float64))  # exact in general position
+            assert sorted(hull.vertices.tolist()) == sorted(reference.vertices.tolist())
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf])
+def test_2d_bad_points_on_the_device_raise_the_numpy_paths_error(lib, bad):
+    points = PLANAR["square"].copy()
+    points[777, 1] = bad
+    points[9999, 0] = bad
+    with pytest.raises(ValueError) as host_error:
+        cudahull.ConvexHull(points)
+    with pytest.raises(ValueError) as device_error:
+        cudahull.ConvexHull(on_device(lib, points))
+    assert str(device_error.value) == str(host_error.value)
+    assert str(device_error.value).startswith("point 777: y coordinate ")
+
+
+def test_merging_on_the_device_as_on_the_host(lib):
+    """qhull_options on points in GPU memory: the same merged hull and certificate as from NumPy."""
+    rng = np.random.default_rng(3)
+    q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    box = rng.uniform(-1, 1, size=(20000, 3)) * [2, 1, 0.5]
+    box = np.clip(box, [-1.9, -0.9, -0.45], [1.9, 0.9, 0.45]) @ q.T + [3, -2, 7]  # points on flat faces
+    got = cudahull.ConvexHull(on_device(lib, box), qhull_options="Qt")
+    want = cudahull.ConvexHull(box, qhull_options="Qt")
+    assert np.array_equal(got.vertices, want.vertices)
+    assert got.max_outside == want.max_outside and got.tolerance == want.tolerance
+    assert len(got.vertices) == len(scipy.spatial.ConvexHull(box).vertices)

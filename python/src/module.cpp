@@ -19,6 +19,7 @@
 #include "cudahull/errors.hpp"
 #include "cudahull/predicates.hpp"
 #include "cudahull/resident.hpp"
+#include "cudahull/wide_predicates.hpp"
 
 namespace nb = nanobind;
 
@@ -181,7 +182,8 @@ void check_points_of(PointArray<Scalar> points) {
 }
 
 // Which facets `query` sees: strictly above each simplex's line (2-D) or plane (3-D), decided exactly
-// (orient2d, orient3d), for scipy's `good` (QGn).  The simplices are oriented as ConvexHull's.
+// (the wide predicates: any finite doubles), for scipy's `good` (QGn).  The simplices are oriented as
+// ConvexHull's.
 nb::object facets_visible(nb::ndarray<const double, nb::c_contig, nb::device::cpu> points,
                           nb::ndarray<const std::int64_t, nb::c_contig, nb::device::cpu> simplices,
                           nb::ndarray<const double, nb::c_contig, nb::device::cpu> query) {
@@ -199,10 +201,10 @@ nb::object facets_visible(nb::ndarray<const double, nb::c_contig, nb::device::cp
         throw std::invalid_argument("facets_visible: index");
     if (dim == 2) {
       // A counter-clockwise edge a -> b: the outside is on its right.
-      visible[f] = orient2d(p[2 * s[0]], p[2 * s[0] + 1], p[2 * s[1]], p[2 * s[1] + 1], q[0], q[1]) < 0;
+      visible[f] = orient2d_wide(p[2 * s[0]], p[2 * s[0] + 1], p[2 * s[1]], p[2 * s[1] + 1], q[0], q[1]) < 0;
     } else {
       auto at = [&](std::int64_t i) { return Vec3d{p[3 * i], p[3 * i + 1], p[3 * i + 2]}; };
-      visible[f] = orient3d(at(s[0]), at(s[1]), at(s[2]), Vec3d{q[0], q[1], q[2]}) > 0;
+      visible[f] = orient3d_wide(at(s[0]), at(s[1]), at(s[2]), Vec3d{q[0], q[1], q[2]}) > 0;
     }
   }
   return to_numpy(std::move(visible), true);

@@ -280,3 +280,71 @@ def test_planes_are_accurate_on_slivers():
         heights = points @ hull.equations[:, :3].T + hull.equations[:, 3]
         worst = max(worst, heights.max() / scale)
     assert worst <= 1e-13
+
+
+# --- review cases -------------------------------------------------------------------------------------------
+
+
+def test_qhull_option_words_follow_qhulls_groups():
+    points = np.random.default_rng(12).normal(size=(40, 3))
+    for options in ("QbBPp", "QcQi", "A0.99"):
+        with pytest.raises(cudahull.QhullError):
+            cudahull.ConvexHull(points, qhull_options=options)
+        if options != "A0.99":  # scipy refuses the run-together words too (QH7023)
+            with pytest.raises(scipy.spatial.QhullError):
+                scipy.spatial.ConvexHull(points, qhull_options=options)
+    for options in ("Qcx", "-Qt", "Qci Tv", "A-0"):
+        assert cudahull.ConvexHull(points, qhull_options=options).vertices.tolist() == \
+            sorted(scipy.spatial.ConvexHull(points).vertices.tolist())
+    assert cudahull.ConvexHull(points, qhull_options="").tolerance == 0  # "" is None: exact
+
+
+def test_qc_lists_points_on_facets_as_scipy():
+    cube = np.array([[x, y, z] for x in (0.0, 1.0) for y in (0.0, 1.0) for z in (0.0, 1.0)])
+    points = np.vstack([cube, [[0.5, 0.5, 1.0], [0.5, 0.5, 0.0], [0.5, 0.5, 0.5]], cube[:1]])
+    hull = cudahull.ConvexHull(points, qhull_options="Qc")
+    reference = scipy.spatial.ConvexHull(points, qhull_options="Qc")
+    assert sorted(hull.coplanar[:, 0].tolist()) == sorted(reference.coplanar[:, 0].tolist()) == [8, 9, 11]
+    for point, facet, vertex in hull.coplanar.tolist():
+        height = hull.equations[facet, :3] @ points[point] + hull.equations[facet, 3]
+        assert abs(height) <= 1e-15 and vertex in hull.simplices[facet]
+
+
+def test_add_points_to_a_merged_hull_keeps_the_certificate():
+    cube = np.array([[x, y, z] for x in (0.0, 1.0) for y in (0.0, 1.0) for z in (0.0, 1.0)])
+    points = np.vstack([cube, [[0.5, 0.5, 1 + 2 * np.finfo(float).eps]]])  # merged away, 4e-16 proud
+    hull = cudahull.ConvexHull(points, qhull_options="Qt")
+    assert hull.coplanar[:, 0].tolist() == [8]
+    hull.add_points([[0.5, 0.5, -1.0]])
+    whole = np.vstack([points, [[0.5, 0.5, -1.0]]])
+    restarted = cudahull.ConvexHull(whole, qhull_options="Qt")
+    assert hull.vertices.tolist() == restarted.vertices.tolist()
+    assert hull.coplanar.tolist() == restarted.coplanar.tolist()
+    heights = whole @ hull.equations[:, :3].T + hull.equations[:, 3]
+    assert heights.max() <= hull.max_outside
+
+
+def test_good_is_exact_for_any_finite_double():
+    for scale in (5e-324 * 2**40, 1e-200, 1e200):
+        square = np.array([[0, 0], [0, 1], [1, 1], [1, 0], [0.5, 2]]) * scale
+        hull = cudahull.ConvexHull(square, qhull_options="QG4")
+        top = [k for k, s in enumerate(hull.simplices.tolist()) if sorted(s) == [1, 2]]
+        assert hull.good.tolist() == [k in top for k in range(len(hull.simplices))], scale
+
+
+def test_a_merged_polygon_thinner_than_the_tolerance_is_flat():
+    points = np.array([[0, 0], [1, 1], [2, 2], [3, 3 + 1e-15]])
+    with pytest.raises(scipy.spatial.QhullError):
+        scipy.spatial.ConvexHull(points)
+    with pytest.raises(cudahull.QhullError):
+        cudahull.ConvexHull(points, qhull_options="Qt")
+    assert cudahull.ConvexHull(points).vertices.tolist() == [0, 2, 3]  # exact: a thin triangle, (1, 1) on an edge
+
+
+def test_2d_lines_are_unit_and_finite_for_any_finite_double():
+    for scale in (1.5e308 / 4, 5e-324 * 2**10, 1e-300):
+        points = np.array([[0, 0], [2, 0], [2, 1], [0, 1], [1, 0.5]]) * scale
+        hull = cudahull.ConvexHull(points)
+        assert np.isfinite(hull.equations).all(), scale
+        np.testing.assert_allclose(np.linalg.norm(hull.equations[:, :2], axis=1), 1, atol=1e-15)
+        assert sorted(hull.vertices.tolist()) == [0, 1, 2, 3]
