@@ -182,8 +182,8 @@ std::vector<std::array<std::int32_t, 3>> face_neighbors(const std::vector<Triang
 
 // A facet's plane, accurate on slivers too (issue 25).  The cross product in double first: each component
 // is within 3u of its permanent (|products| summed; Shewchuk's orient2d bound), so where the permanents are
-// within 8 times the normal's length its direction is within about 24u of the exact one, and every point
-// lies within ~1e-15 x scale of the plane.  Otherwise (a sliver, where the products cancel) plane_through()
+// within 32 times the normal's length its direction is within about 100u of the exact one, and every point
+// lies within ~5e-14 x scale of the plane (a point is at most twice the scale from the face's corner).  Otherwise (a sliver, where the products cancel) plane_through()
 // evaluates the normal exactly and rounds it.
 std::array<double, 4> facet_plane(Vec3d a, Vec3d b, Vec3d c) {
   const double coordinates[9] = {a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z};
@@ -194,7 +194,7 @@ std::array<double, 4> facet_plane(Vec3d a, Vec3d b, Vec3d c) {
     const double px = std::fabs(uy * vz) + std::fabs(uz * vy), py = std::fabs(uz * vx) + std::fabs(ux * vz),
                  pz = std::fabs(ux * vy) + std::fabs(uy * vx);
     const double length2 = nx * nx + ny * ny + nz * nz;
-    if (length2 > 0 && px * px + py * py + pz * pz <= 64 * length2) {
+    if (length2 > 0 && px * px + py * py + pz * pz <= 1024 * length2) {
       const double length = std::sqrt(length2);
       const double n[3] = {nx / length, ny / length, nz / length};
       auto height = [&](Vec3d p) { return n[0] * p.x + n[1] * p.y + n[2] * p.z; };
@@ -273,7 +273,7 @@ ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend)
                                        to_vec3d(mesh.vertices[t[2]]));
         }
       },
-      std::size_t{1} << 14);
+      std::size_t{1} << 12);
   hull.volume = six_volume / 6;
   hull.area = twice_area / 2;
   hull.neighbors = face_neighbors(mesh.triangles, mesh.vertices.size());

@@ -418,7 +418,6 @@ class ConvexHull:
                 f"of {ndim} dimensions (cudahull.convex_hull() gives their lower-dimensional hull)")
 
         def original(indices):
-            indices = np.asarray(indices, dtype=np.int64)
             return _index_array(indices if subset is None else np.asarray(subset)[indices], npoints)
 
         values = {
@@ -441,7 +440,8 @@ class ConvexHull:
             coplanar[:, 0] = original(coplanar[:, 0])
             coplanar[:, 2] = original(coplanar[:, 2])
         # The exact hull's vertices, merged away or not: what add_points computes on next.
-        values["exact_vertices"] = np.union1d(values["vertices"], coplanar[:, 0]).astype(np.int64)
+        values["exact_vertices"] = (np.union1d(values["vertices"], coplanar[:, 0]) if coplanar.size
+                                    else values["vertices"]).astype(np.int64)
         if self._options is not None and (self._options.interior or self._options.coplanar):
             coplanar = self._with_other_points(points, values, coplanar, result["tolerance"])
         values["coplanar"] = _index_array(coplanar.reshape(-1, 3), npoints)

@@ -203,7 +203,7 @@ def test_a_double_beyond_float_raises_the_numpy_paths_error(lib):
 def test_doubles_outside_the_engines_range_take_the_wide_path(lib, value, columns):
     """Every finite double (issue 25): the device's check sends such input to the host's exact wide path,
     which gives the NumPy path's hull."""
-    points = np.ascontiguousarray(DISTRIBUTIONS["gauss"][:, :columns])
+    points = DISTRIBUTIONS["gauss"][:, :columns].copy()  # not the shared array: it is changed below
     points[42, columns - 1] = value
     got = cudahull.ConvexHull(on_device(lib, points))
     want = cudahull.ConvexHull(points)
