@@ -167,5 +167,59 @@ TEST(ConvexHullApi, DevicePointsNeedTheGpu) {
   }
 }
 
+// 2-D input (issue 25): a square with points inside and on its edges, and a duplicate of a corner.  The
+// corners counter-clockwise from the lowest (x, y), the edges and their neighbours in scipy's convention,
+// unit outward lines, the area as volume and the perimeter as area.
+TEST(ConvexHullApi, TwoDimensionalInputGivesThePolygonsEdgesAndLines) {
+  const std::vector<double> xy{0.5, 0.5, 2, 0, 2, 2, 0, 2, 1, 0, 0, 0, 2, 1, 0, 0};
+  const ConvexHull hull = convex_hull_2d(xy.data(), xy.size() / 2, on_cpu());
+  EXPECT_EQ(hull.input_dimension, 2);
+  EXPECT_EQ(hull.dimension, 2);
+  EXPECT_EQ(hull.polygon, (std::vector<PointIndex>{5, 1, 2, 3}));  // (0,0) first; the duplicate 7 is not
+  EXPECT_EQ(hull.vertices, (std::vector<PointIndex>{1, 2, 3, 5}));
+  ASSERT_EQ(hull.edges.size(), 4u);
+  EXPECT_EQ(hull.edges[0], (std::array<PointIndex, 2>{5, 1}));
+  // neighbors[e][k] is the edge opposite corner k: across from 5 lies the edge that goes on from 1.
+  EXPECT_EQ(hull.edge_neighbors[0], (std::array<std::int32_t, 2>{1, 3}));
+  const std::array<double, 3> bottom{0, -1, 0};
+  EXPECT_EQ(hull.lines[0], bottom);
+  EXPECT_EQ(hull.volume, 4.0);
+  EXPECT_EQ(hull.area, 8.0);
+  // float input gives the same corners, in float.
+  const std::vector<float> as_float(xy.begin(), xy.end());
+  const ConvexHull in_float = convex_hull_2d(as_float.data(), as_float.size() / 2, on_cpu());
+  EXPECT_EQ(in_float.polygon, hull.polygon);
+  EXPECT_EQ(in_float.precision, Precision::kFloat);
+}
+
+// Merging through the API (issue 25): a cube whose face centres stand 1 and 2 units in the last place
+// proud of their faces.  The exact hull keeps them; Qhull's tolerance merges them away, lists them as
+// coplanar and bounds their height; an explicit relative tolerance does the same.
+TEST(ConvexHullApi, MergingDropsPointsWithinTheToleranceAndBoundsThem) {
+  std::vector<Point3d> points;
+  for (double x : {0.0, 1.0})
+    for (double y : {0.0, 1.0})
+      for (double z : {0.0, 1.0})
+        points.push_back({x, y, z});
+  points.push_back({0.5, 0.5, std::nextafter(1.0, 2.0)});
+  points.push_back({0.5, std::nextafter(std::nextafter(1.0, 2.0), 2.0), 0.5});
+  EXPECT_EQ(convex_hull(points, on_cpu()).vertices.size(), 10u);
+  for (const MergeMode mode : {MergeMode::kQhull, MergeMode::kRelative}) {
+    ConvexHullOptions options = on_cpu();
+    options.merge = mode;
+    options.tolerance = 1e-12;
+    const ConvexHull merged = convex_hull(points, options);
+    EXPECT_EQ(merged.vertices, (std::vector<PointIndex>{0, 1, 2, 3, 4, 5, 6, 7}));
+    ASSERT_EQ(merged.coplanar.size(), 2u);
+    EXPECT_EQ(merged.coplanar[0][0], 8u);
+    EXPECT_EQ(merged.coplanar[1][0], 9u);
+    EXPECT_GT(merged.tolerance, 0);
+    for (const auto& plane : merged.planes)
+      for (const Point3d& p : points)
+        EXPECT_LE(plane[0] * p.x + plane[1] * p.y + plane[2] * p.z + plane[3], merged.max_outside);
+    EXPECT_NEAR(merged.volume, 1.0, 1e-15);
+  }
+}
+
 }  // namespace
 }  // namespace cudahull

@@ -183,8 +183,8 @@ std::vector<std::array<std::int32_t, 3>> face_neighbors(const std::vector<Triang
 // A facet's plane, accurate on slivers too (issue 25).  The cross product in double first: each component
 // is within 3u of its permanent (|products| summed; Shewchuk's orient2d bound), so where the permanents are
 // within 32 times the normal's length its direction is within about 100u of the exact one, and every point
-// lies within ~5e-14 x scale of the plane (a point is at most twice the scale from the face's corner).  Otherwise (a sliver, where the products cancel) plane_through()
-// evaluates the normal exactly and rounds it.
+// lies within ~5e-14 x scale of the plane (a point is at most twice the scale from the face's corner).
+// Otherwise (a sliver, where the products cancel) plane_through() evaluates the normal exactly and rounds it.
 std::array<double, 4> facet_plane(Vec3d a, Vec3d b, Vec3d c) {
   const double coordinates[9] = {a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z};
   if (std::all_of(std::begin(coordinates), std::end(coordinates), in_fast_exact_range)) {

@@ -348,3 +348,52 @@ def test_2d_lines_are_unit_and_finite_for_any_finite_double():
         assert np.isfinite(hull.equations).all(), scale
         np.testing.assert_allclose(np.linalg.norm(hull.equations[:, :2], axis=1), 1, atol=1e-15)
         assert sorted(hull.vertices.tolist()) == [0, 1, 2, 3]
+
+
+# --- property: the merge certificate ------------------------------------------------------------------------
+
+
+def noisy_polytope(rng, dimension):
+    """Points on the faces of a rotated box (3-D) or rectangle (2-D), with noise of a few units in the last
+    place off the faces: the near-coplanar input merging is for."""
+    n = int(rng.integers(50, 600))
+    extent = rng.uniform(0.2, 3, size=dimension)
+    points = rng.uniform(-1, 1, size=(n, dimension)) * extent
+    axis = rng.integers(0, dimension, size=n)
+    points[np.arange(n), axis] = np.sign(rng.uniform(-1, 1, size=n)) * extent[axis]  # onto a face
+    q, r = np.linalg.qr(rng.normal(size=(dimension, dimension)))
+    points = points @ (q * np.sign(np.diag(r))).T + rng.normal(size=dimension) * rng.choice([1, 1e3])
+    return points * (1 + rng.integers(-4, 5, size=points.shape) * np.finfo(float).eps)
+
+
+@pytest.mark.parametrize("dimension", [2, 3])
+def test_merge_certificate_holds_on_random_near_coplanar_input(dimension):
+    rng = np.random.default_rng(100 + dimension)
+    for case in range(60):
+        points = noisy_polytope(rng, dimension)
+        tolerance = ["qhull", 1e-12, 1e-9, 1e-6][case % 4]
+        exact = cudahull.ConvexHull(points)
+        merged = cudahull.ConvexHull(points, tolerance=tolerance)
+        # Every input point within max_outside of every facet's plane: the proven bound, checked here
+        # independently in long double.
+        heights = points.astype(np.longdouble) @ merged.equations[:, :-1].T.astype(np.longdouble) + \
+            merged.equations[:, -1].astype(np.longdouble)
+        assert heights.max() <= merged.max_outside, case
+        # Merging drops exact-hull vertices (listed in coplanar) and keeps the rest.
+        kept, dropped = set(merged.vertices.tolist()), set(merged.coplanar[:, 0].tolist())
+        assert kept | dropped == set(exact.vertices.tolist()) and not kept & dropped, case
+        if dimension == 3:
+            # No triangle thinner than the tolerance.
+            corners = points[merged.simplices]
+            edges = np.linalg.norm(corners[:, [1, 2, 0]] - corners, axis=2)
+            twice_area = np.linalg.norm(np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]),
+                                        axis=1)
+            assert (twice_area / edges.max(axis=1)).min() >= merged.tolerance, case
+        else:
+            # Counter-clockwise, and no corner within the tolerance of its neighbours' line.
+            ring = points[merged.vertices]
+            for k in range(len(ring)):
+                a, b, c = ring[k - 1], ring[k], ring[(k + 1) % len(ring)]
+                normal = np.array([c[1] - a[1], a[0] - c[0]]) / np.linalg.norm(c - a)
+                assert (b - a)[0] * (c - b)[1] - (b - a)[1] * (c - b)[0] > 0, case
+                assert normal @ (b - a) > merged.tolerance, case
