@@ -306,7 +306,9 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
   BasicHullMesh<Point> local = mesh;
   for (std::size_t k = 0; k < local.vertex_ids.size(); ++k)
     local.vertex_ids[k] = static_cast<PointIndex>(k);
-  const MergedHull merged = merge_facets(mesh.vertices, local, merge_tolerance(mesh.vertices, options));
+  const double cosine = std::clamp(options.angle_cosine, 0.0, 1.0);
+  const MergedHull merged = merge_facets(mesh.vertices, local, merge_tolerance(mesh.vertices, options),
+                                         std::sqrt(1 - cosine * cosine));
   ConvexHull hull;
   hull.dimension = 3;
   hull.precision = std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;

@@ -207,16 +207,22 @@ double vertex_height(const std::vector<Point>& points, const Vec3d& v, const std
 
 // Steps 1-2: drops the vertices of `current` (its vertex_ids index `points`) whose height is within
 // `limit`, in rounds of independent sets, until a round drops nothing or only the flat remains.
+// With an angle (`angle_sine` > 0, Qhull's An), a vertex's limit grows by angle_sine times half its
+// distance r to its farthest neighbour in the exact hull (taken once, so that the drops do not compound: a
+// later, wider link would let the angle grow): a vertex h above its link makes facets that meet at about
+// 2h / r, so the dropped ones are those whose facets' normals differ by less than about the angle, Qhull's
+// test for a pair of facets.
 template <class Point>
-void drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Point>& current, double limit) {
+void drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Point>& current, double limit,
+                       double angle_sine) {
   // Per vertex of `points`: its link (ascending) when its height was computed, and that height; a vertex
   // whose link did not change keeps its height (it depends on nothing else).
   std::vector<std::vector<PointIndex>> cached_link(points.size());
-  std::vector<double> cached_height(points.size(), kInfinity);
+  std::vector<double> cached_height(points.size(), kInfinity), first_reach(points.size(), -1);
   for (;;) {
     const std::size_t n = current.vertices.size();
     const EdgeIndex edges(current);
-    std::vector<double> heights(n, kInfinity);
+    std::vector<double> heights(n, kInfinity), reach(n, 0);
     parallel_chunks(
         n, hardware_workers(),
         [&](std::size_t begin, std::size_t end, unsigned) {
@@ -226,6 +232,15 @@ void drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Point>& c
             link.clear();
             for (std::uint32_t k = 0; k < edges.degree(i); ++k)
               link.push_back(current.vertex_ids[edges.neighbour(i, k)]);
+            if (angle_sine > 0 && first_reach[id] < 0) {
+              const Vec3d v = to_vec3d(current.vertices[i]);
+              first_reach[id] = 0;
+              for (PointIndex w : link) {
+                const Vec3d d = sub(to_vec3d(points[w]), v);
+                first_reach[id] = std::max(first_reach[id], std::sqrt(dot(d, d)));
+              }
+            }
+            if (angle_sine > 0) reach[i] = first_reach[id];
             if (cached_link[id] != link) {  // each entry is only this chunk's
               cached_height[id] = vertex_height(points, to_vec3d(current.vertices[i]), link);
               cached_link[id] = link;
@@ -237,7 +252,7 @@ void drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Point>& c
     // Lowest first, no two adjacent: their stars are disjoint, so each one's height stays what it was.
     std::vector<std::uint32_t> order;
     for (std::uint32_t i = 0; i < n; ++i)
-      if (heights[i] <= limit) order.push_back(i);
+      if (heights[i] <= limit + angle_sine * reach[i] / 2) order.push_back(i);
     std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
       return heights[a] < heights[b] || (heights[a] == heights[b] && a < b);
     });
@@ -276,8 +291,10 @@ struct Facets {
 };
 
 // Step 3: groups the triangles of `mesh` into merged facets.
+// With an angle (`angle_sine` > 0), a corner also fits where it lies within angle_sine times its distance
+// from the seed's nearest corner of the seed's plane (a tilt of at most about that angle).
 template <class Point>
-Facets group_facets(const BasicHullMesh<Point>& mesh, double tolerance) {
+Facets group_facets(const BasicHullMesh<Point>& mesh, double tolerance, double angle_sine) {
   const std::size_t nt = mesh.triangles.size();
   auto corner = [&](std::uint32_t t, int k) { return to_vec3d(mesh.vertices[mesh.triangles[t][k]]); };
   std::vector<Plane> plane(nt);
@@ -315,6 +332,14 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, double tolerance) {
       const Vec3d p = to_vec3d(mesh.vertices[vertex]);
       const double value = std::fabs(plane_value(seed_plane, p));
       if (value <= tolerance) return true;
+      if (angle_sine > 0) {
+        double nearest = kInfinity;
+        for (const Vec3d& s : {sa, sb, sc}) {
+          const Vec3d d = sub(p, s);
+          nearest = std::min(nearest, std::sqrt(dot(d, d)));
+        }
+        if (value <= tolerance + angle_sine * nearest) return true;
+      }
       const double scale = std::max({seed_scale, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
       return value <= 64 * kUnitRoundoff * scale && orient3d(sa, sb, sc, p) == 0;
     };
@@ -523,11 +548,14 @@ double dropped_bound(const std::vector<Vec3d>& points, const std::vector<Plane>&
 }  // namespace
 
 template <class Point>
-MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Point>& exact,
-                        double tolerance) {
+MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Point>& exact, double tolerance,
+                        double angle_sine) {
   if (!(tolerance >= 0) || !std::isfinite(tolerance))
     throw std::invalid_argument("merge_facets: the tolerance must be finite and >= 0, not " +
                                 std::to_string(tolerance));
+  if (!(angle_sine >= 0 && angle_sine <= 1))
+    throw std::invalid_argument("merge_facets: the angle's sine must be in [0, 1], not " +
+                                std::to_string(angle_sine));
   (void)points;  // every input point is a convex combination of exact.vertices, which hold their coordinates
   MergedHull merged;
   merged.tolerance = tolerance;
@@ -542,8 +570,8 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   BasicHullMesh<Point> current = exact;
   std::iota(current.vertex_ids.begin(), current.vertex_ids.end(), PointIndex{0});
 
-  if (tolerance > 0) drop_low_vertices(vertices, current, tolerance);
-  const Facets facets = group_facets(current, tolerance);
+  if (tolerance > 0 || angle_sine > 0) drop_low_vertices(vertices, current, tolerance, angle_sine);
+  const Facets facets = group_facets(current, tolerance, angle_sine);
 
   // Output: triangles grouped by facet, in input indices.
   std::vector<std::uint32_t> by_facet(current.triangles.size());
@@ -675,8 +703,8 @@ double qhull_default_tolerance(const std::vector<Point>& points) {
   return 4 * dist_round;
 }
 
-template MergedHull merge_facets(const std::vector<Point3>&, const HullMesh&, double);
-template MergedHull merge_facets(const std::vector<Point3d>&, const HullMeshd&, double);
+template MergedHull merge_facets(const std::vector<Point3>&, const HullMesh&, double, double);
+template MergedHull merge_facets(const std::vector<Point3d>&, const HullMeshd&, double, double);
 template double qhull_default_tolerance(const std::vector<Point3>&);
 template double qhull_default_tolerance(const std::vector<Point3d>&);
 

@@ -70,9 +70,11 @@ struct MergedHull {
 // its vertex_ids index `points`), merging within the absolute `tolerance` (finite, >= 0; 0 merges only
 // exactly coplanar triangles and drops nothing).  An exact hull of dimension below 3 is returned as is:
 // its vertices, no faces.  Throws std::invalid_argument for a negative or non-finite tolerance.
+// `angle_sine` (Qhull's An, as the sine of the angle; 0 for none) widens each vertex's and facet corner's
+// limit by that times its distance to its neighbours (drop_low_vertices, group_facets).
 template <class Point>
-MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Point>& exact,
-                        double tolerance);
+MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Point>& exact, double tolerance,
+                        double angle_sine = 0);
 
 // Qhull's default merging tolerance for these points in 3-D (what scipy's ConvexHull gets with its default
 // options, "Qt", and Qhull's default pre-merge 'C-0'): qh.MINoutside = 4 x qh.DISTround, the distance a
@@ -81,8 +83,8 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
 template <class Point>
 double qhull_default_tolerance(const std::vector<Point>& points);
 
-extern template MergedHull merge_facets(const std::vector<Point3>&, const HullMesh&, double);
-extern template MergedHull merge_facets(const std::vector<Point3d>&, const HullMeshd&, double);
+extern template MergedHull merge_facets(const std::vector<Point3>&, const HullMesh&, double, double);
+extern template MergedHull merge_facets(const std::vector<Point3d>&, const HullMeshd&, double, double);
 extern template double qhull_default_tolerance(const std::vector<Point3>&);
 extern template double qhull_default_tolerance(const std::vector<Point3d>&);
 

@@ -163,7 +163,7 @@ def _device_shape(points, protocol):
     return shape
 
 
-def _device_hull(points, protocol, backend, precision, merge=("exact", 0.0)):
+def _device_hull(points, protocol, backend, precision, merge=("exact", 0.0, 1.0)):
     """The hull dict of (n, 3) or (n, 2) points in CUDA memory: 3-D read in place by the resident engine,
     2-D filtered on the device with only the possible corners read back."""
     if backend == "cpu":
@@ -204,26 +204,28 @@ _RESULT_ARRAYS = ("vertices", "simplices", "neighbors", "equations", "polygon", 
 
 
 def _merge_arguments(tolerance, low=None, high=None):
-    """The module's (merge, tolerance) for a ``tolerance``: None (exact), "qhull", a float (relative to the
-    bounding box's largest side), or ("absolute", distance, angle_cosine) from qhull_options' C and A,
-    which needs the bounding box (``low``, ``high``) to become relative."""
+    """The module's (merge, tolerance, angle_cosine) for a ``tolerance``: None (exact), "qhull", a float
+    (relative to the bounding box's largest side), or ("options", distance, cosine) from qhull_options' C
+    and A: an absolute distance (None: Qhull's), which needs the bounding box (``low``, ``high``) to become
+    relative, and An's cosine (None: no angle)."""
     if tolerance is None:
-        return ("exact", 0.0)
+        return ("exact", 0.0, 1.0)
     if isinstance(tolerance, str):
         if tolerance != "qhull":
             raise ValueError(f"tolerance must be None, 'qhull' or a number, not '{tolerance}'")
-        return ("qhull", 0.0)
+        return ("qhull", 0.0, 1.0)
     if isinstance(tolerance, tuple):
         _, distance, cosine = tolerance
+        cosine = 1.0 if cosine is None else float(cosine)
+        if distance is None:
+            return ("qhull", 0.0, cosine)
         low, high = np.asarray(low, dtype=np.float64), np.asarray(high, dtype=np.float64)
         side = float(np.max(high - low)) if low.size else 0.0
-        if cosine is not None:
-            distance = max(distance, math.sqrt(max(0.0, 1 - cosine * cosine)) * float(np.linalg.norm(high - low)))
-        return ("relative", distance / side if side > 0 else 0.0)
+        return ("relative", distance / side if side > 0 else 0.0, cosine)
     value = float(tolerance)
     if not math.isfinite(value) or value < 0:
         raise ValueError(f"tolerance must be None, 'qhull' or a finite number >= 0, not {tolerance!r}")
-    return ("relative", value)
+    return ("relative", value, 1.0)
 
 
 def convex_hull(points, backend="auto", precision="auto", engine="auto", device_results=False, tolerance=None):
@@ -267,7 +269,7 @@ def convex_hull(points, backend="auto", precision="auto", engine="auto", device_
 
 def _bounds_of(points, tolerance, kind=None):
     """The bounding box, only where an absolute tolerance needs it (else (None, None))."""
-    if not isinstance(tolerance, tuple) or points.shape[0] == 0:
+    if not isinstance(tolerance, tuple) or tolerance[1] is None or points.shape[0] == 0:
         return None, None
     if kind is None:
         return points.min(axis=0), points.max(axis=0)

@@ -18,14 +18,14 @@ __all__ = ["convex_hull"]
 def _chunk_vertices(block, offset, backend, precision, engine):
     """One chunk's hull vertices: their indices in the whole array and their coordinates."""
     points = _as_points(block)
-    vertices = _cudahull.convex_hull(points, backend, precision, engine, "exact", 0.0)["vertices"]
+    vertices = _cudahull.convex_hull(points, backend, precision, engine, "exact", 0.0, 1.0)["vertices"]
     return vertices.astype(np.int64) + offset, points[vertices]
 
 
 def _hull_of_candidates(parts, backend, precision, engine):
     indices = np.concatenate([part[0] for part in parts])
     points = np.ascontiguousarray(np.concatenate([part[1] for part in parts]))
-    result = _cudahull.convex_hull(points, backend, precision, engine, "exact", 0.0)
+    result = _cudahull.convex_hull(points, backend, precision, engine, "exact", 0.0, 1.0)
     for key in ("vertices", "simplices", "polygon"):
         result[key] = indices[result[key].astype(np.int64)]
     result["vertex_points"] = points[np.searchsorted(indices, result["vertices"])]

@@ -25,8 +25,11 @@ What the options mean here (the hull itself is exact unless a tolerance asks for
                    of the hull, as in Qhull
     Cn, C-n        merge facets within the distance n (absolute, as in Qhull); C0 and C-0 are Qhull's
                    roundoff-based tolerance (tolerance "qhull")
-    A0, A-0        Qhull's default angle test: accepted, as C-0.  An angle of n > 0 raises QhullError:
-                   cudahull merges by distance only (use Cn or ``tolerance=``)
+    An, A-n        merge facets whose normals' angle has a cosine above n (A0 and A-0: Qhull's default,
+                   as C-0): a vertex is dropped where it stands within the distance tolerance (Cn's, else
+                   Qhull's) plus sqrt(1 - n^2) times half its distance to its farthest neighbour, so the facets
+                   that replace it tilt by at most about that angle; Qhull merges pairs of facets, so the
+                   counts differ from Qhull's
 """
 
 import math
@@ -53,18 +56,16 @@ class ParsedOptions:
         self.coplanar = False
         self.joggle = False
         self.centrum = None
-        self.angle_cosine = None
+        self.angle_cosine = None  # An's n
         self.words = []
 
     def merge(self, default):
         """The merging these options ask for: None (the exact hull) with QJ; ``"qhull"`` for C-0, C0, A-0
-        and the like (Qhull's own roundoff-based tolerance); ``("absolute", distance, angle_cosine)`` for
-        C or A with a value; else ``default``."""
-        centrum = self.centrum or 0.0
-        cosine = self.angle_cosine
-        if centrum > 0 or (cosine is not None and cosine < 1):
-            return ("absolute", centrum, cosine)
-        if self.centrum is not None or self.angle_cosine is not None:
+        (Qhull's own roundoff-based tolerance); ``("options", distance, cosine)`` for Cn (distance, else
+        None: Qhull's) and An (cosine, else None); else ``default``."""
+        if (self.centrum or 0) > 0 or self.angle_cosine is not None:
+            return ("options", self.centrum or None, self.angle_cosine)
+        if self.centrum is not None:
             return "qhull"
         if self.joggle:
             return None
@@ -108,11 +109,12 @@ def _parse_word(word, parsed, error):
             raise error(f"qhull_options: '{word}' needs a finite number")
         if group == "C":
             parsed.centrum = max(parsed.centrum or 0.0, value)
-        elif value != 0:
-            raise error(f"qhull_options: '{word}' (merging by angle) is not supported: cudahull merges by "
-                        f"distance (use C-n or tolerance=)")
-        else:
+        elif value > 1:
+            raise error(f"qhull_options: '{word}' needs the cosine of an angle, at most 1")
+        elif value == 0:
             parsed.centrum = parsed.centrum or 0.0  # A-0: Qhull's default test, as C-0
+        else:
+            parsed.angle_cosine = value if parsed.angle_cosine is None else max(parsed.angle_cosine, value)
         parsed.words.append(word)
         return
     if group == "P":

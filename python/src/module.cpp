@@ -137,6 +137,7 @@ nb::dict hull_to_dict(ConvexHull&& hull) {
 struct Merge {
   std::string mode = "exact";
   double tolerance = 0;
+  double angle_cosine = 1;  // Qhull's An (1: none)
 };
 
 ConvexHullOptions options_from(const std::string& backend, const std::string& precision,
@@ -147,13 +148,14 @@ ConvexHullOptions options_from(const std::string& backend, const std::string& pr
   options.engine = engine_from_name(engine);
   options.merge = merge_from_name(merge.mode);
   options.tolerance = merge.tolerance;
+  options.angle_cosine = merge.angle_cosine;
   return options;
 }
 
 template <class Scalar>
 nb::dict convex_hull_of(PointArray<Scalar> points, const std::string& backend, const std::string& precision,
-                        const std::string& engine, const std::string& merge, double tolerance) {
-  const ConvexHullOptions options = options_from(backend, precision, engine, {merge, tolerance});
+                        const std::string& engine, const std::string& merge, double tolerance, double angle) {
+  const ConvexHullOptions options = options_from(backend, precision, engine, {merge, tolerance, angle});
   ConvexHull hull;
   {
     nb::gil_scoped_release unlocked;  // the caller's array stays alive: the call holds a reference to it
@@ -164,8 +166,9 @@ nb::dict convex_hull_of(PointArray<Scalar> points, const std::string& backend, c
 
 template <class Scalar>
 nb::dict convex_hull_2d_of(PlanarArray<Scalar> points, const std::string& backend,
-                           const std::string& precision, const std::string& merge, double tolerance) {
-  const ConvexHullOptions options = options_from(backend, precision, "auto", {merge, tolerance});
+                           const std::string& precision, const std::string& merge, double tolerance,
+                           double angle) {
+  const ConvexHullOptions options = options_from(backend, precision, "auto", {merge, tolerance, angle});
   ConvexHull hull;
   {
     nb::gil_scoped_release unlocked;
@@ -224,7 +227,7 @@ nb::dict device_hull_of(const Scalar* xyz, std::size_t count, const std::string&
 
 // An (n, 3) array in CUDA memory, through DLPack: C-contiguous float32 or float64, as the engine reads it.
 nb::dict convex_hull_cuda(const CudaArray& points, const std::string& backend, const std::string& precision,
-                          const std::string& merge, double tolerance) {
+                          const std::string& merge, double tolerance, double angle) {
   const bool is_float = points.dtype() == nb::dtype<float>(),
              is_double = points.dtype() == nb::dtype<double>();
   if (!is_float && !is_double)
@@ -245,14 +248,15 @@ nb::dict convex_hull_cuda(const CudaArray& points, const std::string& backend, c
         "(cupy.ascontiguousarray(x) "
         "or x.contiguous() copies them on the device)");
   }
-  const Merge how{merge, tolerance};
+  const Merge how{merge, tolerance, angle};
   if (is_float) return device_hull_of(static_cast<const float*>(points.data()), n, backend, precision, how);
   return device_hull_of(static_cast<const double*>(points.data()), n, backend, precision, how);
 }
 
 // An (n, 2) array in CUDA memory: the device filters it, and only the possible corners cross to the host.
 nb::dict convex_hull_2d_cuda(const CudaArray& points, const std::string& backend,
-                             const std::string& precision, const std::string& merge, double tolerance) {
+                             const std::string& precision, const std::string& merge, double tolerance,
+                             double angle) {
   const bool is_float = points.dtype() == nb::dtype<float>(),
              is_double = points.dtype() == nb::dtype<double>();
   if (!is_float && !is_double)
@@ -263,7 +267,7 @@ nb::dict convex_hull_2d_cuda(const CudaArray& points, const std::string& backend
   if (n != 0 && (points.stride(1) != 1 || (n > 1 && points.stride(0) != 2)))
     throw std::invalid_argument(
         "points in GPU memory must be C-contiguous (cupy.ascontiguousarray(x) or x.contiguous())");
-  const ConvexHullOptions options = options_from(backend, precision, "auto", {merge, tolerance});
+  const ConvexHullOptions options = options_from(backend, precision, "auto", {merge, tolerance, angle});
   ConvexHull hull;
   {
     nb::gil_scoped_release unlocked;
@@ -277,8 +281,8 @@ nb::dict convex_hull_2d_cuda(const CudaArray& points, const std::string& backend
 
 nb::dict convex_hull_2d_cuda_pointer(std::uintptr_t pointer, std::size_t count, bool is_double,
                                      const std::string& backend, const std::string& precision,
-                                     const std::string& merge, double tolerance) {
-  const ConvexHullOptions options = options_from(backend, precision, "auto", {merge, tolerance});
+                                     const std::string& merge, double tolerance, double angle) {
+  const ConvexHullOptions options = options_from(backend, precision, "auto", {merge, tolerance, angle});
   ConvexHull hull;
   {
     nb::gil_scoped_release unlocked;
@@ -294,8 +298,8 @@ nb::dict convex_hull_2d_cuda_pointer(std::uintptr_t pointer, std::size_t count, 
 // the interface's shape, type and strides).
 nb::dict convex_hull_cuda_pointer(std::uintptr_t pointer, std::size_t count, bool is_double,
                                   const std::string& backend, const std::string& precision,
-                                  const std::string& merge, double tolerance) {
-  const Merge how{merge, tolerance};
+                                  const std::string& merge, double tolerance, double angle) {
+  const Merge how{merge, tolerance, angle};
   if (is_double)
     return device_hull_of(reinterpret_cast<const double*>(pointer), count, backend, precision, how);
   return device_hull_of(reinterpret_cast<const float*>(pointer), count, backend, precision, how);
@@ -452,29 +456,29 @@ NB_MODULE(_cudahull, m) {
   nb::exception<DeviceError>(m, "DeviceError", PyExc_RuntimeError);
 
   m.def("convex_hull", &convex_hull_of<float>, nb::arg("points"), nb::arg("backend"), nb::arg("precision"),
-        nb::arg("engine"), nb::arg("merge"), nb::arg("tolerance"));
+        nb::arg("engine"), nb::arg("merge"), nb::arg("tolerance"), nb::arg("angle") = 1.0);
   m.def("convex_hull", &convex_hull_of<double>, nb::arg("points"), nb::arg("backend"), nb::arg("precision"),
-        nb::arg("engine"), nb::arg("merge"), nb::arg("tolerance"));
+        nb::arg("engine"), nb::arg("merge"), nb::arg("tolerance"), nb::arg("angle") = 1.0);
   // 2-D input (issue 25): edges as simplices, lines as equations.
   m.def("convex_hull_2d", &convex_hull_2d_of<float>, nb::arg("points"), nb::arg("backend"),
-        nb::arg("precision"), nb::arg("merge"), nb::arg("tolerance"));
+        nb::arg("precision"), nb::arg("merge"), nb::arg("tolerance"), nb::arg("angle") = 1.0);
   m.def("convex_hull_2d", &convex_hull_2d_of<double>, nb::arg("points"), nb::arg("backend"),
-        nb::arg("precision"), nb::arg("merge"), nb::arg("tolerance"));
+        nb::arg("precision"), nb::arg("merge"), nb::arg("tolerance"), nb::arg("angle") = 1.0);
   m.def("facets_visible", &facets_visible, nb::arg("points"), nb::arg("simplices"), nb::arg("query"));
   m.def("check_points", &check_points_of<float>, nb::arg("points"));
   m.def("check_points", &check_points_of<double>, nb::arg("points"));
 
   // Arrays in CUDA memory (issue 16): read in place by the resident engine.
   m.def("convex_hull_cuda", &convex_hull_cuda, nb::arg("points"), nb::arg("backend"), nb::arg("precision"),
-        nb::arg("merge"), nb::arg("tolerance"));
+        nb::arg("merge"), nb::arg("tolerance"), nb::arg("angle") = 1.0);
   m.def("convex_hull_cuda_pointer", &convex_hull_cuda_pointer, nb::arg("pointer"), nb::arg("count"),
         nb::arg("is_double"), nb::arg("backend"), nb::arg("precision"), nb::arg("merge"),
-        nb::arg("tolerance"));
+        nb::arg("tolerance"), nb::arg("angle") = 1.0);
   m.def("convex_hull_2d_cuda", &convex_hull_2d_cuda, nb::arg("points"), nb::arg("backend"),
-        nb::arg("precision"), nb::arg("merge"), nb::arg("tolerance"));
+        nb::arg("precision"), nb::arg("merge"), nb::arg("tolerance"), nb::arg("angle") = 1.0);
   m.def("convex_hull_2d_cuda_pointer", &convex_hull_2d_cuda_pointer, nb::arg("pointer"), nb::arg("count"),
         nb::arg("is_double"), nb::arg("backend"), nb::arg("precision"), nb::arg("merge"),
-        nb::arg("tolerance"));
+        nb::arg("tolerance"), nb::arg("angle") = 1.0);
   // Whether a CUDA array can be taken here at all: (usable, why not), before its data is touched.
   m.def("cuda_device", []() {
     const CudaStatus cuda = cuda_status();

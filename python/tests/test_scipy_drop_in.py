@@ -287,10 +287,10 @@ def test_planes_are_accurate_on_slivers():
 
 def test_qhull_option_words_follow_qhulls_groups():
     points = np.random.default_rng(12).normal(size=(40, 3))
-    for options in ("QbBPp", "QcQi", "A0.99"):
+    for options in ("QbBPp", "QcQi", "A1.5"):
         with pytest.raises(cudahull.QhullError):
             cudahull.ConvexHull(points, qhull_options=options)
-        if options != "A0.99":  # scipy refuses the run-together words too (QH7023)
+        if options != "A1.5":  # scipy refuses the run-together words too (QH7023)
             with pytest.raises(scipy.spatial.QhullError):
                 scipy.spatial.ConvexHull(points, qhull_options=options)
     for options in ("Qcx", "-Qt", "Qci Tv", "A-0"):
@@ -397,3 +397,21 @@ def test_merge_certificate_holds_on_random_near_coplanar_input(dimension):
                 normal = np.array([c[1] - a[1], a[0] - c[0]]) / np.linalg.norm(c - a)
                 assert (b - a)[0] * (c - b)[1] - (b - a)[1] * (c - b)[0] > 0, case
                 assert normal @ (b - a) > merged.tolerance, case
+
+
+def test_an_angle_merges_facets_that_tilt_less_and_stays_certified():
+    rng = np.random.default_rng(21)
+    sphere = rng.normal(size=(2000, 3))
+    sphere /= np.linalg.norm(sphere, axis=1, keepdims=True)
+    exact = cudahull.ConvexHull(sphere)
+    counts = []
+    for cosine in (0.9999, 0.999, 0.99):
+        hull = cudahull.ConvexHull(sphere, qhull_options=f"A{cosine}")
+        heights = sphere @ hull.equations[:, :3].T + hull.equations[:, 3]
+        assert heights.max() <= hull.max_outside
+        # Each facet that merging made stays within the angle of the sphere's surface it replaced: its
+        # plane is no further from the centre than the sphere's points (within max_outside).
+        assert np.all(-hull.equations[:, 3] <= 1 + hull.max_outside)
+        counts.append(len(hull.vertices))
+    # A wider angle merges more (fewer vertices), and every one merges some of the exact hull's 2000.
+    assert len(exact.vertices) > counts[0] >= counts[1] >= counts[2] > 4

@@ -43,6 +43,10 @@ struct ConvexHullOptions {
   // largest side.  A merged hull is checked, not guessed: ConvexHull::max_outside bounds every input point.
   MergeMode merge = MergeMode::kExact;
   double tolerance = 0;  // kRelative only
+  // With kQhull or kRelative: Qhull's An, merging facets whose normals' angle has a cosine above this too
+  // (1: no angle).  A vertex is then dropped within the tolerance plus sqrt(1 - cos^2) times half its
+  // distance to its farthest neighbour (facet_merge.cpp).
+  double angle_cosine = 1;
 };
 
 struct ConvexHull {
