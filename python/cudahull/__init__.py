@@ -414,6 +414,18 @@ class ConvexHull:
             else:
                 result = _cudahull.convex_hull(chosen, self._backend_choice, self._precision_choice,
                                                self._engine_choice, *merge)
+        if result["dimension"] == ndim and result["tolerance"] > 0 and len(result["vertices"]) <= 2000:
+            # A merged hull thinner than its tolerance in some facet's direction is flat at that
+            # tolerance, as Qhull finds it (QH6154).  (Merging leaves a thin body few vertices.)
+            corners = result["vertices"].astype(np.int64)
+            host = np.asarray(self._kind.to_numpy(self._kind.take(chosen, corners)) if self._protocol
+                              else chosen[corners], dtype=np.float64)
+            equations = result["equations"]
+            widths = -(host @ equations[:, :-1].T + equations[:, -1]).min(axis=0)
+            if widths.size and widths.min() <= result["tolerance"]:
+                raise QhullError(f"QH6154 qhull precision error: the merged hull is {widths.min():.3g} thick, within "
+                                 f"its tolerance {result['tolerance']:.3g}: flat at that tolerance "
+                                 f"(tolerance=None gives the exact hull)")
         if result["dimension"] < ndim:
             raise QhullError(
                 f"QH6154 qhull precision error: initial simplex is flat: the points span {result['dimension']} "

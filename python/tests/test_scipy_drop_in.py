@@ -415,3 +415,13 @@ def test_an_angle_merges_facets_that_tilt_less_and_stays_certified():
         counts.append(len(hull.vertices))
     # A wider angle merges more (fewer vertices), and every one merges some of the exact hull's 2000.
     assert len(exact.vertices) > counts[0] >= counts[1] >= counts[2] > 4
+
+
+def test_a_merged_slab_thinner_than_the_tolerance_is_flat():
+    rng = np.random.default_rng(4)
+    slab = np.column_stack([rng.uniform(-1, 1, size=(300, 2)), rng.integers(0, 2, size=300) * 1e-16])
+    with pytest.raises(scipy.spatial.QhullError):
+        scipy.spatial.ConvexHull(slab)
+    with pytest.raises(cudahull.QhullError, match="QH6154"):
+        cudahull.ConvexHull(slab, qhull_options="Qt")
+    assert cudahull.ConvexHull(slab).dimension == 3  # exact: a body 1e-16 thick
