@@ -54,16 +54,20 @@ __global__ void check_points_kernel(const Scalar* xyz, std::size_t count, Point*
 }
 
 unsigned grid_for(std::size_t count) {
-  // A grid-stride loop over enough blocks to fill the device several times over; more only adds blocks
-  // with nothing to do.
-  int device = 0, sms = 1;
-  check(cudaGetDevice(&device), "reading the current device");
-  check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), "reading the SM count");
-  const std::size_t needed = (count + kThreads - 1) / kThreads;
-  return static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(needed, 16u * sms)));
+  // Enough blocks to fill the device several times over; more only adds blocks with nothing to do.
+  return grid_stride_blocks(count, kThreads, 16);
 }
 
 }  // namespace
+
+unsigned grid_stride_blocks(std::size_t count, unsigned threads, unsigned per_sm) {
+  int device = 0, sms = 1;
+  check(cudaGetDevice(&device), "reading the current device");
+  check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), "reading the SM count");
+  const std::size_t needed = (count + threads - 1) / threads;
+  return static_cast<unsigned>(
+      std::max<std::size_t>(1, std::min<std::size_t>(needed, std::size_t{per_sm} * sms)));
+}
 
 bool cuda_device_present(std::string* why_not) {
   int count = 0;
@@ -156,16 +160,16 @@ template CheckedDevicePoints<Point3> check_device_points<Point3>(const double*, 
 template CheckedDevicePoints<Point3d> check_device_points<Point3d>(const float*, std::size_t);
 template CheckedDevicePoints<Point3d> check_device_points<Point3d>(const double*, std::size_t);
 template <class Scalar>
-std::vector<Scalar> download_points(const Scalar* xyz, std::size_t count) {
-  std::vector<Scalar> host(3 * count);
+std::vector<Scalar> download_values(const Scalar* values, std::size_t count) {
+  std::vector<Scalar> host(count);
   check(cudaDeviceSynchronize(), "waiting for the points' producer");
-  check(cudaMemcpy(host.data(), xyz, host.size() * sizeof(Scalar), cudaMemcpyDeviceToHost),
+  check(cudaMemcpy(host.data(), values, count * sizeof(Scalar), cudaMemcpyDeviceToHost),
         "reading the points");
   return host;
 }
 
-template std::vector<float> download_points(const float*, std::size_t);
-template std::vector<double> download_points(const double*, std::size_t);
+template std::vector<float> download_values(const float*, std::size_t);
+template std::vector<double> download_values(const double*, std::size_t);
 template std::array<double, 3> read_device_point(const float*, std::size_t);
 template std::array<double, 3> read_device_point(const double*, std::size_t);
 

@@ -46,9 +46,14 @@ struct CheckedDevicePoints {
 template <class Point, class Scalar>
 CheckedDevicePoints<Point> check_device_points(const Scalar* xyz, std::size_t count);
 
-// All `count` x, y, z triples at `xyz` in device memory, copied to the host (for the wide-range path).
+// The `count` values at `values` in device memory, copied to the host after the device is idle (for the
+// paths that finish on the host: the wide range, a degenerate 2-D input).  Float or double.
 template <class Scalar>
-std::vector<Scalar> download_points(const Scalar* xyz, std::size_t count);
+std::vector<Scalar> download_values(const Scalar* values, std::size_t count);
+
+// Blocks of `threads` for a grid-stride loop over `count` items: enough to fill the current device
+// `per_sm` times over, no more than the items need.  Throws DeviceError.
+unsigned grid_stride_blocks(std::size_t count, unsigned threads, unsigned per_sm);
 
 // Point `index`'s coordinates, read back (24 bytes at most), for the error message that names it.
 template <class Scalar>

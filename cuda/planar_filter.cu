@@ -12,6 +12,7 @@
 
 #include "cuda_errors.hpp"
 #include "cudahull/predicates.hpp"
+#include "device_points.hpp"
 
 namespace cudahull {
 
@@ -136,11 +137,7 @@ __global__ void gather(const Scalar* xy, const unsigned* indices, unsigned count
 }
 
 unsigned grid_for(std::size_t count) {
-  int device = 0, sms = 1;
-  check(cudaGetDevice(&device), "reading the current device");
-  check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), "reading the SM count");
-  const std::size_t needed = (count + kThreads - 1) / kThreads;
-  return static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(needed, 8u * sms)));
+  return grid_stride_blocks(count, kThreads, 8);
 }
 
 struct Corner {
@@ -253,23 +250,12 @@ PlanarCandidates<Scalar> planar_candidates(const Scalar* xy, std::size_t count) 
 }
 
 template <class Scalar>
-std::vector<Scalar> download_planar(const Scalar* xy, std::size_t count) {
-  std::vector<Scalar> host(2 * count);
-  check(cudaDeviceSynchronize(), "waiting for the points' producer");
-  check(cudaMemcpy(host.data(), xy, host.size() * sizeof(Scalar), cudaMemcpyDeviceToHost),
-        "reading the points");
-  return host;
-}
-
-template <class Scalar>
 std::array<double, 3> read_device_point_2d(const Scalar* xy, std::size_t index) {
   Scalar p[2];
   check(cudaMemcpy(p, xy + 2 * index, sizeof p, cudaMemcpyDeviceToHost), "reading a point");
   return {static_cast<double>(p[0]), static_cast<double>(p[1]), 0};
 }
 
-template std::vector<float> download_planar(const float*, std::size_t);
-template std::vector<double> download_planar(const double*, std::size_t);
 template std::array<double, 3> read_device_point_2d(const float*, std::size_t);
 template std::array<double, 3> read_device_point_2d(const double*, std::size_t);
 template PlanarCandidates<float> planar_candidates(const float*, std::size_t);

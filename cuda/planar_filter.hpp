@@ -37,11 +37,6 @@ struct PlanarCandidates {
 template <class Scalar>
 PlanarCandidates<Scalar> planar_candidates(const Scalar* xy, std::size_t count);
 
-// All `count` x, y pairs at `xy` in device memory, copied to the host (for the cases the filter leaves to
-// the host: a degenerate input, or one rounded to float first).
-template <class Scalar>
-std::vector<Scalar> download_planar(const Scalar* xy, std::size_t count);
-
 // Point `index`'s coordinates (x, y, 0), read back for the error message that names it.
 template <class Scalar>
 std::array<double, 3> read_device_point_2d(const Scalar* xy, std::size_t index);

@@ -428,7 +428,7 @@ ConvexHull device_hull_in(const Scalar* device_xyz, std::size_t count, const Con
     // Finite, but outside the engines' exact range (the device's check refuses that too): the host's wide
     // path, on a copy of every point, checked there again.
     if constexpr (std::is_same_v<Point, Point3d>) {
-      const std::vector<Scalar> host = download_points(device_xyz, count);
+      const std::vector<Scalar> host = download_values(device_xyz, 3 * count);
       return checked_hull(count, array_coordinate(host.data()), Precision::kDouble, options);
     }
     throw std::logic_error("convex_hull_device: point " + std::to_string(checked.first_bad) +
@@ -449,9 +449,9 @@ ConvexHull device_hull_in(const Scalar* device_xyz, std::size_t count, const Con
   return hull;
 }
 
-template <class Scalar>
-ConvexHull device_hull(const Scalar* device_xyz, std::size_t count, Precision own,
-                       const ConvexHullOptions& options) {
+// What points in GPU memory need before they are read: a CUDA backend, a device, and memory of the current
+// device.  Throws as convex_hull_device() documents.
+void require_device_points(const void* device_points, std::size_t count, const ConvexHullOptions& options) {
   if (options.backend == BackendChoice::kCpu)
     throw std::invalid_argument("points in GPU memory need backend auto or cuda, not cpu");
   check_count(count);
@@ -459,7 +459,13 @@ ConvexHull device_hull(const Scalar* device_xyz, std::size_t count, Precision ow
   std::string why_not;
   if (!cuda_device_present(&why_not))
     throw DeviceError("points in GPU memory, but no usable CUDA device: " + why_not);
-  if (count != 0) require_current_device_memory(device_xyz);
+  if (count != 0) require_current_device_memory(device_points);
+}
+
+template <class Scalar>
+ConvexHull device_hull(const Scalar* device_xyz, std::size_t count, Precision own,
+                       const ConvexHullOptions& options) {
+  require_device_points(device_xyz, count, options);
   const Precision precision = options.precision == Precision::kAuto ? own : options.precision;
   if (precision == Precision::kDouble) return device_hull_in<Point3d>(device_xyz, count, options);
   return device_hull_in<Point3>(device_xyz, count, options);
@@ -782,16 +788,10 @@ ConvexHull planar_hull_of(const Input* xy, std::size_t count, Precision own,
 // survivors, which keep every corner and, in input order, every duplicate of one.
 template <class Scalar>
 ConvexHull device_planar_hull(const Scalar* device_xy, std::size_t count, const ConvexHullOptions& options) {
-  if (options.backend == BackendChoice::kCpu)
-    throw std::invalid_argument("points in GPU memory need backend auto or cuda, not cpu");
-  check_count(count);
-  std::string why_not;
-  if (!cuda_device_present(&why_not))
-    throw DeviceError("points in GPU memory, but no usable CUDA device: " + why_not);
-  if (count != 0) require_current_device_memory(device_xy);
+  require_device_points(device_xy, count, options);
   if (options.precision == Precision::kFloat && std::is_same_v<Scalar, double>) {
     // Rounded to float first: on the host, which rounds as the NumPy path does.
-    const std::vector<Scalar> host = download_planar(device_xy, count);
+    const std::vector<Scalar> host = download_values(device_xy, 2 * count);
     return convex_hull_2d(host.data(), count, options);
   }
   PlanarCandidates<Scalar> candidates = planar_candidates(device_xy, count);
@@ -803,7 +803,7 @@ ConvexHull device_planar_hull(const Scalar* device_xy, std::size_t count, const 
   // Finite but outside the exact range (the device refuses that too), or a degenerate input: the host's
   // path on a copy, and its backend's name.
   if (candidates.first_bad != count || candidates.degenerate) {
-    const std::vector<Scalar> host = download_planar(device_xy, count);
+    const std::vector<Scalar> host = download_values(device_xy, 2 * count);
     return convex_hull_2d(host.data(), count, options);
   }
   ConvexHull hull =

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "cudahull/exact_hull.hpp"
+#include "cudahull/morton.hpp"
 #include "cudahull/parallel.hpp"
 #include "cudahull/plane.hpp"
 #include "cudahull/predicates.hpp"
@@ -105,7 +106,7 @@ class BoxTree {
         const double width = all.hi[k] - all.lo[k];
         double t = width > 0 ? ((boxes_[i].lo[k] + boxes_[i].hi[k]) / 2 - all.lo[k]) / width : 0;
         if (!(t > 0)) t = 0;  // NaN too: the order only affects speed
-        code |= spread(static_cast<std::uint64_t>(std::min(t, 1.0) * 2097151.0)) << k;
+        code |= spread3(static_cast<std::uint64_t>(std::min(t, 1.0) * 2097151.0)) << k;
       }
       keyed[i] = {code, i};
     }
@@ -121,15 +122,6 @@ class BoxTree {
   bool empty() const { return nodes_.empty(); }
 
  private:
-  static std::uint64_t spread(std::uint64_t x) {  // 21 bits to every third of 63
-    x &= 0x1fffff;
-    x = (x | x << 32) & 0x1f00000000ffffull;
-    x = (x | x << 16) & 0x1f0000ff0000ffull;
-    x = (x | x << 8) & 0x100f00f00f00f00full;
-    x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-    x = (x | x << 2) & 0x1249249249249249ull;
-    return x;
-  }
   std::uint32_t build(std::uint32_t begin, std::uint32_t end) {
     const std::uint32_t id = static_cast<std::uint32_t>(nodes_.size());
     nodes_.push_back({});

@@ -12,6 +12,7 @@
 // exact_hull_any() takes every finite double, scaling the input by a power of two where that is enough, else
 // on the wide predicates.
 #include "cudahull/exact_hull.hpp"
+#include "cudahull/morton.hpp"
 
 #include <algorithm>
 #include <array>
@@ -173,17 +174,6 @@ BasicHullMesh<Point> make_mesh(const std::vector<Site<Point>>& sites, std::vecto
     m.vertices.push_back({s.x, s.y, s.z});
   }
   return m;
-}
-
-// Spreads the low 21 bits of x to every third bit.
-std::uint64_t spread3(std::uint64_t x) {
-  x &= 0x1fffff;
-  x = (x | x << 32) & 0x1f00000000ffffull;
-  x = (x | x << 16) & 0x1f0000ff0000ffull;
-  x = (x | x << 8) & 0x100f00f00f00f00full;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-  x = (x | x << 2) & 0x1249249249249249ull;
-  return x;
 }
 
 // The Morton cell of a coordinate scaled to [0, 2^21): NaN (an overflowing double extent) goes to cell 0.

@@ -7,6 +7,7 @@
 // every vertex's fan winding once around the ray from c, the cones from c over the faces tile space.  Each
 // point is then located in its cone by a walk over the faces and must be below or on that face's plane.
 #include "cudahull/hull_checker.hpp"
+#include "cudahull/morton.hpp"
 
 #include <algorithm>
 #include <array>
@@ -453,16 +454,6 @@ class MeshChecker {
   Vec3d c_{};
 };
 
-std::uint64_t spread_bits(std::uint64_t x) {
-  x &= 0x1fffff;
-  x = (x | x << 32) & 0x1f00000000ffffull;
-  x = (x | x << 16) & 0x1f0000ff0000ffull;
-  x = (x | x << 8) & 0x100f00f00f00f00full;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ull;
-  x = (x | x << 2) & 0x1249249249249249ull;
-  return x;
-}
-
 // Indices valid and faces non-degenerate; then the local numbering.  False when the faces are unusable.
 template <class Point>
 bool MeshChecker<Point>::renumber() {
@@ -509,7 +500,7 @@ bool MeshChecker<Point>::renumber() {
       const double ext = hi[k] - lo[k];
       // An overflowing double extent (inf, NaN) goes to cell 0.
       const double t = ext > 0 ? (c[k] - lo[k]) / ext * 2097151.0 : 0;
-      key |= spread_bits(t > 0 ? static_cast<std::uint64_t>(std::min(t, 2097151.0)) : 0) << k;
+      key |= spread3(t > 0 ? static_cast<std::uint64_t>(std::min(t, 2097151.0)) : 0) << k;
     }
     keys[v] = {key, v};
   }
