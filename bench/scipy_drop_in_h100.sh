@@ -8,7 +8,8 @@
 #   python/bench/bench_planar.py          2-D, N points, from NumPy and from CuPy, against scipy; 3-D through
 #                                         the drop-in, exact and merged
 #   python/bench/bench_module.py          3-D, N cube and ball points: the module against `cudahull bench`
-# Logs and JSON go to $OUT.  PART=all|tests|bench.
+#   PART=sanitizers                       compute-sanitizer memcheck and racecheck on the 2-D filter's kernels
+# Logs and JSON go to $OUT.  PART=all|tests|bench|sanitizers (all: tests and bench).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 CARRY=${CARRY:-.carry-py}
@@ -38,6 +39,16 @@ if [ "$PART" = all ] || [ "$PART" = tests ]; then
   python3 -c "import dask, distributed" 2>/dev/null || ignore+=(--ignore=python/tests/test_dask.py)
   python3 -m pytest -q -p no:cacheprovider -rs python/tests "${ignore[@]}" 2>&1 | tee "$OUT/pytest_cpu.txt" | tail -8
   [ "${PIPESTATUS[0]}" = 0 ] || failed=1
+fi
+if [ "$PART" = sanitizers ]; then
+  # The 2-D filter's kernels: memcheck and racecheck over python/gpu_tests/planar_sanitizer_case.py.
+  for tool in memcheck racecheck; do
+    compute-sanitizer --tool $tool --error-exitcode 9 python3 python/gpu_tests/planar_sanitizer_case.py \
+      > "$OUT/sanitizer_$tool.txt" 2>&1
+    status=$?
+    echo "sanitizer $tool: exit $status $(grep -hE 'ERROR SUMMARY|RACECHECK SUMMARY|cases: ok' "$OUT/sanitizer_$tool.txt" | tr '\n' ' ')"
+    [ $status = 0 ] || failed=1
+  done
 fi
 if [ "$PART" = all ] || [ "$PART" = bench ]; then
   python3 python/bench/bench_planar.py --n "$N" --repeat 5 --json "$OUT/bench_planar.jsonl" 2>&1 |
