@@ -8,6 +8,7 @@
 
 #include "cuda_errors.hpp"
 #include "cudahull/errors.hpp"
+#include "cudahull/predicates.hpp"
 
 namespace cudahull {
 
@@ -20,16 +21,15 @@ void check(cudaError_t e, const char* what) {
   if (e != cudaSuccess) throw_cuda_error(kWho, what, e);
 }
 
-// The same bounds as the host's checked_points (api/src/convex_hull.cpp): the exact predicates in double
-// are exact only for these magnitudes.
+// in_fast_exact_range() (predicates.hpp), the engines' range: a double outside it is not refused but sent
+// to the host's wide-range path (convex_hull_device() reads its first such point and decides).
 template <class Point, class Scalar>
 __device__ bool acceptable(Scalar c, decltype(Point::x)& out) {
   const double v = static_cast<double>(c);
   if (!isfinite(v)) return false;
   if constexpr (std::is_same_v<Point, Point3d>) {
-    const double m = fabs(v);
     out = v;
-    return m == 0 || (m >= 0x1p-250 && m <= 0x1p+250);
+    return in_fast_exact_range(v);
   } else {
     // Rounded to nearest once (a float is unchanged), as static_cast<float> on the host.
     out = static_cast<float>(v);

@@ -43,15 +43,14 @@ std::shared_ptr<T> device_array(std::size_t count, const char* what) {
   return std::shared_ptr<T>(static_cast<T*>(p), [](T* q) { cudaFree(q); });
 }
 
-// The same bounds as the host's check (api/src/convex_hull.cpp): double's exact predicates are exact for
-// these magnitudes; a float is finite or not.
+// in_fast_exact_range() (predicates.hpp) for double: one outside it goes to the host's wide-range path;
+// a float is finite or not.
 template <class Scalar>
 __device__ bool acceptable(Scalar c) {
   const double v = static_cast<double>(c);
   if (!isfinite(v)) return false;
   if constexpr (std::is_same_v<Scalar, double>) {
-    const double m = fabs(v);
-    return m == 0 || (m >= 0x1p-250 && m <= 0x1p+250);
+    return in_fast_exact_range(v);
   }
   return true;
 }

@@ -30,6 +30,7 @@
 #include <type_traits>
 
 #include "cudahull/errors.hpp"
+#include "cudahull/predicates.hpp"
 
 namespace cudahull {
 namespace {
@@ -993,8 +994,7 @@ void check_double_range(const std::vector<Point3d>& points, const std::string& n
   for (std::size_t i = 0; i < points.size(); ++i) {
     const double v[3] = {points[i].x, points[i].y, points[i].z};
     for (int axis = 0; axis < 3; ++axis) {
-      const double m = std::fabs(v[axis]);
-      if (m == 0 || (m >= kMinDoubleMagnitude && m <= kMaxDoubleMagnitude)) continue;
+      if (in_fast_exact_range(v[axis])) continue;
       char value[32];
       const auto end = std::to_chars(value, value + sizeof value, v[axis]).ptr;  // shortest round trip
       throw InputError(name + ": point " + std::to_string(i) + ": " + axis_name(axis) + " coordinate " +

@@ -40,6 +40,19 @@ CUDAHULL_HD int orient2d(double ax, double ay, double bx, double by, double cx, 
 // Exact test: are a, b, c collinear (including coincident points)?
 CUDAHULL_HD bool collinear3d(const Vec3d& a, const Vec3d& b, const Vec3d& c);
 
+// The fast exact range: 0, or a magnitude in [2^-250, 2^250].  Where every coordinate of a call passes,
+// orient3d, orient2d and collinear3d are exact: orient3d's exact stage multiplies three coordinate
+// differences, and with every coordinate 0 or a multiple of 2^-302 below 2^251 in magnitude each partial
+// product and each of its expansion components is a multiple of 2^-906 below 2^753, inside double's normal
+// range.  False for NaN and infinities.  Every float passes.  The one statement of the rule: io's
+// check_double_range(), the API, the device checks and the wide predicates ask it.
+inline constexpr double kMinExactMagnitude = 0x1p-250;
+inline constexpr double kMaxExactMagnitude = 0x1p+250;
+CUDAHULL_HD inline bool in_fast_exact_range(double coordinate) {
+  const double a = coordinate < 0 ? -coordinate : coordinate;
+  return a == 0.0 || (a >= kMinExactMagnitude && a <= kMaxExactMagnitude);
+}
+
 // Counters for tests and statistics: how often the filter fell back to exact arithmetic (host only).
 struct PredicateStats {
   unsigned long long orient3d_calls = 0;

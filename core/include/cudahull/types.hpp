@@ -1,7 +1,7 @@
 // Basic value types shared by every part of cudahull.
 //
-// Points are stored as float32 (see README, "Precision"): the input is rounded to float once, on load, and
-// every exact decision afterwards is exact on those float32 values.
+// Points are Point3 (float) or Point3d (double), as the input's precision or --precision picks (README,
+// "Precision"); every exact decision is exact on the coordinates as given.
 #pragma once
 
 #include <array>

@@ -23,12 +23,8 @@
 
 namespace cudahull {
 
-// The fast exact range: 0, or a magnitude in [2^-250, 2^250].  Where every coordinate passes, orient3d,
-// orient2d, collinear3d (and so exact_hull and the engines) are exact.  False for NaN and infinities.
-inline bool in_fast_exact_range(double coordinate) {
-  const double a = std::fabs(coordinate);
-  return a == 0.0 || (a >= 0x1p-250 && a <= 0x1p+250);
-}
+// in_fast_exact_range() (predicates.hpp): where every coordinate of a call passes, the fast predicates
+// are exact, and the wide ones below are them.
 
 // Sign of det[b-a, c-a, d-a] as orient3d: +1 when d is above the counter-clockwise triangle (a, b, c).
 int orient3d_wide(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d);

@@ -65,7 +65,7 @@ struct BasicIterationTables {
     old_face_route.clear();
     refinement.clear();
     decision.clear();
-    // `faces` is kept: Engine::face_geometry() overwrites every face, and emptying it would make the
+    // `faces` is kept: phases::build_face_geometry() overwrites every face, and emptying it would make the
     // resize construct millions of faces again on one core every iteration.
     initial_cells.clear();
     retired.clear();

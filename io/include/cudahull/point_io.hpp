@@ -49,18 +49,10 @@ DoublePoints read_points_double(const std::string& path, const ProgressFn& progr
 DoublePoints read_points_double(std::istream& in, PointFormat format, const std::string& name,
                                 const ProgressFn& progress = {});
 
-// The range of double coordinates the exact predicates are exact on: 0, or a magnitude in [2^-250, 2^250].
-// orient3d's exact stage multiplies three coordinate differences (core/.../detail/predicates_impl.hpp): with
-// every coordinate 0 or a multiple of 2^-302 below 2^251 in magnitude, each partial product and each of its
-// expansion components is a multiple of 2^-906 below 2^753, inside double's normal range: no overflow, no
-// underflow, every sign exact.
-inline constexpr double kMinDoubleMagnitude = 0x1p-250;
-inline constexpr double kMaxDoubleMagnitude = 0x1p+250;
-
 // Throws InputError, one line naming `name`, the point's 0-based index, the axis and the value, for the first
-// coordinate of `points` that is nonzero with a magnitude outside [kMinDoubleMagnitude, kMaxDoubleMagnitude]
-// (or not finite).  The command line calls it on every double input before computing; float inputs need no
-// such check (every float is far inside the range).
+// coordinate of `points` outside the engines' exact range (in_fast_exact_range(), predicates.hpp: nonzero
+// magnitudes from 2^-250 to 2^250), or not finite.  `cudahull bench` and the viewer, which run the engines,
+// call it on double input; `cudahull hull` takes such input to the wide-range path instead.
 void check_double_range(const std::vector<Point3d>& points, const std::string& name);
 
 // The precision `auto` picks for `path` (DoublePoints::precision), from the format and, for PLY, the header
