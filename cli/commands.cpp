@@ -247,18 +247,6 @@ nlohmann::json resident_stats_json(const ResidentStats& stats) {
   return j;
 }
 
-// Whether some coordinate lies outside the range the engines' exact predicates are exact on (only double
-// coordinates can: every float is inside).
-template <class Point>
-bool outside_fast_range(const std::vector<Point>& points) {
-  if constexpr (std::is_same_v<Point, Point3d>) {
-    return std::any_of(points.begin(), points.end(), [](const Point3d& p) {
-      return !in_fast_exact_range(p.x) || !in_fast_exact_range(p.y) || !in_fast_exact_range(p.z);
-    });
-  }
-  return false;
-}
-
 // `cudahull hull` in the precision of Point (Point3 or Point3d): one code path for both.
 template <class Point>
 int hull_in(const HullOptions& o) {
@@ -268,7 +256,8 @@ int hull_in(const HullOptions& o) {
   const double read_ms = ms_since(t_read);
   // Coordinates outside the engines' exact range (a subnormal, 1e300): exact_hull_any() on the host, exact
   // for every finite double (exponent scaling, else GMP), with no iterations to record.
-  const bool wide = outside_fast_range(points);
+  bool wide = false;  // every float is inside the range
+  if constexpr (std::is_same_v<Point, Point3d>) wide = !in_fast_exact_range(points);
   if (wide && !o.quiet)
     std::fprintf(stderr,
                  "note: coordinates outside 2^-250..2^250: the wide-range exact hull (host, slower)\n");

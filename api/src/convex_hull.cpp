@@ -187,7 +187,8 @@ std::vector<std::array<std::int32_t, 3>> face_neighbors(const std::vector<Triang
 // Otherwise (a sliver, where the products cancel) plane_through() evaluates the normal exactly and rounds it.
 std::array<double, 4> facet_plane(Vec3d a, Vec3d b, Vec3d c) {
   const double coordinates[9] = {a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z};
-  if (std::all_of(std::begin(coordinates), std::end(coordinates), in_fast_exact_range)) {
+  if (std::all_of(std::begin(coordinates), std::end(coordinates),
+                  [](double v) { return in_fast_exact_range(v); })) {
     const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
     const double vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
     const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
@@ -217,6 +218,30 @@ std::array<double, 4> facet_plane(Vec3d a, Vec3d b, Vec3d c) {
   return {n[0], n[1], n[2], static_cast<double>(-std::max({height(a), height(b), height(c)}))};
 }
 
+// The solid's volume and surface area into `hull`, over `triangles` (outward, indices into `vertices`).  The
+// tetrahedra are taken from the centroid of `corners` (the vertices the triangles use; all of `vertices`
+// for nullptr), which lies inside: every term is positive, so the sum loses nothing to cancellation.
+template <class Point>
+void measure_solid(const std::vector<Point>& vertices, const std::vector<PointIndex>* corners,
+                   const std::vector<Triangle>& triangles, ConvexHull& hull) {
+  Vec centroid{0, 0, 0};
+  const std::size_t count = corners ? corners->size() : vertices.size();
+  for (std::size_t k = 0; k < count; ++k) {
+    const Vec v = as_vec(vertices[corners ? (*corners)[k] : k]);
+    centroid = {centroid.x + v.x, centroid.y + v.y, centroid.z + v.z};
+  }
+  const double n = static_cast<double>(count);
+  centroid = {centroid.x / n, centroid.y / n, centroid.z / n};
+  double six_volume = 0, twice_area = 0;
+  for (const Triangle& t : triangles) {
+    const Vec a = as_vec(vertices[t[0]]), b = as_vec(vertices[t[1]]), c = as_vec(vertices[t[2]]);
+    twice_area += norm(cross(b - a, c - a));
+    six_volume += dot(cross(b - centroid, c - centroid), a - centroid);
+  }
+  hull.volume = six_volume / 6;
+  hull.area = twice_area / 2;
+}
+
 template <class Point>
 ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend) {
   ConvexHull hull;
@@ -241,26 +266,10 @@ ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend)
   }
   if (mesh.dimension != 3) return hull;
 
-  // Volumes of tetrahedra from the vertices' centroid, which lies inside: every term is positive, so the
-  // sum loses nothing to cancellation.
-  Vec centroid{0, 0, 0};
-  for (const Point& p : mesh.vertices) {
-    const Vec v = as_vec(p);
-    centroid = {centroid.x + v.x, centroid.y + v.y, centroid.z + v.z};
-  }
-  const double n = static_cast<double>(mesh.vertices.size());
-  centroid = {centroid.x / n, centroid.y / n, centroid.z / n};
-
   hull.faces.reserve(mesh.triangles.size());
-  hull.planes.reserve(mesh.triangles.size());
-  double six_volume = 0, twice_area = 0;
-  for (const Triangle& t : mesh.triangles) {
+  for (const Triangle& t : mesh.triangles)
     hull.faces.push_back({mesh.vertex_ids[t[0]], mesh.vertex_ids[t[1]], mesh.vertex_ids[t[2]]});
-    const Vec a = as_vec(mesh.vertices[t[0]]), b = as_vec(mesh.vertices[t[1]]),
-              c = as_vec(mesh.vertices[t[2]]);
-    twice_area += norm(cross(b - a, c - a));
-    six_volume += dot(cross(b - centroid, c - centroid), a - centroid);
-  }
+  measure_solid(mesh.vertices, nullptr, mesh.triangles, hull);
   // Each face's plane on its own (on all cores: a sliver's is exact, and a hull of millions of faces has
   // some), so the result does not depend on the worker count.
   hull.planes.resize(mesh.triangles.size());
@@ -274,8 +283,6 @@ ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend)
         }
       },
       std::size_t{1} << 12);
-  hull.volume = six_volume / 6;
-  hull.area = twice_area / 2;
   hull.neighbors = face_neighbors(mesh.triangles, mesh.vertices.size());
   return hull;
 }
@@ -318,27 +325,12 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
   for (PointIndex v : merged.vertices)
     hull.vertices.push_back(mesh.vertex_ids[v]);
   std::sort(hull.vertices.begin(), hull.vertices.end());
-  std::vector<Triangle> local_faces;
-  Vec centroid{0, 0, 0};
-  for (PointIndex v : merged.vertices) {
-    const Vec p = as_vec(mesh.vertices[v]);
-    centroid = {centroid.x + p.x, centroid.y + p.y, centroid.z + p.z};
-  }
-  const double n = static_cast<double>(merged.vertices.size());
-  centroid = {centroid.x / n, centroid.y / n, centroid.z / n};
-  double six_volume = 0, twice_area = 0;
-  for (const auto& face : merged.faces) {
-    local_faces.push_back({face[0], face[1], face[2]});
+  // merged's indices are positions in mesh.vertices (local's ids): its faces are the mesh's triangles.
+  for (const Triangle& face : merged.faces)
     hull.faces.push_back({mesh.vertex_ids[face[0]], mesh.vertex_ids[face[1]], mesh.vertex_ids[face[2]]});
-    const Vec a = as_vec(mesh.vertices[face[0]]), b = as_vec(mesh.vertices[face[1]]),
-              c = as_vec(mesh.vertices[face[2]]);
-    twice_area += norm(cross(b - a, c - a));
-    six_volume += dot(cross(b - centroid, c - centroid), a - centroid);
-  }
-  hull.volume = six_volume / 6;
-  hull.area = twice_area / 2;
+  measure_solid(mesh.vertices, &merged.vertices, merged.faces, hull);
   hull.planes = merged.planes;
-  hull.neighbors = face_neighbors(local_faces, mesh.vertices.size());
+  hull.neighbors = face_neighbors(merged.faces, mesh.vertices.size());
   for (const auto& row : merged.coplanar)
     hull.coplanar.push_back({mesh.vertex_ids[row[0]], row[1], mesh.vertex_ids[row[2]]});
   return hull;
@@ -386,19 +378,13 @@ auto array_coordinate(const Scalar* xyz) {
   return [xyz](std::size_t i, int axis) -> double { return xyz[3 * i + axis]; };
 }
 
-bool outside_fast_range(const std::vector<Point3d>& points) {
-  return std::any_of(points.begin(), points.end(), [](const Point3d& p) {
-    return !in_fast_exact_range(p.x) || !in_fast_exact_range(p.y) || !in_fast_exact_range(p.z);
-  });
-}
-
 // Double points with a coordinate outside the engines' exact range (a subnormal, 1e300): exact_hull_any()
 // on the host, exact for every finite double.  Merging needs plane_through()'s range for its heights and
 // certificate: where the hull's vertices are outside it the exact hull is returned (tolerance 0).
 ConvexHull wide_hull(const std::vector<Point3d>& points, const ConvexHullOptions& options) {
   const HullMeshd mesh = exact_hull_any(points);
   ConvexHullOptions exact = options;
-  if (outside_fast_range(mesh.vertices)) exact.merge = MergeMode::kExact;
+  if (!in_fast_exact_range(mesh.vertices)) exact.merge = MergeMode::kExact;
   return describe(mesh, "cpu-wide", exact);
 }
 
@@ -409,7 +395,7 @@ ConvexHull checked_hull(std::size_t count, Coordinate coordinate, Precision own,
   const Precision precision = options.precision == Precision::kAuto ? own : options.precision;
   if (precision == Precision::kDouble) {
     const std::vector<Point3d> points = copy_checked<Point3d>(count, coordinate);
-    if (outside_fast_range(points)) return wide_hull(points, options);
+    if (!in_fast_exact_range(points)) return wide_hull(points, options);
     return hull_in(points, options);
   }
   return hull_in(copy_checked<Point3>(count, coordinate), options);
@@ -504,15 +490,10 @@ auto vector_coordinate(const std::vector<Point>& points) {
 //   the edges, their lines (unit outward normal and offset), area and perimeter; for a merged polygon the
 //     dropped corners in coplanar and max_outside, the proven bound on every point's height
 
-// Where the points fail: the first one the exact hull cannot take (or `count`), and whether any double
-// coordinate is outside the engines' exact range.
-struct PlanarCheck {
-  std::size_t first_bad;
-  bool wide = false;
-};
-
+// Throws the InputError naming the first point the exact hull cannot take (a NaN or an infinity); returns
+// whether any double coordinate is outside the engines' exact range (the wide path's input).
 template <class Input>
-PlanarCheck check_planar(const Input* xy, std::size_t count) {
+bool check_planar(const Input* xy, std::size_t count) {
   check_count(count);
   const unsigned workers = hardware_workers();
   std::vector<std::size_t> first_bad(workers, count);
@@ -538,7 +519,7 @@ PlanarCheck check_planar(const Input* xy, std::size_t count) {
     const double widened[3] = {static_cast<double>(xy[2 * bad]), static_cast<double>(xy[2 * bad + 1]), 0};
     throw_if_rejected<Point3d>(bad, widened);
   }
-  return {count, std::any_of(wide.begin(), wide.end(), [](char w) { return w != 0; })};
+  return std::any_of(wide.begin(), wide.end(), [](char w) { return w != 0; });
 }
 
 // Double points rounded to float once, checked as the 3-D points are (one beyond float's range named).
@@ -770,16 +751,15 @@ ConvexHull planar_hull_of(const Input* xy, std::size_t count, Precision own,
     }
   }
   // In place: float input in double is the same points (widening is exact), and so the same hull.
-  const PlanarCheck checked = check_planar(xy, count);
-  ConvexHull hull;
+  const bool wide = check_planar(xy, count);
   if constexpr (std::is_same_v<Input, double>) {
-    if (checked.wide) {
+    if (wide) {
       ConvexHullOptions exact = options;
       exact.merge = MergeMode::kExact;  // the merge's heights need the exact range: the exact hull instead
       return describe_planar(xy, wide_planar_hull(xy, count), exact, "cpu-wide");
     }
   }
-  hull = describe_planar(xy, planar_hull(xy, count), options, "cpu");
+  ConvexHull hull = describe_planar(xy, planar_hull(xy, count), options, "cpu");
   hull.precision = precision;
   return hull;
 }

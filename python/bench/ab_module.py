@@ -7,22 +7,11 @@ ball and cube points (float32, as `cudahull gen` makes them) from NumPy and from
 
 import argparse
 import json
-import statistics
-import time
 
 import numpy as np
 
 import cudahull
-
-
-def median_ms(call, repeat):
-    call()
-    times = []
-    for _ in range(repeat):
-        start = time.perf_counter()
-        call()
-        times.append((time.perf_counter() - start) * 1e3)
-    return statistics.median(times)
+from bench_module import timed  # median ms of repeated calls after a warm-up (python/bench)
 
 
 def main():
@@ -41,8 +30,8 @@ def main():
         on_gpu = cupy.asarray(points)
         hull = cudahull.ConvexHull(points)
         row = {"build": args.label, "input": name, "n": len(points), "vertices": len(hull.vertices),
-               "numpy_ms": median_ms(lambda: cudahull.ConvexHull(points), args.repeat),
-               "cupy_ms": median_ms(lambda: cudahull.ConvexHull(on_gpu), args.repeat),
+               "numpy_ms": timed(lambda: cudahull.ConvexHull(points), args.repeat)[0],
+               "cupy_ms": timed(lambda: cudahull.ConvexHull(on_gpu), args.repeat)[0],
                "describe_ms": cudahull.ConvexHull(on_gpu).stats.get("describe_ms")}
         print(json.dumps(row), flush=True)
 

@@ -10,24 +10,12 @@ against scipy's vertex set where scipy is exact (uniform doubles in general posi
 
 import argparse
 import json
-import statistics
-import time
 
 import numpy as np
 import scipy.spatial
 
 import cudahull
-
-
-def timed(call, repeat):
-    call()
-    times = []
-    result = None
-    for _ in range(repeat):
-        start = time.perf_counter()
-        result = call()
-        times.append((time.perf_counter() - start) * 1e3)
-    return statistics.median(times), result
+from bench_module import timed  # median ms of repeated calls after a warm-up (python/bench)
 
 
 def planar_inputs(n, rng):
@@ -57,14 +45,14 @@ def main():
         print(json.dumps(row), flush=True)
 
     for name, points in planar_inputs(args.n, rng).items():
-        scipy_ms, reference = timed(lambda: scipy.spatial.ConvexHull(points), max(1, args.repeat // 2))
-        numpy_ms, hull = timed(lambda: cudahull.ConvexHull(points), args.repeat)
+        scipy_ms, _, reference = timed(lambda: scipy.spatial.ConvexHull(points), max(1, args.repeat // 2))
+        numpy_ms, _, hull = timed(lambda: cudahull.ConvexHull(points), args.repeat)
         assert sorted(hull.vertices.tolist()) == sorted(reference.vertices.tolist()), name
         record(input=f"2-D {name}", n=args.n, source="numpy", ms=numpy_ms, scipy_ms=scipy_ms,
                speedup=scipy_ms / numpy_ms, vertices=len(hull.vertices), backend=hull.backend)
         if cupy is not None:
             on_gpu = cupy.asarray(points)
-            cupy_ms, hull = timed(lambda: cudahull.ConvexHull(on_gpu), args.repeat)
+            cupy_ms, _, hull = timed(lambda: cudahull.ConvexHull(on_gpu), args.repeat)
             assert sorted(hull.vertices.tolist()) == sorted(reference.vertices.tolist()), name
             record(input=f"2-D {name}", n=args.n, source="cupy", ms=cupy_ms, scipy_ms=scipy_ms,
                    speedup=scipy_ms / cupy_ms, vertices=len(hull.vertices), backend=hull.backend)
@@ -73,9 +61,9 @@ def main():
     n3 = min(args.n, 1_000_000)
     ball = rng.uniform(-1, 1, size=(n3, 3))
     ball = ball[np.einsum("ij,ij->i", ball, ball) <= 1]
-    scipy_ms, reference = timed(lambda: scipy.spatial.ConvexHull(ball), max(1, args.repeat // 2))
+    scipy_ms, _, reference = timed(lambda: scipy.spatial.ConvexHull(ball), max(1, args.repeat // 2))
     for label, kwargs in (("exact", {}), ("qhull_options='Qt'", {"qhull_options": "Qt"})):
-        ms, hull = timed(lambda: cudahull.ConvexHull(ball, **kwargs), args.repeat)
+        ms, _, hull = timed(lambda: cudahull.ConvexHull(ball, **kwargs), args.repeat)
         record(input=f"3-D ball {label}", n=len(ball), source="numpy", ms=ms, scipy_ms=scipy_ms,
                speedup=scipy_ms / ms, vertices=len(hull.vertices), backend=hull.backend,
                same_vertices_as_scipy=sorted(hull.vertices.tolist()) == sorted(reference.vertices.tolist()))

@@ -170,7 +170,6 @@ def _device_hull(points, protocol, backend, precision, merge=("exact", 0.0, 1.0)
         raise ValueError("points in GPU memory need backend 'auto' or 'cuda', not 'cpu' (for the CPU backend, "
                          "pass them as NumPy: cupy.asnumpy(x), x.cpu().numpy())")
     shape = _device_shape(points, protocol)
-    planar = shape[1] == 2
     if protocol == "cuda_array_interface":
         # Checked here, before any data is read; a DLPack array is checked by the module (it sees its
         # dtype, shape and strides).
@@ -186,12 +185,11 @@ def _device_hull(points, protocol, backend, precision, merge=("exact", 0.0, 1.0)
     if not usable:
         raise DeviceError(f"points in GPU memory, but no usable CUDA device: {why_not}")
     if protocol == "cuda_array_interface":
-        call = _cudahull.convex_hull_2d_cuda_pointer if planar else _cudahull.convex_hull_cuda_pointer
-        return call(interface["data"][0], shape[0], itemsize == 8, backend, precision, *merge)
+        return _cudahull.convex_hull_cuda_pointer(interface["data"][0], shape[0], shape[1], itemsize == 8, backend,
+                                                  precision, *merge)
     if getattr(points, "requires_grad", False):
         points = points.detach()  # PyTorch exports no tensor that requires grad; the hull reads values only
-    call = _cudahull.convex_hull_2d_cuda if planar else _cudahull.convex_hull_cuda
-    return call(points, backend, precision, *merge)
+    return _cudahull.convex_hull_cuda(points, backend, precision, *merge)
 
 
 @functools.lru_cache(maxsize=None)
@@ -249,22 +247,28 @@ def convex_hull(points, backend="auto", precision="auto", engine="auto", device_
     protocol = _cuda_protocol(points)
     engine = _check_engine(engine, protocol is not None, backend)
     if protocol is None:
-        array = _as_points(points, (2, 3))
-        merge = _merge_arguments(tolerance, *_bounds_of(array, tolerance))
-        if array.shape[1] == 2:
-            return _cudahull.convex_hull_2d(array, backend, precision, *merge)
-        return _cudahull.convex_hull(array, backend, precision, engine, *merge)
+        return _hull_dict(_as_points(points, (2, 3)), None, None, backend, precision, engine, tolerance)
     kind = _DeviceKind(points)
     if device_results:
         kind.require_known("device_results=True")
-    merge = _merge_arguments(tolerance, *_bounds_of(points, tolerance, kind))
-    result = _device_hull(points, protocol, backend, precision, merge)
+    result = _hull_dict(points, protocol, kind, backend, precision, engine, tolerance)
     if device_results:
         for key in _RESULT_ARRAYS:
             array = result[key]
             # Indices as int64 on the device: PyTorch has few operations on uint32.
             result[key] = kind.like_input(array.astype(np.int64) if array.dtype == np.uint32 else array)
     return result
+
+
+def _hull_dict(points, protocol, kind, backend, precision, engine, tolerance):
+    """The module's hull dict of (n, 2) or (n, 3) points (host points already through _as_points): in GPU
+    memory through _device_hull, else the 2-D or 3-D hull on the host's array."""
+    merge = _merge_arguments(tolerance, *_bounds_of(points, tolerance, kind))
+    if protocol is not None:
+        return _device_hull(points, protocol, backend, precision, merge)
+    if points.shape[1] == 2:
+        return _cudahull.convex_hull_2d(points, backend, precision, *merge)
+    return _cudahull.convex_hull(points, backend, precision, engine, *merge)
 
 
 def _bounds_of(points, tolerance, kind=None):
@@ -403,17 +407,8 @@ class ConvexHull:
         if int(chosen.shape[0]) <= ndim:
             raise QhullError(f"QH6214 qhull input error: not enough points({int(chosen.shape[0])}) to construct "
                              f"initial simplex (need {ndim + 1})")
-        if self._protocol:
-            merge = _merge_arguments(self._tolerance_choice, *_bounds_of(chosen, self._tolerance_choice,
-                                                                         self._kind))
-            result = _device_hull(chosen, self._protocol, self._backend_choice, self._precision_choice, merge)
-        else:
-            merge = _merge_arguments(self._tolerance_choice, *_bounds_of(chosen, self._tolerance_choice))
-            if ndim == 2:
-                result = _cudahull.convex_hull_2d(chosen, self._backend_choice, self._precision_choice, *merge)
-            else:
-                result = _cudahull.convex_hull(chosen, self._backend_choice, self._precision_choice,
-                                               self._engine_choice, *merge)
+        result = _hull_dict(chosen, self._protocol, self._kind, self._backend_choice, self._precision_choice,
+                            self._engine_choice, self._tolerance_choice)
         if result["dimension"] == ndim and result["tolerance"] > 0 and len(result["vertices"]) <= 2000:
             # A merged hull thinner than its tolerance in some facet's direction is flat at that
             # tolerance, as Qhull finds it (QH6154).  (Merging leaves a thin body few vertices.)
@@ -456,30 +451,29 @@ class ConvexHull:
         # The exact hull's vertices, merged away or not: what add_points computes on next.
         values["exact_vertices"] = (np.union1d(values["vertices"], coplanar[:, 0]) if coplanar.size
                                     else values["vertices"]).astype(np.int64)
-        if self._options is not None and (self._options.interior or self._options.coplanar):
-            coplanar = self._with_other_points(points, values, coplanar, result["tolerance"])
+        other_points = self._options is not None and (self._options.interior or self._options.coplanar)
+        # Qc, Qi and QG look at the points themselves, on the host (one copy, in double, for all three).
+        host = (np.ascontiguousarray(self._kind.to_numpy(points) if self._protocol else points, dtype=np.float64)
+                if other_points or good is not None else None)
+        if other_points:
+            coplanar = self._with_other_points(host, values, coplanar, result["tolerance"])
         values["coplanar"] = _index_array(coplanar.reshape(-1, 3), npoints)
         values["good"] = None
         if good is not None:
-            values["good"] = self._good(points, values, good)
+            values["good"] = self._good(host, values, good)
         return values
 
-    def _host(self, points):
-        return self._kind.to_numpy(points) if self._protocol else points
-
-    def _good(self, points, values, good):
+    def _good(self, host, values, good):
         """QGn: the facets point n sees (strictly above their planes, decided exactly); QG-n: the others."""
-        host = np.ascontiguousarray(self._host(points), dtype=np.float64)
         visible = _cudahull.facets_visible(host, np.ascontiguousarray(values["simplices"], dtype=np.int64),
                                            host[good].copy())
         return visible if self._options.good_visible else ~visible
 
-    def _with_other_points(self, points, values, coplanar, tolerance):
+    def _with_other_points(self, host, values, coplanar, tolerance):
         """Qc: also every point that is neither a vertex nor already listed but lies within the tolerance of
         a facet (within rounding, 8 units in the last place of the largest coordinate, for the exact hull),
         as scipy's coplanar points; Qi: every other point too (the interior ones).  Each with its nearest
         facet (the one it is least below) and that facet's nearest vertex.  O(n x facets), on the host."""
-        host = np.asarray(self._host(points), dtype=np.float64)
         listed = np.zeros(host.shape[0], dtype=bool)
         listed[values["vertices"]] = True
         listed[coplanar[:, 0]] = True

@@ -39,6 +39,8 @@ _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 _INTEGER = re.compile(r"[-+]?\d+")
 # Q's one-letter options with no effect here, and those whose meaning ParsedOptions records.
 _Q_FLAGS = {"t", "x", "z", "s", "v", "c", "i"}
+# The groups of which one option has a meaning here (Pp: no precision warnings; Tv: Qhull's check).
+_ONE_OPTION_GROUPS = {"P": "p", "T": "v"}
 
 
 class ParsedOptions:
@@ -117,17 +119,11 @@ def _parse_word(word, parsed, error):
             parsed.angle_cosine = value if parsed.angle_cosine is None else max(parsed.angle_cosine, value)
         parsed.words.append(word)
         return
-    if group == "P":
+    if group in _ONE_OPTION_GROUPS:  # Pp, Tv: the group's one option here, as often as it is written
         for letter in word[1:] or "?":
-            if letter != "p":
-                _unknown("P" + letter, error)
-            parsed.words.append("Pp")
-        return
-    if group == "T":
-        for letter in word[1:] or "?":
-            if letter != "v":
-                _unknown("T" + letter, error)
-            parsed.words.append("Tv")
+            if letter != _ONE_OPTION_GROUPS[group]:
+                _unknown(group + letter, error)
+            parsed.words.append(group + letter)
         return
     if group != "Q":
         _unknown(word, error)

@@ -213,96 +213,61 @@ nb::object facets_visible(nb::ndarray<const double, nb::c_contig, nb::device::cp
   return to_numpy(std::move(visible), true);
 }
 
+// Points in CUDA memory, (n, 3) or (n, 2): 3-D read in place by the resident engine, 2-D filtered on the
+// device with only the possible corners read back.
 template <class Scalar>
-nb::dict device_hull_of(const Scalar* xyz, std::size_t count, const std::string& backend,
-                        const std::string& precision, const Merge& merge) {
+nb::dict device_hull_of(const Scalar* xyz, std::size_t count, std::size_t dimension,
+                        const std::string& backend, const std::string& precision, const Merge& merge) {
   const ConvexHullOptions options = options_from(backend, precision, "resident", merge);
   ConvexHull hull;
   {
     nb::gil_scoped_release unlocked;  // the caller holds the array for the call
-    hull = convex_hull_device(xyz, count, options);
+    hull =
+        dimension == 2 ? convex_hull_2d_device(xyz, count, options) : convex_hull_device(xyz, count, options);
   }
   return hull_to_dict(std::move(hull));
 }
 
-// An (n, 3) array in CUDA memory, through DLPack: C-contiguous float32 or float64, as the engine reads it.
+// An (n, 3) or (n, 2) array in CUDA memory, through DLPack: C-contiguous float32 or float64, as the engine
+// reads it.
 nb::dict convex_hull_cuda(const CudaArray& points, const std::string& backend, const std::string& precision,
                           const std::string& merge, double tolerance, double angle) {
   const bool is_float = points.dtype() == nb::dtype<float>(),
              is_double = points.dtype() == nb::dtype<double>();
   if (!is_float && !is_double)
     throw std::invalid_argument("points in GPU memory must be float32 or float64 (convert with .astype())");
-  if (points.ndim() != 2 || points.shape(1) != 3) {
+  if (points.ndim() != 2 || (points.shape(1) != 3 && points.shape(1) != 2)) {
     std::string shape;
     for (std::size_t k = 0; k < points.ndim(); ++k)
       shape += (k ? ", " : "") + std::to_string(points.shape(k));
     if (points.ndim() == 1) shape += ",";
-    throw std::invalid_argument("points must be an (n, 3) array of 3-D points, not one of shape (" + shape +
-                                ")");
+    throw std::invalid_argument("points must be an (n, 3) or (n, 2) array, not one of shape (" + shape + ")");
   }
   // Strides count elements; a single row's first stride means nothing.
-  const std::size_t n = points.shape(0);
-  if (n != 0 && (points.stride(1) != 1 || (n > 1 && points.stride(0) != 3))) {
+  const std::size_t n = points.shape(0), dimension = points.shape(1);
+  if (n != 0 &&
+      (points.stride(1) != 1 || (n > 1 && points.stride(0) != static_cast<std::int64_t>(dimension)))) {
     throw std::invalid_argument(
         "points in GPU memory must be C-contiguous: the engine reads them in place "
         "(cupy.ascontiguousarray(x) "
         "or x.contiguous() copies them on the device)");
   }
   const Merge how{merge, tolerance, angle};
-  if (is_float) return device_hull_of(static_cast<const float*>(points.data()), n, backend, precision, how);
-  return device_hull_of(static_cast<const double*>(points.data()), n, backend, precision, how);
-}
-
-// An (n, 2) array in CUDA memory: the device filters it, and only the possible corners cross to the host.
-nb::dict convex_hull_2d_cuda(const CudaArray& points, const std::string& backend,
-                             const std::string& precision, const std::string& merge, double tolerance,
-                             double angle) {
-  const bool is_float = points.dtype() == nb::dtype<float>(),
-             is_double = points.dtype() == nb::dtype<double>();
-  if (!is_float && !is_double)
-    throw std::invalid_argument("points in GPU memory must be float32 or float64 (convert with .astype())");
-  const std::size_t n = points.ndim() == 2 ? points.shape(0) : 0;
-  if (points.ndim() != 2 || points.shape(1) != 2)
-    throw std::invalid_argument("points must be an (n, 2) array of 2-D points");
-  if (n != 0 && (points.stride(1) != 1 || (n > 1 && points.stride(0) != 2)))
-    throw std::invalid_argument(
-        "points in GPU memory must be C-contiguous (cupy.ascontiguousarray(x) or x.contiguous())");
-  const ConvexHullOptions options = options_from(backend, precision, "auto", {merge, tolerance, angle});
-  ConvexHull hull;
-  {
-    nb::gil_scoped_release unlocked;
-    if (is_float)
-      hull = convex_hull_2d_device(static_cast<const float*>(points.data()), n, options);
-    else
-      hull = convex_hull_2d_device(static_cast<const double*>(points.data()), n, options);
-  }
-  return hull_to_dict(std::move(hull));
-}
-
-nb::dict convex_hull_2d_cuda_pointer(std::uintptr_t pointer, std::size_t count, bool is_double,
-                                     const std::string& backend, const std::string& precision,
-                                     const std::string& merge, double tolerance, double angle) {
-  const ConvexHullOptions options = options_from(backend, precision, "auto", {merge, tolerance, angle});
-  ConvexHull hull;
-  {
-    nb::gil_scoped_release unlocked;
-    if (is_double)
-      hull = convex_hull_2d_device(reinterpret_cast<const double*>(pointer), count, options);
-    else
-      hull = convex_hull_2d_device(reinterpret_cast<const float*>(pointer), count, options);
-  }
-  return hull_to_dict(std::move(hull));
+  if (is_float)
+    return device_hull_of(static_cast<const float*>(points.data()), n, dimension, backend, precision, how);
+  return device_hull_of(static_cast<const double*>(points.data()), n, dimension, backend, precision, how);
 }
 
 // The same from __cuda_array_interface__'s pointer, for arrays that offer no DLPack (the package checks
 // the interface's shape, type and strides).
-nb::dict convex_hull_cuda_pointer(std::uintptr_t pointer, std::size_t count, bool is_double,
-                                  const std::string& backend, const std::string& precision,
+nb::dict convex_hull_cuda_pointer(std::uintptr_t pointer, std::size_t count, std::size_t dimension,
+                                  bool is_double, const std::string& backend, const std::string& precision,
                                   const std::string& merge, double tolerance, double angle) {
   const Merge how{merge, tolerance, angle};
   if (is_double)
-    return device_hull_of(reinterpret_cast<const double*>(pointer), count, backend, precision, how);
-  return device_hull_of(reinterpret_cast<const float*>(pointer), count, backend, precision, how);
+    return device_hull_of(reinterpret_cast<const double*>(pointer), count, dimension, backend, precision,
+                          how);
+  return device_hull_of(reinterpret_cast<const float*>(pointer), count, dimension, backend, precision, how);
 }
 
 // The stepping engine for notebooks: one iteration per step(), its record as a dict of NumPy arrays.
@@ -468,17 +433,12 @@ NB_MODULE(_cudahull, m) {
   m.def("check_points", &check_points_of<float>, nb::arg("points"));
   m.def("check_points", &check_points_of<double>, nb::arg("points"));
 
-  // Arrays in CUDA memory (issue 16): read in place by the resident engine.
+  // Arrays in CUDA memory (issue 16; 2-D: issue 25): 3-D read in place by the resident engine, 2-D filtered.
   m.def("convex_hull_cuda", &convex_hull_cuda, nb::arg("points"), nb::arg("backend"), nb::arg("precision"),
         nb::arg("merge"), nb::arg("tolerance"), nb::arg("angle") = 1.0);
   m.def("convex_hull_cuda_pointer", &convex_hull_cuda_pointer, nb::arg("pointer"), nb::arg("count"),
-        nb::arg("is_double"), nb::arg("backend"), nb::arg("precision"), nb::arg("merge"),
-        nb::arg("tolerance"), nb::arg("angle") = 1.0);
-  m.def("convex_hull_2d_cuda", &convex_hull_2d_cuda, nb::arg("points"), nb::arg("backend"),
-        nb::arg("precision"), nb::arg("merge"), nb::arg("tolerance"), nb::arg("angle") = 1.0);
-  m.def("convex_hull_2d_cuda_pointer", &convex_hull_2d_cuda_pointer, nb::arg("pointer"), nb::arg("count"),
-        nb::arg("is_double"), nb::arg("backend"), nb::arg("precision"), nb::arg("merge"),
-        nb::arg("tolerance"), nb::arg("angle") = 1.0);
+        nb::arg("dimension"), nb::arg("is_double"), nb::arg("backend"), nb::arg("precision"),
+        nb::arg("merge"), nb::arg("tolerance"), nb::arg("angle") = 1.0);
   // Whether a CUDA array can be taken here at all: (usable, why not), before its data is touched.
   m.def("cuda_device", []() {
     const CudaStatus cuda = cuda_status();

@@ -674,6 +674,12 @@ BasicHullMesh<Point> exact_hull(const std::vector<Point>& points, const std::vec
   return hull_with<FastPredicates>(points, ids);
 }
 
+bool in_fast_exact_range(const std::vector<Point3d>& points) {
+  return std::all_of(points.begin(), points.end(), [](const Point3d& p) {
+    return in_fast_exact_range(p.x) && in_fast_exact_range(p.y) && in_fast_exact_range(p.z);
+  });
+}
+
 HullMeshd exact_hull_any(const std::vector<Point3d>& points, const std::vector<PointIndex>& ids) {
   const std::size_t n = ids.empty() ? points.size() : ids.size();
   // The binades (floor(log2 |c|)) of the nonzero coordinates that take part; ids out of range are left to

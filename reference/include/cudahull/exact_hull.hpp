@@ -37,8 +37,9 @@ int affine_dimension(const std::vector<Point>& points);
 // std::invalid_argument.
 HullMeshd exact_hull_any(const std::vector<Point3d>& points, const std::vector<PointIndex>& ids = {});
 
-// in_fast_exact_range(double coordinate) (wide_predicates.hpp, included above) says whether a coordinate is
-// inside the fast exact range: where every coordinate is, exact_hull() and the engines are exact.
+// Whether every coordinate of `points` is inside the fast exact range (in_fast_exact_range(),
+// predicates.hpp): then exact_hull() and the engines are exact on them, and exact_hull_any() is exact_hull().
+bool in_fast_exact_range(const std::vector<Point3d>& points);
 
 extern template HullMesh exact_hull(const std::vector<Point3>&, const std::vector<PointIndex>&);
 extern template HullMeshd exact_hull(const std::vector<Point3d>&, const std::vector<PointIndex>&);
