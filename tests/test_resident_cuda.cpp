@@ -21,6 +21,7 @@
 #include "cudahull/trace.hpp"
 #include "device_info.hpp"
 #include "resident_cuda.hpp"
+#include "support/point_sets.hpp"
 #include "support/property_cases.hpp"
 #include "support/rng.hpp"
 #include "support/shared_models.hpp"
@@ -68,6 +69,8 @@ void expect_same_as_host(const std::vector<Point>& points, const std::string& wh
   EXPECT_EQ(device_stats.rounds, host_stats.rounds) << what;
   EXPECT_EQ(device_stats.edits, host_stats.edits) << what;
   EXPECT_EQ(device_stats.exact_finish, host_stats.exact_finish) << what;
+  EXPECT_EQ(device_stats.faults, host_stats.faults) << what;
+  EXPECT_EQ(device_stats.repaired_patches, host_stats.repaired_patches) << what;
   // Borrowed device points: the same mesh, and no more read back than the coordinates checked.
   ResidentStats borrowed_stats;
   const BasicHullMesh<Point> borrowed = on_device_points(points, &borrowed_stats);
@@ -77,8 +80,11 @@ void expect_same_as_host(const std::vector<Point>& points, const std::string& wh
   EXPECT_EQ(borrowed_stats.bytes_from_device,
             device_stats.bytes_from_device + borrowed_stats.points_read_back * sizeof(Point))
       << what << " (device points)";
+  // As on the host (test_resident.cpp): a local repair also reads its patches' mesh vertices.
   if (borrowed_stats.polytope_first && !borrowed_stats.exact_finish)
-    EXPECT_LE(borrowed_stats.points_read_back, 14 + borrowed.vertex_ids.size()) << what << " (device points)";
+    EXPECT_LE(borrowed_stats.points_read_back,
+              14 + (borrowed_stats.repaired_patches ? 4 : 1) * borrowed.vertex_ids.size())
+        << what << " (device points)";
   if (oracle) {
     const BasicHullMesh<Point> exact = exact_hull(points);
     EXPECT_EQ(device.vertex_ids, exact.vertex_ids) << what;
@@ -131,6 +137,24 @@ TEST_F(ResidentCuda, SeededSetsMatchTheHostExecutor) {
     if (kind == 4) p[0] = {0, 0, 0}, p.push_back({1, 0, 0}), p.push_back({0, 1, 0}), p.push_back({0, 0, 1});
     expect_same_as_host(p, "seeded case " + std::to_string(t));
   }
+}
+
+// Dense caps (point_sets.hpp): the defects the rounds leave are repaired on the device as on the host,
+// the small ones through the one-block finish (finish_small_kernel), the larger through the full one.
+TEST_F(ResidentCuda, DefectsAreRepairedAsOnTheHost) {
+  std::uint64_t repaired = 0;
+  for (const std::size_t n : {2000, 30000, 200000}) {
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+      const std::vector<Point3> points = testing::cap_points(n, n < 10000 ? 0.001 : 0.005, seed);
+      const std::string what = "cap " + std::to_string(n) + ", seed " + std::to_string(seed);
+      expect_same_as_host(points, what);
+      ResidentStats stats;
+      on_device(points, &stats);
+      EXPECT_FALSE(stats.exact_finish) << what << ": " << stats.note;
+      repaired += stats.repaired_patches;
+    }
+  }
+  EXPECT_GT(repaired, 0u);
 }
 
 // A million points: the stepping engine on the CPU backend is the independent answer.

@@ -1,6 +1,8 @@
 // Small point sets the tests build by hand (independent of cudahull's generators).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -50,6 +52,24 @@ inline std::vector<std::vector<Point3>> small_integer_sets(int count) {
     sets.push_back(std::move(points));
   }
   return sets;
+}
+
+// A dense cap of float points on the unit sphere: n on the cap of angular radius `angle` (radians) around
+// +z, then 500 on the whole sphere.  Near the cap's centre neighbours differ in height by less than an
+// ulp, so the hull has coplanar facets, and the resident engine's rounds leave concave edges over
+// vertices that are not extreme: issue 26's cliff (30M sphere points on the H100), in small.
+inline std::vector<Point3> cap_points(std::size_t n, double angle, std::uint64_t seed) {
+  Rng r(seed);
+  std::vector<Point3> points;
+  auto unit01 = [&] { return (static_cast<double>(r.unit()) + 1) / 2; };
+  for (std::size_t i = 0; i < n + 500; ++i) {
+    const double phi = 2 * M_PI * unit01();
+    const double z = i < n ? 1 - unit01() * (1 - std::cos(angle)) : 2 * unit01() - 1;
+    const double s = std::sqrt(std::max(0.0, 1 - z * z));
+    points.push_back({static_cast<float>(s * std::cos(phi)), static_cast<float>(s * std::sin(phi)),
+                      static_cast<float>(z)});
+  }
+  return points;
 }
 
 }  // namespace cudahull::testing

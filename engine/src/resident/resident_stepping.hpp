@@ -213,6 +213,10 @@ class ResidentStepper : public SteppingEngine {
     if (stats_.exact_finish) {
       r.repairs = std::max<std::uint64_t>(1, stats_.faults);
       r.note = (r.note.empty() ? "" : r.note + "; ") + "exact finish: " + stats_.note;
+    } else if (stats_.faults != 0) {
+      r.repairs = stats_.faults;
+      r.note = (r.note.empty() ? "" : r.note + "; ") + "repaired " + std::to_string(stats_.faults) +
+               " edges not strictly convex in " + std::to_string(stats_.repaired_patches) + " patches";
     }
     done_ = true;
   }
