@@ -2,15 +2,16 @@
 # Issue 26 on the GPU machine: the resident engine at scale (no cliff: the defects the rounds leave are
 # repaired where they are) and its gpu tests.  Run by the device tool from the repository root, with
 # .carry/bin (cudahull, test_resident_cuda, test_cuda_backend, built here for sm_90; cudahull_base, the
-# binary to compare with, optional) and .carry/lib (libgmp.so.10, libqhull_r.so.8.0).
+# binary to compare with, optional), .carry/lib (libgmp.so.10, libqhull_r.so.8.0) and .carry/models (the
+# shared models).
 #   PART=tests  test_resident_cuda (the dense caps among them), test_cuda_backend, the 10,000 property
-#               cases on the device path, compute-sanitizer memcheck and racecheck on the caps
+#               cases on the device path, compute-sanitizer memcheck and racecheck on the caps up to 30K
 #   PART=scale  sphere 10M, 20M, 30M, 40M (and SIZES=...), one line of `cudahull bench --json` each, peak
 #               device memory in it; the 400K-point cap of the issue through `cudahull hull --stats`; with
 #               cudahull_base, sphere 10M and 20M from it in the same run
 # The raw lines go to $OUT/scale.jsonl and the logs to $OUT.
 set -u
-export LD_LIBRARY_PATH=$PWD/.carry/lib
+export LD_LIBRARY_PATH=$PWD/.carry/lib CUDAHULL_MODELS_DIR=$PWD/.carry/models
 B=.carry/bin; O=${OUT:-/tmp/out}; mkdir -p "$O"
 PART=${PART:?PART=tests or scale}
 nvidia-smi -L
@@ -23,8 +24,8 @@ case $PART in
       > "$O/property_10000.txt" 2>&1
     echo "property_10000: exit $?"; grep -E "^\[  (PASSED|FAILED)" "$O/property_10000.txt"
     for tool in memcheck racecheck; do
-      timeout 200 compute-sanitizer --tool $tool --error-exitcode 9 $B/test_resident_cuda \
-        --gtest_filter='*Defects*' > "$O/sanitizer_$tool.txt" 2>&1
+      CUDAHULL_CAP_POINTS=30000 timeout 200 compute-sanitizer --tool $tool --error-exitcode 9 \
+        $B/test_resident_cuda --gtest_filter='*Defects*' > "$O/sanitizer_$tool.txt" 2>&1
       echo "$tool: exit $?"; grep -E "ERROR SUMMARY|RACECHECK SUMMARY|^\[  (PASSED|FAILED)" "$O/sanitizer_$tool.txt"
     done
     ;;

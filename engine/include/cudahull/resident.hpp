@@ -24,7 +24,8 @@ struct ResidentStats {
   std::uint64_t loop_iterations = 0;      // iterations run by the device loop of a small mesh
   bool polytope_first = false;            // P was the first mesh (else section 3.1's tetrahedron)
   std::uint64_t faults = 0;               // edges not strictly convex after the last round (then repaired)
-  std::uint64_t repaired_patches = 0;     // patches of faults repaired where they are (fault_repair.hpp)
+  std::uint64_t repaired_patches = 0;     // patches of defects repaired where they are (fault_repair.hpp)
+  std::uint64_t repair_vertices = 0;      // the vertices of the patches the repairs looked at, every attempt
   bool exact_finish = false;              // the result came from the exact reference hull of the candidates
   std::string note;                       // why, for lower-dimensional input or the exact finish
   std::uint64_t host_syncs = 0;           // waits for the executor with a value coming back
@@ -54,6 +55,7 @@ void for_each_stat(const ResidentStats& s, Visit&& visit) {
   visit("polytope_first", s.polytope_first);
   visit("faults", s.faults);
   visit("repaired_patches", s.repaired_patches);
+  visit("repair_vertices", s.repair_vertices);
   visit("exact_finish", s.exact_finish);
   visit("note", s.note);
   visit("host_syncs", s.host_syncs);

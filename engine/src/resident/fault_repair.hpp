@@ -50,11 +50,12 @@
 namespace cudahull::resident {
 
 struct RepairPlan {
-  std::vector<FaceRow> writes;     // the rows to write: the caps' faces, and the faces that border them
-  std::vector<u32> repaired;       // the caps' faces
-  std::vector<u32> holes;          // the patches' slots the caps left over, ascending
-  std::size_t patches = 0;         // patches repaired
-  std::size_t patches_left = 0;    // patches that wait for more rings (or the exact finish)
+  std::vector<FaceRow> writes;   // the rows to write: the caps' faces, and the faces that border them
+  std::vector<u32> repaired;     // the caps' faces
+  std::vector<u32> holes;        // the patches' slots the caps left over, ascending
+  std::size_t patches = 0;       // patches repaired
+  std::size_t patches_left = 0;  // patches that wait for more rings (or the exact finish)
+  std::size_t vertices = 0;      // the patches' vertices, whose coordinates the plan asked for
 };
 
 template <class Point>
@@ -89,13 +90,15 @@ bool repair_patch(const PatchRows& read, const std::vector<std::size_t>& patch, 
   for (const std::size_t r : patch) {
     for (int k = 0; k < 3; ++k) {
       ids.push_back(rows[r].v[k]);
-      if (!read.in_patch(rows[r].n[k])) boundary.emplace(Edge{rows[r].v[k], rows[r].v[(k + 1) % 3]}, rows[r].n[k]);
+      if (!read.in_patch(rows[r].n[k]))
+        boundary.emplace(Edge{rows[r].v[k], rows[r].v[(k + 1) % 3]}, rows[r].n[k]);
     }
   }
   if (boundary.size() < 3) return false;
   std::sort(ids.begin(), ids.end());
   ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
   const std::vector<Point> at = coordinates(ids);
+  plan.vertices += ids.size();
   const BasicHullMesh<Point> hull = exact_hull(at);
   if (hull.dimension != 3) return false;
   // K's faces as global corner ids, and each directed edge's face.
@@ -208,7 +211,8 @@ RepairPlan plan_repair(const std::vector<FaceRow>& rows, u32 rings, const Vec3d&
         }
       }
     }
-    std::sort(patch.begin(), patch.end(), [&](std::size_t a, std::size_t b) { return rows[a].id < rows[b].id; });
+    std::sort(patch.begin(), patch.end(),
+              [&](std::size_t a, std::size_t b) { return rows[a].id < rows[b].id; });
     if (repair_patch<Point>(read, patch, c, coordinates, plan, outside)) {
       ++plan.patches;
     } else {

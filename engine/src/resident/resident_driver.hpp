@@ -881,7 +881,7 @@ class ResidentHull {
       if (out) return std::move(*out);
       if (attempt == 0) stats.faults = faults;
       if (active_ != 0 || attempt == kRepairRings.size()) break;
-      stats.repaired_patches += repair_faults(kRepairRings[attempt], checked);
+      stats.repaired_patches += repair_faults(kRepairRings[attempt], checked, stats.repair_vertices);
     }
     return exact_finish(
         stats, std::to_string(stats.faults) + " concave edges or vertices not strictly extreme" +
@@ -1019,9 +1019,9 @@ class ResidentHull {
   // The defects repaired where they are (fault_repair.hpp): the faces within `rings` of one stamped and
   // read back with the ring around them, the host's plan written, the slots left over filled by the last
   // faces.  Returns the patches repaired; `checked`: every patch was, and the new faces passed
-  // CheckRepaired (the finish need not count again).
+  // CheckRepaired (the finish need not count again); the patches' vertices are added to `vertices`.
   static constexpr std::size_t kMaxRepairFaces = std::size_t{1} << 16;
-  std::size_t repair_faults(u32 rings, bool& checked) {
+  std::size_t repair_faults(u32 rings, bool& checked, std::uint64_t& vertices) {
     checked = false;
     // The rings in look_ (defects() stamped the concave edges' faces), the stamped faces listed.
     exec_.for_each(faces_,
@@ -1034,6 +1034,7 @@ class ResidentHull {
     const std::vector<FaceRow> rows = face_rows(work_list_.data(), stamped);
     RepairPlan plan =
         plan_repair<Point>(rows, rings, c_, [&](const std::vector<PointIndex>& ids) { return fetch(ids); });
+    vertices += plan.vertices;
     if (plan.patches == 0) return 0;
     write_rows(plan.writes);
     fill_holes(plan.holes, plan.repaired);
