@@ -6,9 +6,9 @@
 # shared models).
 #   PART=tests  test_resident_cuda (the dense caps among them), test_cuda_backend, the 10,000 property
 #               cases on the device path, compute-sanitizer memcheck and racecheck on the caps up to 30K
-#   PART=scale  sphere 10M, 20M, 30M, 40M (and SIZES=...), one line of `cudahull bench --json` each, peak
-#               device memory in it; the 400K-point cap of the issue through `cudahull hull --stats`; with
-#               cudahull_base, sphere 10M and 20M from it in the same run
+#   PART=scale  sphere 1M and 10M, ball and cube 10M from both binaries (BOTH="ARGS|ARGS"), then sphere
+#               20M, 30M, 40M (SIZES="N N"), one line of `cudahull bench --json` each with the peak device
+#               memory; the 400K-point cap of the issue through `cudahull hull --stats`
 # The raw lines go to $OUT/scale.jsonl and the logs to $OUT.
 set -u
 export LD_LIBRARY_PATH=$PWD/.carry/lib CUDAHULL_MODELS_DIR=$PWD/.carry/models
@@ -37,15 +37,21 @@ case $PART in
         | tee -a "$O/scale.jsonl" | python3 -c 'import json, sys
 j = json.loads(sys.stdin.read()); r = j["result"]; s = r.get("resident", r)
 print(j["binary"], r["input"], "total_ms", round(r["total_ms"], 1), "finish_ms", round(s["finish_ms"], 1),
+      "overflows", s.get("round_overflows"), "B/vertex", round(r["device_bytes_peak"] / r["hull_vertices"]),
       "peak_GB", round(r["device_bytes_peak"] / 1e9, 2), "vertices", r["hull_vertices"], "faults",
       s["faults"], "repaired", s.get("repaired_patches"), "exact_finish", s["exact_finish"])' 2>&1 | tail -1
     }
-    for n in ${SIZES:-10000000 20000000 30000000 40000000}; do
+    # The same inputs from both binaries first (peak memory and time side by side), then the sizes.
+    IFS='|' read -ra both <<< "${BOTH:---dist sphere --n 1000000|--dist sphere --n 10000000|--dist ball --n 10000000|--dist cube --n 10000000}"
+    for a in "${both[@]}"; do
+      # shellcheck disable=SC2086
+      line cudahull new $a --repeat 2
+      # shellcheck disable=SC2086
+      [ -x $B/cudahull_base ] && line cudahull_base base $a --repeat 2
+    done
+    for n in ${SIZES:-20000000 30000000 40000000}; do
       line cudahull new --dist sphere --n "$n" --repeat 2
     done
-    if [ -x $B/cudahull_base ]; then
-      for n in 10000000 20000000; do line cudahull_base base --dist sphere --n "$n" --repeat 2; done
-    fi
     python3 - "$O/cap.ply" <<'PY'
 import sys
 import numpy as np

@@ -333,9 +333,15 @@ __device__ void run_rounds(const FindCandidate<Point>& find, u64* claim, u32* lo
     barrier();
     const u32 round_work = st->round_work;
     if (round_work == 0) return;
-    // Room for the round, before it changes anything (a winner is a work face: two new faces, one entry
-    // each at most).  Otherwise the host grows the buffers and launches again, and the round runs afresh.
-    if (faces + 2 * round_work > st->face_capacity || entries + round_work > st->entry_capacity) {
+    // In registers (one block, a small mesh): room for the round before it changes anything (a winner is
+    // a work face: two new faces, one entry each at most).  Otherwise the host grows the buffers and
+    // launches again, and the round runs afresh.  The grid's rounds check the winners' room before they
+    // apply (4.), which needs far less.
+    bool in_registers = false;
+    if constexpr (Block == kOneBlockThreads)
+      in_registers = one_block && faces <= kRegisterFaces && round_work <= Block;
+    if (in_registers &&
+        (faces + 2 * round_work > st->face_capacity || entries + round_work > st->entry_capacity)) {
       if (tid == 0) {
         st->overflow = 1;
         st->needed_faces = faces + 2 * round_work;
@@ -348,7 +354,7 @@ __device__ void run_rounds(const FindCandidate<Point>& find, u64* claim, u32* lo
     const Won judge{round, claim, nullptr, nullptr};
     const Apply<Point> applier{find.m, nullptr, nullptr, nullptr, faces, entries, look, round};
     if constexpr (Block == kOneBlockThreads) {  // only the one-block kernels: no registers for it elsewhere
-      if (one_block && faces <= kRegisterFaces && round_work <= Block) {
+      if (in_registers) {
         constexpr u32 kWords = kRegisterFaces / 32;
         static_assert(Block >= kWords, "the block scans one word of wins a thread");
         __shared__ u32 won_bits[kWords], words_before[kWords];
@@ -435,6 +441,20 @@ __device__ void run_rounds(const FindCandidate<Point>& find, u64* claim, u32* lo
     const u32 winners = st->round_winners;
     if (winners == 0) {
       end_round(faces, entries, round, round_work, 0);
+      return;
+    }
+    // Room for the winners' new faces and entries.  Otherwise the round stops before it applies: so far it
+    // changed links (FixLinks, which a rerun repeats), claims (a rerun of the same round claims with the
+    // same keys) and the stamps of the faces with a candidate, which go back to this round, so that the
+    // rerun lists the same work.  The host grows the buffers and launches again.
+    if (faces + 2 * winners > st->face_capacity || entries + winners > st->entry_capacity) {
+      for (u32 i = tid; i < round_work; i += threads)
+        look[list[i]] = round;
+      if (tid == 0) {
+        st->overflow = 1;
+        st->needed_faces = faces + 2 * winners;
+        st->needed_entries = entries + winners;
+      }
       return;
     }
 

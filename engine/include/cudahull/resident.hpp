@@ -22,6 +22,7 @@ struct ResidentStats {
   std::uint64_t work_items = 0;           // faces the rounds looked at, summed over the rounds
   std::uint64_t dropped_by_polytope = 0;  // points proven inside P, the extremes' polytope, at the start
   std::uint64_t loop_iterations = 0;      // iterations run by the device loop of a small mesh
+  std::uint64_t round_overflows = 0;      // runs of rounds that stopped short of room (the host grew it)
   bool polytope_first = false;            // P was the first mesh (else section 3.1's tetrahedron)
   std::uint64_t faults = 0;               // edges not strictly convex after the last round (then repaired)
   std::uint64_t repaired_patches = 0;     // patches of defects repaired where they are (fault_repair.hpp)
@@ -52,6 +53,7 @@ void for_each_stat(const ResidentStats& s, Visit&& visit) {
   visit("work_items", s.work_items);
   visit("dropped_by_polytope", s.dropped_by_polytope);
   visit("loop_iterations", s.loop_iterations);
+  visit("round_overflows", s.round_overflows);
   visit("polytope_first", s.polytope_first);
   visit("faults", s.faults);
   visit("repaired_patches", s.repaired_patches);

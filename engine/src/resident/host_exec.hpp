@@ -142,9 +142,9 @@ struct HostExec {
 
 // The host executor running the driver's fused path: the iteration with its counts in the state
 // (RoundsState) and one read at its end, and the rounds looped as cuda/resident_cuda.cu's
-// fused_rounds_kernel loops them (work listed, room checked before anything changes, links fixed, claims,
-// every claim judged before any winner applies, winners numbered in face order).  The CPU tests compare its
-// mesh with the stepped rounds' (HostExec) and so check the driver's device path without a GPU.
+// fused_rounds_kernel loops them (work listed, links fixed, claims, every claim judged before any winner
+// applies, room for the winners checked before they apply, winners numbered in face order).  The CPU tests
+// compare its mesh with the stepped rounds' (HostExec) and so check the driver's device path without a GPU.
 struct FusedHostExec : HostExec {
   static constexpr bool kFusedRounds = true;
   static constexpr std::size_t kFinishFaces = kSmallFinishFaces;
@@ -174,12 +174,6 @@ struct FusedHostExec : HostExec {
         if (work_rule.is_work(f)) list[work++] = f;
       }
       if (work == 0) return;
-      if (faces + 2 * work > st->face_capacity || entries + work > st->entry_capacity) {
-        st->overflow = 1;
-        st->needed_faces = faces + 2 * work;
-        st->needed_entries = entries + work;
-        return;
-      }
       const FixLinks<Point> fixer{find.m, nullptr};
       for (u32 i = 0; i < work; ++i)
         fixer.fix(list[i]);
@@ -191,6 +185,16 @@ struct FusedHostExec : HostExec {
       for (u32 f = 0; f < faces; ++f) {
         if (look[f] == round + 1 && judge.holds(cands[f])) winners.push_back(f);
       }
+      const u32 won = static_cast<u32>(winners.size());
+      if (won != 0 && (faces + 2 * won > st->face_capacity || entries + won > st->entry_capacity)) {
+        // No room for the winners: the round stops before it applies, its work stamped back for the rerun.
+        for (u32 i = 0; i < work; ++i)
+          look[list[i]] = round;
+        st->overflow = 1;
+        st->needed_faces = faces + 2 * won;
+        st->needed_entries = entries + won;
+        return;
+      }
       ++st->rounds;
       st->work_items += work;
       st->round = round;
@@ -198,7 +202,6 @@ struct FusedHostExec : HostExec {
       const Apply<Point> applier{find.m, nullptr, nullptr, nullptr, faces, entries, look, round};
       for (u32 r = 0; r < winners.size(); ++r)
         applier.apply(cands[winners[r]], r);
-      const u32 won = static_cast<u32>(winners.size());
       st->fresh_from = faces;
       st->faces = faces + 2 * won;
       st->entries = entries + won;

@@ -548,13 +548,17 @@ class ResidentHull {
   // Room for `count` faces, keeping the current ones; new claim slots hold no claim.
   // Face ids are u32 and a candidate claims with 6 f + slot (Claim): beyond kMaxFaces the ids would wrap.
   static constexpr std::size_t kMaxFaces = 0xffffffffu / 6;
+  static constexpr std::size_t kDoublingFaces = std::size_t{1} << 21;
   void grow_faces(std::size_t count) {
     if (count <= capacity_) return;
     if (count > kMaxFaces)
       throw DeviceError("resident engine: the hull needs " + std::to_string(count) +
                         " face slots, more than " + std::to_string(kMaxFaces) + " (use --engine stepping)");
     const std::size_t old = capacity_;
-    capacity_ = std::min(std::max(count, 2 * capacity_), kMaxFaces);
+    // Doubling while small (a regrowth is a round of allocations and copies, most of an iteration's host
+    // time on a small hull), then a quarter more: the room follows the need (issue 26: memory).
+    const std::size_t step = capacity_ < kDoublingFaces ? 2 * capacity_ : capacity_ + capacity_ / 4;
+    capacity_ = std::min(std::max(count, step), kMaxFaces);
     fv_.grow(3 * capacity_, 3 * faces_);
     fn_.grow(3 * capacity_, 3 * faces_);
     killer_.grow(capacity_, faces_);
@@ -621,12 +625,12 @@ class ResidentHull {
   static constexpr std::size_t kSpeculateFaces = std::size_t{1} << 18;
   bool iterate_fused(ResidentStats& stats) {
     const std::size_t first = faces_;
-    std::size_t bound = 4 * faces_, entry_bound = faces_;
+    const std::size_t bound = 4 * faces_, entry_bound = faces_;
     if (bound <= kSpeculateFaces) {
       // Room first, then the marks, their prefix sum and the split in one mark_scan_move (one launch for a
       // small mesh).
       furthest_points();
-      grow_for_rounds(bound, entry_bound);
+      grow_for_rounds(2 * bound + 64, entry_bound + bound + 64);
       exec_.mark_scan_move(faces_, MarkRefined<Point>{view(), extreme_.data(), flags_.data()}, flags_.data(),
                            face_rank_.data(), split_faces());
       marks_in_use_ = 0;
@@ -634,10 +638,12 @@ class ResidentHull {
       mark_refined();
       const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
       if (refined == 0) return no_face_refined();
-      bound = faces_ + 3 * std::size_t{refined};
-      entry_bound = refined;
       // Everything grows before the split: the faces in use are then more than the host knows to keep.
-      grow_for_rounds(bound, entry_bound);
+      // Room for the children and for the rounds' edits, about two a refined face (1.5 to 2.1 on dense
+      // spheres, fewer where points lie inside), two new slots and one entry each; past that a round's
+      // winners stop before they apply and go on after the host grows the buffers.
+      grow_for_rounds(faces_ + 3 * std::size_t{refined} + 9 * std::size_t{refined} / 2 + 64,
+                      4 * std::size_t{refined} + 64);
       split();
     }
     stats.refine_ms += lap();
@@ -662,7 +668,7 @@ class ResidentHull {
       stats.route_ms += lap();
       if (!state.overflow) break;
       swap_spares();  // back to the mesh of the rounds: the compaction's outputs go unused
-      grow_after_overflow(state);
+      grow_after_overflow(state, stats);
     }
     stats.refined_faces += state.refined;
     take_counters(state, stats);
@@ -710,7 +716,7 @@ class ResidentHull {
     take_counters(state, stats);
     active_ = state.kept_points;
     if (state.loop_exit == kLoopOverflow) {
-      grow_after_overflow(state);  // mid-iteration, as a fused launch that overflowed leaves it
+      grow_after_overflow(state, stats);  // mid-iteration, as a fused launch that overflowed leaves it
     } else {
       faces_ = state.live_faces;
     }
@@ -727,20 +733,21 @@ class ResidentHull {
       stats.round_phase_ms[k] = static_cast<double>(state.phase_ns[k]) * 1e-6;
   }
 
-  // After a run of rounds that did not fit: the mesh as the rounds left it, and room for the next round.
-  void grow_after_overflow(const RoundsState& state) {
+  // After a run of rounds that did not fit: the mesh as the rounds left it, and room for the next round
+  // and an eighth more for those after it.
+  void grow_after_overflow(const RoundsState& state, ResidentStats& stats) {
+    ++stats.round_overflows;
     faces_ = state.faces;
     entries_used_ = state.entries;
-    grow_faces(state.needed_faces);
-    grow_entries(state.needed_entries);
-    grow_for_rounds(faces_, entries_used_);
+    grow_for_rounds(state.needed_faces + state.needed_faces / 8 + 64,
+                    state.needed_entries + state.needed_entries / 8 + 64);
   }
 
-  // Room for a run of fused rounds from at most `faces` faces and `entries` entries in use: a round kills
-  // two faces per winner at least and makes two, so room for as many faces again.
+  // Room for a run of fused rounds: `faces` face slots and `entries` entries, and the candidates and wins
+  // of as many faces.
   void grow_for_rounds(std::size_t faces, std::size_t entries) {
-    grow_faces(2 * faces + 64);
-    grow_entries(entries + faces + 64);
+    grow_faces(faces);
+    grow_entries(entries);
     cands_.grow(capacity_);
     won_.grow(capacity_);
   }

@@ -649,9 +649,9 @@ struct Apply {
 };
 
 // The state of a fused run of rounds (an executor that loops the rounds itself, CudaExec): what the host
-// sets before and reads after.  The rounds stop when no candidate is left, or before a round that might
-// not fit the capacities, before it changes anything (overflow: the host grows the buffers and runs
-// again).
+// sets before and reads after.  The rounds stop when no candidate is left, or when a round's winners would
+// not fit the capacities, before they apply (overflow: the round's work stamped back, the host grows the
+// buffers and the round runs again, with the same claims and winners).
 //   The state stays where the executor computes for the whole run, and the host reads it once an
 //   iteration, after the compaction: the iteration's kernels take their counts from it (refined, faces,
 //   entries), not from the host.  The counters (rounds, edits, work_items, phase_ns) add up over the run.
