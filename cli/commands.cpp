@@ -484,6 +484,9 @@ int bench_in(const BenchOptions& o) {
   if (o.engine == "resident") {
     j["host_syncs"] = host_syncs;
     j["device_bytes_peak"] = device_bytes_peak;
+    // Device memory per hull vertex (0 on the CPU), the measure issue 26 sets its memory goals in.
+    j["bytes_per_hull_vertex"] =
+        hull.vertex_ids.empty() ? 0.0 : static_cast<double>(device_bytes_peak) / hull.vertex_ids.size();
     // Where the last run's time went, for profiling: host-clock laps (on the GPU the phases are queued
     // without a wait between them, so a lap is where the host waited), and the device clock inside the
     // rounds (finding and claiming, judging, numbering, applying).

@@ -24,16 +24,16 @@ struct ResidentStats {
   std::uint64_t loop_iterations = 0;      // iterations run by the device loop of a small mesh
   std::uint64_t round_overflows = 0;      // runs of rounds that stopped short of room (the host grew it)
   bool polytope_first = false;            // P was the first mesh (else section 3.1's tetrahedron)
-  std::uint64_t faults = 0;               // edges not strictly convex after the last round (then repaired)
-  std::uint64_t repaired_patches = 0;     // patches of defects repaired where they are (fault_repair.hpp)
-  std::uint64_t repair_vertices = 0;      // the vertices of the patches the repairs looked at, every attempt
-  bool exact_finish = false;              // the result came from the exact reference hull of the candidates
-  std::string note;                       // why, for lower-dimensional input or the exact finish
-  std::uint64_t host_syncs = 0;           // waits for the executor with a value coming back
-  std::uint64_t bytes_to_device = 0;      // host -> executor, after the points
-  std::uint64_t bytes_from_device = 0;    // executor -> host, the result included
-  std::uint64_t device_bytes_peak = 0;    // device memory held at most, the points included (0 on the host)
-  std::uint64_t points_read_back = 0;     // coordinates read back for the exact checks (borrowed points only)
+  std::uint64_t faults = 0;  // defects after the rounds: concave edges, thin vertices (then repaired)
+  std::uint64_t repaired_patches = 0;   // patches of defects repaired where they are (fault_repair.hpp)
+  std::uint64_t repair_vertices = 0;    // the vertices of the patches the repairs looked at, every attempt
+  bool exact_finish = false;            // the result came from the exact reference hull of the candidates
+  std::string note;                     // why, for lower-dimensional input or the exact finish
+  std::uint64_t host_syncs = 0;         // waits for the executor with a value coming back
+  std::uint64_t bytes_to_device = 0;    // host -> executor, after the points
+  std::uint64_t bytes_from_device = 0;  // executor -> host, the result included
+  std::uint64_t device_bytes_peak = 0;  // device memory held at most, the points included (0 on the host)
+  std::uint64_t points_read_back = 0;   // coordinates read back for the exact checks (borrowed points only)
   // Where the time went (host clock; each phase ends in a wait for a count, so these are wall times).
   double setup_ms = 0, refine_ms = 0, rounds_ms = 0, route_ms = 0, finish_ms = 0;
   // Inside the device's rounds (device clock, the slowest block): finding and claiming, judging the

@@ -13,11 +13,13 @@
 //                      rounds until no candidate is left (Figs. 3b, 4, 5); route every kept point through
 //                      the entries; compact faces and points.  On the GPU one wait an iteration, and for a
 //                      small mesh with few points whole iterations in one launch (the device loop)
-//   finish             no external point left: count the edges that are not strictly convex; none, and the
-//                      mesh is the exact hull.  Otherwise (coplanar or cospherical input where the local
-//                      edits stop short), or on a stall, the exact reference hull of the mesh's vertices
-//                      and the points still outside: every other point was dropped inside P or inside a
-//                      tetrahedron of c and mesh vertices, so these hold every extreme point.
+//   finish             no external point left: the edges that are not strictly convex counted; none, or
+//                      only flat ones with every vertex on three strictly convex edges, and the mesh is
+//                      the exact hull.  Defects (concave edges, thin vertices) are repaired where they
+//                      are (fault_repair.hpp), with 2, 4 and 8 rings around them.  Otherwise (flat input
+//                      whose facets are wider than a patch), or on a stall, the exact reference hull of the
+//                      mesh's vertices and the points still outside: every other point was dropped inside
+//                      P or inside a tetrahedron of c and mesh vertices, so these hold every extreme point.
 #pragma once
 
 #include <algorithm>
@@ -39,103 +41,10 @@
 #include "cudahull/resident.hpp"
 #include "phases/initial_tetrahedron.hpp"
 #include "resident/fault_repair.hpp"
+#include "resident/first_mesh.hpp"
 #include "resident/resident_ops.hpp"
 
 namespace cudahull::resident {
-
-CUDAHULL_HD inline u64 ordered_bits(double v) {
-#if defined(__CUDA_ARCH__)
-  u64 bits = static_cast<u64>(__double_as_longlong(v));
-#else
-  u64 bits;
-  std::memcpy(&bits, &v, sizeof bits);
-#endif
-  return (bits >> 63) ? ~bits : (bits | (u64{1} << 63));
-}
-
-// Section 3.1's rankings, one value per point (larger is better): -x, x, the squared distance from a
-// line, the distance from a plane.
-template <class Point>
-struct TetrahedronValue {
-  const Point* points;
-  int what;  // 0: -x, 1: x, 2: from line (a, b), 3: from plane (a, b, d)
-  Vec3d a, b, d;
-  CUDAHULL_HD double operator()(std::size_t i) const {
-    const Vec3d p = to_vec3d(points[i]);
-    switch (what) {
-      case 0:
-        return -p.x;
-      case 1:
-        return p.x;
-      case 2: {
-        const Vec3d u{b.x - a.x, b.y - a.y, b.z - a.z}, w{p.x - a.x, p.y - a.y, p.z - a.z};
-        const Vec3d n{u.y * w.z - u.z * w.y, u.z * w.x - u.x * w.z, u.x * w.y - u.y * w.x};
-        return n.x * n.x + n.y * n.y + n.z * n.z;
-      }
-      default: {
-        const double h = orient3d_fast(a, b, d, p);
-        return h < 0 ? -h : h;
-      }
-    }
-  }
-};
-template <class Point>
-struct BestValueKey {
-  TetrahedronValue<Point> value;
-  CUDAHULL_HD u64 operator()(std::size_t i) const { return ordered_bits(value(i)); }
-};
-template <class Point>
-struct RankedValue {
-  TetrahedronValue<Point> value;
-  CUDAHULL_HD u64 operator()(std::size_t i) const { return rank_key(value(i), static_cast<u32>(i)); }
-};
-template <class Point>
-struct LowestIndexWith {
-  TetrahedronValue<Point> value;
-  u64 best;
-  CUDAHULL_HD u64 operator()(std::size_t i) const {
-    return ordered_bits(value(i)) == best ? static_cast<u64>(~static_cast<u32>(i)) : 0;
-  }
-};
-
-// The Backend queries of section 3.1 on the executor, so that phases::find_initial_tetrahedron (which
-// confirms every answer exactly) serves both engines.  Nothing else of the Backend is used.
-template <class Point, class Exec>
-class TetrahedronQueries final : public BasicBackend<Point> {
- public:
-  TetrahedronQueries(Exec& exec, const std::vector<Point>& host_points, const Point* points)
-      : exec_(exec), host_(host_points), points_(points), n_(host_points.size()) {}
-  std::string name() const override { return "resident"; }
-  void upload_points(const std::vector<Point>&) override {}
-  void restart() override {}
-  std::array<PointIndex, 2> extremes_x() override { return {best(0, {}, {}, {}), best(1, {}, {}, {})}; }
-  PointIndex furthest_from_line(PointIndex a, PointIndex b) override { return best(2, at(a), at(b), {}); }
-  PointIndex furthest_from_plane(PointIndex a, PointIndex b, PointIndex c) override {
-    return best(3, at(a), at(b), at(c));
-  }
-  void distribute_points(const typename BasicBackend<Point>::Tables&) override { unused(); }
-  std::size_t compact_index_array() override { unused(); }
-  void get_extreme_points(std::vector<FaceExtreme>&) override { unused(); }
-  void point_faces(std::vector<std::int32_t>&) override { unused(); }
-
- private:
-  [[noreturn]] static void unused() { throw std::logic_error("resident engine: backend call not used"); }
-  Vec3d at(PointIndex i) const { return to_vec3d(host_[i]); }
-  // The point of largest value, ties to the lowest index.  One reduction of rank_key() (the value rounded
-  // to float, then ~index) where that rounding keeps the order exact or where the order need not be exact
-  // (the distances: find_initial_tetrahedron confirms them); two exact ones for a double x.
-  PointIndex best(int what, Vec3d a, Vec3d b, Vec3d d) {
-    const TetrahedronValue<Point> value{points_, what, a, b, d};
-    if (what >= 2 || std::is_same_v<Point, Point3>)
-      return rank_key_index(exec_.reduce_max(n_, RankedValue<Point>{value}));
-    const u64 top = exec_.reduce_max(n_, BestValueKey<Point>{value});
-    return ~static_cast<u32>(exec_.reduce_max(n_, LowestIndexWith<Point>{value, top}));
-  }
-  Exec& exec_;
-  const std::vector<Point>& host_;
-  const Point* points_;
-  std::size_t n_;
-};
 
 // What a recorded iteration did, read back for the records (resident_stepping.hpp makes the IterationRecord
 // of it).  Face ids are the iteration's own: 0 .. faces_before - 1 the mesh it began with, then the
@@ -298,9 +207,9 @@ class ResidentHull {
     // need not find P's vertices again); else section 3.1's tetrahedron, over all points when P is flat
     // (then the input may be too).
     const BasicHullMesh<Point> polytope = directional_polytope();
-    const DropFilter filter = drop_filter(polytope);
+    const DropFilter filter = drop_filter(polytope, max_coordinate_);
     std::vector<u32> fv, fn;
-    stats.polytope_first = polytope_mesh(polytope, fv, fn);
+    stats.polytope_first = polytope_mesh(polytope, fv, fn, c_);
     if (!stats.polytope_first) {
       const std::vector<Point>& host = all_points();
       TetrahedronQueries<Point, Exec> queries(exec_, host, points_);
@@ -447,90 +356,6 @@ class ResidentHull {
     for (PointIndex& v : hull.vertex_ids)
       v = ids[v];
     return hull;
-  }
-
-  // The mean of P's vertices (rounded: every use of it is checked exactly or with a margin).
-  static Vec3d centre_of(const BasicHullMesh<Point>& polytope) {
-    Vec3d centre{0, 0, 0};
-    for (const Point& v : polytope.vertices) {
-      const Vec3d p = to_vec3d(v);
-      centre = {centre.x + p.x, centre.y + p.y, centre.z + p.z};
-    }
-    const double k = 1.0 / static_cast<double>(polytope.vertices.size());
-    return {centre.x * k, centre.y * k, centre.z * k};
-  }
-
-  // P's face planes with the bounds that make DropFilter sound.  Rounding analysis (u = 2^-53, every
-  // operation rounded once, no fused operations): for a face (a, b, c) the edge vectors, the cross product
-  // n = (b - a) x (c - a) and d = -n.a are computed with |n - n*| <= 8u (|products|) per component and
-  // |d - d*| <= |n - n*|.|a| + 4u |n|.|a|; evaluating n.p + d costs 5u (|n|.|p| + |d|).  With every
-  // |coordinate| <= M the error is at most 2 |n - n*|_1 M + 4u |n|_1 M + 5u (|n|_1 M + |d|), taken
-  // with a margin, plus an absolute 2^-1000 for the rounding of results near underflow.
-  DropFilter drop_filter(const BasicHullMesh<Point>& polytope) const {
-    DropFilter filter;
-    if (polytope.dimension != 3 || polytope.triangles.size() > static_cast<std::size_t>(kMaxDropPlanes))
-      return filter;
-    constexpr double u = 0x1p-53;
-    const double M = max_coordinate_;
-    const Vec3d centre = centre_of(polytope);
-    for (const Triangle& t : polytope.triangles) {
-      const Vec3d a = to_vec3d(polytope.vertices[t[0]]), b = to_vec3d(polytope.vertices[t[1]]),
-                  c = to_vec3d(polytope.vertices[t[2]]);
-      const Vec3d e1{b.x - a.x, b.y - a.y, b.z - a.z}, e2{c.x - a.x, c.y - a.y, c.z - a.z};
-      const double n[3] = {e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x};
-      const double err_n = 8 * u *
-                           ((std::fabs(e1.y * e2.z) + std::fabs(e1.z * e2.y)) +
-                            (std::fabs(e1.z * e2.x) + std::fabs(e1.x * e2.z)) +
-                            (std::fabs(e1.x * e2.y) + std::fabs(e1.y * e2.x)));
-      const double d = -((n[0] * a.x + n[1] * a.y) + n[2] * a.z);
-      const double n1 = std::fabs(n[0]) + std::fabs(n[1]) + std::fabs(n[2]);
-      const double slack =
-          (2 * err_n * M + 4 * u * n1 * M + 5 * u * (n1 * M + std::fabs(d))) * (1 + 0x1p-10) + 0x1p-1000;
-      // Outward (exact_hull's triangles are), confirmed by P's centre lying below with room to spare;
-      // otherwise no filter at all (it is only an acceleration).
-      if (!(((n[0] * centre.x + n[1] * centre.y) + n[2] * centre.z) + d < -slack)) return DropFilter{};
-      const u32 f = filter.planes++;
-      for (int i = 0; i < 3; ++i)
-        filter.n[f][i] = n[i];
-      filter.d[f] = d;
-      filter.slack[f] = slack;
-    }
-    return filter;
-  }
-
-  // P as the first mesh (corners and links as the driver keeps them) with its centre as c, when the
-  // centre is exactly strictly below every face; false otherwise (or when P is flat).
-  bool polytope_mesh(const BasicHullMesh<Point>& polytope, std::vector<u32>& fv, std::vector<u32>& fn) {
-    // FirstMesh holds 2 * 14 - 4 faces, all a hull of 14 points can have.
-    if (polytope.dimension != 3 || polytope.triangles.size() < 4 ||
-        polytope.triangles.size() > static_cast<std::size_t>(kMaxFirstFaces))
-      return false;
-    const Vec3d centre = centre_of(polytope);
-    const std::size_t faces = polytope.triangles.size();
-    fv.assign(3 * faces, 0);
-    fn.assign(3 * faces, kNone);
-    for (std::size_t f = 0; f < faces; ++f) {
-      const Triangle& t = polytope.triangles[f];
-      if (orient3d(to_vec3d(polytope.vertices[t[0]]), to_vec3d(polytope.vertices[t[1]]),
-                   to_vec3d(polytope.vertices[t[2]]), centre) >= 0)
-        return false;
-      for (int i = 0; i < 3; ++i)
-        fv[3 * f + i] = polytope.vertex_ids[t[i]];
-    }
-    // Links: the face across directed edge a -> b holds b -> a (a closed 2-manifold: every edge twice).
-    for (std::size_t f = 0; f < faces; ++f) {
-      for (int i = 0; i < 3; ++i) {
-        const u32 a = fv[3 * f + i], b = fv[3 * f + (i + 1) % 3];
-        for (std::size_t g = 0; g < faces && fn[3 * f + i] == kNone; ++g) {
-          for (int j = 0; j < 3; ++j) {
-            if (fv[3 * g + j] == b && fv[3 * g + (j + 1) % 3] == a) fn[3 * f + i] = static_cast<u32>(g);
-          }
-        }
-        if (fn[3 * f + i] == kNone) return false;
-      }
-    }
-    c_ = centre;
-    return true;
   }
 
   // Milliseconds since the last lap.
