@@ -978,8 +978,9 @@ struct CudaExec {
       cooperative_blocks_ = static_cast<unsigned>(std::max(1, sms * per_sm));
     }
     // A thread per face up to what fits at once, and one block for a small mesh: a grid barrier costs
-    // more the more blocks wait at it.  The count is on the device; the driver leaves room for twice the
-    // faces there may be.
+    // more the more blocks wait at it.  The count is on the device; half the capacity stands for it (a
+    // small mesh is sized for every face refining, so its faces are below that; a large one may have more
+    // and then runs on fewer blocks than faces/256, each thread striding over more faces).
     const std::size_t capacity = launch.face_capacity, faces = capacity / 2;
     const bool one_block = faces <= one_block_faces_;
     const unsigned blocks = one_block ? 1u : std::max(1u, std::min(cooperative_blocks_, blocks_for(faces)));

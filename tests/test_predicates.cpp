@@ -1,5 +1,5 @@
 // Exact predicates (cudahull/predicates.hpp) against an independent exact reference, plus the Qhull
-// reference wrapper (bench/qhull_reference.hpp).
+// reference wrapper (reference/qhull/qhull_reference.hpp).
 #include "cudahull/predicates.hpp"
 
 #include <cstring>

@@ -19,24 +19,7 @@ nlohmann::json route_json(std::int32_t code) {
 
 nlohmann::json iteration_to_json(const IterationRecord& r) {
   nlohmann::json j;
-  j["iteration"] = r.iteration;
-  j["faces_before"] = r.faces_before;
-  j["faces_after"] = r.faces_after;
-  j["faces_refined"] = r.faces_refined;
-  j["swaps_regular"] = r.swaps_regular;
-  j["swaps_complementary"] = r.swaps_complementary;
-  j["swaps_rejected"] = r.swaps_rejected;
-  j["vertices_removed"] = r.vertices_removed;
-  j["removals_rejected"] = r.removals_rejected;
-  j["decision_entries"] = r.decision_entries;
-  j["external_before"] = r.external_before;
-  j["external_after"] = r.external_after;
-  j["repairs"] = r.repairs;
-  j["host_ms"] = r.host_ms;
-  j["backend_ms"] = r.backend_ms;
-  if (r.iteration == 0) j["upload_ms"] = r.upload_ms;
-  j["bytes_to_backend"] = r.bytes_to_backend;
-  j["bytes_from_backend"] = r.bytes_from_backend;
+  for_each_count(r, [&](const char* name, const auto& value) { j[name] = value; });
   if (!r.note.empty()) j["note"] = r.note;
   j["apexes"] = r.refined_apexes;
   j["refined_faces"] = r.refined_faces;

@@ -343,20 +343,7 @@ class StepEngine {
  private:
   static nb::dict record_to_dict(const IterationRecord& r) {
     nb::dict d;
-    d["iteration"] = r.iteration;
-    d["faces_before"] = r.faces_before;
-    d["faces_after"] = r.faces_after;
-    d["faces_refined"] = r.faces_refined;
-    d["swaps_regular"] = r.swaps_regular;
-    d["swaps_complementary"] = r.swaps_complementary;
-    d["swaps_rejected"] = r.swaps_rejected;
-    d["vertices_removed"] = r.vertices_removed;
-    d["removals_rejected"] = r.removals_rejected;
-    d["external_before"] = r.external_before;
-    d["external_after"] = r.external_after;
-    d["repairs"] = r.repairs;
-    d["host_ms"] = r.host_ms;
-    d["backend_ms"] = r.backend_ms;
+    for_each_count(r, [&](const char* name, const auto& value) { d[name] = value; });
     d["note"] = r.note;
     // Fig. 3a: each refined face's corners and the apex it split at.
     d["refined_apexes"] = to_numpy(std::vector<PointIndex>(r.refined_apexes));

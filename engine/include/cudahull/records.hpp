@@ -60,4 +60,29 @@ struct IterationRecord {
   std::string note;                                      // e.g. "degenerate input: dimension 2"
 };
 
+// Every count of a record with its name, in declaration order: visit(name, value) with an int, std::size_t,
+// double or std::uint64_t (upload_ms on iteration 0 only).  The trace's JSON and the Python module's dict are
+// made from it, so a count added here shows in both.
+template <class Visit>
+void for_each_count(const IterationRecord& r, Visit&& visit) {
+  visit("iteration", r.iteration);
+  visit("faces_before", r.faces_before);
+  visit("faces_after", r.faces_after);
+  visit("faces_refined", r.faces_refined);
+  visit("swaps_regular", r.swaps_regular);
+  visit("swaps_complementary", r.swaps_complementary);
+  visit("swaps_rejected", r.swaps_rejected);
+  visit("vertices_removed", r.vertices_removed);
+  visit("removals_rejected", r.removals_rejected);
+  visit("decision_entries", r.decision_entries);
+  visit("external_before", r.external_before);
+  visit("external_after", r.external_after);
+  visit("repairs", r.repairs);
+  visit("host_ms", r.host_ms);
+  visit("backend_ms", r.backend_ms);
+  if (r.iteration == 0) visit("upload_ms", r.upload_ms);
+  visit("bytes_to_backend", r.bytes_to_backend);
+  visit("bytes_from_backend", r.bytes_from_backend);
+}
+
 }  // namespace cudahull

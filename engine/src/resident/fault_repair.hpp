@@ -114,7 +114,7 @@ bool repair_patch(const PatchRows& read, const std::vector<std::size_t>& patch, 
   // Flood from the faces that hold L's edges, never across L.
   std::vector<char> in_cap(hull_faces, 0);
   std::vector<u32> cap;
-  for (const auto& [edge, outside] : boundary) {
+  for (const auto& [edge, face_outside] : boundary) {
     const auto it = face_of_edge.find(edge);
     if (it == face_of_edge.end()) return false;  // L is not on the hull of D's vertices
     if (!in_cap[it->second]) {
@@ -138,8 +138,8 @@ bool repair_patch(const PatchRows& read, const std::vector<std::size_t>& patch, 
     }
   }
   if (cap.size() > patch.size()) return false;
-  // K in D's slots (the lowest ids), then the rest dead; links within K, to the faces outside across L,
-  // and those faces' links back.
+  // K in D's slots (the lowest ids), the rest left over (plan.holes); links within K, to the faces outside
+  // across L, and those faces' links back.
   std::map<u32, u32> slot_of;  // hull face -> mesh face id
   for (std::size_t k = 0; k < cap.size(); ++k)
     slot_of[cap[k]] = rows[patch[k]].id;

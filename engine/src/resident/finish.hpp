@@ -1,6 +1,6 @@
 // The resident engine's finish, once no point is outside: the defects counted (CountFaults, then
-// CountConcave and CountThin: flat edges inside coplanar facets are no defect), the result renumbered where it
-// is, the device side of the local repair (fault_repair.hpp plans it), and what the records read back.
+// CountConcave and CountThin: flat edges inside coplanar facets are no defect), the result renumbered where
+// it is, the device side of the local repair (fault_repair.hpp plans it), and what the records read back.
 #pragma once
 
 #include <cstddef>
@@ -96,7 +96,7 @@ struct CountFaults {
 // The local repair of the faults the rounds leave (fault_repair.hpp plans it on the host).
 
 // A face as read back for the repair, or as written by it: id, corners, links, and its ring (1: it holds
-// a fault; r: r - 1 faces from one).  A written face with corners kNone is a dead slot.
+// a fault; r: r - 1 faces from one).
 struct FaceRow {
   u32 id;
   u32 v[3];
@@ -222,7 +222,8 @@ struct CheckRepaired {
   }
 };
 
-// The plan's rows written into the mesh: a live face, or a dead slot.
+// The plan's rows written into the mesh, live faces (the slots a repair leaves over are filled by the
+// mesh's last faces, resident_driver.hpp's fill_holes, not written dead).
 struct WriteRows {
   const FaceRow* rows;
   u32* fv;
@@ -234,7 +235,7 @@ struct WriteRows {
       fv[3 * row.id + i] = row.v[i];
       fn[3 * row.id + i] = row.n[i];
     }
-    killer[row.id] = row.v[0] == kNone ? kDeadSlot : kAlive;
+    killer[row.id] = kAlive;
   }
 };
 

@@ -116,8 +116,6 @@ struct AssignFirst {
   }
 };
 
-
-
 // The first mesh (P's faces or the tetrahedron's), written where the executor computes from the
 // operation's own copy (a kernel parameter on the device: no upload and no wait), with the state zeroed.
 inline constexpr int kMaxFirstFaces = kMaxDropPlanes;

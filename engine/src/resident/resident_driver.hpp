@@ -739,9 +739,11 @@ class ResidentHull {
     u32 counts[2] = {0, 0};  // faults, vertices
     const u32* vertex_list = nullptr;
     if (corners < n) {
-      // The vertex list right after the renumbered corners (fv_out_ has room for twice the faces), so
-      // that both come back in one read.
+      // The vertex list right after the renumbered corners, so that both come back in one read: fv_out_
+      // grown for it (a spare: nothing in it is kept), as the face capacity may be only a little above
+      // the faces in use.
       index_[1].grow(corners);
+      fv_out_.grow(corners + std::min(corners, n));
       u32* list = fv_out_.data() + corners;
       exec_.sort_unique_to(fv_.data(), corners, list, index_[1].data(), n, &st->vertices);
       exec_.for_each(corners, FindCorners{fv_.data(), list, &st->vertices, fv_out_.data()});

@@ -216,7 +216,8 @@ class ResidentStepper : public SteppingEngine {
     } else if (stats_.faults != 0) {
       r.repairs = stats_.faults;
       r.note = (r.note.empty() ? "" : r.note + "; ") + "repaired " + std::to_string(stats_.faults) +
-               " edges not strictly convex in " + std::to_string(stats_.repaired_patches) + " patches";
+               " defects (concave edges, vertices not strictly extreme) in " +
+               std::to_string(stats_.repaired_patches) + " patches";
     }
     done_ = true;
   }
