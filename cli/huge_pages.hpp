@@ -2,10 +2,9 @@
 // (GLIBC_TUNABLES=glibc.malloc.hugetlb=1: malloc marks its large mappings with madvise(MADV_HUGEPAGE)).
 //
 // Why: the engine's per-iteration arrays (faces, tables, claims) grow with the mesh, and every fresh page
-// costs a fault on first touch.  On the GPU machine (a VM) a 4 KB fault took about 4 us, 1 ms for every MB
-// first touched; with 2 MB pages the 1M-point sphere's host time fell from 1.8-1.9 s to 1.3-1.5 s
-// (docs/benchmarks.md).  glibc reads the tunable only at start-up, so main() sets it and executes the same
-// program again, once.  CUDAHULL_HUGE_PAGES=0 leaves the process as it is.
+// costs a fault on first touch; with 2 MB pages a dense sphere's host time falls by about a quarter
+// (docs/benchmarks.md, "Measurements behind the code").  glibc reads the tunable only at start-up, so main()
+// sets it and executes the same program again, once.  CUDAHULL_HUGE_PAGES=0 leaves the process as it is.
 #pragma once
 
 #include <unistd.h>

@@ -108,14 +108,14 @@ class PinnedBuffer {
 
 constexpr int kBlock = 256;
 // Occupancy of the distribution pass: at least 2 blocks of 256 threads per SM, so at most 128 registers a
-// thread.  Measured on the H100 (docs/benchmarks.md): capping harder (3 or 4 blocks, 85 or 64 registers)
-// spills and made the 10M-point cube slower (3.4 and 3.9 ms on the device against 2.7).
+// thread.  Capping harder (3 or 4 blocks, 85 or 64 registers) spills and made the pass slower
+// (docs/benchmarks.md, "Measurements behind the code").
 #ifndef CUDAHULL_DISTRIBUTE_BLOCKS_PER_SM
 #define CUDAHULL_DISTRIBUTE_BLOCKS_PER_SM 2
 #endif
 constexpr int kDistributeBlocksPerSm = CUDAHULL_DISTRIBUTE_BLOCKS_PER_SM;
-// The pass with prepared planes needs fewer registers: 3 blocks (80 registers, a few spilled) made the
-// 10M-point cube's device time 2.24-2.33 ms against 2.50-2.59 at 2 blocks (H100, alternating runs).
+// The pass with prepared planes needs fewer registers: 3 blocks (80 registers, a few spilled) made it
+// faster than 2 (docs/benchmarks.md, "Measurements behind the code").
 #ifndef CUDAHULL_PREPARED_BLOCKS_PER_SM
 #define CUDAHULL_PREPARED_BLOCKS_PER_SM 3
 #endif
@@ -520,8 +520,8 @@ class CudaBackend final : public BasicBackend<Point> {
     face_of_.reserve(n_points_, "the per-point faces");
     if (n_points_ == 0) return;
     // The per-iteration buffers start at a working size, so that a small hull does not grow them in most
-    // of its iterations (each growth frees, an implicit synchronisation, and allocates again: 20-40 us on
-    // the GPU machine, eight times in a run of the dragon).
+    // of its iterations (each growth frees, an implicit synchronisation, and allocates again, several times
+    // in a run of a small hull (docs/benchmarks.md, "Measurements behind the code")).
     tables_dev_.reserve(kInitialTableBytes, "the iteration tables");
     staging_[0].reserve(kInitialTableBytes, "the table staging area");
     extremes_dev_.reserve(extremes_bytes(kInitialFaces), "the per-face counts and extremes");
@@ -771,8 +771,8 @@ class CudaBackend final : public BasicBackend<Point> {
     return static_cast<unsigned>(std::max(1, per_sm) * sm_count_);
   }
 
-  // Pinned memory is slow to make on the GPU machine: cudaMallocHost took about 1 ms a MB (83 ms for 80 MB,
-  // 4 ms to grow a buffer to 3.7 MB), more than copying the same bytes.  So the tables go up by size:
+  // Pinned memory is slow to make: cudaMallocHost costs more than copying the same bytes
+  // (docs/benchmarks.md, "Measurements behind the code").  So the tables go up by size:
   // - below kSmallPinned, through one pinned buffer (small, so cheap to grow);
   // - below kPinnedStaging, gathered in ordinary memory and copied from there (the driver stages such
   //   copies through pinned buffers of its own; growing a pinned buffer for a 10M-point ball's tables, up

@@ -79,13 +79,13 @@ void trim_pool() {
 }
 
 // Small device blocks kept for reuse between buffers and runs (a caching allocator, as PyTorch's and CuPy's):
-// on the GPU machine a cudaMallocAsync costs the host 2-3 us even from a warm pool, and a run grows some 30
-// buffers, most of them small.  Blocks up to kLargest bytes, in power-of-two sizes, go back to the cache
-// when their buffer grows or dies and are taken again in stream order (the engine runs on the default
-// stream, so a block's last use is ordered before its next); the cache holds at most kKeep bytes and frees
-// what is beyond.  Larger blocks are allocated and freed as before.  It lives until the process ends (a
-// program that resets the device with blocks in it must not run the engine again), and the pool's trim
-// after a run leaves what it holds in place.
+// a cudaMallocAsync costs the host microseconds even from a warm pool (docs/benchmarks.md, "Measurements
+// behind the code"), and a run grows some 30 buffers, most of them small.  Blocks up to kLargest bytes, in
+// power-of-two sizes, go back to the cache when their buffer grows or dies and are taken again in stream
+// order (the engine runs on the default stream, so a block's last use is ordered before its next); the cache
+// holds at most kKeep bytes and frees what is beyond.  Larger blocks are allocated and freed as before.  It
+// lives until the process ends (a program that resets the device with blocks in it must not run the engine
+// again), and the pool's trim after a run leaves what it holds in place.
 #if defined(CUDA_API_PER_THREAD_DEFAULT_STREAM)
 #error "BlockCache orders a block's reuse after its last use by the one legacy default stream"
 #endif
@@ -281,8 +281,8 @@ __device__ inline u64 now_ns() {
 // registers instead: thread i fixes, finds and claims for the i-th work face, keeps the candidate, judges it
 // itself, marks a win in a bit per face (shared memory), and applies it numbered by the wins before it in
 // face order, as the tiles number them.  This drops the candidates' store and reload, the sweep of every
-// face to judge, and the numbering's barriers (the dragon's 40 rounds: judge, number and apply 0.165 ->
-// 0.055 ms).
+// face to judge, and the numbering's barriers (a third of the time of the dragon's judge, number and apply
+// (docs/benchmarks.md, "Measurements behind the code")).
 constexpr u32 kRegisterFaces = 2048;
 
 template <class Point, int Block, class Barrier>
@@ -541,7 +541,8 @@ __device__ u32 block_exclusive_scan(const u32* in, u32* out, u32 n) {
 
 // mark(i) for every i < n, the flags' exclusive prefix sum into ranks, then move(i) for every i: one block,
 // one launch (a compaction of a small mesh: MarkLive and MoveLive), where the general path is two for_each
-// launches around CUB's two.  On the GPU machine a launch costs the host about 4 us.
+// launches around CUB's two, each of which costs the host microseconds (docs/benchmarks.md, "Measurements
+// behind the code").
 template <int Block, class Mark, class Move>
 __global__ void __launch_bounds__(Block)
     mark_scan_move_kernel(u32 n, Mark mark, u32* flags, u32* ranks, Move move) {
@@ -1008,8 +1009,9 @@ struct CudaExec {
   std::uint64_t host_syncs = 0, bytes_to_device = 0, bytes_from_device = 0;
 
  private:
-  // Small reads go through a pinned buffer (one a thread, made once: pinning is slow there): on the GPU
-  // machine a read of a few bytes after a kernel took about 13 us from pageable memory, 9 from pinned.
+  // Small reads go through a pinned buffer (one a thread, made once: pinning is slow): a read of a few bytes
+  // after a kernel is faster from pinned memory than from pageable (docs/benchmarks.md, "Measurements behind
+  // the code").
   class PinnedStage {
    public:
     static constexpr std::size_t kBytes = std::size_t{64} << 10;

@@ -2,8 +2,8 @@
 //
 // Features:
 //   - the EGL device platform first (eglQueryDevicesEXT + eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT)),
-//     which gives the NVIDIA GPU on the GPU machine with no X server (../shared/recipes/egl_cuda_interop.cu)
-//     and Mesa's software device elsewhere;
+//     which gives an NVIDIA GPU with no X server (docs/benchmarks.md, "Measurements behind the code") and
+//     Mesa's software device elsewhere;
 //   - then Mesa's surfaceless platform, then the default display;
 //   - surfaceless contexts where EGL_KHR_surfaceless_context allows, else a 16x16 pbuffer: rendering goes
 //     into an OffscreenTarget (renderer.hpp) anyway;

@@ -3,10 +3,10 @@
 // for k workers wakes exactly k - 1 threads (a shared condition variable woke all of them for every job,
 // which cost more than the job in the engine's many small per-iteration passes).  After a job a worker
 // watches for the next one for a short while (watch_time()) before it sleeps: the engine's batched swap
-// rounds run about ten jobs back to back, and on the GPU machine waking a sleeping thread took tens of
-// microseconds, more than many of those jobs.  It watches with a pause instruction, so that a hyperthread
-// sibling doing serial edits is not slowed; for longer, spinning workers did slow the serial edits between
-// jobs.
+// rounds run about ten jobs back to back, and waking a sleeping thread can take longer than many of those
+// jobs (docs/benchmarks.md, "Measurements behind the code").  It watches with a pause instruction, so that a
+// hyperthread sibling doing serial edits is not slowed; for longer, spinning workers did slow the serial
+// edits between jobs.
 #include <atomic>
 #include <chrono>
 #include <cstdlib>

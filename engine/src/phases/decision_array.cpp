@@ -109,8 +109,8 @@ void build_face_geometry(const Mesh& mesh, const std::vector<Point>& points, con
   const std::size_t count = mesh.live_faces();
   // Reuses the spare buffer: a fresh 100 MB array costs page faults every iteration.  When it must grow, a
   // new one with room to spare, its old contents not copied (every face is written below), and its pages
-  // first touched by the parallel passes below rather than by one core (on a 1M-point sphere, growing
-  // these arrays cost ~600 ms on 2 cores, more than a third of the host time).  The spare room is only
+  // first touched by the parallel passes below rather than by one core (growing them was over a third of
+  // a dense sphere's host time (docs/benchmarks.md, "Measurements behind the code")).  The spare room is only
   // address space until written, so it is generous.
   if (count > faces.capacity()) {
     BasicFaceGeometryArray<Point> grown;

@@ -114,8 +114,8 @@ FaceId make_swaps(LocalEdits<Point>& edits, const std::vector<std::pair<FaceId, 
                   Slot&& slot, std::size_t first_record, int first_sequence) {
   const std::size_t count = made.size();
   // One swap (the one-at-a-time path, hundreds an iteration on a cube) takes the mesh's single edit: the
-  // same faces and links as a batch of one, without the batch's buffers (callgrind: 10% of the host's
-  // instructions on a 300K cube went to them).
+  // same faces and links as a batch of one, without the batch's buffers, which cost a measurable share of
+  // the host's instructions on a cube (docs/benchmarks.md, "Measurements behind the code").
   const FaceId first = count == 1 ? edits.mesh.swap(made[0].first, made[0].second)[0]
                                   : edits.mesh.swap_batch(made, hardware_workers());
   const std::int32_t first_entry = edits.decisions.add_swap_slots(count, edits.mesh.face_capacity());

@@ -157,7 +157,8 @@ struct FindCandidate {
   }
 
   // The first candidate of face f: its three edges, then its three corners.  slot receives 0..5.  (Two
-  // loops of three, which unroll: one loop over the six slots, tried on the H100, made the rounds slower.)
+  // loops of three, which unroll: one loop over the six slots made the rounds slower (docs/benchmarks.md,
+  // "Measurements behind the code").)
   CUDAHULL_HD bool operator()(u32 f, Candidate& out, int& slot) const {
     Around<Point> around;
     around.gather(m, f);

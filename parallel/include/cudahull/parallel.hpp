@@ -12,8 +12,9 @@
 namespace cudahull {
 
 // Asked once: glibc answers hardware_concurrency() by opening and reading /sys/devices/system/cpu/online,
-// and the engine asks before every parallel pass (78 times for a 100K-point cube, most of its host time on
-// the GPU machine).  CUDAHULL_THREADS=N (N >= 1) sets the count instead, as OMP_NUM_THREADS does elsewhere.
+// and the engine asks before every parallel pass (dozens of times for a small cube, once most of its host
+// time (docs/benchmarks.md, "Measurements behind the code")).  CUDAHULL_THREADS=N (N >= 1) sets the count
+// instead, as OMP_NUM_THREADS does elsewhere.
 inline unsigned hardware_workers() {
   static const unsigned workers = [] {
     if (const char* text = std::getenv("CUDAHULL_THREADS")) {
