@@ -144,9 +144,7 @@ class ResidentHull {
     exec_.fill(out, n_, kPointStateInternal);
     exec_.for_each(active_, ScatterPointStates{index_[0].data(), face_of_[0].data(), out});
     if (vertices.empty()) return;
-    gather_ids_.grow(vertices.size());
-    exec_.upload(gather_ids_.data(), vertices.data(), vertices.size());
-    exec_.for_each(vertices.size(), MarkPoints{gather_ids_.data(), kPointStateVertex, out});
+    exec_.for_each(vertices.size(), MarkPoints{listed(vertices), kPointStateVertex, out});
   }
 
  private:
@@ -324,11 +322,15 @@ class ResidentHull {
       for (std::size_t k = 0; k < ids.size(); ++k)
         out[k] = (*host_)[ids[k]];
     } else if (!ids.empty()) {
-      gather_ids_.grow(ids.size());
-      exec_.upload(gather_ids_.data(), ids.data(), ids.size());
-      gather(gather_ids_.data(), out);
+      gather(listed(ids), out);
     }
     return out;
+  }
+  // `ids` (point or face ids) where the executor computes, in gather_ids_ (the last list uploaded).
+  const u32* listed(const std::vector<u32>& ids) {
+    gather_ids_.grow(ids.size());
+    exec_.upload(gather_ids_.data(), ids.data(), ids.size());
+    return gather_ids_.data();
   }
   // The coordinates of the `out.size()` points listed at `ids` where the executor computes.
   void gather(const u32* ids, std::vector<Point>& out) {
@@ -737,8 +739,8 @@ class ResidentHull {
     if (!checked) exec_.for_each(faces_, CountFaults<Point>{view(), &st->faults});
     const std::size_t n = n_, corners = 3 * faces_;
     u32 counts[2] = {0, 0};  // faults, vertices
-    const u32* vertex_list = nullptr;
-    if (corners < n) {
+    const bool sorted = corners < n;
+    if (sorted) {
       // The vertex list right after the renumbered corners, so that both come back in one read: fv_out_
       // grown for it (a spare: nothing in it is kept), as the face capacity may be only a little above
       // the faces in use.
@@ -747,28 +749,23 @@ class ResidentHull {
       u32* list = fv_out_.data() + corners;
       exec_.sort_unique_to(fv_.data(), corners, list, index_[1].data(), n, &st->vertices);
       exec_.for_each(corners, FindCorners{fv_.data(), list, &st->vertices, fv_out_.data()});
-      exec_.download(counts, &st->faults, 2);
-      faults = counts[0] == 0 ? 0 : defects();
-      if (faults == 0) {
-        std::vector<u32> both(corners + counts[1]);
-        exec_.download(both.data(), fv_out_.data(), both.size());
-        return result_mesh(both.data(), counts[1], list);
-      }
-    } else {
-      exec_.download(counts, &st->faults, 1);
-      faults = counts[0] == 0 ? 0 : defects();
     }
+    exec_.download(counts, &st->faults, sorted ? 2 : 1);
+    faults = counts[0] == 0 ? 0 : defects();
     if (faults != 0) return std::nullopt;
-    if (!vertex_list) {
-      keep_.grow(n);
-      point_rank_.grow(n);
-      index_[1].grow(n);
-      exec_.fill(keep_.data(), n, u32{0});
-      exec_.for_each(corners, FlagCorners{fv_.data(), keep_.data()});
-      counts[1] = exec_.select(keep_.data(), point_rank_.data(), index_[1].data(), n);
-      exec_.for_each(corners, RenumberCorners{fv_.data(), point_rank_.data(), fv_out_.data()});
-      vertex_list = index_[1].data();
+    if (sorted) {
+      std::vector<u32> both(corners + counts[1]);
+      exec_.download(both.data(), fv_out_.data(), both.size());
+      return result_mesh(both.data(), counts[1], fv_out_.data() + corners);
     }
+    keep_.grow(n);
+    point_rank_.grow(n);
+    index_[1].grow(n);
+    exec_.fill(keep_.data(), n, u32{0});
+    exec_.for_each(corners, FlagCorners{fv_.data(), keep_.data()});
+    counts[1] = exec_.select(keep_.data(), point_rank_.data(), index_[1].data(), n);
+    exec_.for_each(corners, RenumberCorners{fv_.data(), point_rank_.data(), fv_out_.data()});
+    const u32* vertex_list = index_[1].data();
     const u32 vertices = counts[1];
     BasicHullMesh<Point> out;
     out.vertex_ids.resize(vertices);
@@ -875,9 +872,7 @@ class ResidentHull {
     if (plan.patches_left == 0) {
       RoundsState* st = state_.data();
       exec_.fill(&st->defects, 1, u32{0});
-      gather_ids_.grow(plan.repaired.size());
-      exec_.upload(gather_ids_.data(), plan.repaired.data(), plan.repaired.size());
-      exec_.for_each(plan.repaired.size(), CheckRepaired<Point>{view(), gather_ids_.data(), &st->defects});
+      exec_.for_each(plan.repaired.size(), CheckRepaired<Point>{view(), listed(plan.repaired), &st->defects});
       u32 left = 0;
       exec_.download(&left, &st->defects, 1);
       checked = left == 0;
@@ -893,11 +888,7 @@ class ResidentHull {
     exec_.download(rows.data(), repair_rows_.data(), count);
     return rows;
   }
-  std::vector<FaceRow> face_rows(const std::vector<u32>& ids) {
-    gather_ids_.grow(ids.size());
-    exec_.upload(gather_ids_.data(), ids.data(), ids.size());
-    return face_rows(gather_ids_.data(), ids.size());
-  }
+  std::vector<FaceRow> face_rows(const std::vector<u32>& ids) { return face_rows(listed(ids), ids.size()); }
   void write_rows(const std::vector<FaceRow>& rows) {
     repair_rows_.grow(rows.size());
     exec_.upload(repair_rows_.data(), rows.data(), rows.size());
