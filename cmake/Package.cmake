@@ -13,10 +13,10 @@ set(CUDAHULL_PACKAGE_DIR "${CMAKE_INSTALL_LIBDIR}/cmake/cudahull")
 set_property(TARGET cudahull_cuda PROPERTY INTERFACE_INCLUDE_DIRECTORIES
                                            "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/cuda>")
 
-install(TARGETS cudahull_api cudahull_engine cudahull_cuda cudahull_reference cudahull_parallel cudahull_core
+install(TARGETS cudahull_api cudahull_engine cudahull_resident cudahull_cuda cudahull_reference cudahull_parallel cudahull_core
         EXPORT cudahullTargets
         ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT library)
-foreach(folder core parallel reference engine api)
+foreach(folder core parallel reference engine engine/resident api)
   install(DIRECTORY "${PROJECT_SOURCE_DIR}/${folder}/include/" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}"
           COMPONENT library)
 endforeach()

@@ -1,4 +1,4 @@
-// The resident engine's device executor: the operations of engine/src/resident/resident_ops.hpp as
+// The resident engine's device executor: the operations of cudahull/resident/resident_ops.hpp as
 // kernels, one thread per face or point; prefix sums from CUB.  A prefix sum brings its total back (4
 // bytes, one wait) where the host sizes the next step by it (exclusive_scan), or not at all (scan: the
 // operation after it writes the total into the state, which the host reads once an iteration).
@@ -24,8 +24,8 @@
 
 #include "cuda_errors.hpp"
 #include "cudahull/errors.hpp"
-#include "resident/resident_driver.hpp"
-#include "resident/resident_stepping.hpp"
+#include "cudahull/resident/resident_driver.hpp"
+#include "cudahull/resident/resident_stepping.hpp"
 #include "resident_cuda.hpp"
 
 namespace cudahull {

@@ -10,7 +10,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "resident/resident_ops.hpp"
+#include "cudahull/resident/resident_ops.hpp"
 
 namespace cudahull::resident {
 

@@ -32,16 +32,10 @@
 #include <vector>
 
 #include "cudahull/engine.hpp"
-#include "phases/cells.hpp"
-#include "phases/vector_math.hpp"
-#include "resident/resident_driver.hpp"
+#include "cudahull/resident/resident_driver.hpp"
+#include "cudahull/resident/shared_phases.hpp"
 
 namespace cudahull::resident {
-
-// The plane through a, b, d (unit normal), positive on the side of `inside`.
-inline SeparatingPlane plane_through(const Vec3d& a, const Vec3d& b, const Vec3d& d, const Vec3d& inside) {
-  return phases::plane_through_edge(a, b, phases::sub(d, a), inside);
-}
 
 template <class Point, class Exec>
 class ResidentStepper : public SteppingEngine {

@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "resident/star_mesh.hpp"
+#include "cudahull/resident/star_mesh.hpp"
 
 namespace cudahull::resident {
 

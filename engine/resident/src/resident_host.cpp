@@ -1,8 +1,8 @@
 // resident_hull_host(): the resident engine on the host executor.
 #include "cudahull/resident.hpp"
-#include "resident/host_exec.hpp"
-#include "resident/resident_driver.hpp"
-#include "resident/resident_stepping.hpp"
+#include "cudahull/resident/host_exec.hpp"
+#include "cudahull/resident/resident_driver.hpp"
+#include "cudahull/resident/resident_stepping.hpp"
 
 namespace cudahull {
 

@@ -8,7 +8,7 @@
 //           unrefined face next to a refined one is stamped for the first round of swaps
 #pragma once
 
-#include "resident/star_mesh.hpp"
+#include "cudahull/resident/star_mesh.hpp"
 
 namespace cudahull::resident {
 

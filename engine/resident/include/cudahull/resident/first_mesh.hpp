@@ -25,7 +25,7 @@
 #include "cudahull/backend.hpp"
 #include "cudahull/predicates.hpp"
 #include "cudahull/types.hpp"
-#include "resident/swaps.hpp"
+#include "cudahull/resident/swaps.hpp"
 
 namespace cudahull::resident {
 

@@ -17,7 +17,7 @@
 
 #include <cstddef>
 
-#include "resident/star_mesh.hpp"
+#include "cudahull/resident/star_mesh.hpp"
 
 namespace cudahull::resident {
 

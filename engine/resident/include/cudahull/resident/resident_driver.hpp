@@ -39,10 +39,10 @@
 #include "cudahull/exact_hull.hpp"
 #include "cudahull/mesh.hpp"
 #include "cudahull/resident.hpp"
-#include "phases/initial_tetrahedron.hpp"
-#include "resident/fault_repair.hpp"
-#include "resident/first_mesh.hpp"
-#include "resident/resident_ops.hpp"
+#include "cudahull/resident/fault_repair.hpp"
+#include "cudahull/resident/first_mesh.hpp"
+#include "cudahull/resident/resident_ops.hpp"
+#include "cudahull/resident/shared_phases.hpp"
 
 namespace cudahull::resident {
 
@@ -211,23 +211,10 @@ class ResidentHull {
     if (!stats.polytope_first) {
       const std::vector<Point>& host = all_points();
       TetrahedronQueries<Point, Exec> queries(exec_, host, points_);
-      const phases::InitialTetrahedron tetrahedron = phases::find_initial_tetrahedron(host, queries);
-      if (tetrahedron.dimension < 3) {
-        done = lower_dimensional(stats, tetrahedron.note);
+      const std::string flat = first_tetrahedron(host, queries, fv, fn, c_);
+      if (!flat.empty()) {
+        done = lower_dimensional(stats, flat);
         return false;
-      }
-      Mesh mesh;
-      if (!phases::make_initial_tetrahedron(host, tetrahedron.corners, mesh, c_)) {
-        done = lower_dimensional(stats, "tetrahedron too flat for an interior point");
-        return false;
-      }
-      fv.resize(12);
-      fn.resize(12);
-      for (u32 f = 0; f < 4; ++f) {
-        for (int k = 0; k < 3; ++k) {
-          fv[3 * f + k] = mesh.face(f).v[k];
-          fn[3 * f + k] = mesh.face(f).n[k];
-        }
       }
     }
 

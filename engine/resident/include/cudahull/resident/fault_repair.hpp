@@ -45,7 +45,7 @@
 
 #include "cudahull/exact_hull.hpp"
 #include "cudahull/predicates.hpp"
-#include "resident/resident_ops.hpp"
+#include "cudahull/resident/resident_ops.hpp"
 
 namespace cudahull::resident {
 

@@ -10,7 +10,7 @@
 //             lowest index; the refinement confirms it exactly)
 #pragma once
 
-#include "resident/star_mesh.hpp"
+#include "cudahull/resident/star_mesh.hpp"
 
 namespace cudahull::resident {
 

@@ -4,7 +4,7 @@
 
 #include <cstddef>
 
-#include "resident/star_mesh.hpp"
+#include "cudahull/resident/star_mesh.hpp"
 
 namespace cudahull::resident {
 

@@ -11,10 +11,10 @@
 // device (CudaExec, one thread each); resident_driver.hpp runs them in order.
 #pragma once
 
-#include "resident/compaction.hpp"
-#include "resident/distribution.hpp"
-#include "resident/finish.hpp"
-#include "resident/first_mesh.hpp"
-#include "resident/refinement.hpp"
-#include "resident/star_mesh.hpp"
-#include "resident/swaps.hpp"
+#include "cudahull/resident/compaction.hpp"
+#include "cudahull/resident/distribution.hpp"
+#include "cudahull/resident/finish.hpp"
+#include "cudahull/resident/first_mesh.hpp"
+#include "cudahull/resident/refinement.hpp"
+#include "cudahull/resident/star_mesh.hpp"
+#include "cudahull/resident/swaps.hpp"
