@@ -24,8 +24,8 @@
 
 #include "cudahull/backend.hpp"
 #include "cudahull/predicates.hpp"
-#include "cudahull/types.hpp"
 #include "cudahull/resident/swaps.hpp"
+#include "cudahull/types.hpp"
 
 namespace cudahull::resident {
 
