@@ -259,273 +259,20 @@ __global__ void fill_kernel(T* at, std::size_t n, T value) {
   if (i < n) at[i] = value;
 }
 
-__device__ inline u64 now_ns() {
-  u64 t;
-  asm volatile("mov.u64 %0, %%globaltimer;" : "=l"(t));
-  return t;
-}
-
-// The flip and flop rounds of one iteration in one cooperative launch (the device-side loop of issue 15):
-// the same steps as the driver's stepped rounds, with grid-wide barriers instead of the host's waits.
-//   1. find:   a coalesced sweep lists the work faces (any order: claims do not depend on it); every
-//              thread takes listed faces and fixes their links (FixLinks), then finds their candidates and
-//              claims (Claim)
-//   2. judge:  each block, over a contiguous tile of faces, records who holds all its claims as one bit
-//              per face (a warp's ballot per 32 faces) and counts them
-//   3. number: the blocks' counts, prefix-summed by block 0
-//   4. apply:  each winner, numbered in face order (block offset, then bits in order) as the stepped
-//              rounds' prefix sum numbers them, applies (Apply)
-// On any barrier: the grid's in a cooperative launch, __syncthreads() in one block.  It returns when a
-// round has no winner, or before a round that would not fit (st->overflow).
-//   One block (a small mesh: at most kRegisterFaces faces) with at most Block work faces runs a round in
-// registers instead: thread i fixes, finds and claims for the i-th work face, keeps the candidate, judges it
-// itself, marks a win in a bit per face (shared memory), and applies it numbered by the wins before it in
-// face order, as the tiles number them.  This drops the candidates' store and reload, the sweep of every
-// face to judge, and the numbering's barriers (a third of the time of the dragon's judge, number and apply
-// (docs/benchmarks.md, "Measurements behind the code")).
-constexpr u32 kRegisterFaces = 2048;
-
-template <class Point, int Block, class Barrier>
-__device__ void run_rounds(const FindCandidate<Point>& find, u64* claim, u32* look, Candidate* cands,
-                           u32* list, u32* win_mask, u32* block_offset, RoundsState* st, Barrier barrier) {
-  using Scan = cub::BlockScan<u32, Block>;
-  __shared__ typename Scan::TempStorage scan_storage;
-  const u32 threads = gridDim.x * blockDim.x, tid = blockIdx.x * blockDim.x + threadIdx.x;
-  const u32 lane = threadIdx.x & 31, below = (1u << lane) - 1;
-  u64 t0 = tid == 0 ? now_ns() : 0;
-  // Thread 0 times each phase up to the barrier after it (so the slowest block's time).
-  auto stamp = [&](int phase) {
-    if (tid == 0) {
-      const u64 t = now_ns();
-      st->phase_ns[phase] += t - t0;
-      t0 = t;
-    }
-  };
-  const bool one_block = gridDim.x == 1;
-  // The end of a round: its counts into the state, for the next round and the stats.
-  auto end_round = [&](u32 faces, u32 entries, u32 round, u32 round_work, u32 winners) {
-    if (tid == 0) {
-      if (winners != 0) {
-        st->fresh_from = faces;
-        st->faces = faces + 2 * winners;
-        st->entries = entries + winners;
-        st->edits += winners;
-      }
-      st->round = round;
-      ++st->rounds;
-      st->work_items += round_work;
-      st->round_work = 0;
-    }
-  };
-  while (true) {
-    const u32 faces = st->faces, fresh = st->fresh_from, entries = st->entries, round = st->round + 1;
-    // 1. The work faces, listed (a warp appends its ballot at once), then found and claimed.
-    const MarkWork<Point> work_rule{find.m, look, fresh, round, nullptr};
-    for (u32 warp_first = tid - lane; warp_first < faces; warp_first += threads) {
-      const u32 f = warp_first + lane;
-      const unsigned mask = __ballot_sync(0xffffffffu, f < faces && work_rule.is_work(f));
-      if (mask == 0) continue;
-      u32 at = 0;
-      if (lane == 0) at = atomicAdd(&st->round_work, static_cast<u32>(__popc(mask)));
-      at = __shfl_sync(0xffffffffu, at, 0);
-      if (mask & (1u << lane)) list[at + __popc(mask & below)] = f;
-    }
-    barrier();
-    const u32 round_work = st->round_work;
-    if (round_work == 0) return;
-    // In registers (one block, a small mesh): room for the round before it changes anything (a winner is
-    // a work face: two new faces, one entry each at most).  Otherwise the host grows the buffers and
-    // launches again, and the round runs afresh.  The grid's rounds check the winners' room before they
-    // apply (4.), which needs far less.
-    bool in_registers = false;
-    if constexpr (Block == kOneBlockThreads)
-      in_registers = one_block && faces <= kRegisterFaces && round_work <= Block;
-    if (in_registers &&
-        (faces + 2 * round_work > st->face_capacity || entries + round_work > st->entry_capacity)) {
-      if (tid == 0) {
-        st->overflow = 1;
-        st->needed_faces = faces + 2 * round_work;
-        st->needed_entries = entries + round_work;
-      }
-      return;
-    }
-    const FixLinks<Point> fixer{find.m, nullptr};
-    const Claim<Point> claimer{find, nullptr, round, claim, look, nullptr};
-    const Won judge{round, claim, nullptr, nullptr};
-    const Apply<Point> applier{find.m, nullptr, nullptr, nullptr, faces, entries, look, round};
-    if constexpr (Block == kOneBlockThreads) {  // only the one-block kernels: no registers for it elsewhere
-      if (in_registers) {
-        constexpr u32 kWords = kRegisterFaces / 32;
-        static_assert(Block >= kWords, "the block scans one word of wins a thread");
-        __shared__ u32 won_bits[kWords], words_before[kWords];
-        const u32 i = threadIdx.x, f = i < round_work ? list[i] : 0;
-        if (i < round_work) fixer.fix(f);
-        for (u32 w = i; w < kWords; w += Block)
-          won_bits[w] = 0;
-        __syncthreads();
-        Candidate cand;
-        cand.kind = kNone;
-        int slot = 0;
-        if (i < round_work && find(f, cand, slot)) claimer.take(f, cand, slot);
-        __syncthreads();
-        stamp(0);
-        const bool won = judge.holds(cand);
-        if (won) atomicOr(&won_bits[f / 32], 1u << (f % 32));
-        __syncthreads();
-        u32 before = 0, winners = 0;
-        Scan(scan_storage)
-            .ExclusiveSum(i < kWords ? static_cast<u32>(__popc(won_bits[i])) : 0u, before, winners);
-        if (i < kWords) words_before[i] = before;
-        __syncthreads();
-        stamp(1);
-        stamp(2);
-        if (winners == 0) {
-          end_round(faces, entries, round, round_work, 0);
-          return;
-        }
-        if (won)
-          applier.apply(cand, words_before[f / 32] + __popc(won_bits[f / 32] & ((1u << (f % 32)) - 1)));
-        __syncthreads();
-        stamp(3);
-        end_round(faces, entries, round, round_work, winners);
-        __syncthreads();
-        continue;
-      }
-    }
-    for (u32 i = tid; i < round_work; i += threads)
-      fixer.fix(list[i]);
-    barrier();
-    for (u32 i = tid; i < round_work; i += threads) {
-      const u32 f = list[i];
-      claimer.claim_for(f, cands[f]);
-    }
-    barrier();
-    stamp(0);
-
-    // 2. Who holds all its claims: a bit per face of the block's tile (a multiple of 256 faces).
-    const u32 tile = ((faces + gridDim.x - 1) / gridDim.x + Block - 1) / Block * Block;
-    const u32 tile_begin = blockIdx.x * tile, masks = tile / 32, first_mask = tile_begin / 32;
-    for (u32 j = threadIdx.x; j < tile; j += Block) {
-      const u32 f = tile_begin + j;
-      // A face with a candidate this round is stamped for the next (Claim); no other stamp is newer yet.
-      const bool w = f < faces && look[f] == round + 1 && judge.holds(cands[f]);
-      const unsigned mask = __ballot_sync(0xffffffffu, w);
-      if (lane == 0) win_mask[first_mask + j / 32] = mask;
-    }
-    __syncthreads();
-    u32 count = 0;
-    for (u32 k = threadIdx.x; k < masks; k += Block)
-      count += __popc(win_mask[first_mask + k]);
-    u32 ignored = 0, block_sum = 0;
-    Scan(scan_storage).ExclusiveSum(count, ignored, block_sum);
-    if (threadIdx.x == 0) block_offset[blockIdx.x] = block_sum;
-    barrier();
-    stamp(1);
-
-    // 3. The blocks' offsets.
-    if (blockIdx.x == 0) {
-      u32 carry = 0;
-      for (u32 base = 0; base < gridDim.x; base += Block) {
-        const u32 k = base + threadIdx.x;
-        const u32 value = k < gridDim.x ? block_offset[k] : 0;
-        u32 before = 0, sum = 0;
-        __syncthreads();
-        Scan(scan_storage).ExclusiveSum(value, before, sum);
-        if (k < gridDim.x) block_offset[k] = carry + before;
-        carry += sum;
-      }
-      if (threadIdx.x == 0) st->round_winners = carry;
-    }
-    barrier();
-    stamp(2);
-    const u32 winners = st->round_winners;
-    if (winners == 0) {
-      end_round(faces, entries, round, round_work, 0);
-      return;
-    }
-    // Room for the winners' new faces and entries.  Otherwise the round stops before it applies: so far it
-    // changed links (FixLinks, which a rerun repeats), claims (a rerun of the same round claims with the
-    // same keys) and the stamps of the faces with a candidate, which go back to this round, so that the
-    // rerun lists the same work.  The host grows the buffers and launches again.
-    if (faces + 2 * winners > st->face_capacity || entries + winners > st->entry_capacity) {
-      for (u32 i = tid; i < round_work; i += threads)
-        look[list[i]] = round;
-      if (tid == 0) {
-        st->overflow = 1;
-        st->needed_faces = faces + 2 * winners;
-        st->needed_entries = entries + winners;
-      }
-      return;
-    }
-
-    // 4. The winners apply, numbered in face order: per 256 masks (8192 faces) of the tile, the masks'
-    // offsets in shared memory, then a thread per face.
-    __shared__ u32 mask_of[Block], rank_of[Block];
-    u32 carry = block_offset[blockIdx.x];
-    for (u32 base = 0; base < masks; base += Block) {
-      const u32 k = base + threadIdx.x;
-      const u32 mask = k < masks ? win_mask[first_mask + k] : 0u;
-      u32 before = 0, sum = 0;
-      __syncthreads();
-      Scan(scan_storage).ExclusiveSum(static_cast<u32>(__popc(mask)), before, sum);
-      mask_of[threadIdx.x] = mask;
-      rank_of[threadIdx.x] = carry + before;
-      __syncthreads();
-      if (sum != 0) {
-        const u32 bits =
-            32 * min(static_cast<u32>(Block), masks - base);  // this pass's masks, not 32 * Block
-        for (u32 j = threadIdx.x; j < bits; j += Block) {
-          const u32 word = mask_of[j / 32], bit = 1u << (j % 32);
-          if (word & bit)
-            applier.apply(cands[tile_begin + 32 * base + j], rank_of[j / 32] + __popc(word & (bit - 1)));
-        }
-      }
-      carry += sum;
-    }
-    barrier();
-    stamp(3);
-    end_round(faces, entries, round, round_work, winners);
-    barrier();
-  }
-}
-
-// The rounds of one iteration, one launch: the state's counts set up, then run_rounds().  A launch of one
-// block (a mesh of a few thousand faces) waits at __syncthreads() instead of the grid barrier, which costs
-// microseconds a round, and has kOneBlockThreads threads.
-template <class Point, int Block>
-__global__ void __launch_bounds__(Block)
-    fused_rounds_kernel(FindCandidate<Point> find, u64* claim, u32* look, Candidate* cands, u32* list,
-                        u32* win_mask, u32* block_offset, RoundsState* st, RoundsLaunch launch) {
-  namespace cg = cooperative_groups;
-  cg::grid_group grid = cg::this_grid();
-  const bool one_block = gridDim.x == 1;
-  auto barrier = [&] {
-    if (one_block) {
-      __syncthreads();
-    } else {
-      grid.sync();
-    }
-  };
-  const u32 tid = blockIdx.x * blockDim.x + threadIdx.x;
-  if (tid == 0) start_rounds(st, launch);
-  barrier();
-  run_rounds<Point, Block>(find, claim, look, cands, list, win_mask, block_offset, st, barrier);
-}
-
-// An exclusive prefix sum over n values by one block (Items per thread at a time); every thread gets
-// the total.
-template <int Block, int Items>
-__device__ u32 block_exclusive_scan(const u32* in, u32* out, u32 n) {
+// An exclusive prefix sum over n values by one block (Items per thread at a time), value(i) the i-th;
+// every thread gets the total.  `out` may hold the values: each is read before it is written.
+template <int Block, int Items, class Value>
+__device__ u32 block_exclusive_scan(u32 n, const Value& value, u32* out) {
   using Scan = cub::BlockScan<u32, Block>;
   __shared__ typename Scan::TempStorage storage;
-  __syncthreads();  // `in` written by the block before
+  __syncthreads();  // the values written by the block before
   u32 carry = 0;
   for (u32 base = 0; base < n; base += Block * Items) {
     u32 values[Items], ranks[Items];
     const u32 first = base + threadIdx.x * Items;
 #pragma unroll
     for (int k = 0; k < Items; ++k)
-      values[k] = first + k < n ? in[first + k] : 0u;
+      values[k] = first + k < n ? value(first + k) : 0u;
     u32 total = 0;
     __syncthreads();
     Scan(storage).ExclusiveSum(values, ranks, total);
@@ -537,6 +284,129 @@ __device__ u32 block_exclusive_scan(const u32* in, u32* out, u32 n) {
   }
   __syncthreads();
   return carry;
+}
+template <int Block, int Items>
+__device__ u32 block_exclusive_scan(const u32* in, u32* out, u32 n) {
+  return block_exclusive_scan<Block, Items>(
+      n, [in](u32 i) { return in[i]; }, out);
+}
+
+// The teams that run the rounds' body (rounds.hpp) on the device: one block, or a cooperative grid.
+// Thread 0 times each phase up to the barrier after it (so the slowest block's time), into the state.
+__device__ inline u64 now_ns() {
+  u64 t;
+  asm volatile("mov.u64 %0, %%globaltimer;" : "=l"(t));
+  return t;
+}
+
+// A block's threads: __syncthreads() for a barrier, which costs far less than the grid's.
+template <int Block>
+struct BlockTeam {
+  RoundsState* st;
+  mutable u64 t0 = 0;
+  template <class F>
+  __device__ void for_range(u32 n, const F& f) const {
+    for (u32 i = threadIdx.x; i < n; i += Block)
+      f(i);
+  }
+  __device__ void barrier() const { __syncthreads(); }
+  __device__ bool leader() const { return threadIdx.x == 0; }
+  __device__ void time(int phase) const {
+    if (threadIdx.x != 0) return;
+    const u64 t = now_ns();
+    st->phase_ns[phase] += t - t0;
+    t0 = t;
+  }
+  // A warp appends its ballot at once: one atomic a warp.
+  template <class Pred>
+  __device__ void list_if(u32 n, const Pred& pred, u32* list, u32* count) const {
+    list_by_warps(threadIdx.x, Block, n, pred, list, count);
+  }
+  template <class Value>
+  __device__ u32 exclusive_scan(u32 n, const Value& value, u32* out) const {
+    return block_exclusive_scan<Block, 4>(n, value, out);
+  }
+  // Thread `tid` of `threads` (a multiple of 32): the indices below n that pass, appended in any order.
+  template <class Pred>
+  __device__ static void list_by_warps(u32 tid, u32 threads, u32 n, const Pred& pred, u32* list, u32* count) {
+    const u32 lane = tid & 31;
+    for (u32 warp_first = tid - lane; warp_first < n; warp_first += threads) {
+      const u32 i = warp_first + lane;
+      const unsigned mask = __ballot_sync(0xffffffffu, i < n && pred(i));
+      if (mask == 0) continue;
+      u32 at = 0;
+      if (lane == 0) at = atomicAdd(count, static_cast<u32>(__popc(mask)));
+      at = __shfl_sync(0xffffffffu, at, 0);
+      if (mask & (1u << lane)) list[at + __popc(mask & ((1u << lane) - 1))] = i;
+    }
+  }
+};
+
+// Every thread of a cooperative launch: the grid's barrier.  A prefix sum takes a contiguous tile of the
+// values a block, then block 0 numbers the tiles (block_offset: one a block, and the total after them).
+template <int Block>
+struct GridTeam {
+  RoundsState* st;
+  u32* block_offset;
+  mutable u64 t0 = 0;
+  __device__ u32 tid() const { return blockIdx.x * Block + threadIdx.x; }
+  template <class F>
+  __device__ void for_range(u32 n, const F& f) const {
+    const u32 threads = gridDim.x * Block;
+    for (u32 i = tid(); i < n; i += threads)
+      f(i);
+  }
+  __device__ void barrier() const { cooperative_groups::this_grid().sync(); }
+  __device__ bool leader() const { return tid() == 0; }
+  __device__ void time(int phase) const {
+    if (tid() != 0) return;
+    const u64 t = now_ns();
+    st->phase_ns[phase] += t - t0;
+    t0 = t;
+  }
+  template <class Pred>
+  __device__ void list_if(u32 n, const Pred& pred, u32* list, u32* count) const {
+    BlockTeam<Block>::list_by_warps(tid(), gridDim.x * Block, n, pred, list, count);
+  }
+  template <class Value>
+  __device__ u32 exclusive_scan(u32 n, const Value& value, u32* out) const {
+    const u32 tile = ((n + gridDim.x - 1) / gridDim.x + Block - 1) / Block * Block;
+    const u32 begin = min(n, blockIdx.x * tile), end = min(n, begin + tile);
+    const u32 sum = block_exclusive_scan<Block, 1>(
+        end - begin, [&](u32 i) { return value(begin + i); }, out + begin);
+    if (threadIdx.x == 0) block_offset[blockIdx.x] = sum;
+    barrier();
+    if (blockIdx.x == 0) {
+      const u32 total = block_exclusive_scan<Block, 1>(
+          gridDim.x, [&](u32 k) { return block_offset[k]; }, block_offset);
+      if (threadIdx.x == 0) block_offset[gridDim.x] = total;
+    }
+    barrier();
+    const u32 offset = block_offset[blockIdx.x];
+    for (u32 i = begin + threadIdx.x; i < end; i += Block)
+      out[i] += offset;
+    barrier();
+    return block_offset[gridDim.x];
+  }
+};
+
+// The rounds of one iteration in one launch (the device-side loop of issue 15): the state's counts set
+// up, then the rounds' body (rounds.hpp) with grid-wide barriers instead of the host's waits; a launch of
+// one block (a mesh of a few thousand faces) waits at __syncthreads() instead, which costs microseconds
+// less a round.
+template <class Point, class Log, int Block, bool kOneBlock>
+__global__ void __launch_bounds__(Block)
+    fused_rounds_kernel(RoundsBuffers<Point, Log> b, u32* block_offset, RoundsLaunch launch) {
+  if (blockIdx.x == 0 && threadIdx.x == 0) start_rounds(b.st, launch);
+  if constexpr (kOneBlock) {
+    const BlockTeam<Block> team{b.st, now_ns()};
+    team.barrier();
+    swap_and_removal_rounds(team, b);
+  } else {
+    const GridTeam<Block> team{b.st, block_offset, now_ns()};
+    team.barrier();
+    swap_and_removal_rounds(team, b);
+  }
 }
 
 // mark(i) for every i < n, the flags' exclusive prefix sum into ranks, then move(i) for every i: one block,
@@ -696,8 +566,9 @@ __global__ void __launch_bounds__(Block)
     }
     sync();
     // Flips and flops (Figs. 3b, 4, 5).
-    run_rounds<Point, Block>(FindCandidate<Point>{m, {}}, b.claim, b.look, b.cands, b.list, b.win_mask,
-                             b.block_offset, st, sync);
+    swap_and_removal_rounds(BlockTeam<Block>{st, now_ns()},
+                            RoundsBuffers<Point>{FindCandidate<Point>{m, {}}, b.claim, b.look, b.cands,
+                                                 b.list, b.win_mask, b.word_rank, st});
     sync();
     if (st->overflow) {
       exit = kLoopOverflow;
@@ -747,7 +618,7 @@ std::size_t tuning(const char* name, std::size_t value) {
 }
 
 struct CudaExec {
-  static constexpr bool kFusedRounds = true;  // fused_rounds_kernel loops the rounds on the device
+  static constexpr bool kFusedIterations = true;  // iterate_fused(): one wait an iteration
 
   template <class T>
   class Buffer {
@@ -955,53 +826,55 @@ struct CudaExec {
   template <class Point>
   void device_loop(const LoopBuffers<Point>& b, u32 faces, u32 active, u32 face_capacity,
                    u32 entry_capacity) {
-    block_offset_.grow(1);
-    win_mask_.grow((face_capacity + kOneBlockThreads) / 32 + 8);
+    // A bit per face and the wins before each word (rounds.hpp).
+    const std::size_t words = std::size_t{face_capacity} / 32 + 1;
+    win_mask_.grow(2 * words);
     LoopBuffers<Point> with = b;
     with.win_mask = win_mask_.data();
-    with.block_offset = block_offset_.data();
+    with.word_rank = win_mask_.data() + words;
     loop_kernel<Point, kOneBlockThreads>
         <<<1, kOneBlockThreads>>>(with, faces, active, face_capacity, entry_capacity);
     check(cudaGetLastError(), "launching the device loop");
   }
 
   // The rounds of an iteration in one cooperative launch; the state stays on the device (no wait).
-  template <class Point>
-  void fused_rounds(const FindCandidate<Point>& find, u64* claim, u32* look, Candidate* cands, u32* won,
+  template <class Point, class Log>
+  void fused_rounds(const FindCandidate<Point, Log>& find, u64* claim, u32* look, Candidate* cands, u32* list,
                     RoundsState* st, RoundsLaunch launch) {
-    if (cooperative_blocks_ == 0) {
+    auto* grid_kernel = fused_rounds_kernel<Point, Log, kBlock, false>;
+    // The blocks that fit at once (a cooperative launch needs them all resident): found once for the fast
+    // kernel, and each time for the recording one (the stepper's), which may use more registers.
+    constexpr bool kRecording = !std::is_same_v<Log, NoLog>;
+    if (cooperative_blocks_ == 0 || kRecording) {
       int device = 0, sms = 0, per_sm = 0;
       check(cudaGetDevice(&device), "querying the device");
       check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), "querying the SMs");
-      check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, fused_rounds_kernel<Point, kBlock>, kBlock,
-                                                          0),
-            "the occupancy");
-      cooperative_blocks_ = static_cast<unsigned>(std::max(1, sms * per_sm));
+      check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, grid_kernel, kBlock, 0), "the occupancy");
+      const unsigned fit = static_cast<unsigned>(std::max(1, sms * per_sm));
+      if (kRecording) {
+        recording_blocks_ = fit;
+      } else {
+        cooperative_blocks_ = fit;
+      }
     }
+    const unsigned resident_blocks = kRecording ? recording_blocks_ : cooperative_blocks_;
     // A thread per face up to what fits at once, and one block for a small mesh: a grid barrier costs
     // more the more blocks wait at it.  The count is on the device; half the capacity stands for it (a
     // small mesh is sized for every face refining, so its faces are below that; a large one may have more
     // and then runs on fewer blocks than faces/256, each thread striding over more faces).
     const std::size_t capacity = launch.face_capacity, faces = capacity / 2;
     const bool one_block = faces <= one_block_faces_;
-    const unsigned blocks = one_block ? 1u : std::max(1u, std::min(cooperative_blocks_, blocks_for(faces)));
+    const unsigned blocks = one_block ? 1u : std::max(1u, std::min(resident_blocks, blocks_for(faces)));
     const unsigned threads = one_block ? kOneBlockThreads : kBlock;
-    auto* kernel =
-        one_block ? fused_rounds_kernel<Point, kOneBlockThreads> : fused_rounds_kernel<Point, kBlock>;
-    block_offset_.grow(blocks);
-    // One bit per face of every block's tile (the tiles cover the capacity, each a multiple of the block).
-    win_mask_.grow((capacity / blocks + threads) * blocks / 32 + 8);
+    auto* kernel = one_block ? fused_rounds_kernel<Point, Log, kOneBlockThreads, true> : grid_kernel;
+    block_offset_.grow(blocks + 1);
+    // A bit per face and the wins before each word (rounds.hpp).
+    const std::size_t words = capacity / 32 + 1;
+    win_mask_.grow(2 * words);
+    RoundsBuffers<Point, Log> b{find, claim, look, cands, list, win_mask_.data(), win_mask_.data() + words,
+                                st};
     u32* offsets = block_offset_.data();
-    u32* masks = win_mask_.data();
-    void* args[] = {const_cast<FindCandidate<Point>*>(&find),
-                    &claim,
-                    &look,
-                    &cands,
-                    &won,
-                    &masks,
-                    &offsets,
-                    &st,
-                    &launch};
+    void* args[] = {&b, &offsets, &launch};
     check(cudaLaunchCooperativeKernel(reinterpret_cast<void*>(kernel), blocks, threads, args, 0, nullptr),
           "launching the rounds");
   }
@@ -1058,6 +931,7 @@ struct CudaExec {
   Buffer<u32> block_offset_, win_mask_;
   Buffer<unsigned char> select_flags_;
   unsigned cooperative_blocks_ = 0;
+  unsigned recording_blocks_ = 0;  // the same for the recording rounds (the stepper's)
   std::size_t one_block_faces_ = tuning("CUDAHULL_ONE_BLOCK_FACES", 4096);  // meshes with rounds in one block
 };
 

@@ -11,13 +11,14 @@
 #include <vector>
 
 #include "cudahull/resident/resident_ops.hpp"
+#include "cudahull/resident/rounds.hpp"
 
 namespace cudahull::resident {
 
 struct HostExec {
-  static constexpr bool kFusedRounds = false;     // the driver steps the rounds
-  static constexpr bool kDeviceLoop = false;      // no loop of whole iterations of its own
-  static constexpr std::size_t kFinishFaces = 0;  // no finish of its own (finish_small)
+  static constexpr bool kFusedIterations = false;  // iterate(): the host waits for each count
+  static constexpr bool kDeviceLoop = false;       // no loop of whole iterations of its own
+  static constexpr std::size_t kFinishFaces = 0;   // no finish of its own (finish_small)
   template <class T>
   class Buffer {
    public:
@@ -137,16 +138,28 @@ struct HostExec {
     bytes_from_device += n * sizeof(T);
   }
 
+  // The rounds of an iteration (rounds.hpp) on one thread.
+  template <class Point, class Log>
+  void fused_rounds(const FindCandidate<Point, Log>& find, u64* claim, u32* look, Candidate* cands, u32* list,
+                    RoundsState* st, RoundsLaunch launch) {
+    start_rounds(st, launch);
+    const std::size_t words = std::size_t{launch.face_capacity} / 32 + 1;
+    win_mask_.resize(words);
+    word_rank_.resize(words);
+    swap_and_removal_rounds(HostTeam{}, RoundsBuffers<Point, Log>{find, claim, look, cands, list,
+                                                                  win_mask_.data(), word_rank_.data(), st});
+  }
+
+  std::vector<u32> win_mask_, word_rank_;  // the rounds' bits per face and ranks per word
   std::uint64_t host_syncs = 0, bytes_to_device = 0, bytes_from_device = 0;
 };
 
-// The host executor running the driver's fused path: the iteration with its counts in the state
-// (RoundsState) and one read at its end, and the rounds looped as cuda/resident_cuda.cu's
-// fused_rounds_kernel loops them (work listed, links fixed, claims, every claim judged before any winner
-// applies, room for the winners checked before they apply, winners numbered in face order).  The CPU tests
-// compare its mesh with the stepped rounds' (HostExec) and so check the driver's device path without a GPU.
+// The host executor running the driver's fused path as the GPU runs it: the iteration with its counts in
+// the state (RoundsState) and one read at its end, and the finish of a small mesh in one step.  The CPU
+// tests compare its mesh with the stepped iterations' (HostExec) and so check the driver's device path
+// without a GPU.
 struct FusedHostExec : HostExec {
-  static constexpr bool kFusedRounds = true;
+  static constexpr bool kFusedIterations = true;
   static constexpr std::size_t kFinishFaces = kSmallFinishFaces;
 
   // As the GPU's finish_small_kernel: out = [faults, vertices, the corners renumbered, the vertex list].
@@ -159,54 +172,6 @@ struct FusedHostExec : HostExec {
     sort_unique_to(m.fv, corners, list, nullptr, 0, &out[1]);
     for_each(corners, FindCorners{m.fv, list, &out[1], out + 2});
     out[0] = faults;
-  }
-
-  template <class Point>
-  void fused_rounds(const FindCandidate<Point>& find, u64* claim, u32* look, Candidate* cands, u32* list,
-                    RoundsState* st, RoundsLaunch launch) {
-    start_rounds(st, launch);
-    std::vector<u32> winners;
-    while (true) {
-      const u32 faces = st->faces, fresh = st->fresh_from, entries = st->entries, round = st->round + 1;
-      const MarkWork<Point> work_rule{find.m, look, fresh, round, nullptr};
-      u32 work = 0;
-      for (u32 f = 0; f < faces; ++f) {
-        if (work_rule.is_work(f)) list[work++] = f;
-      }
-      if (work == 0) return;
-      const FixLinks<Point> fixer{find.m, nullptr};
-      for (u32 i = 0; i < work; ++i)
-        fixer.fix(list[i]);
-      const Claim<Point> claimer{find, nullptr, round, claim, look, nullptr};
-      for (u32 i = 0; i < work; ++i)
-        claimer.claim_for(list[i], cands[list[i]]);
-      const Won judge{round, claim, nullptr, nullptr};
-      winners.clear();
-      for (u32 f = 0; f < faces; ++f) {
-        if (look[f] == round + 1 && judge.holds(cands[f])) winners.push_back(f);
-      }
-      const u32 won = static_cast<u32>(winners.size());
-      if (won != 0 && (faces + 2 * won > st->face_capacity || entries + won > st->entry_capacity)) {
-        // No room for the winners: the round stops before it applies, its work stamped back for the rerun.
-        for (u32 i = 0; i < work; ++i)
-          look[list[i]] = round;
-        st->overflow = 1;
-        st->needed_faces = faces + 2 * won;
-        st->needed_entries = entries + won;
-        return;
-      }
-      ++st->rounds;
-      st->work_items += work;
-      st->round = round;
-      if (winners.empty()) return;
-      const Apply<Point> applier{find.m, nullptr, nullptr, nullptr, faces, entries, look, round};
-      for (u32 r = 0; r < winners.size(); ++r)
-        applier.apply(cands[winners[r]], r);
-      st->fresh_from = faces;
-      st->faces = faces + 2 * won;
-      st->entries = entries + won;
-      st->edits += won;
-    }
   }
 };
 

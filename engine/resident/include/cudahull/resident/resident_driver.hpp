@@ -174,7 +174,7 @@ class ResidentHull {
         }
       }
       bool refined = false;
-      if constexpr (Exec::kFusedRounds) {
+      if constexpr (Exec::kFusedIterations) {
         refined = iterate_fused(stats);
       } else {
         refined = iterate(stats);
@@ -297,7 +297,7 @@ class ResidentHull {
     grow_entries(kInitialFaces);
     state_.grow(1);
     cands_.grow(capacity_);
-    won_.grow(capacity_);
+    work_list_.grow(capacity_);
     index_[1].grow(n_);
   }
 
@@ -382,12 +382,11 @@ class ResidentHull {
     exec_.fill(claim_.data() + old, capacity_ - old, u64{0});
     for (auto* b : {&fv_out_, &fn_out_})
       b->grow(3 * capacity_);
-    // The refinement marks and their prefix sum (one per face), the furthest points and the stepped rounds'
-    // work list may be in use: those entries move along (in a small mesh's fused iteration the marks'
+    // The refinement marks and their prefix sum (one per face) and the furthest points may be in use:
+    // those entries move along (in a small mesh's fused iteration the marks'
     // entries are copied before they are written: harmless, and never more than the faces in use).
     flags_.grow(capacity_ + 1, marks_in_use_);
     face_rank_.grow(capacity_ + 1, marks_in_use_);
-    work_list_.grow(capacity_ + 1, work_in_use_);
   }
   void grow_entries(std::size_t count) {
     if (count > entry_capacity_) {
@@ -425,8 +424,8 @@ class ResidentHull {
     exec_.for_each(active_, RoutePoints<Point>{view(), index_[0].data(), face_of_[0].data(), keep_.data()});
   }
 
-  // One iteration, the host stepping the rounds (HostExec, and step() on any executor); false when no face
-  // could refine.  With `out`, every candidate the rounds turn down is logged and what the iteration did
+  // One iteration, the host waiting for each count (HostExec, and step() on any executor); false when no
+  // face could refine.  With `out`, every candidate the rounds turn down is logged and what the iteration did
   // is read back into it.
   bool iterate(ResidentStats& stats, RecordedIteration* out = nullptr);
 
@@ -497,7 +496,7 @@ class ResidentHull {
   // `first`: the loop begins with the first distribution of the listed points (`list`, or all).
   u32 device_loop(ResidentStats& stats, const u32* list, bool first) {
     cands_.grow(capacity_);
-    won_.grow(capacity_);
+    work_list_.grow(capacity_);
     LoopBuffers<Point> b{};
     b.m = view();
     b.fv_spare = fv_out_.data();
@@ -511,7 +510,7 @@ class ResidentHull {
     b.flags = flags_.data();
     b.face_rank = face_rank_.data();
     b.look = look_.data();
-    b.list = won_.data();
+    b.list = work_list_.data();
     b.extreme = extreme_.data();
     b.claim = claim_.data();
     b.cands = cands_.data();
@@ -563,77 +562,22 @@ class ResidentHull {
     grow_faces(faces);
     grow_entries(entries);
     cands_.grow(capacity_);
-    won_.grow(capacity_);
+    work_list_.grow(capacity_);
   }
 
-  // The rounds on an executor that loops them itself (one launch, no wait per round): the same rounds,
-  // claims and numbering as stepped_rounds().  `begin`: the first launch of the iteration (its faces and
-  // entries from the refined count in the state); otherwise it goes on after an overflow.  Returns a
-  // bound of the face ids in use after it.
-  std::size_t fused_rounds(std::size_t fresh_from, bool begin) {
+  // The rounds (rounds.hpp) on the executor, in one launch with no wait per round.  `begin`: the first launch
+  // of the iteration (its faces and entries from the refined count in the state); otherwise it goes on after
+  // an overflow.  Returns a bound of the face ids in use after it.
+  template <class Log = NoLog>
+  std::size_t fused_rounds(std::size_t fresh_from, bool begin, const Log& log = {}) {
     RoundsLaunch launch{};
     launch.begin = begin ? 1u : 0u;
     launch.fresh_from = static_cast<u32>(fresh_from);
     launch.face_capacity = static_cast<u32>(capacity_);
     launch.entry_capacity = static_cast<u32>(entry_capacity_);
-    exec_.fused_rounds(FindCandidate<Point>{view(), {}}, claim_.data(), look_.data(), cands_.data(),
-                       won_.data(), state_.data(), launch);
+    exec_.fused_rounds(FindCandidate<Point, Log>{view(), log}, claim_.data(), look_.data(), cands_.data(),
+                       work_list_.data(), state_.data(), launch);
     return capacity_;
-  }
-
-  // The rounds one step at a time, the host sizing each by the counts of the last.
-  void stepped_rounds(ResidentStats& stats, std::size_t fresh_from) {
-    while (true) {
-      const u32 round = round_ + 1;
-      exec_.for_each(
-          faces_, MarkWork<Point>{view(), look_.data(), static_cast<u32>(fresh_from), round, flags_.data()});
-      const u32 work = exec_.select(flags_.data(), face_rank_.data(), work_list_.data(), faces_);
-      if (work == 0) break;
-      stats.work_items += work;
-      round_ = round;
-      ++stats.rounds;
-      exec_.for_each(work, FixLinks<Point>{view(), work_list_.data()});
-      won_.grow(work + 1);
-      cands_.grow(work);
-      won_rank_.grow(work + 1);
-      if (recording_) {
-        recording_->round_first_entry.push_back(static_cast<u32>(entries_used_));
-        // Room for every rejection this round can log (six a work face at most), kept in full so that the
-        // records are the same on every executor (a log that overflowed would keep whichever came first).
-        u32 logged = 0;
-        exec_.download(&logged, rejection_count_.data(), 1);
-        if (std::size_t{logged} + 6 * std::size_t{work} > rejection_capacity_) {
-          const std::size_t room = 2 * (std::size_t{logged} + 6 * std::size_t{work});
-          if (room > 0xffffffffu) throw DeviceError("resident engine: too many rejections to record");
-          rejections_.grow(room, logged);
-          rejection_capacity_ = static_cast<u32>(room);
-        }
-        const FindCandidate<Point, RejectionLog> find{
-            view(), {rejections_.data(), rejection_count_.data(), rejection_capacity_, round_}};
-        exec_.for_each(work,
-                       Claim<Point, FindCandidate<Point, RejectionLog>>{
-                           find, work_list_.data(), round_, claim_.data(), look_.data(), cands_.data()});
-      } else {
-        exec_.for_each(work, Claim<Point>{FindCandidate<Point>{view(), {}}, work_list_.data(), round_,
-                                          claim_.data(), look_.data(), cands_.data()});
-      }
-      exec_.for_each(work, Won{round_, claim_.data(), cands_.data(), won_.data()});
-      const u32 winners = exec_.exclusive_scan(won_.data(), won_rank_.data(), work);
-      // The normal end: no work face has a candidate (a round with candidates always has a winner, the
-      // lowest).  This round's FixLinks has left every link at a live face for compaction.
-      if (winners == 0) break;
-      stats.edits += winners;
-      work_in_use_ = work;
-      grow_faces(faces_ + 2 * std::size_t{winners});
-      work_in_use_ = 0;
-      grow_entries(entries_used_ + winners);
-      exec_.for_each(
-          work, Apply<Point>{view(), cands_.data(), won_.data(), won_rank_.data(), static_cast<u32>(faces_),
-                             static_cast<u32>(entries_used_), look_.data(), round_});
-      fresh_from = faces_;
-      faces_ += 2 * std::size_t{winners};
-      entries_used_ += winners;
-    }
   }
 
   // Live faces renumbered 0..F-1; kept points compacted, their faces renumbered.  It runs over
@@ -847,6 +791,7 @@ class ResidentHull {
     for (u32 ring = 1; ring <= rings; ++ring)
       exec_.for_each(faces_, SpreadStamp{fn_.data(), look_.data(), ring});
     exec_.for_each(faces_, Stamped{look_.data(), flags_.data()});
+    work_list_.grow(faces_);
     const u32 stamped = exec_.select(flags_.data(), face_rank_.data(), work_list_.data(), faces_);
     if (stamped > kMaxRepairFaces) return 0;  // flat or cospherical input: the exact finish answers
     const std::vector<FaceRow> rows = face_rows(work_list_.data(), stamped);
@@ -938,10 +883,10 @@ class ResidentHull {
     return hull_of(candidates, host_ ? std::vector<Point>{} : fetch(candidates));
   }
 
-  RecordedIteration* recording_ = nullptr;  // step(): where stepped_rounds() notes its rounds
+  // step()'s log of the rounds: the candidates turned down, and each round's first entry.
   Buffer<Rejection> rejections_;
-  Buffer<u32> rejection_count_;
-  u32 rejection_capacity_ = 0;
+  Buffer<u32> rejection_count_, round_first_entry_;
+  u32 rejection_capacity_ = 0, round_capacity_ = 0;
 
   Exec& exec_;
   const std::vector<Point>* host_;  // null: the points are only where the executor computes
@@ -954,18 +899,17 @@ class ResidentHull {
   std::chrono::steady_clock::time_point lap_start_;
   Vec3d c_{};
   double max_coordinate_ = 0;     // every point's coordinates are at most this in size
-  std::size_t work_in_use_ = 0;   // entries of work_list_ that grow_faces() keeps
   bool unkept_listed_ = false;    // setup() left the points not kept in the list (see furthest_points())
   std::size_t marks_in_use_ = 0;  // entries of flags_ and face_rank_ that grow_faces() keeps
   std::size_t faces_ = 0, capacity_ = 0, entries_used_ = 0, entry_capacity_ = 0, active_ = 0;
   u32 round_ = 0;
-  Buffer<u32> fv_, fn_, fv_out_, fn_out_, killer_, look_, flags_, face_rank_, work_list_;
+  Buffer<u32> fv_, fn_, fv_out_, fn_out_, killer_, look_, flags_, face_rank_;
   Buffer<u64> claim_, extreme_;
   Buffer<RoundsState> state_;  // the counts where the executor computes (see RoundsState)
   Buffer<Entry> entries_;
-  Buffer<u32> won_, won_rank_;
+  Buffer<u32> work_list_;        // the rounds' work faces (and the repair's stamped faces)
   Buffer<FaceRow> repair_rows_;  // the repair's rows, read back and written (repair_faults())
-  Buffer<Candidate> cands_;      // per work item (stepped rounds) or per face (fused rounds)
+  Buffer<Candidate> cands_;      // the rounds' candidates, per work item
   Buffer<u32> index_[2], face_of_[2], keep_, point_rank_;
 };
 
@@ -981,27 +925,52 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
   const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
   if (refined == 0) return no_face_refined();
   stats.refined_faces += refined;
-  grow_faces(faces_ + 3 * std::size_t{refined});
-  grow_entries(refined);
+  // Room for the children and the rounds' edits, as iterate_fused() makes it.
+  grow_for_rounds(faces_ + 3 * std::size_t{refined} + 9 * std::size_t{refined} / 2 + 64,
+                  4 * std::size_t{refined} + 64);
   split();
-  faces_ += 3 * std::size_t{refined};
-  entries_used_ = refined;
   stats.refine_ms += lap();
 
-  // Flip and flop rounds until no candidate is left (Figs. 3b, 4, 5).  Recording, their rejections are
-  // logged (a face may meet the same one in several rounds: all are kept here, in order, and the records
-  // keep the first); stepped_rounds() makes room before each round.
+  // Swap and removal rounds until no candidate is left (Figs. 3b, 4, 5; rounds.hpp).  Recording, their
+  // rejections are logged (a face may meet the same one in several rounds: all are kept here, in order,
+  // and the records keep the first), with each round's first entry; a log without room for a round stops
+  // it before it begins, and the host grows the log.
   if (out) {
     out->refined = refined;
+    out->first_round = round_ + 1;
     rejection_capacity_ = static_cast<u32>(std::max<std::size_t>(4096, 2 * faces_));
     rejections_.grow(rejection_capacity_);
     rejection_count_.grow(1);
     exec_.fill(rejection_count_.data(), 1, u32{0});
-    out->first_round = round_ + 1;
+    round_capacity_ = 64;
+    round_first_entry_.grow(round_capacity_);
   }
-  recording_ = out;
-  stepped_rounds(stats, first);
-  recording_ = nullptr;
+  RoundsState state{};
+  for (bool begin = true;; begin = false) {
+    if (out) {
+      fused_rounds(first, begin,
+                   RejectionLog{rejections_.data(), rejection_count_.data(), rejection_capacity_, 0,
+                                round_first_entry_.data(), out->first_round, round_capacity_});
+    } else {
+      fused_rounds(first, begin);
+    }
+    exec_.download(&state, state_.data(), 1);
+    if (!state.overflow) break;
+    grow_after_overflow(state, stats);
+    if (out && state.needed_rejections > rejection_capacity_) {
+      const std::size_t room = 2 * std::size_t{state.needed_rejections};
+      if (room > 0xffffffffu) throw DeviceError("resident engine: too many rejections to record");
+      rejections_.grow(room, rejection_capacity_);
+      rejection_capacity_ = static_cast<u32>(room);
+    }
+    if (out && state.needed_rounds > round_capacity_) {
+      round_first_entry_.grow(2 * std::size_t{state.needed_rounds}, round_capacity_);
+      round_capacity_ = 2 * state.needed_rounds;
+    }
+  }
+  take_counters(state, stats);
+  faces_ = state.faces;
+  entries_used_ = state.entries;
   if (out) {
     out->fv.resize(3 * faces_);
     out->killer.resize(faces_);
@@ -1009,9 +978,11 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
     exec_.download(out->fv.data(), fv_.data(), out->fv.size());
     exec_.download(out->killer.data(), killer_.data(), out->killer.size());
     exec_.download(out->entries.data(), entries_.data(), out->entries.size());
+    out->round_first_entry.resize(round_ + 1 - out->first_round);
+    exec_.download(out->round_first_entry.data(), round_first_entry_.data(), out->round_first_entry.size());
     u32 rejected = 0;
     exec_.download(&rejected, rejection_count_.data(), 1);
-    out->rejections.resize(rejected);  // all of them: stepped_rounds() made room
+    out->rejections.resize(rejected);  // all of them: every round had room
     exec_.download(out->rejections.data(), rejections_.data(), out->rejections.size());
     // The log is filled by atomics in any order: by round, then candidate, the same on every executor.
     std::sort(out->rejections.begin(), out->rejections.end(), [](const Rejection& a, const Rejection& b) {

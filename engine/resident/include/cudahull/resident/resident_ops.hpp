@@ -16,5 +16,6 @@
 #include "cudahull/resident/finish.hpp"
 #include "cudahull/resident/first_mesh.hpp"
 #include "cudahull/resident/refinement.hpp"
+#include "cudahull/resident/rounds.hpp"
 #include "cudahull/resident/star_mesh.hpp"
 #include "cudahull/resident/swaps.hpp"

@@ -73,6 +73,22 @@ CUDAHULL_HD inline u32 atomic_add_u32(u32* at, u32 value) {
 #endif
 }
 
+CUDAHULL_HD inline void atomic_or_u32(u32* at, u32 bits) {
+#if defined(__CUDA_ARCH__)
+  atomicOr(at, bits);
+#else
+  *at |= bits;
+#endif
+}
+
+CUDAHULL_HD inline u32 popcount_u32(u32 bits) {
+#if defined(__CUDA_ARCH__)
+  return static_cast<u32>(__popc(bits));
+#else
+  return static_cast<u32>(__builtin_popcount(bits));
+#endif
+}
+
 CUDAHULL_HD inline u32 float_bits(float f) {
 #if defined(__CUDA_ARCH__)
   return __float_as_uint(f);

@@ -93,6 +93,9 @@ struct RejectionLog {
   Rejection* at = nullptr;
   u32* count = nullptr;
   u32 capacity = 0, round = 0;
+  // Each round's first decision entry, from round first_round on (the records' round boundaries).
+  u32* round_first_entry = nullptr;
+  u32 first_round = 0, round_capacity = 0;
   CUDAHULL_HD void add(u32 kind, u32 id, u32 a, u32 b, u32 c, u32 d) const {
     if (!at) return;
     const u32 k = atomic_add_u32(count, 1);
@@ -186,11 +189,9 @@ struct MarkWork {
   MeshView<Point> m;
   const u32* look;
   u32 fresh_from, round;
-  u32* work;
   CUDAHULL_HD bool is_work(u32 f) const {
     return m.killer[f] == kAlive && (f >= fresh_from || look[f] == round);
   }
-  CUDAHULL_HD void operator()(std::size_t f) const { work[f] = is_work(static_cast<u32>(f)) ? 1u : 0u; }
 };
 
 // A work face's links to faces the previous round killed, pointed at the new faces that hold the edges
@@ -198,7 +199,6 @@ struct MarkWork {
 template <class Point>
 struct FixLinks {
   MeshView<Point> m;
-  const u32* work_list;
   CUDAHULL_HD void fix(u32 f) const {
     for (int k = 0; k < 3; ++k) {
       const u32 nb = m.fn[3 * f + k], e = m.killer[nb];
@@ -210,18 +210,15 @@ struct FixLinks {
       }
     }
   }
-  CUDAHULL_HD void operator()(std::size_t w) const { fix(work_list[w]); }
 };
 
 // Each work face finds its first candidate, keeps it, and claims the candidate's faces.
 template <class Point, class Find = FindCandidate<Point>>
 struct Claim {
   Find find;
-  const u32* work_list;
   u32 round;
   u64* claim;
   u32* look;
-  Candidate* cands;  // per work item
   CUDAHULL_HD void claim_for(u32 f, Candidate& cand) const {
     int slot = 0;
     if (!find(f, cand, slot)) {
@@ -238,15 +235,12 @@ struct Claim {
     for (u32 k = 0; k < cand.claims; ++k)
       atomic_max_u64(&claim[cand.faces[k]], key);
   }
-  CUDAHULL_HD void operator()(std::size_t w) const { claim_for(work_list[w], cands[w]); }
 };
 
 // Did the work item's candidate hold all its claims?
 struct Won {
   u32 round;
   const u64* claim;
-  const Candidate* cands;
-  u32* won;
   CUDAHULL_HD bool holds(const Candidate& cand) const {
     if (cand.kind == kNone) return false;
     const u64 key = claim_key(round, cand.id);
@@ -255,17 +249,13 @@ struct Won {
     }
     return true;
   }
-  CUDAHULL_HD void operator()(std::size_t w) const { won[w] = holds(cands[w]) ? 1u : 0u; }
 };
 
-// The winners apply: two new face slots and one entry each, by the prefix sum of the wins; each rewrites
+// The winners apply: two new face slots and one entry each, by their rank in face order; each rewrites
 // only the faces it claimed and its new ones (and stamps the faces around).
 template <class Point>
 struct Apply {
   MeshView<Point> m;
-  const Candidate* cands;
-  const u32* won;
-  const u32* rank;
   u32 first_face, first_entry;
   u32* look;
   u32 round;
@@ -280,9 +270,6 @@ struct Apply {
     fn[0] = na, fn[1] = nb, fn[2] = nd;
     m.killer[f] = kAlive;
     look[f] = 0;
-  }
-  CUDAHULL_HD void operator()(std::size_t w) const {
-    if (won[w]) apply(cands[w], rank[w]);
   }
   // A winning candidate, the r-th winner of its round.
   CUDAHULL_HD void apply(const Candidate& cand, u32 r) const {
@@ -329,6 +316,7 @@ struct RoundsState {
   u32 face_capacity, entry_capacity;        // set at each launch
   u32 rounds, edits, work_items, overflow;  // out
   u32 needed_faces, needed_entries;         // out, on overflow: what the next round needs
+  u32 needed_rejections, needed_rounds;     // out, on overflow of a recording run's log (RejectionLog)
   u32 round_work, round_winners;            // scratch, zero
   u32 refined;                              // faces refined this iteration (SplitFaces)
   u32 live_faces, kept_points;              // the compaction's totals (MoveLive, MovePoints)
@@ -352,7 +340,7 @@ struct LoopBuffers {
   u32 *fv_spare, *fn_spare;
   u32 *index, *face, *index_spare, *face_spare;  // the kept points and their faces
   u32 *keep, *point_rank, *flags, *face_rank, *look, *list;
-  u32 *win_mask, *block_offset;  // the executor's
+  u32 *win_mask, *word_rank;  // the executor's: a bit per face, the wins before each word (rounds.hpp)
   u64 *extreme, *claim;
   Candidate* cands;
   RoundsState* st;

@@ -1,0 +1,168 @@
+// The swap and removal rounds of one iteration (section 3.2, Figs. 3b, 4, 5), written once for every
+// executor that loops them itself: the host twin (HostTeam, one thread), one block on the device (a small
+// mesh) and a cooperative grid (cuda/resident_cuda.cu's BlockTeam and GridTeam).  A team is what runs
+// the body: for_range() splits a range among its threads, barrier() waits for all of them, list_if() appends
+// the indices that pass a test (in any order), exclusive_scan() numbers in index order and gives every
+// thread the total, and leader() is the one thread that writes the state.
+//
+// design:
+//   repeat
+//     list the work faces: new since the round began, or touched by the last round's edits (MarkWork)
+//     none: the rounds are over
+//     recording (the stepper): no room in the log for the round's rejections: the host grows it
+//     each work face points its links at the faces that replaced the ones it knew (FixLinks)
+//     each finds its first candidate, a concave edge to swap or a degree-3 vertex to remove, kept only if
+//       no foldover (Fig. 5), and claims the faces it would change with (round, ~id) (Claim)
+//     a candidate that holds every claim wins (Won): a bit per face
+//     the winners are numbered in face order (a prefix sum over the bits' words), so that every team
+//       numbers them alike and the mesh is the same on every executor
+//     no winner: the rounds are over
+//     no room for the winners' faces and decision entries: the work goes back to this round and the host
+//       grows the buffers (RoundsState::overflow); the rerun claims with the same keys
+//     each winner applies (Apply): two new faces (a removal: one, and a slot left dead), one decision entry
+#pragma once
+
+#include <type_traits>
+
+#include "cudahull/resident/swaps.hpp"
+
+namespace cudahull::resident {
+
+// What a run of rounds works on: the claims and stamps per face, the candidates per work item, the work
+// list, a bit per face for the wins with the wins before each word, and the state.
+template <class Point, class Log = NoLog>
+struct RoundsBuffers {
+  FindCandidate<Point, Log> find;  // the mesh, and the log of rejections (the recording driver's)
+  u64* claim;
+  u32* look;
+  Candidate* cands;  // per work item
+  u32* list;         // the work faces
+  u32* win_mask;     // a bit per face: (faces + 31) / 32 words
+  u32* word_rank;    // the wins in the words before each
+  RoundsState* st;
+};
+
+// The end of a round (the team's leader): its counts into the state, for the next round and the stats.
+CUDAHULL_HD inline void end_round(RoundsState* st, u32 faces, u32 entries, u32 round, u32 work, u32 winners) {
+  if (winners != 0) {
+    st->fresh_from = faces;
+    st->faces = faces + 2 * winners;
+    st->entries = entries + winners;
+    st->edits += winners;
+  }
+  st->round = round;
+  ++st->rounds;
+  st->work_items += work;
+  st->round_work = 0;
+}
+
+// Rounds until no candidate is left, or until a round's winners do not fit (st->overflow).  Every thread
+// of the team calls it; start_rounds() has set the state up.
+template <class Team, class Point, class Log>
+CUDAHULL_HD void swap_and_removal_rounds(const Team& team, const RoundsBuffers<Point, Log>& b) {
+  RoundsState* st = b.st;
+  while (true) {
+    const u32 faces = st->faces, fresh = st->fresh_from, entries = st->entries, round = st->round + 1;
+    const u32 words = (faces + 31) / 32;
+    const MarkWork<Point> rule{b.find.m, b.look, fresh, round};
+    team.list_if(
+        faces, [&](u32 f) { return rule.is_work(f); }, b.list, &st->round_work);
+    team.for_range(words, [&](u32 w) { b.win_mask[w] = 0; });
+    team.barrier();
+    const u32 work = st->round_work;
+    if (work == 0) return;
+    if constexpr (!std::is_same_v<Log, NoLog>) {
+      // A recording run: room in the log for the round (six rejections a work face at most, and its first
+      // entry) before it changes anything; otherwise the host grows the log and the round runs afresh.
+      const RejectionLog& log = b.find.log;
+      const u32 logged = *log.count, at = round - log.first_round;
+      if (logged + 6 * work > log.capacity || at >= log.round_capacity) {
+        if (team.leader()) {
+          st->overflow = 1;
+          st->needed_faces = faces;
+          st->needed_entries = entries;
+          st->needed_rejections = logged + 6 * work;
+          st->needed_rounds = at + 1;
+        }
+        return;
+      }
+      if (team.leader()) log.round_first_entry[at] = entries;
+    }
+
+    const FixLinks<Point> fixer{b.find.m};
+    team.for_range(work, [&](u32 i) { fixer.fix(b.list[i]); });
+    team.barrier();
+    FindCandidate<Point, Log> find = b.find;
+    if constexpr (!std::is_same_v<Log, NoLog>) find.log.round = round;
+    const Claim<Point, FindCandidate<Point, Log>> claimer{find, round, b.claim, b.look};
+    team.for_range(work, [&](u32 i) { claimer.claim_for(b.list[i], b.cands[i]); });
+    team.barrier();
+    team.time(0);
+
+    const Won judge{round, b.claim};
+    team.for_range(work, [&](u32 i) {
+      const u32 f = b.list[i];
+      if (judge.holds(b.cands[i])) atomic_or_u32(&b.win_mask[f / 32], 1u << (f % 32));
+    });
+    team.barrier();
+    team.time(1);
+    const u32 winners = team.exclusive_scan(
+        words, [&](u32 w) { return popcount_u32(b.win_mask[w]); }, b.word_rank);
+    team.time(2);
+    if (winners == 0) {
+      if (team.leader()) end_round(st, faces, entries, round, work, 0);
+      return;
+    }
+    if (faces + 2 * winners > st->face_capacity || entries + winners > st->entry_capacity) {
+      // So far the round changed links (FixLinks, which a rerun repeats), claims (a rerun claims with the
+      // same keys) and the stamps of the faces with a candidate, which go back to this round.
+      team.for_range(work, [&](u32 i) { b.look[b.list[i]] = round; });
+      if (team.leader()) {
+        st->overflow = 1;
+        st->needed_faces = faces + 2 * winners;
+        st->needed_entries = entries + winners;
+      }
+      return;
+    }
+
+    const Apply<Point> applier{b.find.m, faces, entries, b.look, round};
+    team.for_range(work, [&](u32 i) {
+      const u32 f = b.list[i], word = b.win_mask[f / 32], bit = 1u << (f % 32);
+      if (word & bit) applier.apply(b.cands[i], b.word_rank[f / 32] + popcount_u32(word & (bit - 1)));
+    });
+    team.barrier();
+    team.time(3);
+    if (team.leader()) end_round(st, faces, entries, round, work, winners);
+    team.barrier();
+  }
+}
+
+// The host's team: one thread, in index order.
+struct HostTeam {
+  template <class F>
+  CUDAHULL_HD void for_range(u32 n, const F& f) const {
+    for (u32 i = 0; i < n; ++i)
+      f(i);
+  }
+  CUDAHULL_HD void barrier() const {}
+  CUDAHULL_HD bool leader() const { return true; }
+  CUDAHULL_HD void time(int) const {}
+  template <class Pred>
+  CUDAHULL_HD void list_if(u32 n, const Pred& pred, u32* list, u32* count) const {
+    for (u32 i = 0; i < n; ++i) {
+      if (pred(i)) list[(*count)++] = i;
+    }
+  }
+  template <class Value>
+  CUDAHULL_HD u32 exclusive_scan(u32 n, const Value& value, u32* out) const {
+    u32 sum = 0;
+    for (u32 i = 0; i < n; ++i) {
+      const u32 v = value(i);
+      out[i] = sum;
+      sum += v;
+    }
+    return sum;
+  }
+};
+
+}  // namespace cudahull::resident
