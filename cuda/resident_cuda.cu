@@ -319,16 +319,18 @@ struct BlockTeam {
   }
   // A warp appends its ballot at once: one atomic a warp.
   template <class Pred>
-  __device__ void list_if(u32 n, const Pred& pred, u32* list, u32* count) const {
-    list_by_warps(threadIdx.x, Block, n, pred, list, count);
+  __device__ void list_if(u32 n, const Pred& pred, u32* list, u32* count, u32 capacity) const {
+    list_by_warps(threadIdx.x, Block, n, pred, list, count, capacity);
   }
   template <class Value>
   __device__ u32 exclusive_scan(u32 n, const Value& value, u32* out) const {
     return block_exclusive_scan<Block, 4>(n, value, out);
   }
-  // Thread `tid` of `threads` (a multiple of 32): the indices below n that pass, appended in any order.
+  // Thread `tid` of `threads` (a multiple of 32): the indices below n that pass, appended in any order
+  // (those past `capacity` counted, not written).
   template <class Pred>
-  __device__ static void list_by_warps(u32 tid, u32 threads, u32 n, const Pred& pred, u32* list, u32* count) {
+  __device__ static void list_by_warps(u32 tid, u32 threads, u32 n, const Pred& pred, u32* list, u32* count,
+                                       u32 capacity) {
     const u32 lane = tid & 31;
     for (u32 warp_first = tid - lane; warp_first < n; warp_first += threads) {
       const u32 i = warp_first + lane;
@@ -337,7 +339,8 @@ struct BlockTeam {
       u32 at = 0;
       if (lane == 0) at = atomicAdd(count, static_cast<u32>(__popc(mask)));
       at = __shfl_sync(0xffffffffu, at, 0);
-      if (mask & (1u << lane)) list[at + __popc(mask & ((1u << lane) - 1))] = i;
+      const u32 slot = at + __popc(mask & ((1u << lane) - 1));
+      if ((mask & (1u << lane)) && slot < capacity) list[slot] = i;
     }
   }
 };
@@ -365,8 +368,8 @@ struct GridTeam {
     t0 = t;
   }
   template <class Pred>
-  __device__ void list_if(u32 n, const Pred& pred, u32* list, u32* count) const {
-    BlockTeam<Block>::list_by_warps(tid(), gridDim.x * Block, n, pred, list, count);
+  __device__ void list_if(u32 n, const Pred& pred, u32* list, u32* count, u32 capacity) const {
+    BlockTeam<Block>::list_by_warps(tid(), gridDim.x * Block, n, pred, list, count, capacity);
   }
   template <class Value>
   __device__ u32 exclusive_scan(u32 n, const Value& value, u32* out) const {
@@ -562,7 +565,7 @@ __global__ void __launch_bounds__(Block)
       split(f);
     if (tid == 0) {
       st->refined = refined;
-      start_rounds(st, RoundsLaunch{1, faces, st->face_capacity, st->entry_capacity});
+      start_rounds(st, RoundsLaunch{1, faces, st->face_capacity, st->entry_capacity, st->face_capacity});
     }
     sync();
     // Flips and flops (Figs. 3b, 4, 5).
@@ -655,6 +658,13 @@ struct CudaExec {
       device_ = device;
     }
     T* data() { return ptr_; }
+    // Back to the cache (or the pool), empty.
+    void release() {
+      if (ptr_) block_cache().give(ptr_, bytes_, device_);
+      device_bytes.now -= bytes_;
+      ptr_ = nullptr;
+      capacity_ = bytes_ = 0;
+    }
     void swap(Buffer& other) {
       std::swap(ptr_, other.ptr_);
       std::swap(capacity_, other.capacity_);

@@ -28,6 +28,7 @@ struct HostExec {
     }
     T* data() { return data_.data(); }
     void swap(Buffer& other) { data_.swap(other.data_); }
+    void release() { std::vector<T>().swap(data_); }
 
    private:
     std::vector<T> data_;

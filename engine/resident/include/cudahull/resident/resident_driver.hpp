@@ -167,6 +167,7 @@ class ResidentHull {
           if (exit == kLoopDone) continue;
           if (exit == kLoopOverflow) {
             // Mid-iteration: the rounds go on here with room for them.
+            grow_spares(capacity_);
             finish_fused(stats, 0, false);
             ++stats.iterations;
             continue;
@@ -186,6 +187,7 @@ class ResidentHull {
       ++stats.iterations;
     }
     lap();
+    release_rounds();
     BasicHullMesh<Point> out = finish(stats);
     stats.finish_ms = lap();
     return out;
@@ -296,8 +298,8 @@ class ResidentHull {
     grow_faces(kInitialFaces);
     grow_entries(kInitialFaces);
     state_.grow(1);
-    cands_.grow(capacity_);
-    work_list_.grow(capacity_);
+    grow_work(capacity_);
+    grow_spares(capacity_);
     index_[1].grow(n_);
   }
 
@@ -364,7 +366,12 @@ class ResidentHull {
   static constexpr std::size_t kMaxFaces = 0xffffffffu / 6;
   static constexpr std::size_t kDoublingFaces = std::size_t{1} << 21;
   void grow_faces(std::size_t count) {
-    if (count <= capacity_) return;
+    if (count > capacity_) grow_capacity(count);
+    // The mesh's own buffers, which the compaction swaps with its spares (sized for the live faces only).
+    fv_.grow(3 * capacity_, 3 * faces_);
+    fn_.grow(3 * capacity_, 3 * faces_);
+  }
+  void grow_capacity(std::size_t count) {
     if (count > kMaxFaces)
       throw DeviceError("resident engine: the hull needs " + std::to_string(count) +
                         " face slots, more than " + std::to_string(kMaxFaces) + " (use --engine stepping)");
@@ -373,20 +380,34 @@ class ResidentHull {
     // time on a small hull), then a quarter more: the room follows the need (issue 26: memory).
     const std::size_t step = capacity_ < kDoublingFaces ? 2 * capacity_ : capacity_ + capacity_ / 4;
     capacity_ = std::min(std::max(count, step), kMaxFaces);
-    fv_.grow(3 * capacity_, 3 * faces_);
-    fn_.grow(3 * capacity_, 3 * faces_);
     killer_.grow(capacity_, faces_);
     look_.grow(capacity_, faces_);
     extreme_.grow(capacity_, marks_in_use_);
     claim_.grow(capacity_, old);
     exec_.fill(claim_.data() + old, capacity_ - old, u64{0});
-    for (auto* b : {&fv_out_, &fn_out_})
-      b->grow(3 * capacity_);
     // The refinement marks and their prefix sum (one per face) and the furthest points may be in use:
     // those entries move along (in a small mesh's fused iteration the marks'
     // entries are copied before they are written: harmless, and never more than the faces in use).
     flags_.grow(capacity_ + 1, marks_in_use_);
     face_rank_.grow(capacity_ + 1, marks_in_use_);
+  }
+  // The compaction's spares, for `live` faces: an iteration ends with at most its faces and two more a
+  // refined face (a split adds two, a swap none, a removal takes two away).
+  void grow_spares(std::size_t live) {
+    fv_out_.grow(3 * live);
+    fn_out_.grow(3 * live);
+  }
+  // The rounds' candidates, given back before the finish (which sorts the corners: the peak of a large run).
+  void release_rounds() {
+    cands_.release();
+    work_capacity_ = 0;
+  }
+  // Room for the candidates of `count` work faces a round.
+  void grow_work(std::size_t count) {
+    if (count <= work_capacity_) return;
+    work_capacity_ = std::min<std::size_t>(count, 0xffffffffu);
+    cands_.grow(work_capacity_);
+    work_list_.grow(work_capacity_);
   }
   void grow_entries(std::size_t count) {
     if (count > entry_capacity_) {
@@ -443,7 +464,8 @@ class ResidentHull {
       // Room first, then the marks, their prefix sum and the split in one mark_scan_move (one launch for a
       // small mesh).
       furthest_points();
-      grow_for_rounds(2 * bound + 64, entry_bound + bound + 64);
+      grow_for_rounds(2 * bound + 64, entry_bound + bound + 64, 2 * bound + 64);
+      grow_spares(capacity_);
       exec_.mark_scan_move(faces_, MarkRefined<Point>{view(), extreme_.data(), flags_.data()}, flags_.data(),
                            face_rank_.data(), split_faces());
       marks_in_use_ = 0;
@@ -451,12 +473,7 @@ class ResidentHull {
       mark_refined();
       const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
       if (refined == 0) return no_face_refined();
-      // Everything grows before the split: the faces in use are then more than the host knows to keep.
-      // Room for the children and for the rounds' edits, about two a refined face (1.5 to 2.1 on dense
-      // spheres, fewer where points lie inside), two new slots and one entry each; past that a round's
-      // winners stop before they apply and go on after the host grows the buffers.
-      grow_for_rounds(faces_ + 3 * std::size_t{refined} + 9 * std::size_t{refined} / 2 + 64,
-                      4 * std::size_t{refined} + 64);
+      grow_for_iteration(refined);
       split();
     }
     stats.refine_ms += lap();
@@ -495,8 +512,10 @@ class ResidentHull {
   // buffers swapped once per finished iteration, as compact() swaps them.  Returns the LoopExit.
   // `first`: the loop begins with the first distribution of the listed points (`list`, or all).
   u32 device_loop(ResidentStats& stats, const u32* list, bool first) {
-    cands_.grow(capacity_);
-    work_list_.grow(capacity_);
+    // Sized by the capacity (a small mesh): every face may refine and be work.
+    grow_faces(faces_);
+    grow_work(capacity_);
+    grow_spares(capacity_);
     LoopBuffers<Point> b{};
     b.m = view();
     b.fv_spare = fv_out_.data();
@@ -552,17 +571,26 @@ class ResidentHull {
     ++stats.round_overflows;
     faces_ = state.faces;
     entries_used_ = state.entries;
+    const std::size_t work = state.needed_work > work_capacity_ ? state.needed_work : 0;
     grow_for_rounds(state.needed_faces + state.needed_faces / 8 + 64,
-                    state.needed_entries + state.needed_entries / 8 + 64);
+                    state.needed_entries + state.needed_entries / 8 + 64, work + work / 8 + 64);
   }
 
-  // Room for a run of fused rounds: `faces` face slots and `entries` entries, and the candidates and wins
-  // of as many faces.
-  void grow_for_rounds(std::size_t faces, std::size_t entries) {
+  // Room for a run of rounds: `faces` face slots, `entries` entries and `work` work faces a round.
+  void grow_for_rounds(std::size_t faces, std::size_t entries, std::size_t work) {
     grow_faces(faces);
     grow_entries(entries);
-    cands_.grow(capacity_);
-    work_list_.grow(capacity_);
+    grow_work(work);
+  }
+  // Everything grows before the split (the faces in use are then more than the host knows to keep), by
+  // the refined count.  Room for the children and for the rounds' edits, about two a refined face (1.5 to
+  // 2.1 on dense spheres, fewer where points lie inside), two new slots and one entry each; for the work
+  // of a round, the children and the faces beside the refined ones; the spares for the live faces.  Past
+  // that a round stops before it changes anything and goes on after the host grows the buffers.
+  void grow_for_iteration(u32 refined) {
+    const std::size_t r = refined;
+    grow_for_rounds(faces_ + 3 * r + 9 * r / 2 + 64, 4 * r + 64, 5 * r + 64);
+    grow_spares(faces_ + 2 * r + 64);
   }
 
   // The rounds (rounds.hpp) on the executor, in one launch with no wait per round.  `begin`: the first launch
@@ -575,6 +603,7 @@ class ResidentHull {
     launch.fresh_from = static_cast<u32>(fresh_from);
     launch.face_capacity = static_cast<u32>(capacity_);
     launch.entry_capacity = static_cast<u32>(entry_capacity_);
+    launch.work_capacity = static_cast<u32>(work_capacity_);
     exec_.fused_rounds(FindCandidate<Point, Log>{view(), log}, claim_.data(), look_.data(), cands_.data(),
                        work_list_.data(), state_.data(), launch);
     return capacity_;
@@ -614,6 +643,7 @@ class ResidentHull {
     face_of_[0].swap(face_of_[1]);
   }
   void compact(std::size_t face_bound) {
+    grow_spares(face_bound);
     compact_launch(face_bound, nullptr);
     // Both counts come back in one read.
     u32 counts[2] = {0, 0};
@@ -695,6 +725,7 @@ class ResidentHull {
     exec_.fill(keep_.data(), n, u32{0});
     exec_.for_each(corners, FlagCorners{fv_.data(), keep_.data()});
     counts[1] = exec_.select(keep_.data(), point_rank_.data(), index_[1].data(), n);
+    fv_out_.grow(corners);
     exec_.for_each(corners, RenumberCorners{fv_.data(), point_rank_.data(), fv_out_.data()});
     const u32* vertex_list = index_[1].data();
     const u32 vertices = counts[1];
@@ -902,6 +933,7 @@ class ResidentHull {
   bool unkept_listed_ = false;    // setup() left the points not kept in the list (see furthest_points())
   std::size_t marks_in_use_ = 0;  // entries of flags_ and face_rank_ that grow_faces() keeps
   std::size_t faces_ = 0, capacity_ = 0, entries_used_ = 0, entry_capacity_ = 0, active_ = 0;
+  std::size_t work_capacity_ = 0;  // work faces a round has room for (cands_, work_list_)
   u32 round_ = 0;
   Buffer<u32> fv_, fn_, fv_out_, fn_out_, killer_, look_, flags_, face_rank_;
   Buffer<u64> claim_, extreme_;
@@ -925,9 +957,7 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
   const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
   if (refined == 0) return no_face_refined();
   stats.refined_faces += refined;
-  // Room for the children and the rounds' edits, as iterate_fused() makes it.
-  grow_for_rounds(faces_ + 3 * std::size_t{refined} + 9 * std::size_t{refined} / 2 + 64,
-                  4 * std::size_t{refined} + 64);
+  grow_for_iteration(refined);
   split();
   stats.refine_ms += lap();
 

@@ -8,7 +8,7 @@
 // design:
 //   repeat
 //     list the work faces: new since the round began, or touched by the last round's edits (MarkWork)
-//     none: the rounds are over
+//     none: the rounds are over.  More than the room for their candidates: the host grows it
 //     recording (the stepper): no room in the log for the round's rejections: the host grows it
 //     each work face points its links at the faces that replaced the ones it knew (FixLinks)
 //     each finds its first candidate, a concave edge to swap or a degree-3 vertex to remove, kept only if
@@ -65,12 +65,23 @@ CUDAHULL_HD void swap_and_removal_rounds(const Team& team, const RoundsBuffers<P
     const u32 faces = st->faces, fresh = st->fresh_from, entries = st->entries, round = st->round + 1;
     const u32 words = (faces + 31) / 32;
     const MarkWork<Point> rule{b.find.m, b.look, fresh, round};
-    team.list_if(
-        faces, [&](u32 f) { return rule.is_work(f); }, b.list, &st->round_work);
+    const auto is_work = [&](u32 f) { return rule.is_work(f); };
+    team.list_if(faces, is_work, b.list, &st->round_work, st->work_capacity);
     team.for_range(words, [&](u32 w) { b.win_mask[w] = 0; });
     team.barrier();
     const u32 work = st->round_work;
     if (work == 0) return;
+    if (work > st->work_capacity) {
+      // More work than room for its candidates (the list kept only what fit): nothing changed yet, and the
+      // host grows the work buffers.
+      if (team.leader()) {
+        st->overflow = 1;
+        st->needed_faces = faces;
+        st->needed_entries = entries;
+        st->needed_work = work;
+      }
+      return;
+    }
     if constexpr (!std::is_same_v<Log, NoLog>) {
       // A recording run: room in the log for the round (six rejections a work face at most, and its first
       // entry) before it changes anything; otherwise the host grows the log and the round runs afresh.
@@ -147,10 +158,13 @@ struct HostTeam {
   CUDAHULL_HD void barrier() const {}
   CUDAHULL_HD bool leader() const { return true; }
   CUDAHULL_HD void time(int) const {}
+  // The indices below n that pass, appended at *count (those past `capacity` counted, not written).
   template <class Pred>
-  CUDAHULL_HD void list_if(u32 n, const Pred& pred, u32* list, u32* count) const {
+  CUDAHULL_HD void list_if(u32 n, const Pred& pred, u32* list, u32* count, u32 capacity) const {
     for (u32 i = 0; i < n; ++i) {
-      if (pred(i)) list[(*count)++] = i;
+      if (!pred(i)) continue;
+      if (*count < capacity) list[*count] = i;
+      ++*count;
     }
   }
   template <class Value>

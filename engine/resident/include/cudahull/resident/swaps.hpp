@@ -314,9 +314,11 @@ struct Apply {
 struct RoundsState {
   u32 faces, fresh_from, entries, round;    // faces and entries in use; faces from fresh_from are new
   u32 face_capacity, entry_capacity;        // set at each launch
+  u32 work_capacity;                        // set at each launch: the work items a round has room for
   u32 rounds, edits, work_items, overflow;  // out
   u32 needed_faces, needed_entries;         // out, on overflow: what the next round needs
   u32 needed_rejections, needed_rounds;     // out, on overflow of a recording run's log (RejectionLog)
+  u32 needed_work;                          // out, on overflow: the work items of the round
   u32 round_work, round_winners;            // scratch, zero
   u32 refined;                              // faces refined this iteration (SplitFaces)
   u32 live_faces, kept_points;              // the compaction's totals (MoveLive, MovePoints)
@@ -351,7 +353,7 @@ struct LoopBuffers {
 // What the host gives a fused run of rounds: `begin` (the iteration's first: faces = fresh_from + 3 refined,
 // entries = refined, from the state) or not (it goes on after an overflow), and the room there is.
 struct RoundsLaunch {
-  u32 begin, fresh_from, face_capacity, entry_capacity;
+  u32 begin, fresh_from, face_capacity, entry_capacity, work_capacity;
 };
 
 // A fused run of rounds starts (one thread): the iteration's counts from the refinement's, or those the last
@@ -365,6 +367,7 @@ CUDAHULL_HD inline void start_rounds(RoundsState* st, const RoundsLaunch& launch
   }
   st->face_capacity = launch.face_capacity;
   st->entry_capacity = launch.entry_capacity;
+  st->work_capacity = launch.work_capacity;
   st->overflow = 0;
   st->round_work = 0;
 }
