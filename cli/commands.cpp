@@ -19,13 +19,13 @@
 #include "cudahull/exact_hull.hpp"
 #include "cudahull/generators.hpp"
 #include "cudahull/hull_checker.hpp"
+#include "cudahull/hull_plan.hpp"
 #include "cudahull/mesh_io.hpp"
 #include "cudahull/phase_times.hpp"
 #include "cudahull/point_io.hpp"
 #include "cudahull/point_writer.hpp"
 #include "cudahull/resident.hpp"
 #include "cudahull/trace.hpp"
-#include "device_info.hpp"
 #include "qhull_reference.hpp"
 #include "resident_cuda.hpp"
 
@@ -45,34 +45,30 @@ ProgressFn stderr_progress(const std::string& what, bool quiet) {
   };
 }
 
-// --backend: picks the backend and says which, in one line.  `auto` takes CUDA when a usable device is
-// present and the CPU otherwise; `cuda` without a usable device is a device failure (exit 4).
+// --backend, --engine and --precision as plan_hull() (hull_plan.hpp) takes them; CLI11 has checked the names.
+ConvexHullOptions request_of(const std::string& backend, const std::string& engine,
+                             const std::string& precision) {
+  ConvexHullOptions request;
+  request.backend = backend_from_name(backend);
+  request.engine = engine_from_name(engine);
+  request.precision = precision_from_name_strict(precision);
+  return request;
+}
+
+// A request this machine cannot meet (`--backend cuda` without a usable device) is a device failure (exit 4),
+// named by its flag.
+void require_runnable(const HullPlan& plan) {
+  if (!plan.unavailable.empty()) throw DeviceError("--" + plan.unavailable);
+}
+
+// The stepping engine's backend that `plan` chose, said in one line with the plan's reason.
 template <class Point>
-std::unique_ptr<BasicBackend<Point>> choose_backend(const std::string& requested, bool quiet,
-                                                    std::string* device) {
-  if (requested == "cpu") {
-    auto backend = make_cpu_backend<Point>();
-    if (!quiet) std::fprintf(stderr, "backend: %s (as requested)\n", backend->name().c_str());
-    *device = "cpu";
-    return backend;
-  }
-  const CudaDeviceInfo info = query_cuda_device();
-  if (info.usable) {
-    auto backend = make_cuda_backend<Point>();
-    if (!quiet) {
-      std::fprintf(stderr, "backend: %s (%s)\n", backend->name().c_str(),
-                   requested == "auto" ? "auto: a usable CUDA device" : "as requested");
-    }
-    *device = info.name;
-    return backend;
-  }
-  if (requested == "cuda") throw DeviceError("--backend cuda: no usable CUDA device: " + info.reason);
-  auto backend = make_cpu_backend<Point>();
-  if (!quiet) {
-    std::fprintf(stderr, "backend: %s (auto: no usable CUDA device: %s)\n", backend->name().c_str(),
-                 info.reason.c_str());
-  }
-  *device = "cpu";
+std::unique_ptr<BasicBackend<Point>> planned_backend(const HullPlan& plan, bool quiet, std::string* device) {
+  const bool cuda = plan.backend == BackendChoice::kCuda;
+  auto backend = cuda ? make_cuda_backend<Point>() : make_cpu_backend<Point>();
+  if (!quiet)
+    std::fprintf(stderr, "backend: %s (%s)\n", backend->name().c_str(), plan.backend_reason.c_str());
+  *device = cuda ? plan.device : "cpu";
   return backend;
 }
 
@@ -85,26 +81,11 @@ struct ResidentRun {
   double upload_ms = 0, run_ms = 0;
 };
 
-// The resident engine's device for --backend `requested`: a CUDA device's name, or empty for the host.
-std::string resident_device(const std::string& requested, std::string& why) {
-  why = "as requested";
-  if (requested == "cpu") return "";
-  const CudaDeviceInfo info = query_cuda_device();
-  if (info.usable) {
-    if (requested == "auto") why = "auto: a usable CUDA device";
-    return info.name;
-  }
-  if (requested == "cuda") throw DeviceError("--backend cuda: no usable CUDA device: " + info.reason);
-  why = "auto: no usable CUDA device: " + info.reason;
-  return "";
-}
-
 template <class Point>
-ResidentRun<Point> run_resident(const std::vector<Point>& points, const std::string& requested, bool quiet) {
+ResidentRun<Point> run_resident(const std::vector<Point>& points, const HullPlan& plan, bool quiet) {
   ResidentRun<Point> r;
-  std::string why;
-  r.device = resident_device(requested, why);
-  if (!r.device.empty()) {
+  if (plan.backend == BackendChoice::kCuda) {
+    r.device = plan.device;
     r.backend_name = "cuda-resident";
     ResidentCudaHull<Point> resident;
     const auto t_upload = Clock::now();
@@ -120,7 +101,7 @@ ResidentRun<Point> run_resident(const std::vector<Point>& points, const std::str
     r.hull = resident_hull_host(points, &r.stats);
     r.run_ms = ms_since(t_run);
   }
-  if (!quiet) std::fprintf(stderr, "backend: %s (%s)\n", r.backend_name.c_str(), why.c_str());
+  if (!quiet) std::fprintf(stderr, "backend: %s (%s)\n", r.backend_name.c_str(), plan.backend_reason.c_str());
   if (!quiet && r.stats.exact_finish) std::fprintf(stderr, "note: exact finish: %s\n", r.stats.note.c_str());
   return r;
 }
@@ -249,36 +230,39 @@ nlohmann::json resident_stats_json(const ResidentStats& stats) {
 
 // `cudahull hull` in the precision of Point (Point3 or Point3d): one code path for both.
 template <class Point>
-int hull_in(const HullOptions& o) {
+int hull_in(const HullOptions& o, const ConvexHullOptions& request) {
   constexpr Precision precision = precision_of<Point>();
   const auto t_read = Clock::now();
   const std::vector<Point> points = read_input<Point>(o.input, o.quiet);
   const double read_ms = ms_since(t_read);
+  HullInput input;
+  input.precision = precision;
+  input.count = points.size();
   // Coordinates outside the engines' exact range (a subnormal, 1e300): exact_hull_any() on the host, exact
   // for every finite double (exponent scaling, else GMP), with no iterations to record.
-  bool wide = false;  // every float is inside the range
-  if constexpr (std::is_same_v<Point, Point3d>) wide = !in_fast_exact_range(points);
-  if (wide && !o.quiet)
-    std::fprintf(stderr,
-                 "note: coordinates outside 2^-250..2^250: the wide-range exact hull (host, slower)\n");
+  if constexpr (std::is_same_v<Point, Point3d>) input.outside_exact_range = !in_fast_exact_range(points);
+  const HullPlan plan = plan_hull(request, input);
+  const bool wide = plan.wide_range;
+  if (wide && !o.quiet) std::fprintf(stderr, "note: %s\n", plan.backend_reason.c_str());
+  require_runnable(plan);
   // The resident engine with records (--trace, --table) steps an iteration at a time and reads back what
   // each did; without them it runs in one go, hearing O(1) bytes an iteration.
-  const bool resident = o.engine == "resident" && !wide;
+  const bool resident = plan.engine == EngineChoice::kResident && !wide;
   const bool recorded_resident = resident && (!o.trace.empty() || o.table);
   std::string device, backend_name;
   std::unique_ptr<BasicBackend<Point>> backend;
   std::unique_ptr<SteppingEngine> resident_stepper;
   if (recorded_resident) {
-    std::string why;
-    device = resident_device(o.backend, why);
+    const bool on_gpu = plan.backend == BackendChoice::kCuda;
     resident_stepper =
-        device.empty() ? make_resident_stepping_engine(points) : make_resident_cuda_stepping_engine(points);
-    if (device.empty()) device = "cpu";
+        on_gpu ? make_resident_cuda_stepping_engine(points) : make_resident_stepping_engine(points);
+    device = on_gpu ? plan.device : "cpu";
     backend_name = resident_stepper->backend_name();
-    if (!o.quiet) std::fprintf(stderr, "backend: %s (%s)\n", backend_name.c_str(), why.c_str());
+    if (!o.quiet)
+      std::fprintf(stderr, "backend: %s (%s)\n", backend_name.c_str(), plan.backend_reason.c_str());
   }
   if (!resident && !wide) {
-    backend = choose_backend<Point>(o.backend, o.quiet, &device);
+    backend = planned_backend<Point>(plan, o.quiet, &device);
     backend_name = backend->name();
   }
   if (wide) backend_name = device = "cpu-wide";
@@ -321,7 +305,7 @@ int hull_in(const HullOptions& o) {
     resident_run.hull = stepped_hull(*resident_stepper, points);
     if (const ResidentStats* stats = resident_stepper->resident_stats()) resident_run.stats = *stats;
   } else if (resident) {
-    resident_run = run_resident(points, o.backend, o.quiet);
+    resident_run = run_resident(points, plan, o.quiet);
     backend_name = resident_run.backend_name;
     device = resident_run.device;
     iterations = static_cast<int>(resident_run.stats.iterations);
@@ -377,9 +361,10 @@ int hull_in(const HullOptions& o) {
                      {"vertices_removed", removed},
                      {"repairs", repairs},
                      {"backend", backend_name},
-                     {"engine", o.engine},
+                     {"engine", choice_name(plan.engine)},
                      {"device", device},
                      {"precision", precision_name(precision)},
+                     {"plan", plan.reason},
                      {"read_ms", read_ms},
                      {"total_ms", run_ms},
                      {"host_ms", host_ms},
@@ -411,12 +396,18 @@ int hull_in(const HullOptions& o) {
 
 // `cudahull bench` in the precision of Point (Point3 or Point3d): one code path for both.
 template <class Point>
-int bench_in(const BenchOptions& o) {
+int bench_in(const BenchOptions& o, const ConvexHullOptions& request) {
   constexpr Precision precision = precision_of<Point>();
   const std::vector<Point> points = load_or_generate<Point>(o.input, o.distribution, o.count, o.seed, o.json);
   // The engines are what bench times: they are exact only inside their range (`hull` takes the rest).
   if constexpr (std::is_same_v<Point, Point3d>)
     check_double_range(points, o.input == "-" ? "<stdin>" : o.input);
+  HullInput input;
+  input.precision = precision;
+  input.count = points.size();
+  const HullPlan plan = plan_hull(request, input);
+  require_runnable(plan);
+  const bool resident = plan.engine == EngineChoice::kResident;
   const std::string label = o.input.empty() ? o.distribution + " " + std::to_string(points.size()) : o.input;
   std::string device;
   std::string backend_name;
@@ -424,9 +415,9 @@ int bench_in(const BenchOptions& o) {
   BasicHullMesh<Point> hull;
   std::uint64_t host_syncs = 0, bytes_from_device = 0, device_bytes_peak = 0;
   ResidentStats resident_stats;  // the last run's
-  for (int r = 0; r < o.repeat && o.engine == "resident"; ++r) {
+  for (int r = 0; r < o.repeat && resident; ++r) {
     // The resident engine: uploaded once per run, the upload listed apart (as below).
-    ResidentRun<Point> run = run_resident(points, o.backend, o.json || r > 0);
+    ResidentRun<Point> run = run_resident(points, plan, o.json || r > 0);
     backend_name = run.backend_name;
     device = run.device;
     const bool on_host = run.device == "cpu";
@@ -440,8 +431,8 @@ int bench_in(const BenchOptions& o) {
     resident_stats = run.stats;
     hull = std::move(run.hull);
   }
-  for (int r = 0; r < o.repeat && o.engine != "resident"; ++r) {
-    auto backend = choose_backend<Point>(o.backend, o.json || r > 0, &device);
+  for (int r = 0; r < o.repeat && !resident; ++r) {
+    auto backend = planned_backend<Point>(plan, o.json || r > 0, &device);
     backend_name = backend->name();
     BasicEngine<Point> engine(points, std::move(backend), EngineOptions{false});
     double h = 0, d = 0, u = 0;
@@ -469,9 +460,10 @@ int bench_in(const BenchOptions& o) {
                    {"points", points.size()},
                    {"hull_vertices", hull.vertex_ids.size()},
                    {"backend", backend_name},
-                   {"engine", o.engine},
+                   {"engine", choice_name(plan.engine)},
                    {"device", device},
                    {"precision", precision_name(precision)},
+                   {"plan", plan.reason},
                    {"repeat", o.repeat},
                    {"bytes_from_device", bytes_from_device},
                    {"total_ms", median(total)},
@@ -481,7 +473,7 @@ int bench_in(const BenchOptions& o) {
                    {"host_huge_pages", huge_pages_in_use()}};
   // Waits for the device with a value coming back, counted by the resident engine (the stepping engine
   // waits a fixed few times an iteration, reading its O(faces) extremes).
-  if (o.engine == "resident") {
+  if (resident) {
     j["host_syncs"] = host_syncs;
     j["device_bytes_peak"] = device_bytes_peak;
     // Device memory per hull vertex (0 on the CPU), the measure issue 26 sets its memory goals in.
@@ -526,29 +518,25 @@ int bench_in(const BenchOptions& o) {
   return kExitOk;
 }
 
+// How a run goes is plan_hull()'s choice (hull_plan.hpp): the precision first, since the points are read in
+// it, from the input's own (io's resolve_precision() reads a file's header only where --precision auto asks
+// for it); the engine and the backend once the points are read and their range is known.
+Precision planned_precision(const ConvexHullOptions& request, const std::string& input) {
+  return plan_precision(request.precision, resolve_precision(request.precision, input)).precision;
+}
+
 }  // namespace
 
-// --engine auto: the resident engine where it runs on a GPU (the backend CUDA, or auto with a usable
-// device), the stepping engine on the CPU, whose worker threads make it the faster one there.
-std::string resolve_engine(const std::string& engine, const std::string& backend) {
-  if (engine != "auto") return engine;
-  return backend != "cpu" && query_cuda_device().usable ? "resident" : "stepping";
+int run_hull(const HullOptions& o) {
+  const ConvexHullOptions request = request_of(o.backend, o.engine, o.precision);
+  return planned_precision(request, o.input) == Precision::kDouble ? hull_in<Point3d>(o, request)
+                                                                   : hull_in<Point3>(o, request);
 }
 
-int run_hull(const HullOptions& options) {
-  HullOptions o = options;
-  o.engine = resolve_engine(o.engine, o.backend);
-  return resolve_precision(precision_from_name(o.precision), o.input) == Precision::kDouble
-             ? hull_in<Point3d>(o)
-             : hull_in<Point3>(o);
-}
-
-int run_bench(const BenchOptions& options) {
-  BenchOptions o = options;
-  o.engine = resolve_engine(o.engine, o.backend);
-  return resolve_precision(precision_from_name(o.precision), o.input) == Precision::kDouble
-             ? bench_in<Point3d>(o)
-             : bench_in<Point3>(o);
+int run_bench(const BenchOptions& o) {
+  const ConvexHullOptions request = request_of(o.backend, o.engine, o.precision);
+  return planned_precision(request, o.input) == Precision::kDouble ? bench_in<Point3d>(o, request)
+                                                                   : bench_in<Point3>(o, request);
 }
 
 }  // namespace cudahull::cli

@@ -11,8 +11,10 @@
 
 #include "cudahull/convex_hull.hpp"
 #include "cudahull/errors.hpp"
+#include "cudahull/exact_hull.hpp"
 #include "cudahull/generators.hpp"
 #include "cudahull/hull_checker.hpp"
+#include "cudahull/hull_plan.hpp"
 #include "qhull_reference.hpp"
 
 namespace cudahull {
@@ -165,6 +167,134 @@ TEST(ConvexHullApi, DevicePointsNeedTheGpu) {
     EXPECT_EQ(std::string(e.what()).rfind("points in GPU memory, but no usable CUDA device: ", 0), 0u)
         << e.what();
   }
+}
+
+// One place decides how a hull runs (issue 26): plan_hull() against choices written out here, with the
+// device's status given, so that every branch runs on any machine; then the real machine's plan against what
+// convex_hull() and make_backend() did.
+TEST(ConvexHullApi, PlanHullResolvesAutoAndSaysWhy) {
+  const CudaStatus no_gpu{false, "", "no CUDA-capable device is detected"};
+  const CudaStatus gpu{true, "NVIDIA H100 80GB HBM3", ""};
+  int asked = 0;
+  auto device = [&asked](const CudaStatus& status) {
+    return [&asked, status] {
+      ++asked;
+      return status;
+    };
+  };
+  HullInput floats;  // a float array of 1000 points
+  floats.count = 1000;
+  HullInput doubles = floats;
+  doubles.precision = Precision::kDouble;
+
+  // Everything auto on float input without a GPU: float, the stepping engine on the CPU, and why.
+  HullPlan plan = plan_hull({}, floats, device(no_gpu));
+  EXPECT_EQ(plan.precision, Precision::kFloat);
+  EXPECT_EQ(plan.precision_reason, "auto");
+  EXPECT_EQ(plan.engine, EngineChoice::kStepping);
+  EXPECT_EQ(plan.engine_reason, "auto: no usable CUDA device");
+  EXPECT_EQ(plan.backend, BackendChoice::kCpu);
+  EXPECT_EQ(plan.backend_reason, "auto: no usable CUDA device: no CUDA-capable device is detected");
+  EXPECT_EQ(plan.reason,
+            "stepping engine (auto: no usable CUDA device); backend cpu (auto: no usable CUDA device: no "
+            "CUDA-capable device is detected); precision float (auto)");
+  EXPECT_TRUE(plan.unavailable.empty());
+  EXPECT_FALSE(plan.wide_range || plan.upload_first);
+  EXPECT_EQ(asked, 1);  // both the engine and the backend depend on it: asked once
+
+  // With a GPU: the resident engine on it, the points uploaded as they are; none to upload for no points.
+  plan = plan_hull({}, doubles, device(gpu));
+  EXPECT_EQ(plan.precision, Precision::kDouble);
+  EXPECT_EQ(plan.engine, EngineChoice::kResident);
+  EXPECT_EQ(plan.backend, BackendChoice::kCuda);
+  EXPECT_EQ(plan.device, "NVIDIA H100 80GB HBM3");
+  EXPECT_EQ(plan.backend_reason, "auto: a usable CUDA device");
+  EXPECT_TRUE(plan.upload_first);
+  EXPECT_FALSE(plan_hull({}, HullInput{}, device(gpu)).upload_first);
+
+  // A double 1e300 is outside the engines' range: the wide path on the host, which needs no device, so
+  // backend cuda without one still runs, and the device is not asked.  Rounded to float it is no longer wide.
+  const std::vector<Point3d> far{{0, 0, 0}, {1, 0, 0}, {0, 1e300, 0}, {0, 0, 1}};
+  HullInput wide = doubles;
+  wide.outside_exact_range = !in_fast_exact_range(far);
+  ConvexHullOptions cuda_stepping;
+  cuda_stepping.backend = BackendChoice::kCuda;
+  cuda_stepping.engine = EngineChoice::kStepping;
+  asked = 0;
+  plan = plan_hull(cuda_stepping, wide, device(no_gpu));
+  EXPECT_TRUE(plan.wide_range);
+  EXPECT_EQ(plan.backend, BackendChoice::kCpu);
+  EXPECT_EQ(plan.precision, Precision::kDouble);
+  EXPECT_TRUE(plan.unavailable.empty()) << plan.unavailable;
+  EXPECT_NE(plan.reason.find("outside 2^-250..2^250"), std::string::npos) << plan.reason;
+  EXPECT_EQ(asked, 0);
+  EXPECT_EQ(convex_hull(far, cuda_stepping).backend, "cpu-wide");
+  ConvexHullOptions in_float;
+  in_float.precision = Precision::kFloat;
+  plan = plan_hull(in_float, wide, device(no_gpu));
+  EXPECT_FALSE(plan.wide_range);
+  EXPECT_EQ(plan.precision, Precision::kFloat);
+  EXPECT_EQ(plan.precision_reason, "as requested");
+
+  // An explicit request is taken as it is, and backend cpu with a definite engine asks for no device.
+  ConvexHullOptions explicit_cpu;
+  explicit_cpu.backend = BackendChoice::kCpu;
+  explicit_cpu.engine = EngineChoice::kResident;
+  explicit_cpu.precision = Precision::kDouble;
+  asked = 0;
+  plan = plan_hull(explicit_cpu, floats, device(gpu));
+  EXPECT_EQ(asked, 0);
+  EXPECT_EQ(plan.engine, EngineChoice::kResident);
+  EXPECT_EQ(plan.backend, BackendChoice::kCpu);
+  EXPECT_EQ(plan.precision, Precision::kDouble);
+  EXPECT_EQ(plan.reason,
+            "resident engine (as requested); backend cpu (as requested); precision double (as requested)");
+  EXPECT_FALSE(plan.upload_first);
+  // Engine auto with backend cpu: the stepping engine, still without asking.
+  explicit_cpu.engine = EngineChoice::kAuto;
+  EXPECT_EQ(plan_hull(explicit_cpu, floats, device(gpu)).engine, EngineChoice::kStepping);
+  EXPECT_EQ(asked, 0);
+
+  // Backend cuda without a GPU cannot run: the plan says so in DeviceError's words.
+  ConvexHullOptions cuda;
+  cuda.backend = BackendChoice::kCuda;
+  plan = plan_hull(cuda, floats, device(no_gpu));
+  EXPECT_EQ(plan.backend, BackendChoice::kCuda);
+  EXPECT_EQ(plan.engine, EngineChoice::kStepping);
+  EXPECT_EQ(plan.unavailable, "backend cuda: no usable CUDA device: no CUDA-capable device is detected");
+
+  // Points in GPU memory take the resident engine on CUDA whatever the engine asked; backend cpu is a wrong
+  // request and a missing GPU a missing device.
+  HullInput on_device = floats;
+  on_device.on_device = true;
+  plan = plan_hull(cuda_stepping, on_device, device(gpu));
+  EXPECT_EQ(plan.engine, EngineChoice::kResident);
+  EXPECT_EQ(plan.backend, BackendChoice::kCuda);
+  EXPECT_TRUE(plan.unavailable.empty());
+  EXPECT_EQ(plan_hull(explicit_cpu, on_device, device(gpu)).unavailable,
+            "points in GPU memory need backend auto or cuda, not cpu");
+  EXPECT_EQ(plan_hull({}, on_device, device(no_gpu)).unavailable,
+            "points in GPU memory, but no usable CUDA device: no CUDA-capable device is detected");
+
+  // 2-D host input: the host's planar hull whatever the backend; backend cuda still needs the device.
+  HullInput planar = doubles;
+  planar.dimension = 2;
+  plan = plan_hull(cuda, planar, device(gpu));
+  EXPECT_EQ(plan.backend, BackendChoice::kCpu);
+  EXPECT_TRUE(plan.unavailable.empty());
+  EXPECT_FALSE(plan_hull(cuda, planar, device(no_gpu)).unavailable.empty());
+
+  // This machine: convex_hull() and make_backend() run what plan_hull() (asking cuda_status()) chose.
+  const std::vector<Point3> points = generate_points(Distribution::kCube, 500, 3);
+  floats.count = points.size();
+  plan = plan_hull({}, floats);
+  EXPECT_EQ(plan.backend == BackendChoice::kCuda, cuda_status().usable);
+  const std::string ran = convex_hull(points).backend;
+  EXPECT_EQ(ran.substr(0, ran.find(' ')), plan.engine == EngineChoice::kResident ? "cuda-resident" : "cpu");
+  std::string why;
+  EXPECT_EQ(make_backend<Point3>(BackendChoice::kAuto, &why)->name().substr(0, 4),
+            plan.backend == BackendChoice::kCuda ? "cuda" : "cpu ");
+  EXPECT_EQ(why, plan.backend_reason);
 }
 
 // 2-D input (issue 25): a square with points inside and on its edges, and a duplicate of a corner.  The

@@ -6,8 +6,8 @@
 #include "cudahull/cpu_backend.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/generators.hpp"
+#include "cudahull/hull_plan.hpp"
 #include "cudahull/resident.hpp"
-#include "device_info.hpp"
 #include "resident_cuda.hpp"
 
 namespace cudahull::viewer {
@@ -18,14 +18,16 @@ std::string PointSource::label() const {
 }
 
 std::string precision_note(Precision requested, Precision used) {
-  return std::string(precision_name(used)) + (requested == Precision::kAuto ? " (auto)" : " (as requested)");
+  const PrecisionPlan plan = plan_precision(requested, used);
+  return std::string(precision_name(plan.precision)) + " (" + plan.reason + ")";
 }
 
 namespace {
 
 // The points alone (load_points() adds the model's faces).
-ScenePoints load_positions(const PointSource& source, Precision precision, const ProgressFn& progress) {
-  precision = resolve_precision(precision, source.path);
+ScenePoints load_positions(const PointSource& source, Precision requested, const ProgressFn& progress) {
+  // plan_hull()'s rule, from the input's own precision (io reads a file's header only where auto asks).
+  const Precision precision = plan_precision(requested, resolve_precision(requested, source.path)).precision;
   if (precision == Precision::kDouble) {
     std::vector<Point3d> exact;
     if (!source.path.empty()) {
@@ -63,26 +65,24 @@ ScenePoints load_points(const PointSource& source, Precision precision, const Pr
 
 Scene::BackendFactory backend_factory(const std::string& requested, std::string* note,
                                       const std::string& engine) {
-  const bool resident = engine == "resident";
+  ConvexHullOptions request;
+  request.backend = backend_from_name(requested);
+  request.engine = engine_from_name(engine);
+  // The engine and the backend as plan_hull() chooses them; the precision is the loaded points'.
+  const HullPlan plan = plan_hull(request, HullInput{});
+  if (!plan.unavailable.empty()) throw DeviceError("--" + plan.unavailable);
+  const bool resident = plan.engine == EngineChoice::kResident;
   const std::string engine_note = resident ? ", resident engine" : "";
-  if (requested != "cpu") {
-    const CudaDeviceInfo info = query_cuda_device();
-    if (info.usable) {
-      *note = "cuda, " + info.name + engine_note +
-              (requested == "auto" ? " (auto: a usable CUDA device)" : " (as requested)");
-      if (resident)
-        return {{},
-                {},
-                [](const std::vector<Point3>& p) { return make_resident_cuda_stepping_engine(p); },
-                [](const std::vector<Point3d>& p) { return make_resident_cuda_stepping_engine(p); }};
-      return {
-          [] { return make_cuda_backend<Point3>(); }, [] { return make_cuda_backend<Point3d>(); }, {}, {}};
-    }
-    if (requested == "cuda") throw DeviceError("--backend cuda: no usable CUDA device: " + info.reason);
-    *note = "cpu" + engine_note + " (auto: no usable CUDA device: " + info.reason + ")";
-  } else {
-    *note = "cpu" + engine_note + " (as requested)";
+  if (plan.backend == BackendChoice::kCuda) {
+    *note = "cuda, " + plan.device + engine_note + " (" + plan.backend_reason + ")";
+    if (resident)
+      return {{},
+              {},
+              [](const std::vector<Point3>& p) { return make_resident_cuda_stepping_engine(p); },
+              [](const std::vector<Point3d>& p) { return make_resident_cuda_stepping_engine(p); }};
+    return {[] { return make_cuda_backend<Point3>(); }, [] { return make_cuda_backend<Point3d>(); }, {}, {}};
   }
+  *note = "cpu" + engine_note + " (" + plan.backend_reason + ")";
   if (resident)
     return {{},
             {},

@@ -26,17 +26,20 @@ struct PointSource {
   std::string label() const;  // "bun_zipper.ply" or "ball 20000 seed 1"
 };
 
-// For the log and the UI: "double (auto)" or "float (as requested)".
+// For the log and the UI: "double (auto)" or "float (as requested)", plan_precision()'s reason
+// (hull_plan.hpp).
 std::string precision_note(Precision requested, Precision used);
 
-// Loads in `precision` (resolved first when kAuto): float as read_points() rounds the file; double as the
-// file gives it (read_points_double(), range-checked), plus the float render positions made from it.  Throws
-// InputError (unreadable or invalid file) or std::invalid_argument (unknown distribution).
+// Loads in `precision` as plan_precision() resolves it (kAuto: the file's own, float for generated points):
+// float as read_points() rounds the file; double as the file gives it (read_points_double(), range-checked),
+// plus the float render positions made from it.  Throws InputError (unreadable or invalid file) or
+// std::invalid_argument (unknown distribution).
 ScenePoints load_points(const PointSource& source, Precision precision, const ProgressFn& progress = {});
 
 // --backend: "cpu", "cuda", or "auto" (CUDA when a usable device is present, else the CPU); --engine:
 // "stepping" (the Engine over that backend) or "resident" (the resident engine on that device, with
-// records).  Throws DeviceError for "cuda" without a usable device.  `note` says what was chosen and why.
+// records), as plan_hull() (hull_plan.hpp) resolves them.  Throws DeviceError for "cuda" without a usable
+// device.  `note` says what was chosen and why, in the plan's words.
 Scene::BackendFactory backend_factory(const std::string& requested, std::string* note,
                                       const std::string& engine = "stepping");
 

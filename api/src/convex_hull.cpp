@@ -16,6 +16,7 @@
 #include "cudahull/engine.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/exact_hull.hpp"
+#include "cudahull/hull_plan.hpp"
 #include "cudahull/parallel.hpp"
 #include "cudahull/plane.hpp"
 #include "cudahull/resident.hpp"
@@ -115,6 +116,14 @@ std::vector<Point> copy_checked(std::size_t count, Coordinate coordinate) {
 }
 
 using Clock = std::chrono::steady_clock;
+
+// This process's CUDA device as convex_hull()'s plans ask for it: cheaply (cuda_device_present()), since
+// reading the device's properties would cost more than a small hull.
+CudaStatus device_presence() {
+  CudaStatus status;
+  status.usable = cuda_device_present(&status.reason);
+  return status;
+}
 
 double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -345,28 +354,25 @@ ConvexHull describe(const BasicHullMesh<Point>& mesh, std::string backend, const
   return describe_merged(mesh, std::move(backend), options);
 }
 
+// The hull of checked points in Point, run as `plan` says (plan_hull(): engine and backend definite).
 template <class Point>
-ConvexHull hull_in(const std::vector<Point>& points, const ConvexHullOptions& options) {
-  if (options.engine == EngineChoice::kResident) {
-    if (options.backend != BackendChoice::kCpu) {
-      const CudaDeviceInfo device = query_cuda_device();
-      if (device.usable) {
-        ResidentCudaHull<Point> resident;
-        resident.upload(points);
-        ResidentStats stats;
-        ConvexHull hull = describe(resident.run(&stats), "cuda-resident", options);
-        hull.resident_stats = std::move(stats);
-        return hull;
-      }
-      if (options.backend == BackendChoice::kCuda)
-        throw DeviceError("backend cuda: no usable CUDA device: " + device.reason);
-    }
+ConvexHull hull_in(const std::vector<Point>& points, const HullPlan& plan, const ConvexHullOptions& options) {
+  if (!plan.unavailable.empty()) throw DeviceError(plan.unavailable);
+  if (plan.engine == EngineChoice::kResident) {
     ResidentStats stats;
-    ConvexHull hull = describe(resident_hull_host(points, &stats), "cpu-resident", options);
+    ConvexHull hull;
+    if (plan.backend == BackendChoice::kCuda) {
+      ResidentCudaHull<Point> resident;
+      resident.upload(points);
+      hull = describe(resident.run(&stats), "cuda-resident", options);
+    } else {
+      hull = describe(resident_hull_host(points, &stats), "cpu-resident", options);
+    }
     hull.resident_stats = std::move(stats);
     return hull;
   }
-  std::unique_ptr<BasicBackend<Point>> backend = make_backend<Point>(options.backend);
+  std::unique_ptr<BasicBackend<Point>> backend =
+      plan.backend == BackendChoice::kCuda ? make_cuda_backend<Point>() : make_cpu_backend<Point>();
   std::string name = backend->name();
   BasicEngine<Point> engine(points, std::move(backend), EngineOptions{.keep_decisions = false});
   engine.run();
@@ -388,17 +394,23 @@ ConvexHull wide_hull(const std::vector<Point3d>& points, const ConvexHullOptions
   return describe(mesh, "cpu-wide", exact);
 }
 
-// The hull of `count` points read by `coordinate(i, axis)`, whose own precision is `own`.
+// The hull of `count` points read by `coordinate(i, axis)`, whose own precision is `own`: read in the
+// plan's precision, then planned with their range known.
 template <class Coordinate>
 ConvexHull checked_hull(std::size_t count, Coordinate coordinate, Precision own,
                         const ConvexHullOptions& options) {
-  const Precision precision = options.precision == Precision::kAuto ? own : options.precision;
-  if (precision == Precision::kDouble) {
+  HullInput input;
+  input.precision = own;
+  input.count = count;
+  if (plan_precision(options.precision, own).precision == Precision::kDouble) {
     const std::vector<Point3d> points = copy_checked<Point3d>(count, coordinate);
-    if (!in_fast_exact_range(points)) return wide_hull(points, options);
-    return hull_in(points, options);
+    input.outside_exact_range = !in_fast_exact_range(points);
+    const HullPlan plan = plan_hull(options, input, device_presence);
+    if (plan.wide_range) return wide_hull(points, options);
+    return hull_in(points, plan, options);
   }
-  return hull_in(copy_checked<Point3>(count, coordinate), options);
+  return hull_in(copy_checked<Point3>(count, coordinate), plan_hull(options, input, device_presence),
+                 options);
 }
 
 // The hull of points that only the current device holds, in Point: checked (and converted) there, then
@@ -435,25 +447,31 @@ ConvexHull device_hull_in(const Scalar* device_xyz, std::size_t count, const Con
   return hull;
 }
 
-// What points in GPU memory need before they are read: a CUDA backend, a device, and memory of the current
-// device.  Throws as convex_hull_device() documents.
-void require_device_points(const void* device_points, std::size_t count, const ConvexHullOptions& options) {
-  if (options.backend == BackendChoice::kCpu)
-    throw std::invalid_argument("points in GPU memory need backend auto or cuda, not cpu");
+// The plan for `count` points of `dimension` in GPU memory, whose own precision is `own`.
+HullPlan device_plan(std::size_t count, int dimension, Precision own, const ConvexHullOptions& options) {
+  HullInput input;
+  input.precision = own;
+  input.dimension = dimension;
+  input.count = count;
+  input.on_device = true;
+  return plan_hull(options, input, device_presence);
+}
+
+// What points in GPU memory need before they are read: a CUDA backend, a device (plan_hull() says which is
+// missing), and memory of the current device.  Throws as convex_hull_device() documents.
+void require_device_points(const void* device_points, std::size_t count, const HullPlan& plan) {
+  if (plan.backend == BackendChoice::kCpu) throw std::invalid_argument(plan.unavailable);
   check_count(count);
-  // Not query_cuda_device(): reading the device's properties would cost more than a small hull.
-  std::string why_not;
-  if (!cuda_device_present(&why_not))
-    throw DeviceError("points in GPU memory, but no usable CUDA device: " + why_not);
+  if (!plan.unavailable.empty()) throw DeviceError(plan.unavailable);
   if (count != 0) require_current_device_memory(device_points);
 }
 
 template <class Scalar>
 ConvexHull device_hull(const Scalar* device_xyz, std::size_t count, Precision own,
                        const ConvexHullOptions& options) {
-  require_device_points(device_xyz, count, options);
-  const Precision precision = options.precision == Precision::kAuto ? own : options.precision;
-  if (precision == Precision::kDouble) return device_hull_in<Point3d>(device_xyz, count, options);
+  const HullPlan plan = device_plan(count, 3, own, options);
+  require_device_points(device_xyz, count, plan);
+  if (plan.precision == Precision::kDouble) return device_hull_in<Point3d>(device_xyz, count, options);
   return device_hull_in<Point3>(device_xyz, count, options);
 }
 
@@ -463,8 +481,10 @@ ConvexHull device_hull(const Scalar* device_xyz, std::size_t count, Precision ow
 // than the hull.  Otherwise they are checked into a host copy.
 template <class Scalar>
 ConvexHull array_hull(const Scalar* xyz, std::size_t count, Precision own, const ConvexHullOptions& options) {
-  if (options.engine == EngineChoice::kResident && options.backend != BackendChoice::kCpu && count != 0 &&
-      cuda_device_present(nullptr)) {
+  HullInput input;
+  input.precision = own;
+  input.count = count;
+  if (plan_hull(options, input, device_presence).upload_first) {
     check_count(count);
     const std::shared_ptr<void> copy = upload_to_device(xyz, count * 3 * sizeof(Scalar));
     return device_hull(static_cast<const Scalar*>(copy.get()), count, own, options);
@@ -740,27 +760,30 @@ PlanarHull wide_planar_hull(const double* xy, std::size_t count) {
 template <class Input>
 ConvexHull planar_hull_of(const Input* xy, std::size_t count, Precision own,
                           const ConvexHullOptions& options) {
-  if (options.backend == BackendChoice::kCuda && !cuda_device_present(nullptr))
-    throw DeviceError("backend cuda: no usable CUDA device");
-  const Precision precision = options.precision == Precision::kAuto ? own : options.precision;
+  HullInput input;
+  input.precision = own;
+  input.dimension = 2;
+  input.count = count;
+  const HullPlan plan = plan_hull(options, input, device_presence);
+  if (!plan.unavailable.empty()) throw DeviceError(plan.unavailable);
   if constexpr (std::is_same_v<Input, double>) {
-    if (precision == Precision::kFloat) {
+    if (plan.precision == Precision::kFloat) {
       check_planar(xy, count);  // a NaN named before a value beyond float's range, as in 3-D
       const std::vector<float> rounded = rounded_planar(xy, count);
       return describe_planar(rounded.data(), planar_hull(rounded.data(), count), options, "cpu");
     }
   }
   // In place: float input in double is the same points (widening is exact), and so the same hull.
-  const bool wide = check_planar(xy, count);
+  input.outside_exact_range = check_planar(xy, count);
   if constexpr (std::is_same_v<Input, double>) {
-    if (wide) {
+    if (plan_hull(options, input, device_presence).wide_range) {
       ConvexHullOptions exact = options;
       exact.merge = MergeMode::kExact;  // the merge's heights need the exact range: the exact hull instead
       return describe_planar(xy, wide_planar_hull(xy, count), exact, "cpu-wide");
     }
   }
   ConvexHull hull = describe_planar(xy, planar_hull(xy, count), options, "cpu");
-  hull.precision = precision;
+  hull.precision = plan.precision;
   return hull;
 }
 
@@ -768,8 +791,10 @@ ConvexHull planar_hull_of(const Input* xy, std::size_t count, Precision own,
 // survivors, which keep every corner and, in input order, every duplicate of one.
 template <class Scalar>
 ConvexHull device_planar_hull(const Scalar* device_xy, std::size_t count, const ConvexHullOptions& options) {
-  require_device_points(device_xy, count, options);
-  if (options.precision == Precision::kFloat && std::is_same_v<Scalar, double>) {
+  const HullPlan plan =
+      device_plan(count, 2, std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat, options);
+  require_device_points(device_xy, count, plan);
+  if (plan.precision == Precision::kFloat && std::is_same_v<Scalar, double>) {
     // Rounded to float first: on the host, which rounds as the NumPy path does.
     const std::vector<Scalar> host = download_values(device_xy, 2 * count);
     return convex_hull_2d(host.data(), count, options);
@@ -789,7 +814,7 @@ ConvexHull device_planar_hull(const Scalar* device_xy, std::size_t count, const 
   ConvexHull hull =
       describe_planar(candidates.xy.data(), planar_hull(candidates.xy.data(), candidates.indices.size()),
                       options, "cuda", &candidates.indices);
-  if (options.precision == Precision::kDouble) hull.precision = Precision::kDouble;
+  hull.precision = plan.precision;
   return hull;
 }
 
@@ -797,21 +822,15 @@ ConvexHull device_planar_hull(const Scalar* device_xy, std::size_t count, const 
 
 template <class Point>
 std::unique_ptr<BasicBackend<Point>> make_backend(BackendChoice choice, std::string* chosen_because) {
-  auto say = [&](const std::string& why) {
-    if (chosen_because) *chosen_because = why;
-  };
-  if (choice == BackendChoice::kCpu) {
-    say("as requested");
-    return make_cpu_backend<Point>();
-  }
-  const CudaDeviceInfo device = query_cuda_device();
-  if (device.usable) {
-    say(choice == BackendChoice::kAuto ? "auto: a usable CUDA device" : "as requested");
-    return make_cuda_backend<Point>();
-  }
-  if (choice == BackendChoice::kCuda)
-    throw DeviceError("backend cuda: no usable CUDA device: " + device.reason);
-  say("auto: no usable CUDA device: " + device.reason);
+  ConvexHullOptions request;
+  request.backend = choice;
+  request.engine = EngineChoice::kStepping;  // the backends are the stepping engine's
+  HullInput input;
+  input.precision = std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
+  const HullPlan plan = plan_hull(request, input);
+  if (!plan.unavailable.empty()) throw DeviceError(plan.unavailable);
+  if (chosen_because) *chosen_because = plan.backend_reason;
+  if (plan.backend == BackendChoice::kCuda) return make_cuda_backend<Point>();
   return make_cpu_backend<Point>();
 }
 
@@ -836,29 +855,20 @@ template ConvexHull hull_from_mesh(const HullMeshd&, std::string);
 template std::unique_ptr<BasicBackend<Point3>> make_backend(BackendChoice, std::string*);
 template std::unique_ptr<BasicBackend<Point3d>> make_backend(BackendChoice, std::string*);
 
-// EngineChoice::kAuto made definite: the resident engine where it runs on a GPU, else the stepping one.
-static ConvexHullOptions resolved(ConvexHullOptions options) {
-  if (options.engine == EngineChoice::kAuto)
-    options.engine = options.backend != BackendChoice::kCpu && cuda_device_present(nullptr)
-                         ? EngineChoice::kResident
-                         : EngineChoice::kStepping;
-  return options;
-}
-
 ConvexHull convex_hull(const std::vector<Point3>& points, const ConvexHullOptions& options) {
-  return checked_hull(points.size(), vector_coordinate(points), Precision::kFloat, resolved(options));
+  return checked_hull(points.size(), vector_coordinate(points), Precision::kFloat, options);
 }
 
 ConvexHull convex_hull(const std::vector<Point3d>& points, const ConvexHullOptions& options) {
-  return checked_hull(points.size(), vector_coordinate(points), Precision::kDouble, resolved(options));
+  return checked_hull(points.size(), vector_coordinate(points), Precision::kDouble, options);
 }
 
 ConvexHull convex_hull(const float* xyz, std::size_t count, const ConvexHullOptions& options) {
-  return array_hull(xyz, count, Precision::kFloat, resolved(options));
+  return array_hull(xyz, count, Precision::kFloat, options);
 }
 
 ConvexHull convex_hull(const double* xyz, std::size_t count, const ConvexHullOptions& options) {
-  return array_hull(xyz, count, Precision::kDouble, resolved(options));
+  return array_hull(xyz, count, Precision::kDouble, options);
 }
 
 ConvexHull convex_hull_device(const float* device_xyz, std::size_t count, const ConvexHullOptions& options) {
@@ -904,6 +914,16 @@ EngineChoice engine_from_name(const std::string& name) {
   if (name == "stepping") return EngineChoice::kStepping;
   if (name == "resident") return EngineChoice::kResident;
   throw std::invalid_argument("engine must be auto, stepping or resident, not '" + name + "'");
+}
+
+const char* choice_name(BackendChoice choice) {
+  return choice == BackendChoice::kCpu ? "cpu" : choice == BackendChoice::kCuda ? "cuda" : "auto";
+}
+
+const char* choice_name(EngineChoice choice) {
+  return choice == EngineChoice::kStepping   ? "stepping"
+         : choice == EngineChoice::kResident ? "resident"
+                                             : "auto";
 }
 
 MergeMode merge_from_name(const std::string& name) {

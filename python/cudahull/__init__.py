@@ -138,15 +138,12 @@ class _DeviceKind:
         return torch.cat([first, second]).contiguous()
 
 
-def _check_engine(engine, on_device, backend="auto"):
+def _check_engine(engine, on_device):
+    # "auto" stays "auto": the module's plan_hull() (hull_plan.hpp) resolves it, as for the command line's
+    # --engine auto: the resident engine where it runs on a GPU (only it reads GPU memory), the stepping
+    # engine on the CPU, whose worker threads make it the faster one there.
     if engine not in ("auto", "stepping", "resident"):
         raise ValueError(f"engine must be auto, stepping or resident, not '{engine}'")
-    if engine == "auto":
-        # As the command line's --engine auto: the resident engine where it runs on a GPU (only it reads
-        # GPU memory), the stepping engine on the CPU, whose worker threads make it the faster one there.
-        if on_device:
-            return "resident"
-        return "resident" if backend != "cpu" and _cuda_device()[0] else "stepping"
     if on_device and engine == "stepping":
         raise ValueError("the stepping engine edits the mesh on the host and takes host points: points in GPU "
                          "memory take engine 'resident' (or 'auto')")
@@ -245,7 +242,7 @@ def convex_hull(points, backend="auto", precision="auto", engine="auto", device_
     come back.
     """
     protocol = _cuda_protocol(points)
-    engine = _check_engine(engine, protocol is not None, backend)
+    engine = _check_engine(engine, protocol is not None)
     if protocol is None:
         return _hull_dict(_as_points(points, (2, 3)), None, None, backend, precision, engine, tolerance)
     kind = _DeviceKind(points)
@@ -365,7 +362,7 @@ class ConvexHull:
         self._tolerance_choice = tolerance
         self._protocol = _cuda_protocol(points)
         self._kind = _DeviceKind(points) if self._protocol else None
-        self._engine_choice = _check_engine(engine, self._protocol is not None, backend)
+        self._engine_choice = _check_engine(engine, self._protocol is not None)
         self._device_results = bool(device_results) and self._kind is not None
         if self._device_results:
             self._kind.require_known("device_results=True")

@@ -17,6 +17,7 @@
 #include "cudahull/convex_hull.hpp"
 #include "cudahull/engine.hpp"
 #include "cudahull/errors.hpp"
+#include "cudahull/hull_plan.hpp"
 #include "cudahull/predicates.hpp"
 #include "cudahull/resident.hpp"
 #include "cudahull/wide_predicates.hpp"
@@ -275,20 +276,27 @@ class StepEngine {
  public:
   template <class Scalar>
   StepEngine(PointArray<Scalar> points, const std::string& backend, const std::string& precision) {
-    const Precision own = std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat;
-    Precision chosen = precision_from_name_strict(precision);
-    if (chosen == Precision::kAuto) chosen = own;
-    const BackendChoice choice = backend_from_name(backend);
-    // The engine borrows its points: they live on the heap, owned here, for as long as it does.
-    if (chosen == Precision::kDouble) {
+    ConvexHullOptions request;
+    request.precision = precision_from_name_strict(precision);
+    request.backend = backend_from_name(backend);
+    request.engine = EngineChoice::kStepping;  // what this class steps
+    HullInput input;
+    input.precision = std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat;
+    input.count = points.shape(0);
+    const HullPlan plan = plan_hull(request, input);
+    // The engine borrows its points: they live on the heap, owned here, for as long as it does.  The
+    // points are checked before the backend is made, which throws the plan's DeviceError where it has one.
+    if (plan.precision == Precision::kDouble) {
       double_points_ =
           std::make_unique<std::vector<Point3d>>(checked_points<Point3d>(points.data(), points.shape(0)));
-      double_engine_ = std::make_unique<BasicEngine<Point3d>>(*double_points_, make_backend<Point3d>(choice));
+      double_engine_ =
+          std::make_unique<BasicEngine<Point3d>>(*double_points_, make_backend<Point3d>(plan.backend));
       engine_ = double_engine_.get();
     } else {
       float_points_ =
           std::make_unique<std::vector<Point3>>(checked_points<Point3>(points.data(), points.shape(0)));
-      float_engine_ = std::make_unique<BasicEngine<Point3>>(*float_points_, make_backend<Point3>(choice));
+      float_engine_ =
+          std::make_unique<BasicEngine<Point3>>(*float_points_, make_backend<Point3>(plan.backend));
       engine_ = float_engine_.get();
     }
   }

@@ -24,6 +24,7 @@
 namespace cudahull {
 
 // kAuto: the CUDA backend when a usable device is present, else the CPU (as `cudahull --backend auto`).
+// plan_hull() (hull_plan.hpp) resolves kAuto, and the engine's and the precision's, for every caller.
 enum class BackendChoice { kAuto, kCpu, kCuda };
 // kAuto: kResident where the hull runs on a GPU, kStepping on the CPU (as `cudahull --engine auto`, the
 // command line's default); kStepping: Algorithm 1 an iteration at a time, the host editing the mesh on all
@@ -158,6 +159,9 @@ CudaStatus cuda_status();
 // "auto", "cpu", "cuda" and back; throws std::invalid_argument for another name.
 BackendChoice backend_from_name(const std::string& name);
 EngineChoice engine_from_name(const std::string& name);  // "auto", "stepping" or "resident"
+// The names back, for messages and --stats: "auto", "cpu", "cuda"; "auto", "stepping", "resident".
+const char* choice_name(BackendChoice choice);
+const char* choice_name(EngineChoice choice);
 // "auto", "float", "double"; unlike precision_from_name() (types.hpp), a bad name throws.
 Precision precision_from_name_strict(const std::string& name);
 // "exact", "qhull" or "relative"; throws std::invalid_argument for another name.
