@@ -642,6 +642,7 @@ struct CudaExec {
         return;
       }
       pool();
+      if (keep == 0) release();  // nothing to copy: the old block goes first, so both are never held
       std::size_t bytes = 0;
       int device = 0;
       T* fresh = static_cast<T*>(block_cache().take(n * sizeof(T), bytes, device));
@@ -658,6 +659,7 @@ struct CudaExec {
       device_ = device;
     }
     T* data() { return ptr_; }
+    std::size_t capacity() const { return capacity_; }
     // Back to the cache (or the pool), empty.
     void release() {
       if (ptr_) block_cache().give(ptr_, bytes_, device_);

@@ -29,6 +29,7 @@ struct HostExec {
     T* data() { return data_.data(); }
     void swap(Buffer& other) { data_.swap(other.data_); }
     void release() { std::vector<T>().swap(data_); }
+    std::size_t capacity() const { return data_.size(); }
 
    private:
     std::vector<T> data_;

@@ -382,7 +382,6 @@ class ResidentHull {
     capacity_ = std::min(std::max(count, step), kMaxFaces);
     killer_.grow(capacity_, faces_);
     look_.grow(capacity_, faces_);
-    extreme_.grow(capacity_, marks_in_use_);
     claim_.grow(capacity_, old);
     exec_.fill(claim_.data() + old, capacity_ - old, u64{0});
     // The refinement marks and their prefix sum (one per face) and the furthest points may be in use:
@@ -392,10 +391,12 @@ class ResidentHull {
     face_rank_.grow(capacity_ + 1, marks_in_use_);
   }
   // The compaction's spares, for `live` faces: an iteration ends with at most its faces and two more a
-  // refined face (a split adds two, a swap none, a removal takes two away).
+  // refined face (a split adds two, a swap none, a removal takes two away).  The furthest point per face
+  // is kept for the live faces too (the current ones' move along).
   void grow_spares(std::size_t live) {
     fv_out_.grow(3 * live);
     fn_out_.grow(3 * live);
+    extreme_.grow(live, faces_);
   }
   // The rounds' candidates, given back before the finish (which sorts the corners: the peak of a large run).
   void release_rounds() {
@@ -571,9 +572,11 @@ class ResidentHull {
     ++stats.round_overflows;
     faces_ = state.faces;
     entries_used_ = state.entries;
-    const std::size_t work = state.needed_work > work_capacity_ ? state.needed_work : 0;
-    grow_for_rounds(state.needed_faces + state.needed_faces / 8 + 64,
-                    state.needed_entries + state.needed_entries / 8 + 64, work + work / 8 + 64);
+    // Only what was short grows (a round short of work room needs no more face slots).
+    const auto more = [](std::size_t n) { return n + n / 8 + 64; };
+    if (state.needed_faces > capacity_) grow_faces(more(state.needed_faces));
+    if (state.needed_entries > entry_capacity_) grow_entries(more(state.needed_entries));
+    if (state.needed_work > work_capacity_) grow_work(more(state.needed_work));
   }
 
   // Room for a run of rounds: `faces` face slots, `entries` entries and `work` work faces a round.
@@ -588,9 +591,16 @@ class ResidentHull {
   // of a round, the children and the faces beside the refined ones; the spares for the live faces.  Past
   // that a round stops before it changes anything and goes on after the host grows the buffers.
   void grow_for_iteration(u32 refined) {
-    const std::size_t r = refined;
-    grow_for_rounds(faces_ + 3 * r + 9 * r / 2 + 64, 4 * r + 64, 5 * r + 64);
-    grow_spares(faces_ + 2 * r + 64);
+    const std::size_t r = refined, work = 4 * r + 64, live = faces_ + 2 * r + 64;
+    // What holds nothing between iterations and must grow goes first, so that its old blocks are not
+    // held while the faces' buffers copy into their new ones.
+    if (work > work_capacity_) release_rounds();
+    if (3 * live > fv_out_.capacity()) {
+      fv_out_.release();
+      fn_out_.release();
+    }
+    grow_for_rounds(faces_ + 3 * r + 9 * r / 2 + 64, 4 * r + 64, work);
+    grow_spares(live);
   }
 
   // The rounds (rounds.hpp) on the executor, in one launch with no wait per round.  `begin`: the first launch
