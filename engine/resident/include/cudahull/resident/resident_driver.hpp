@@ -260,7 +260,7 @@ class ResidentHull {
       if (loop_allowed) {
         unkept_listed_ = true;
       } else {
-        compact(faces_);
+        compact(faces_, faces_);
       }
     }
     stats.setup_ms = lap();
@@ -595,7 +595,9 @@ class ResidentHull {
     // What holds nothing between iterations and must grow goes first, so that its old blocks are not
     // held while the faces' buffers copy into their new ones.
     if (work > work_capacity_) release_rounds();
-    if (3 * live > fv_out_.capacity()) {
+    // The spares are the last iteration's faces, swapped out at the capacity's size: back to the live
+    // faces' size (their contents are dead), before the faces' buffers copy into bigger ones.
+    if (3 * live > fv_out_.capacity() || 3 * (live + live / 4) < fv_out_.capacity()) {
       fv_out_.release();
       fn_out_.release();
     }
@@ -642,7 +644,7 @@ class ResidentHull {
   // An iteration that refines no face, before its compaction: the points setup() left in uncompacted are
   // compacted now (all of them may be inside: then the hull is done, not stalled).  False.
   bool no_face_refined() {
-    if (unkept_listed_) compact(faces_);
+    if (unkept_listed_) compact(faces_, faces_);
     return false;
   }
   // The compaction's outputs become the current faces and points (and back, to undo it).
@@ -652,8 +654,9 @@ class ResidentHull {
     index_[0].swap(index_[1]);
     face_of_[0].swap(face_of_[1]);
   }
-  void compact(std::size_t face_bound) {
-    grow_spares(face_bound);
+  // `live`: a bound of the live faces among them (the spares' room).
+  void compact(std::size_t face_bound, std::size_t live) {
+    grow_spares(live);
     compact_launch(face_bound, nullptr);
     // Both counts come back in one read.
     u32 counts[2] = {0, 0};
@@ -1033,7 +1036,7 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
 
   route();
   const std::size_t face_ids = faces_;
-  compact(face_ids);
+  compact(face_ids, first + 2 * std::size_t{refined} + 64);
   if (out) {
     out->new_id.resize(face_ids);
     exec_.download(out->new_id.data(), face_rank_.data(), face_ids);

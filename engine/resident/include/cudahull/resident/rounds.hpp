@@ -82,11 +82,13 @@ CUDAHULL_HD void swap_and_removal_rounds(const Team& team, const RoundsBuffers<P
       }
       return;
     }
+    [[maybe_unused]] u32 logged_before = 0;  // a recording run: the log's length before the round
     if constexpr (!std::is_same_v<Log, NoLog>) {
       // A recording run: room in the log for the round (six rejections a work face at most, and its first
       // entry) before it changes anything; otherwise the host grows the log and the round runs afresh.
       const RejectionLog& log = b.find.log;
       const u32 logged = *log.count, at = round - log.first_round;
+      logged_before = logged;
       if (logged + 6 * work > log.capacity || at >= log.round_capacity) {
         if (team.leader()) {
           st->overflow = 1;
@@ -129,6 +131,8 @@ CUDAHULL_HD void swap_and_removal_rounds(const Team& team, const RoundsBuffers<P
       // same keys) and the stamps of the faces with a candidate, which go back to this round.
       team.for_range(work, [&](u32 i) { b.look[b.list[i]] = round; });
       if (team.leader()) {
+        // The rerun logs the round's rejections again: this run's go (every claim is done).
+        if constexpr (!std::is_same_v<Log, NoLog>) *b.find.log.count = logged_before;
         st->overflow = 1;
         st->needed_faces = faces + 2 * winners;
         st->needed_entries = entries + winners;

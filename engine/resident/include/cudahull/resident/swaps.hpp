@@ -370,6 +370,8 @@ CUDAHULL_HD inline void start_rounds(RoundsState* st, const RoundsLaunch& launch
   st->work_capacity = launch.work_capacity;
   st->overflow = 0;
   st->round_work = 0;
+  // What an overflow asks for is set by the overflow: none is left from an earlier one.
+  st->needed_faces = st->needed_entries = st->needed_rejections = st->needed_rounds = st->needed_work = 0;
 }
 
 }  // namespace cudahull::resident
