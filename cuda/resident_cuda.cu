@@ -299,6 +299,13 @@ __device__ inline u64 now_ns() {
   return t;
 }
 
+// The time since the last lap into the state's phase (the teams' leader).
+__device__ inline void lap_phase(RoundsState* st, u64& t0, int phase) {
+  const u64 t = now_ns();
+  st->phase_ns[phase] += t - t0;
+  t0 = t;
+}
+
 // A block's threads: __syncthreads() for a barrier, which costs far less than the grid's.
 template <int Block>
 struct BlockTeam {
@@ -312,10 +319,7 @@ struct BlockTeam {
   __device__ void barrier() const { __syncthreads(); }
   __device__ bool leader() const { return threadIdx.x == 0; }
   __device__ void time(int phase) const {
-    if (threadIdx.x != 0) return;
-    const u64 t = now_ns();
-    st->phase_ns[phase] += t - t0;
-    t0 = t;
+    if (leader()) lap_phase(st, t0, phase);
   }
   // A warp appends its ballot at once: one atomic a warp.
   template <class Pred>
@@ -362,10 +366,7 @@ struct GridTeam {
   __device__ void barrier() const { cooperative_groups::this_grid().sync(); }
   __device__ bool leader() const { return tid() == 0; }
   __device__ void time(int phase) const {
-    if (tid() != 0) return;
-    const u64 t = now_ns();
-    st->phase_ns[phase] += t - t0;
-    t0 = t;
+    if (leader()) lap_phase(st, t0, phase);
   }
   template <class Pred>
   __device__ void list_if(u32 n, const Pred& pred, u32* list, u32* count, u32 capacity) const {

@@ -71,42 +71,40 @@ CUDAHULL_HD void swap_and_removal_rounds(const Team& team, const RoundsBuffers<P
     team.barrier();
     const u32 work = st->round_work;
     if (work == 0) return;
-    if (work > st->work_capacity) {
-      // More work than room for its candidates (the list kept only what fit): nothing changed yet, and the
-      // host grows the work buffers.
+    // Room for the round before it changes anything: its work's candidates (the list kept only what fit)
+    // and, recording, the log's (six rejections a work face at most, and the round's first entry).
+    // Otherwise the host grows what is short and the round runs afresh.
+    constexpr bool kRecording = !std::is_same_v<Log, NoLog>;
+    bool short_of_room = work > st->work_capacity;
+    [[maybe_unused]] u32 logged_before = 0, at = 0;  // recording: the log's length, the round's slot
+    if constexpr (kRecording) {
+      logged_before = *b.find.log.count;
+      at = round - b.find.log.first_round;
+      short_of_room =
+          short_of_room || logged_before + 6 * work > b.find.log.capacity || at >= b.find.log.round_capacity;
+    }
+    if (short_of_room) {
       if (team.leader()) {
         st->overflow = 1;
         st->needed_faces = faces;
         st->needed_entries = entries;
         st->needed_work = work;
+        if constexpr (kRecording) {
+          st->needed_rejections = logged_before + 6 * work;
+          st->needed_rounds = at + 1;
+        }
       }
       return;
     }
-    [[maybe_unused]] u32 logged_before = 0;  // a recording run: the log's length before the round
-    if constexpr (!std::is_same_v<Log, NoLog>) {
-      // A recording run: room in the log for the round (six rejections a work face at most, and its first
-      // entry) before it changes anything; otherwise the host grows the log and the round runs afresh.
-      const RejectionLog& log = b.find.log;
-      const u32 logged = *log.count, at = round - log.first_round;
-      logged_before = logged;
-      if (logged + 6 * work > log.capacity || at >= log.round_capacity) {
-        if (team.leader()) {
-          st->overflow = 1;
-          st->needed_faces = faces;
-          st->needed_entries = entries;
-          st->needed_rejections = logged + 6 * work;
-          st->needed_rounds = at + 1;
-        }
-        return;
-      }
-      if (team.leader()) log.round_first_entry[at] = entries;
+    if constexpr (kRecording) {
+      if (team.leader()) b.find.log.round_first_entry[at] = entries;
     }
 
     const FixLinks<Point> fixer{b.find.m};
     team.for_range(work, [&](u32 i) { fixer.fix(b.list[i]); });
     team.barrier();
     FindCandidate<Point, Log> find = b.find;
-    if constexpr (!std::is_same_v<Log, NoLog>) find.log.round = round;
+    if constexpr (kRecording) find.log.round = round;
     const Claim<Point, FindCandidate<Point, Log>> claimer{find, round, b.claim, b.look};
     team.for_range(work, [&](u32 i) { claimer.claim_for(b.list[i], b.cands[i]); });
     team.barrier();
@@ -132,7 +130,7 @@ CUDAHULL_HD void swap_and_removal_rounds(const Team& team, const RoundsBuffers<P
       team.for_range(work, [&](u32 i) { b.look[b.list[i]] = round; });
       if (team.leader()) {
         // The rerun logs the round's rejections again: this run's go (every claim is done).
-        if constexpr (!std::is_same_v<Log, NoLog>) *b.find.log.count = logged_before;
+        if constexpr (kRecording) *b.find.log.count = logged_before;
         st->overflow = 1;
         st->needed_faces = faces + 2 * winners;
         st->needed_entries = entries + winners;
