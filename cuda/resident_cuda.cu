@@ -14,11 +14,11 @@
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
 #include <cub/device/device_select.cuh>
-#include <cuda/std/utility>
 #include <map>
 #include <mutex>
 #include <string>
 #include <type_traits>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -169,25 +169,6 @@ __global__ void for_each_kernel(std::size_t n, Op op) {
   if (i < n) op(i);
 }
 
-// Lanes of a warp with the same segment combine their keys first: one atomic per segment and warp (the
-// first iterations have millions of points on a few faces).
-template <class Op>
-__global__ void segmented_max_kernel(std::size_t n, Op op, u64* out) {
-  const std::size_t j = blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x;
-  const unsigned active = __ballot_sync(0xffffffffu, j < n);
-  if (j >= n) return;
-  const u32 segment = op.segment(j);
-  const u64 key = op.key(j);
-  const unsigned peers = __match_any_sync(active, segment);
-  u64 best = key;
-  for (unsigned rest = peers; rest != 0; rest &= rest - 1) {
-    const u64 other = __shfl_sync(peers, key, __ffs(rest) - 1);
-    best = other > best ? other : best;
-  }
-  if ((threadIdx.x & 31) == static_cast<unsigned>(__ffs(peers) - 1))
-    atomicMax(reinterpret_cast<unsigned long long*>(&out[segment]), static_cast<unsigned long long>(best));
-}
-
 template <class KeyOp>
 __global__ void reduce_max_kernel(std::size_t n, KeyOp key, u64* out) {
   u64 best = 0;
@@ -285,11 +266,6 @@ __device__ u32 block_exclusive_scan(u32 n, const Value& value, u32* out) {
   __syncthreads();
   return carry;
 }
-template <int Block, int Items>
-__device__ u32 block_exclusive_scan(const u32* in, u32* out, u32 n) {
-  return block_exclusive_scan<Block, Items>(
-      n, [in](u32 i) { return in[i]; }, out);
-}
 
 // The teams that run the rounds' body (rounds.hpp) on the device: one block, or a cooperative grid.
 // Thread 0 times each phase up to the barrier after it (so the slowest block's time), into the state.
@@ -318,6 +294,9 @@ struct BlockTeam {
   }
   __device__ void barrier() const { __syncthreads(); }
   __device__ bool leader() const { return threadIdx.x == 0; }
+  __device__ void start_timing() const {
+    if (leader()) t0 = now_ns();
+  }
   __device__ void time(int phase) const {
     if (leader()) lap_phase(st, t0, phase);
   }
@@ -325,6 +304,10 @@ struct BlockTeam {
   template <class Pred>
   __device__ void list_if(u32 n, const Pred& pred, u32* list, u32* count, u32 capacity) const {
     list_by_warps(threadIdx.x, Block, n, pred, list, count, capacity);
+  }
+  template <class Op>
+  __device__ void max_per_segment(u32 n, const Op& op) const {
+    max_by_warps(threadIdx.x, Block, n, op);
   }
   template <class Value>
   __device__ u32 exclusive_scan(u32 n, const Value& value, u32* out) const {
@@ -347,6 +330,29 @@ struct BlockTeam {
       if ((mask & (1u << lane)) && slot < capacity) list[slot] = i;
     }
   }
+  // Thread `tid` of `threads`: per segment the largest key.  Lanes of a warp with the same segment combine
+  // their keys first: one atomic per segment and warp (the first iterations have millions of points on a
+  // few faces).
+  template <class Op>
+  __device__ static void max_by_warps(u32 tid, u32 threads, u32 n, const Op& op) {
+    const u32 lane = tid & 31;
+    for (u32 warp_first = tid - lane; warp_first < n; warp_first += threads) {
+      const u32 j = warp_first + lane;
+      const unsigned active = __ballot_sync(0xffffffffu, j < n);
+      if (j >= n) continue;
+      const u32 segment = op.segment(j);
+      const u64 key = op.key(j);
+      const unsigned peers = __match_any_sync(active, segment);
+      u64 best = key;
+      for (unsigned rest = peers; rest != 0; rest &= rest - 1) {
+        const u64 other = __shfl_sync(peers, key, __ffs(rest) - 1);
+        best = other > best ? other : best;
+      }
+      if (lane == static_cast<u32>(__ffs(peers) - 1) && best != 0)
+        atomicMax(reinterpret_cast<unsigned long long*>(&op.extreme[segment]),
+                  static_cast<unsigned long long>(best));
+    }
+  }
 };
 
 // Every thread of a cooperative launch: the grid's barrier.  A prefix sum takes a contiguous tile of the
@@ -365,6 +371,9 @@ struct GridTeam {
   }
   __device__ void barrier() const { cooperative_groups::this_grid().sync(); }
   __device__ bool leader() const { return tid() == 0; }
+  __device__ void start_timing() const {
+    if (leader()) t0 = now_ns();
+  }
   __device__ void time(int phase) const {
     if (leader()) lap_phase(st, t0, phase);
   }
@@ -372,11 +381,16 @@ struct GridTeam {
   __device__ void list_if(u32 n, const Pred& pred, u32* list, u32* count, u32 capacity) const {
     BlockTeam<Block>::list_by_warps(tid(), gridDim.x * Block, n, pred, list, count, capacity);
   }
+  template <class Op>
+  __device__ void max_per_segment(u32 n, const Op& op) const {
+    BlockTeam<Block>::max_by_warps(tid(), gridDim.x * Block, n, op);
+  }
   template <class Value>
   __device__ u32 exclusive_scan(u32 n, const Value& value, u32* out) const {
-    const u32 tile = ((n + gridDim.x - 1) / gridDim.x + Block - 1) / Block * Block;
+    constexpr u32 kChunk = Block * 4;
+    const u32 tile = ((n + gridDim.x - 1) / gridDim.x + kChunk - 1) / kChunk * kChunk;
     const u32 begin = min(n, blockIdx.x * tile), end = min(n, begin + tile);
-    const u32 sum = block_exclusive_scan<Block, 1>(
+    const u32 sum = block_exclusive_scan<Block, 4>(
         end - begin, [&](u32 i) { return value(begin + i); }, out + begin);
     if (threadIdx.x == 0) block_offset[blockIdx.x] = sum;
     barrier();
@@ -394,37 +408,24 @@ struct GridTeam {
   }
 };
 
-// The rounds of one iteration in one launch (the device-side loop of issue 15): the state's counts set
-// up, then the rounds' body (rounds.hpp) with grid-wide barriers instead of the host's waits; a launch of
-// one block (a mesh of a few thousand faces) waits at __syncthreads() instead, which costs microseconds
-// less a round.
-template <class Point, class Log, int Block, bool kOneBlock>
-__global__ void __launch_bounds__(Block)
-    fused_rounds_kernel(RoundsBuffers<Point, Log> b, u32* block_offset, RoundsLaunch launch) {
-  if (blockIdx.x == 0 && threadIdx.x == 0) start_rounds(b.st, launch);
-  if constexpr (kOneBlock) {
-    const BlockTeam<Block> team{b.st, now_ns()};
-    team.barrier();
-    swap_and_removal_rounds(team, b);
-  } else {
-    const GridTeam<Block> team{b.st, block_offset, now_ns()};
-    team.barrier();
-    swap_and_removal_rounds(team, b);
-  }
+// Per segment the largest key (the records' furthest points).
+template <class Op>
+__global__ void segmented_max_kernel(u32 n, Op op) {
+  BlockTeam<kBlock>::max_by_warps(blockIdx.x * kBlock + threadIdx.x, gridDim.x * kBlock, n, op);
 }
 
-// mark(i) for every i < n, the flags' exclusive prefix sum into ranks, then move(i) for every i: one block,
-// one launch (a compaction of a small mesh: MarkLive and MoveLive), where the general path is two for_each
-// launches around CUB's two, each of which costs the host microseconds (docs/benchmarks.md, "Measurements
-// behind the code").
-template <int Block, class Mark, class Move>
+// The iteration's phases (iteration.hpp) in one launch: one block (a small mesh with few points: whole
+// iterations, the device loop; or the rounds of a small mesh), whose barrier is __syncthreads(), or a
+// cooperative grid, whose barrier is the grid's.  `Range`: the phases compiled in (a grid runs a range a
+// launch, each with the registers of its own phases).
+template <class Point, class Log, class Range, int Block, bool kOneBlock>
 __global__ void __launch_bounds__(Block)
-    mark_scan_move_kernel(u32 n, Mark mark, u32* flags, u32* ranks, Move move) {
-  for (u32 i = threadIdx.x; i < n; i += Block)
-    mark(i);
-  block_exclusive_scan<Block, 4>(flags, ranks, n);
-  for (u32 i = threadIdx.x; i < n; i += Block)
-    move(i);
+    iteration_kernel(IterationBuffers<Point, Log> b, u32* block_offset, IterationLaunch launch) {
+  if constexpr (kOneBlock) {
+    resident_iterations(BlockTeam<Block>{b.st}, b, launch, Range{});
+  } else {
+    resident_iterations(GridTeam<Block>{b.st, block_offset}, b, launch, Range{});
+  }
 }
 
 // The driver's finish() of a small mesh (3 * faces <= Block * Items corners) in one block, for one read:
@@ -498,121 +499,6 @@ __global__ void __launch_bounds__(Block)
   }
 }
 
-// Whole iterations of Algorithm 1 in one block (a small mesh and few points left): the driver's
-// iterate_fused() step for step with the same operations, a block-wide prefix sum where it takes CUB's,
-// and no host in the loop.  Before each iteration it checks that every face refining and the rounds
-// would fit (else kLoopRoom, nothing done); it stops at the first iteration that refines no face
-// (kLoopStall, nothing changed), or when a round does not fit (kLoopOverflow, the state as after a fused
-// launch that overflowed).  Every finished iteration swaps the face and point buffers once.
-template <class Point, int Block>
-__global__ void __launch_bounds__(Block)
-    loop_kernel(LoopBuffers<Point> b, u32 faces, u32 active, u32 face_capacity, u32 entry_capacity) {
-  constexpr int kItems = 4;
-  auto sync = [] { __syncthreads(); };
-  RoundsState* st = b.st;
-  const u32 tid = threadIdx.x;
-  if (tid == 0) {
-    st->face_capacity = face_capacity;
-    st->entry_capacity = entry_capacity;
-  }
-  sync();
-  MeshView<Point> m = b.m;
-  u32 iterations = 0, refined_total = 0, exit = kLoopDone;
-  // The kept ones of the `active` points moved to (index_to, face_to), their faces renumbered by
-  // face_rank; returns how many.
-  auto compact_points = [&](const u32* index_from, const u32* face_from, u32* index_to, u32* face_to) {
-    const u32 kept = block_exclusive_scan<Block, kItems>(b.keep, b.point_rank, active);
-    const MovePoints move{b.keep,   b.point_rank, b.face_rank,     index_from, face_from,
-                          index_to, face_to,      ~std::size_t{0}, nullptr};
-    for (u32 j = tid; j < active; j += Block)
-      move(j);
-    sync();
-    return kept;
-  };
-  if (b.first) {
-    // Section 3.1's first distribution, as the driver's setup does it: each point to its cone, kept when
-    // above; the faces (all live) unstamped, ranked as they are; the kept points compacted.
-    const AssignFirst<Point> assign{m, faces, b.first_list, b.index_spare, b.face_spare, b.keep};
-    for (u32 j = tid; j < active; j += Block)
-      assign(j);
-    const ResetFaces reset{m.killer, b.look, b.extreme};
-    for (u32 f = tid; f < faces; f += Block) {
-      reset(f);
-      b.face_rank[f] = f;
-    }
-    active = compact_points(b.index_spare, b.face_spare, b.index, b.face);
-  }
-  while (active > 0) {
-    if (8 * faces + 64 > st->face_capacity || 5 * faces + 64 > st->entry_capacity) {
-      exit = kLoopRoom;
-      break;
-    }
-    // The furthest point per face, the faces that refine, their ranks; the split (Fig. 3a).
-    const FurthestPerFace<Point> furthest{m, b.index, b.face, b.extreme};
-    for (u32 j = tid; j < active; j += Block)
-      furthest(j);
-    sync();
-    const MarkRefined<Point> mark{m, b.extreme, b.flags};
-    for (u32 f = tid; f < faces; f += Block)
-      mark(f);
-    const u32 refined = block_exclusive_scan<Block, kItems>(b.flags, b.face_rank, faces);
-    if (refined == 0) {
-      exit = kLoopStall;
-      break;
-    }
-    const u32 round = st->round;
-    const SplitFaces<Point> split{m, b.extreme, b.flags, b.face_rank, faces, 0, b.look, round + 1, nullptr};
-    for (u32 f = tid; f < faces; f += Block)
-      split(f);
-    if (tid == 0) {
-      st->refined = refined;
-      start_rounds(st, RoundsLaunch{1, faces, st->face_capacity, st->entry_capacity, st->face_capacity});
-    }
-    sync();
-    // Flips and flops (Figs. 3b, 4, 5).
-    swap_and_removal_rounds(BlockTeam<Block>{st, now_ns()},
-                            RoundsBuffers<Point>{FindCandidate<Point>{m, {}}, b.claim, b.look, b.cands,
-                                                 b.list, b.win_mask, b.word_rank, st});
-    sync();
-    if (st->overflow) {
-      exit = kLoopOverflow;
-      break;
-    }
-    // Algorithm 2, then the compaction into the spares.
-    const u32 bound = st->faces;
-    const RoutePoints<Point> route{m, b.index, b.face, b.keep};
-    for (u32 j = tid; j < active; j += Block)
-      route(j);
-    const MarkLive<Point> live{m, b.flags, nullptr};
-    for (u32 f = tid; f < bound; f += Block)
-      live(f);
-    const u32 live_faces = block_exclusive_scan<Block, kItems>(b.flags, b.face_rank, bound);
-    const MoveLive<Point> move{m, b.flags, b.face_rank, b.fv_spare, b.fn_spare, ~std::size_t{0}, nullptr};
-    for (u32 f = tid; f < bound; f += Block)
-      move(f);
-    const u32 kept = compact_points(b.index, b.face, b.index_spare, b.face_spare);
-    cuda::std::swap(m.fv, b.fv_spare);
-    cuda::std::swap(m.fn, b.fn_spare);
-    cuda::std::swap(b.index, b.index_spare);
-    cuda::std::swap(b.face, b.face_spare);
-    faces = live_faces;
-    active = kept;
-    const ResetFaces reset{m.killer, b.look, b.extreme};
-    for (u32 f = tid; f < faces; f += Block)
-      reset(f);
-    sync();
-    ++iterations;
-    refined_total += refined;
-  }
-  if (tid == 0) {
-    st->live_faces = faces;
-    st->kept_points = active;
-    st->loop_iterations = iterations;
-    st->loop_refined = refined_total;
-    st->loop_exit = exit;
-  }
-}
-
 }  // namespace
 
 // A size threshold of the executor, or the environment's value for it (for tuning runs).
@@ -622,8 +508,6 @@ std::size_t tuning(const char* name, std::size_t value) {
 }
 
 struct CudaExec {
-  static constexpr bool kFusedIterations = true;  // iterate_fused(): one wait an iteration
-
   template <class T>
   class Buffer {
    public:
@@ -691,7 +575,7 @@ struct CudaExec {
   template <class Op>
   void segmented_max(std::size_t n, const Op& op) {
     if (n == 0) return;
-    segmented_max_kernel<<<blocks_for(n), kBlock>>>(n, op, op.extreme);
+    segmented_max_kernel<<<blocks_for(n), kBlock>>>(static_cast<u32>(n), op);
     check(cudaGetLastError(), "launching the furthest-point kernel");
   }
   template <class KeyOp>
@@ -768,22 +652,6 @@ struct CudaExec {
     check(cub::DeviceScan::ExclusiveSum(scratch_.data(), bytes, in, out, static_cast<std::int64_t>(n)),
           "a scan");
   }
-  // mark(i) for i < n, flags' exclusive prefix sum into ranks, move(i) for i < n.  Up to kOneBlockScan
-  // items: one launch of one block; otherwise the two for_each launches around CUB's scan.
-  static constexpr std::size_t kOneBlockScan = 8192;
-  template <class Mark, class Move>
-  void mark_scan_move(std::size_t n, const Mark& mark, u32* flags, u32* ranks, const Move& move) {
-    if (n == 0) return;
-    if (n <= kOneBlockScan) {
-      mark_scan_move_kernel<kOneBlockThreads>
-          <<<1, kOneBlockThreads>>>(static_cast<u32>(n), mark, flags, ranks, move);
-      check(cudaGetLastError(), "launching a compaction");
-      return;
-    }
-    if constexpr (!std::is_same_v<Mark, AlreadyMarked>) for_each(n, mark);
-    scan(flags, ranks, n);
-    for_each(n, move);
-  }
   // The finish of a mesh of at most kFinishFaces faces in one launch (finish_small_kernel; ids below
   // `bound`): out = [faults, vertices, renumbered corners, vertex list], read back at once by the caller.
   static constexpr int kFinishItems = 12;
@@ -832,64 +700,50 @@ struct CudaExec {
     read(to, from, n);
   }
 
-  static constexpr bool kDeviceLoop = true;  // loop_kernel: whole iterations of a small mesh in one launch
-  // Up to this many points left, the driver hands the iterations to loop_kernel (one block: each point
-  // pass takes the points a few at a time per thread).
+  static constexpr bool kDeviceLoop = true;  // whole iterations of a small mesh in one launch
+  // Up to this many points left on a mesh of up to this many faces, the driver runs the iterations as a
+  // device loop (one block: each pass takes the points and faces a few at a time per thread).
   std::size_t loop_points = tuning("CUDAHULL_LOOP_POINTS", 16384);
-  template <class Point>
-  void device_loop(const LoopBuffers<Point>& b, u32 faces, u32 active, u32 face_capacity,
-                   u32 entry_capacity) {
-    // A bit per face and the wins before each word (rounds.hpp).
-    const std::size_t words = std::size_t{face_capacity} / 32 + 1;
-    win_mask_.grow(2 * words);
-    LoopBuffers<Point> with = b;
-    with.win_mask = win_mask_.data();
-    with.word_rank = win_mask_.data() + words;
-    loop_kernel<Point, kOneBlockThreads>
-        <<<1, kOneBlockThreads>>>(with, faces, active, face_capacity, entry_capacity);
-    check(cudaGetLastError(), "launching the device loop");
-  }
+  std::size_t loop_faces = tuning("CUDAHULL_LOOP_FACES", 8192);
 
-  // The rounds of an iteration in one cooperative launch; the state stays on the device (no wait).
+  // The iteration's phases (iteration.hpp): a device loop in one block; otherwise a cooperative grid for
+  // each range of phases (the marks; the split and the rounds, in one block for a small mesh; the routing
+  // and the compaction), launched one after another with no wait.  The state stays on the device.
   template <class Point, class Log>
-  void fused_rounds(const FindCandidate<Point, Log>& find, u64* claim, u32* look, Candidate* cands, u32* list,
-                    RoundsState* st, RoundsLaunch launch) {
-    auto* grid_kernel = fused_rounds_kernel<Point, Log, kBlock, false>;
-    // The blocks that fit at once (a cooperative launch needs them all resident): found once for the fast
-    // kernel, and each time for the recording one (the stepper's), which may use more registers.
-    constexpr bool kRecording = !std::is_same_v<Log, NoLog>;
-    if (cooperative_blocks_ == 0 || kRecording) {
-      int device = 0, sms = 0, per_sm = 0;
-      check(cudaGetDevice(&device), "querying the device");
-      check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), "querying the SMs");
-      check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, grid_kernel, kBlock, 0), "the occupancy");
-      const unsigned fit = static_cast<unsigned>(std::max(1, sms * per_sm));
-      if (kRecording) {
-        recording_blocks_ = fit;
+  void iterations(IterationBuffers<Point, Log> b, IterationLaunch launch, bool loop) {
+    // A bit per face and the wins before each word (rounds.hpp).
+    const std::size_t words = std::size_t{launch.face_capacity} / 32 + 1;
+    win_mask_.grow(2 * words);
+    b.win_mask = win_mask_.data();
+    b.word_rank = win_mask_.data() + words;
+    if (loop) {
+      launch_phases<Point, NoLog, AllPhases, kOneBlockThreads, true>(strip_log(b), launch, 1);
+      return;
+    }
+    // A thread per face or point up to what fits at once; the rounds of a small mesh in one block (a grid
+    // barrier costs more the more blocks wait at it).  The face count is on the device: half the capacity
+    // stands for it (a small mesh is sized for every face refining).
+    const std::size_t faces = launch.face_capacity / 2, items = std::max<std::size_t>(faces, launch.active);
+    bool after = false;
+    const auto next = [&] {
+      IterationLaunch l = launch;
+      l.after = after ? 1u : 0u;
+      after = true;
+      return l;
+    };
+    if (launch.from <= kFurthest)
+      launch_phases<Point, NoLog, PhaseRange<kFirst, kFurthest>, kBlock, false>(strip_log(b), next(),
+                                                                                blocks_for(items));
+    if (launch.from <= kRounds && launch.to >= kSplit) {
+      if (faces <= one_block_faces_) {
+        launch_phases<Point, Log, PhaseRange<kSplit, kRounds>, kOneBlockThreads, true>(b, next(), 1);
       } else {
-        cooperative_blocks_ = fit;
+        launch_phases<Point, Log, PhaseRange<kSplit, kRounds>, kBlock, false>(b, next(), blocks_for(faces));
       }
     }
-    const unsigned resident_blocks = kRecording ? recording_blocks_ : cooperative_blocks_;
-    // A thread per face up to what fits at once, and one block for a small mesh: a grid barrier costs
-    // more the more blocks wait at it.  The count is on the device; half the capacity stands for it (a
-    // small mesh is sized for every face refining, so its faces are below that; a large one may have more
-    // and then runs on fewer blocks than faces/256, each thread striding over more faces).
-    const std::size_t capacity = launch.face_capacity, faces = capacity / 2;
-    const bool one_block = faces <= one_block_faces_;
-    const unsigned blocks = one_block ? 1u : std::max(1u, std::min(resident_blocks, blocks_for(faces)));
-    const unsigned threads = one_block ? kOneBlockThreads : kBlock;
-    auto* kernel = one_block ? fused_rounds_kernel<Point, Log, kOneBlockThreads, true> : grid_kernel;
-    block_offset_.grow(blocks + 1);
-    // A bit per face and the wins before each word (rounds.hpp).
-    const std::size_t words = capacity / 32 + 1;
-    win_mask_.grow(2 * words);
-    RoundsBuffers<Point, Log> b{find, claim, look, cands, list, win_mask_.data(), win_mask_.data() + words,
-                                st};
-    u32* offsets = block_offset_.data();
-    void* args[] = {&b, &offsets, &launch};
-    check(cudaLaunchCooperativeKernel(reinterpret_cast<void*>(kernel), blocks, threads, args, 0, nullptr),
-          "launching the rounds");
+    if (launch.to >= kRoute)
+      launch_phases<Point, NoLog, PhaseRange<kRoute, kCompact>, kBlock, false>(strip_log(b), next(),
+                                                                               blocks_for(items));
   }
 
   std::uint64_t host_syncs = 0, bytes_to_device = 0, bytes_from_device = 0;
@@ -938,13 +792,68 @@ struct CudaExec {
     ++host_syncs;
     bytes_from_device += n * sizeof(T);
   }
+  template <class Point, class Log>
+  static IterationBuffers<Point, NoLog> strip_log(const IterationBuffers<Point, Log>& b) {
+    if constexpr (std::is_same_v<Log, NoLog>) {
+      return b;
+    } else {
+      IterationBuffers<Point, NoLog> out{};
+      out.m = b.m;
+      out.fv_spare = b.fv_spare;
+      out.fn_spare = b.fn_spare;
+      out.index = b.index;
+      out.face = b.face;
+      out.index_spare = b.index_spare;
+      out.face_spare = b.face_spare;
+      out.keep = b.keep;
+      out.point_rank = b.point_rank;
+      out.flags = b.flags;
+      out.face_rank = b.face_rank;
+      out.look = b.look;
+      out.list = b.list;
+      out.win_mask = b.win_mask;
+      out.word_rank = b.word_rank;
+      out.extreme = b.extreme;
+      out.claim = b.claim;
+      out.cands = b.cands;
+      out.st = b.st;
+      out.first_list = b.first_list;
+      return out;
+    }
+  }
+  // One launch of iteration_kernel: one block, or a cooperative grid of at most the blocks that fit at
+  // once (found once a kernel).
+  template <class Point, class Log, class Range, int Block, bool kOneBlock>
+  void launch_phases(const IterationBuffers<Point, Log>& b, IterationLaunch launch, unsigned wanted) {
+    auto* kernel = iteration_kernel<Point, Log, Range, Block, kOneBlock>;
+    if constexpr (kOneBlock) {
+      kernel<<<1, Block>>>(b, nullptr, launch);
+      check(cudaGetLastError(), "launching an iteration");
+      return;
+    }
+    unsigned& fit = resident_blocks_[reinterpret_cast<const void*>(kernel)];
+    if (fit == 0) {
+      int device = 0, sms = 0, per_sm = 0;
+      check(cudaGetDevice(&device), "querying the device");
+      check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), "querying the SMs");
+      check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, kernel, Block, 0), "the occupancy");
+      fit = static_cast<unsigned>(std::max(1, sms * per_sm));
+    }
+    const unsigned blocks = std::max(1u, std::min(fit, wanted));
+    block_offset_.grow(blocks + 1);
+    IterationBuffers<Point, Log> args_b = b;
+    u32* offsets = block_offset_.data();
+    void* args[] = {&args_b, &offsets, &launch};
+    check(cudaLaunchCooperativeKernel(reinterpret_cast<void*>(kernel), blocks, Block, args, 0, nullptr),
+          "launching an iteration");
+  }
+
   Buffer<u64> scalar64_;
   Buffer<u32> scalar32_;
   Buffer<unsigned char> scratch_;
   Buffer<u32> block_offset_, win_mask_;
   Buffer<unsigned char> select_flags_;
-  unsigned cooperative_blocks_ = 0;
-  unsigned recording_blocks_ = 0;  // the same for the recording rounds (the stepper's)
+  std::unordered_map<const void*, unsigned> resident_blocks_;  // per cooperative kernel: the blocks that fit
   std::size_t one_block_faces_ = tuning("CUDAHULL_ONE_BLOCK_FACES", 4096);  // meshes with rounds in one block
 };
 

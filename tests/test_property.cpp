@@ -44,7 +44,8 @@ std::string check_case(std::uint64_t id, const char* kind, const std::vector<Poi
                        bool resident = false) {
   BasicHullMesh<Point> hull;
   if (resident) {
-    hull = resident_hull_host(points);
+    // Odd cases take the GPU executor's paths on the host (the device loop, its room checks and regrowth).
+    hull = resident_hull_host(points, nullptr, id % 2 ? ResidentPath::kDevice : ResidentPath::kHost);
   } else {
     BasicEngine<Point> engine(points, make_cpu_backend<Point>(1));
     engine.run();

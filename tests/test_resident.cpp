@@ -33,20 +33,21 @@ void expect_exact(const std::vector<Point>& points, const std::string& what,
     const CheckResult check = check_hull(points, hull, 3);
     EXPECT_TRUE(check.ok) << what << ": " << (check.failures.empty() ? "" : check.failures.front());
   }
-  // Stepped the GPU's way (the counts in the executor's state, the rounds looped as the fused kernel loops
-  // them), the same mesh, edit for edit.
-  ResidentStats fused_stats;
-  const BasicHullMesh<Point> fused = resident_hull_host(points, &fused_stats, ResidentRounds::kFused);
-  EXPECT_EQ(fused.vertex_ids, hull.vertex_ids) << what << " (fused)";
-  EXPECT_TRUE(fused.triangles == hull.triangles) << what << " (fused)";
-  EXPECT_EQ(fused_stats.rounds, stats.rounds) << what << " (fused)";
-  EXPECT_EQ(fused_stats.edits, stats.edits) << what << " (fused)";
-  EXPECT_EQ(fused_stats.iterations, stats.iterations) << what << " (fused)";
+  // On the GPU executor's paths (the device loop with its room checks and regrowth), the same mesh, edit
+  // for edit.
+  ResidentStats device_path_stats;
+  const BasicHullMesh<Point> device_path =
+      resident_hull_host(points, &device_path_stats, ResidentPath::kDevice);
+  EXPECT_EQ(device_path.vertex_ids, hull.vertex_ids) << what << " (device paths)";
+  EXPECT_TRUE(device_path.triangles == hull.triangles) << what << " (device paths)";
+  EXPECT_EQ(device_path_stats.rounds, stats.rounds) << what << " (device paths)";
+  EXPECT_EQ(device_path_stats.edits, stats.edits) << what << " (device paths)";
+  EXPECT_EQ(device_path_stats.iterations, stats.iterations) << what << " (device paths)";
   // As for points only the GPU holds (a CuPy array): the coordinates read through the executor, the
   // same hull, and the same coordinates in it.
   ResidentStats executor_stats;
   const BasicHullMesh<Point> executor_only =
-      resident_hull_host(points, &executor_stats, ResidentRounds::kFused, true);
+      resident_hull_host(points, &executor_stats, ResidentPath::kDevice, true);
   EXPECT_EQ(executor_only.dimension, hull.dimension) << what << " (executor's points only)";
   EXPECT_EQ(executor_only.vertex_ids, hull.vertex_ids) << what << " (executor's points only)";
   EXPECT_TRUE(executor_only.triangles == hull.triangles) << what << " (executor's points only)";

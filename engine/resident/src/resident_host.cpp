@@ -24,16 +24,16 @@ BasicHullMesh<Point> run_on(const std::vector<Point>& points, ResidentStats* sta
 
 template <class Point>
 BasicHullMesh<Point> resident_hull_host(const std::vector<Point>& points, ResidentStats* stats,
-                                        ResidentRounds rounds, bool executor_points_only) {
+                                        ResidentPath path, bool executor_points_only) {
   if (points.size() >= 0xffffffffu) throw std::invalid_argument("too many points (at most 2^32 - 2)");
-  if (rounds == ResidentRounds::kFused)
-    return run_on<resident::FusedHostExec>(points, stats, executor_points_only);
+  if (path == ResidentPath::kDevice)
+    return run_on<resident::DevicePathHostExec>(points, stats, executor_points_only);
   return run_on<resident::HostExec>(points, stats, executor_points_only);
 }
 
 // The two coordinate types (README, "Precision").
-template HullMesh resident_hull_host(const std::vector<Point3>&, ResidentStats*, ResidentRounds, bool);
-template HullMeshd resident_hull_host(const std::vector<Point3d>&, ResidentStats*, ResidentRounds, bool);
+template HullMesh resident_hull_host(const std::vector<Point3>&, ResidentStats*, ResidentPath, bool);
+template HullMeshd resident_hull_host(const std::vector<Point3d>&, ResidentStats*, ResidentPath, bool);
 
 template <class Point>
 std::unique_ptr<SteppingEngine> make_resident_stepping_engine(const std::vector<Point>& points) {

@@ -73,17 +73,18 @@ void for_each_stat(const ResidentStats& s, Visit&& visit) {
   visit("round_phase_ms", s.round_phase_ms);
 }
 
-// How the host executor steps an iteration: kStepped, each round sized by the counts of the last (the
-// reference); kFused, as the GPU does (the counts stay in the executor's state, read once an iteration,
-// the rounds looped as one launch loops them).  Both give the same mesh; the tests compare them.
-enum class ResidentRounds { kStepped, kFused };
+// Which paths of the driver the host executor takes: kHost, an iteration a launch (the reference); kDevice,
+// the GPU executor's (with few points left, a device loop of iterations with its own room checks; the
+// small finish in one step).  Both run the same iteration (iteration.hpp) and give the same mesh; the tests
+// compare them.
+enum class ResidentPath { kHost, kDevice };
 
 // The exact hull (vertices are exactly the strictly extreme points), computed by the resident engine's
 // operations on the host.  Point3 or Point3d.  `executor_points_only`: the driver reads coordinates only
 // through the executor, as it does for points that only the GPU holds (ResidentCudaHull::use_device_points).
 template <class Point>
 BasicHullMesh<Point> resident_hull_host(const std::vector<Point>& points, ResidentStats* stats = nullptr,
-                                        ResidentRounds rounds = ResidentRounds::kStepped,
+                                        ResidentPath path = ResidentPath::kHost,
                                         bool executor_points_only = false);
 
 class SteppingEngine;

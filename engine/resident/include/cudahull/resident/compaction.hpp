@@ -40,11 +40,6 @@ struct MoveLive {
   }
 };
 
-// The mark of a mark_scan_move whose flags are already written (the kept points: RoutePoints, AssignFirst).
-struct AlreadyMarked {
-  CUDAHULL_HD void operator()(std::size_t) const {}
-};
-
 // Kept point j moves to rank[j], its face renumbered.
 struct MovePoints {
   const u32* keep;

@@ -11,7 +11,7 @@
 namespace cudahull::resident {
 
 // The finish of a mesh of at most this many faces runs in one launch (the GPU's finish_small_kernel, one
-// block) and one read; FusedHostExec mirrors it for the CPU tests.
+// block) and one read; DevicePathHostExec mirrors it for the CPU tests.
 inline constexpr std::size_t kSmallFinishFaces = 2048;
 
 // The result, renumbered where it is: each vertex flagged (every corner writes 1), then corners to ranks.

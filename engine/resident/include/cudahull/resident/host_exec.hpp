@@ -7,24 +7,30 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <type_traits>
 #include <vector>
 
+#include "cudahull/resident/iteration.hpp"
 #include "cudahull/resident/resident_ops.hpp"
-#include "cudahull/resident/rounds.hpp"
 
 namespace cudahull::resident {
 
 struct HostExec {
-  static constexpr bool kFusedIterations = false;  // iterate(): the host waits for each count
-  static constexpr bool kDeviceLoop = false;       // no loop of whole iterations of its own
-  static constexpr std::size_t kFinishFaces = 0;   // no finish of its own (finish_small)
+  static constexpr bool kDeviceLoop = false;      // no loop of whole iterations of its own
+  static constexpr std::size_t kFinishFaces = 0;  // no finish of its own (finish_small)
   template <class T>
   class Buffer {
    public:
-    // Room for n elements; the first `keep` keep their values.
-    void grow(std::size_t n, std::size_t /*keep*/ = 0) {
-      if (n > data_.size()) data_.resize(n);
+    // Room for n elements; the first `keep` keep their values.  The rest are filled with a pattern, as
+    // the device's new block holds garbage: a value used but not kept shows on the host too.
+    void grow(std::size_t n, std::size_t keep = 0) {
+      if (n <= data_.size()) return;
+      std::vector<T> fresh(n);
+      std::memset(static_cast<void*>(fresh.data()), 0xa5, n * sizeof(T));
+      std::copy(data_.begin(), data_.begin() + static_cast<std::ptrdiff_t>(std::min(keep, data_.size())),
+                fresh.begin());
+      data_.swap(fresh);
     }
     T* data() { return data_.data(); }
     void swap(Buffer& other) { data_.swap(other.data_); }
@@ -100,19 +106,6 @@ struct HostExec {
     ++host_syncs;
     return sum;
   }
-  // The same, the total not wanted (an operation after it writes what it needs of it).
-  void scan(const std::uint32_t* in, std::uint32_t* out, std::size_t n) {
-    exclusive_scan(in, out, n);
-    --host_syncs;
-  }
-  // mark(i) for every i < n, flags' exclusive prefix sum into ranks, then move(i) for every i < n.
-  template <class Mark, class Move>
-  void mark_scan_move(std::size_t n, const Mark& mark, std::uint32_t* flags, std::uint32_t* ranks,
-                      const Move& move) {
-    if constexpr (!std::is_same_v<Mark, AlreadyMarked>) for_each(n, mark);
-    scan(flags, ranks, n);
-    for_each(n, move);
-  }
   // The indices i with flags[i] != 0, in order, into list; returns how many (rank is scratch).
   std::uint32_t select(const std::uint32_t* flags, std::uint32_t* rank, std::uint32_t* list, std::size_t n) {
     const std::uint32_t count = exclusive_scan(flags, rank, n);
@@ -140,28 +133,42 @@ struct HostExec {
     bytes_from_device += n * sizeof(T);
   }
 
-  // The rounds of an iteration (rounds.hpp) on one thread.
+  // The iteration's phases (iteration.hpp) on one thread, whatever the launch (the device's runs them a
+  // range a kernel, or a loop of them in one block).
   template <class Point, class Log>
-  void fused_rounds(const FindCandidate<Point, Log>& find, u64* claim, u32* look, Candidate* cands, u32* list,
-                    RoundsState* st, RoundsLaunch launch) {
-    start_rounds(st, launch);
+  void iterations(IterationBuffers<Point, Log> b, const IterationLaunch& launch, bool loop) {
     const std::size_t words = std::size_t{launch.face_capacity} / 32 + 1;
     win_mask_.resize(words);
     word_rank_.resize(words);
-    swap_and_removal_rounds(HostTeam{}, RoundsBuffers<Point, Log>{find, claim, look, cands, list,
-                                                                  win_mask_.data(), word_rank_.data(), st});
+    b.win_mask = win_mask_.data();
+    b.word_rank = word_rank_.data();
+    if (loop) {
+      resident_iterations(HostTeam{}, b, launch);
+      return;
+    }
+    // As the device's executor: a range of phases a launch, each after the last (iteration.hpp).
+    IterationLaunch next = launch;
+    if (launch.from <= kFurthest) {
+      resident_iterations(HostTeam{}, b, next, PhaseRange<kFirst, kFurthest>{});
+      next.after = 1;
+    }
+    if (launch.from <= kRounds && launch.to >= kSplit) {
+      resident_iterations(HostTeam{}, b, next, PhaseRange<kSplit, kRounds>{});
+      next.after = 1;
+    }
+    if (launch.to >= kRoute) resident_iterations(HostTeam{}, b, next, PhaseRange<kRoute, kCompact>{});
   }
 
   std::vector<u32> win_mask_, word_rank_;  // the rounds' bits per face and ranks per word
   std::uint64_t host_syncs = 0, bytes_to_device = 0, bytes_from_device = 0;
 };
 
-// The host executor running the driver's fused path as the GPU runs it: the iteration with its counts in
-// the state (RoundsState) and one read at its end, and the finish of a small mesh in one step.  The CPU
-// tests compare its mesh with the stepped iterations' (HostExec) and so check the driver's device path
-// without a GPU.
-struct FusedHostExec : HostExec {
-  static constexpr bool kFusedIterations = true;
+// The host executor taking the driver's paths as the GPU's executor does: the device loop once few points
+// are left (with its room checks and regrowth), and the finish of a small mesh in one step.  The CPU tests
+// compare its mesh with HostExec's and so check the driver's device paths without a GPU.
+struct DevicePathHostExec : HostExec {
+  static constexpr bool kDeviceLoop = true;
+  std::size_t loop_points = 16384, loop_faces = 8192;  // as CudaExec's
   static constexpr std::size_t kFinishFaces = kSmallFinishFaces;
 
   // As the GPU's finish_small_kernel: out = [faults, vertices, the corners renumbered, the vertex list].

@@ -1,6 +1,6 @@
 // The resident engine's driver: Algorithm 1 with every phase on one executor, the host hearing O(1) bytes
 // per iteration (a small state) until the result.  `Exec` is HostExec (host_exec.hpp: loops on the host,
-// for the CPU tests and as the reference; FusedHostExec steps them as the GPU does) or CudaExec
+// for the CPU tests and as the reference; DevicePathHostExec takes the GPU's paths) or CudaExec
 // (cuda/resident_cuda.cu: kernels on the device); all run the same operations (resident_ops.hpp) in the
 // same order and give the same mesh.
 //
@@ -8,11 +8,13 @@
 //   P                  one pass: the points extreme along 14 directions; P is their exact hull (host)
 //   drop test          the points proven strictly inside P (DropFilter) are dropped; the rest listed
 //   first mesh         P with c its centre (else section 3.1's tetrahedron, confirmed exactly)
-//   first distribution each listed point to a face's cone, kept when above it
-//   per iteration      furthest point per face; refine every face that has one (Fig. 3a); flip and flop
-//                      rounds until no candidate is left (Figs. 3b, 4, 5); route every kept point through
-//                      the entries; compact faces and points.  On the GPU one wait an iteration, and for a
-//                      small mesh with few points whole iterations in one launch (the device loop)
+//   iterations         iteration.hpp, written once for every executor: the first distribution, then per
+//                      iteration the furthest point per face, the split (Fig. 3a), swap and removal rounds
+//                      (Figs. 3b, 4, 5), the routing (Algorithm 2) and the compaction.  The host reads the
+//                      state after each launch and grows the room when a launch stopped short of it: one
+//                      wait an iteration (two on a large mesh, which waits for the refined count to stay
+//                      tight in memory), and with few points left whole iterations in one launch (the
+//                      device loop)
 //   finish             no external point left: the edges that are not strictly convex counted; none, or
 //                      only flat ones with every vertex on three strictly convex edges, and the mesh is
 //                      the exact hull.  Defects (concave edges, thin vertices) are repaired where they
@@ -41,6 +43,7 @@
 #include "cudahull/resident.hpp"
 #include "cudahull/resident/fault_repair.hpp"
 #include "cudahull/resident/first_mesh.hpp"
+#include "cudahull/resident/iteration.hpp"
 #include "cudahull/resident/resident_ops.hpp"
 #include "cudahull/resident/shared_phases.hpp"
 
@@ -88,16 +91,10 @@ class ResidentHull {
   bool begin(ResidentStats& stats, BasicHullMesh<Point>& done) {
     stats = ResidentStats{};
     lap();
-    const u32* list = nullptr;
-    bool first_in_loop = false;
-    return setup(stats, done, false, list, first_in_loop);
+    return setup(stats, done, true);
   }
   // One iteration, recorded; false when no face could refine (a stall: end(stats, true) finishes exactly).
-  bool step(ResidentStats& stats, RecordedIteration& out) {
-    if (!iterate(stats, &out)) return false;
-    ++stats.iterations;
-    return true;
-  }
+  bool step(ResidentStats& stats, RecordedIteration& out) { return iterate(stats, &out); }
   // After the last step: the exact check and the result (the exact finish after a stall).
   BasicHullMesh<Point> end(ResidentStats& stats, bool stalled) {
     lap();
@@ -152,39 +149,12 @@ class ResidentHull {
     stats = ResidentStats{};
     lap();
     BasicHullMesh<Point> done;
-    const u32* list = nullptr;
-    bool first_in_loop = false;
-    if (!setup(stats, done, true, list, first_in_loop)) return done;
-
+    if (!setup(stats, done, false)) return done;
     while (active_ > 0) {
-      if constexpr (Exec::kDeviceLoop) {
-        // A small mesh with few points left: whole iterations in one launch, one wait for all of them.
-        if (first_in_loop || (active_ <= exec_.loop_points && 8 * faces_ + 64 <= capacity_ &&
-                              5 * faces_ + 64 <= entry_capacity_)) {
-          const u32 exit = device_loop(stats, first_in_loop ? list : nullptr, first_in_loop);
-          first_in_loop = false;
-          if (exit == kLoopStall) return exact_finish(stats, "stalled: no face could refine");
-          if (exit == kLoopDone) continue;
-          if (exit == kLoopOverflow) {
-            // Mid-iteration: the rounds go on here with room for them.
-            grow_spares(capacity_);
-            finish_fused(stats, 0, false);
-            ++stats.iterations;
-            continue;
-          }
-        }
-      }
-      bool refined = false;
-      if constexpr (Exec::kFusedIterations) {
-        refined = iterate_fused(stats);
-      } else {
-        refined = iterate(stats);
-      }
-      if (!refined) {
+      if (!iterate(stats)) {
         if (active_ == 0) break;  // no point was left outside (only after setup() left them uncompacted)
         return exact_finish(stats, "stalled: no face could refine");
       }
-      ++stats.iterations;
     }
     lap();
     release_rounds();
@@ -193,10 +163,10 @@ class ResidentHull {
     return out;
   }
 
-  // P, the first mesh, and the first distribution (unless the device loop is to do it: `first_in_loop`,
-  // from the points at `list`).  False when `done` is already the answer.
-  bool setup(ResidentStats& stats, BasicHullMesh<Point>& done, bool loop_allowed, const u32*& list,
-             bool& first_in_loop) {
+  // P, the first mesh, and the points not proven inside P listed for the first distribution (section 3.1),
+  // which the first iteration's launch does (kFirst).  `recording`: the points are distributed and
+  // compacted here, for the states the first step shows.  False when `done` is already the answer.
+  bool setup(ResidentStats& stats, BasicHullMesh<Point>& done, bool recording) {
     const std::size_t n = n_;
     if (n == 0) {
       done = exact_hull(std::vector<Point>{});
@@ -236,32 +206,20 @@ class ResidentHull {
     first.st = state_.data();
     exec_.for_each(fv.size(), first);
     // The points not proven inside P (all, without P), listed in index order (one wait for the count).
-    list = nullptr;
+    first_list_ = nullptr;
     active_ = n;
     if (filter.planes != 0) {
       index_[1].grow(n);
       active_ = exec_.select_if(n, NotInsideP<Point>{points_, filter}, index_[1].data());
-      list = index_[1].data();
+      first_list_ = index_[1].data();
     }
     stats.dropped_by_polytope = n - active_;
     for (auto* b : {&index_[0], &index_[1], &face_of_[0], &face_of_[1], &keep_, &point_rank_})
       b->grow(active_, b == &index_[1] ? active_ : 0);
-    // Few points left: the device loop distributes them itself (no launches and wait of the compaction).
-    first_in_loop = false;
-    if constexpr (Exec::kDeviceLoop) first_in_loop = loop_allowed && active_ <= exec_.loop_points;
-    if (!first_in_loop) {
-      exec_.for_each(active_, AssignFirst<Point>{view(), first_faces, list, index_[0].data(),
-                                                 face_of_[0].data(), keep_.data()});
-      // A run without records takes the points to the first iteration as they are: the ones not kept
-      // (below their face, so inside P) count for nothing in its furthest points and go in its
-      // compaction, which is one compaction and one wait fewer.  (On a device loop: more points than it
-      // takes, so the first iteration is the host's.)  With records, the points are compacted here, for
-      // the states the first step shows.
-      if (loop_allowed) {
-        unkept_listed_ = true;
-      } else {
-        compact(faces_, faces_);
-      }
+    first_pending_ = true;
+    if (recording) {
+      run_phases(kFirst, kFirst, false);
+      compact_only();
     }
     stats.setup_ms = lap();
     return true;
@@ -417,108 +375,22 @@ class ResidentHull {
     }
   }
 
-  // The furthest point per face (extreme_ is zero), and the faces that refine (flags_).
-  void mark_refined() {
-    furthest_points();
-    exec_.for_each(faces_, MarkRefined<Point>{view(), extreme_.data(), flags_.data()});
-  }
-  // The furthest point per face into extreme_ (zero before), the points listed but not kept skipped after
-  // setup() left them in (unkept_listed_).
-  void furthest_points() {
-    exec_.segmented_max(active_,
-                        FurthestPerFace<Point>{view(), index_[0].data(), face_of_[0].data(), extreme_.data(),
-                                               unkept_listed_ ? keep_.data() : nullptr});
-    marks_in_use_ = faces_;
-  }
-  // Refinement (Fig. 3a) of the marked faces, their children from face `faces_` on; the count of refined
-  // faces goes to the state where the executor computes.
-  void split() {
-    exec_.for_each(faces_, split_faces());
-    marks_in_use_ = 0;
-  }
-  SplitFaces<Point> split_faces() {
-    return SplitFaces<Point>{
-        view(), extreme_.data(), flags_.data(), face_rank_.data(),      static_cast<u32>(faces_),
-        0,      look_.data(),    round_ + 1,    &state_.data()->refined};
-  }
-  // Algorithm 2: every kept point to its face after the iteration's edits.
-  void route() {
-    exec_.for_each(active_, RoutePoints<Point>{view(), index_[0].data(), face_of_[0].data(), keep_.data()});
-  }
-
-  // One iteration, the host waiting for each count (HostExec, and step() on any executor); false when no
-  // face could refine.  With `out`, every candidate the rounds turn down is logged and what the iteration did
-  // is read back into it.
+  // One iteration (iteration.hpp), or on a device loop as many as it can run, the host reading the state
+  // after each launch; false when no face could refine.  With `out`, every candidate the rounds turn down
+  // is logged and what the iteration did is read back into it.
   bool iterate(ResidentStats& stats, RecordedIteration* out = nullptr);
 
-  // One iteration on an executor that loops the rounds itself (CudaExec), with one wait: the counts the
-  // steps need stay where the executor computes (state_), and the host reads them once, after the
-  // compaction.  A small mesh (up to kSpeculateFaces) is sized for every face refining, so that the
-  // host need not wait for the refined count; a larger one waits for it and stays tight in memory.
-  // False when no face could refine.
+  // A small mesh is sized for every face refining, so that the host need not wait for the refined count
+  // between the marks and the split; a larger one waits for it and stays tight in memory.
   static constexpr std::size_t kInitialFaces = std::size_t{1} << 13;
-  static constexpr std::size_t kSpeculateFaces = std::size_t{1} << 18;
-  bool iterate_fused(ResidentStats& stats) {
-    const std::size_t first = faces_;
-    const std::size_t bound = 4 * faces_, entry_bound = faces_;
-    if (bound <= kSpeculateFaces) {
-      // Room first, then the marks, their prefix sum and the split in one mark_scan_move (one launch for a
-      // small mesh).
-      furthest_points();
-      grow_for_rounds(2 * bound + 64, entry_bound + bound + 64, 2 * bound + 64);
-      grow_spares(capacity_);
-      exec_.mark_scan_move(faces_, MarkRefined<Point>{view(), extreme_.data(), flags_.data()}, flags_.data(),
-                           face_rank_.data(), split_faces());
-      marks_in_use_ = 0;
-    } else {
-      mark_refined();
-      const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
-      if (refined == 0) return no_face_refined();
-      grow_for_iteration(refined);
-      split();
-    }
-    stats.refine_ms += lap();
-    return finish_fused(stats, first, true);
-  }
+  static constexpr std::size_t kSpeculateFaces = std::size_t{1} << 16;
 
-  // The rest of a fused iteration from the rounds on: `begin`, the first launch after the split (from
-  // `first`, the faces before it); otherwise the rounds go on from the state (after an overflow).
-  bool finish_fused(ResidentStats& stats, std::size_t first, bool begin) {
-    // Flip and flop rounds until no candidate is left (Figs. 3b, 4, 5), the refined count taken from the
-    // state; then the routing and the compaction.  A run of rounds that stopped short of room (overflow)
-    // leaves the routing harmless (a point's route from its face through the entries goes on from where it
-    // stopped) and the compaction's output unused: the host grows the buffers and goes on with the rounds.
-    RoundsState state{};
-    while (true) {
-      const std::size_t face_bound = fused_rounds(first, begin);
-      begin = false;
-      stats.rounds_ms += lap();
-      route();
-      compact_launch(face_bound, &state_.data()->faces);
-      exec_.download(&state, state_.data(), 1);
-      stats.route_ms += lap();
-      if (!state.overflow) break;
-      swap_spares();  // back to the mesh of the rounds: the compaction's outputs go unused
-      grow_after_overflow(state, stats);
-    }
-    stats.refined_faces += state.refined;
-    take_counters(state, stats);
-    faces_ = state.live_faces;
-    active_ = state.kept_points;
-    exec_.for_each(faces_, ResetFaces{killer_.data(), look_.data(), extreme_.data()});
-    return state.refined != 0;
-  }
-
-  // Whole iterations in one launch (the executor's loop_kernel), one read of the state after them; the
-  // buffers swapped once per finished iteration, as compact() swaps them.  Returns the LoopExit.
-  // `first`: the loop begins with the first distribution of the listed points (`list`, or all).
-  u32 device_loop(ResidentStats& stats, const u32* list, bool first) {
-    // Sized by the capacity (a small mesh): every face may refine and be work.
-    grow_faces(faces_);
-    grow_work(capacity_);
-    grow_spares(capacity_);
-    LoopBuffers<Point> b{};
+  // The iteration's buffers as they are now (the rounds' bits are the executor's).
+  template <class Log = NoLog>
+  IterationBuffers<Point, Log> iteration_buffers(const Log& log = {}) {
+    IterationBuffers<Point, Log> b{};
     b.m = view();
+    b.log = log;
     b.fv_spare = fv_out_.data();
     b.fn_spare = fn_out_.data();
     b.index = index_[0].data();
@@ -535,30 +407,55 @@ class ResidentHull {
     b.claim = claim_.data();
     b.cands = cands_.data();
     b.st = state_.data();
-    b.first_list = list;
-    b.first = first ? 1u : 0u;
-    exec_.device_loop(b, static_cast<u32>(faces_), static_cast<u32>(active_), static_cast<u32>(capacity_),
-                      static_cast<u32>(entry_capacity_));
-    RoundsState state{};
-    exec_.download(&state, state_.data(), 1);
-    stats.route_ms += lap();
-    if (state.loop_iterations % 2 == 1) swap_spares();
-    stats.iterations += state.loop_iterations;
-    stats.loop_iterations += state.loop_iterations;
-    stats.refined_faces += state.loop_refined;
-    take_counters(state, stats);
-    active_ = state.kept_points;
-    if (state.loop_exit == kLoopOverflow) {
-      grow_after_overflow(state, stats);  // mid-iteration, as a fused launch that overflowed leaves it
-    } else {
-      faces_ = state.live_faces;
-    }
-    return state.loop_exit;
+    b.first_list = first_list_;
+    return b;
   }
 
-  // The state's counters, which add up over the run, into the stats; the round the next split stamps from.
-  void take_counters(const RoundsState& state, ResidentStats& stats) {
+  // The phases from..to of the iteration on the executor (`loop`: then whole iterations, in one launch of
+  // one block), and one read of the state after them.  The spares are swapped once per compaction, as the
+  // launch swapped them; the counters go to the stats.
+  template <class Log = NoLog>
+  RoundsState run_phases(u32 from, u32 to, bool loop, const Log& log = {}) {
+    const auto u32_of = [](std::size_t n) { return static_cast<u32>(std::min<std::size_t>(n, 0xffffffffu)); };
+    const IterationLaunch launch{from,
+                                 to,
+                                 loop ? 0xffffffffu : 1u,
+                                 u32_of(faces_),
+                                 u32_of(active_),
+                                 unkept_listed_ ? 1u : 0u,
+                                 u32_of(capacity_),
+                                 u32_of(entry_capacity_),
+                                 u32_of(work_capacity_),
+                                 u32_of(std::min(fv_out_.capacity() / 3, extreme_.capacity())),
+                                 0};
+    exec_.iterations(iteration_buffers(log), launch, loop);
+    RoundsState state{};
+    exec_.download(&state, state_.data(), 1);
+    if (state.loop_iterations % 2 == 1) swap_spares();
+    if (from == kFirst) {
+      first_pending_ = false;
+      unkept_listed_ = true;
+    }
+    if (state.loop_iterations > 0) unkept_listed_ = false;
     round_ = state.round;
+    return state;
+  }
+  // A compaction alone: the points the first distribution did not keep, dropped.
+  void compact_only() {
+    grow_spares(faces_);
+    const RoundsState state = run_phases(kCompact, kCompact, false);
+    faces_ = state.live_faces;
+    active_ = state.kept_points;
+  }
+  // An iteration that refines no face: the points setup() left in uncompacted are compacted now (all of
+  // them may be inside: then the hull is done, not stalled).  False.
+  bool no_face_refined() {
+    if (unkept_listed_) compact_only();
+    return false;
+  }
+
+  // The state's counters, which add up over the run, into the stats.
+  void take_counters(const RoundsState& state, ResidentStats& stats) {
     stats.rounds = state.rounds;
     stats.edits = state.edits;
     stats.work_items = state.work_items;
@@ -574,7 +471,9 @@ class ResidentHull {
     entries_used_ = state.entries;
     // Only what was short grows (a round short of work room needs no more face slots).
     const auto more = [](std::size_t n) { return n + n / 8 + 64; };
-    if (state.needed_faces > capacity_) grow_faces(more(state.needed_faces));
+    // The faces' buffers at the capacity's size even when no more slots are needed: a device loop that
+    // stopped after an odd number of compactions left the faces in the spares.
+    grow_faces(state.needed_faces > capacity_ ? more(state.needed_faces) : 0);
     if (state.needed_entries > entry_capacity_) grow_entries(more(state.needed_entries));
     if (state.needed_work > work_capacity_) grow_work(more(state.needed_work));
   }
@@ -585,85 +484,35 @@ class ResidentHull {
     grow_entries(entries);
     grow_work(work);
   }
-  // Everything grows before the split (the faces in use are then more than the host knows to keep), by
-  // the refined count.  Room for the children and for the rounds' edits, about two a refined face (1.5 to
-  // 2.1 on dense spheres, fewer where points lie inside), two new slots and one entry each; for the work
-  // of a round, the children and the faces beside the refined ones; the spares for the live faces.  Past
-  // that a round stops before it changes anything and goes on after the host grows the buffers.
-  void grow_for_iteration(u32 refined) {
-    const std::size_t r = refined, work = 4 * r + 64, live = faces_ + 2 * r + 64;
+  // Everything grows before the split (the marks are kept), by the refined count (room_for()).  A small
+  // mesh (`small`: sized as if every face refined) has work room for every face slot, as the first round's
+  // work may be six a refined face (the children and the stamped faces beside them), and on a device loop
+  // spares for them too, as its faces go back and forth between the two.
+  void grow_for_iteration(std::size_t refined, bool small = false, bool loop = false) {
+    IterationRoom room = room_for(faces_, refined);
+    if (small) room.work = std::max<u64>(room.work, room.faces);
+    if (loop) room.spares = std::max<u64>(room.spares, room.faces);
+    marks_in_use_ = faces_;
     // What holds nothing between iterations and must grow goes first, so that its old blocks are not
     // held while the faces' buffers copy into their new ones.
-    if (work > work_capacity_) release_rounds();
+    if (room.work > work_capacity_) release_rounds();
     // The spares are the last iteration's faces, swapped out at the capacity's size: back to the live
     // faces' size (their contents are dead), before the faces' buffers copy into bigger ones.
-    if (3 * live > fv_out_.capacity() || 3 * (live + live / 4) < fv_out_.capacity()) {
+    if (3 * room.spares > fv_out_.capacity() || 3 * (room.spares + room.spares / 4) < fv_out_.capacity()) {
       fv_out_.release();
       fn_out_.release();
     }
-    grow_for_rounds(faces_ + 3 * r + 9 * r / 2 + 64, 4 * r + 64, work);
-    grow_spares(live);
+    grow_for_rounds(room.faces, room.entries, room.work);
+    grow_spares(room.spares);
+    marks_in_use_ = 0;
   }
 
-  // The rounds (rounds.hpp) on the executor, in one launch with no wait per round.  `begin`: the first launch
-  // of the iteration (its faces and entries from the refined count in the state); otherwise it goes on after
-  // an overflow.  Returns a bound of the face ids in use after it.
-  template <class Log = NoLog>
-  std::size_t fused_rounds(std::size_t fresh_from, bool begin, const Log& log = {}) {
-    RoundsLaunch launch{};
-    launch.begin = begin ? 1u : 0u;
-    launch.fresh_from = static_cast<u32>(fresh_from);
-    launch.face_capacity = static_cast<u32>(capacity_);
-    launch.entry_capacity = static_cast<u32>(entry_capacity_);
-    launch.work_capacity = static_cast<u32>(work_capacity_);
-    exec_.fused_rounds(FindCandidate<Point, Log>{view(), log}, claim_.data(), look_.data(), cands_.data(),
-                       work_list_.data(), state_.data(), launch);
-    return capacity_;
-  }
-
-  // Live faces renumbered 0..F-1; kept points compacted, their faces renumbered.  It runs over
-  // `face_bound` face ids, of which `face_count` (optional, where the executor computes) are in use; the
-  // totals go to the state (state_'s live_faces and kept_points) for the caller to read.
-  void compact_launch(std::size_t face_bound, const u32* face_count) {
-    RoundsState* st = state_.data();
-    exec_.mark_scan_move(face_bound, MarkLive<Point>{view(), flags_.data(), face_count}, flags_.data(),
-                         face_rank_.data(),
-                         MoveLive<Point>{view(), flags_.data(), face_rank_.data(), fv_out_.data(),
-                                         fn_out_.data(), face_bound - 1, &st->live_faces});
-    if (active_ == 0) {
-      exec_.fill(&st->kept_points, 1, u32{0});
-    } else {
-      exec_.mark_scan_move(active_, AlreadyMarked{}, keep_.data(), point_rank_.data(),
-                           MovePoints{keep_.data(), point_rank_.data(), face_rank_.data(), index_[0].data(),
-                                      face_of_[0].data(), index_[1].data(), face_of_[1].data(), active_ - 1,
-                                      &st->kept_points});
-    }
-    swap_spares();
-    unkept_listed_ = false;
-  }
-  // An iteration that refines no face, before its compaction: the points setup() left in uncompacted are
-  // compacted now (all of them may be inside: then the hull is done, not stalled).  False.
-  bool no_face_refined() {
-    if (unkept_listed_) compact(faces_, faces_);
-    return false;
-  }
-  // The compaction's outputs become the current faces and points (and back, to undo it).
+  // The compaction's outputs become the current faces and points.
   void swap_spares() {
     fv_.swap(fv_out_);
     fn_.swap(fn_out_);
     index_[0].swap(index_[1]);
     face_of_[0].swap(face_of_[1]);
-  }
-  // `live`: a bound of the live faces among them (the spares' room).
-  void compact(std::size_t face_bound, std::size_t live) {
-    grow_spares(live);
-    compact_launch(face_bound, nullptr);
-    // Both counts come back in one read.
-    u32 counts[2] = {0, 0};
-    exec_.download(counts, &state_.data()->live_faces, 2);
-    faces_ = counts[0];
-    active_ = counts[1];
-    exec_.for_each(faces_, ResetFaces{killer_.data(), look_.data(), extreme_.data()});
   }
 
   BasicHullMesh<Point> lower_dimensional(ResidentStats& stats, const std::string& why) {
@@ -942,9 +791,11 @@ class ResidentHull {
   Buffer<Point> gathered_;
   std::chrono::steady_clock::time_point lap_start_;
   Vec3d c_{};
-  double max_coordinate_ = 0;     // every point's coordinates are at most this in size
-  bool unkept_listed_ = false;    // setup() left the points not kept in the list (see furthest_points())
-  std::size_t marks_in_use_ = 0;  // entries of flags_ and face_rank_ that grow_faces() keeps
+  double max_coordinate_ = 0;        // every point's coordinates are at most this in size
+  bool first_pending_ = false;       // the first distribution (kFirst) is the next launch's
+  const u32* first_list_ = nullptr;  // the points it distributes (NotInsideP), or null for all
+  bool unkept_listed_ = false;       // the points the first distribution did not keep are still listed
+  std::size_t marks_in_use_ = 0;     // entries of flags_ and face_rank_ that grow_faces() keeps
   std::size_t faces_ = 0, capacity_ = 0, entries_used_ = 0, entry_capacity_ = 0, active_ = 0;
   std::size_t work_capacity_ = 0;  // work faces a round has room for (cands_, work_list_)
   u32 round_ = 0;
@@ -960,27 +811,21 @@ class ResidentHull {
 
 template <class Point, class Exec>
 bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration* out) {
+  // Few points left: the device loop runs whole iterations in one launch until they are done.
+  // A small mesh is sized as if every face refined: its launches need no wait for the refined count, and
+  // with few points left a device loop (one block) runs its iterations.  A large one is sized by the
+  // count, and waits for it.
+  const bool small = faces_ <= kSpeculateFaces;
+  bool loop = false;
+  if constexpr (Exec::kDeviceLoop) loop = !out && faces_ <= exec_.loop_faces && active_ <= exec_.loop_points;
+  const bool wait_for_refined = out || !small;
+  if (!wait_for_refined) grow_for_iteration(faces_, true, loop);
   if (out) {
     *out = RecordedIteration{};
     out->faces_before = faces_;
-  }
-  lap();
-  const std::size_t first = faces_;
-  mark_refined();
-  const u32 refined = exec_.exclusive_scan(flags_.data(), face_rank_.data(), faces_);
-  if (refined == 0) return no_face_refined();
-  stats.refined_faces += refined;
-  grow_for_iteration(refined);
-  split();
-  stats.refine_ms += lap();
-
-  // Swap and removal rounds until no candidate is left (Figs. 3b, 4, 5; rounds.hpp).  Recording, their
-  // rejections are logged (a face may meet the same one in several rounds: all are kept here, in order,
-  // and the records keep the first), with each round's first entry; a log without room for a round stops
-  // it before it begins, and the host grows the log.
-  if (out) {
-    out->refined = refined;
-    out->first_round = round_ + 1;
+    // The rounds' rejections (a face may meet the same one in several rounds: all are kept here, in order,
+    // and the records keep the first), with each round's first entry; a log without room for a round
+    // stops it before it begins, and the host grows the log.
     rejection_capacity_ = static_cast<u32>(std::max<std::size_t>(4096, 2 * faces_));
     rejections_.grow(rejection_capacity_);
     rejection_count_.grow(1);
@@ -988,60 +833,97 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
     round_capacity_ = 64;
     round_first_entry_.grow(round_capacity_);
   }
-  RoundsState state{};
-  for (bool begin = true;; begin = false) {
-    if (out) {
-      fused_rounds(first, begin,
-                   RejectionLog{rejections_.data(), rejection_count_.data(), rejection_capacity_, 0,
-                                round_first_entry_.data(), out->first_round, round_capacity_});
+  lap();
+  u32 from = first_pending_ ? kFirst : kFurthest;
+  std::size_t face_ids = 0;
+  while (true) {
+    // Waiting for the refined count, the launch stops after the marks; recording, after the rounds too.
+    u32 to = kCompact;
+    if (wait_for_refined && from <= kFurthest) {
+      to = kFurthest;
+    } else if (out && from <= kRounds) {
+      to = kRounds;
+    }
+    RoundsState state{};
+    if (out && from <= kRounds && to >= kRounds) {
+      state = run_phases(from, to, loop,
+                         RejectionLog{rejections_.data(), rejection_count_.data(), rejection_capacity_, 0,
+                                      round_first_entry_.data(), out->first_round, round_capacity_});
     } else {
-      fused_rounds(first, begin);
+      state = run_phases(from, to, loop);
     }
-    exec_.download(&state, state_.data(), 1);
-    if (!state.overflow) break;
-    grow_after_overflow(state, stats);
-    if (out && state.needed_rejections > rejection_capacity_) {
-      const std::size_t room = 2 * std::size_t{state.needed_rejections};
-      if (room > 0xffffffffu) throw DeviceError("resident engine: too many rejections to record");
-      rejections_.grow(room, rejection_capacity_);
-      rejection_capacity_ = static_cast<u32>(room);
+    (to == kFurthest ? stats.refine_ms : to == kRounds ? stats.rounds_ms : stats.route_ms) += lap();
+    take_counters(state, stats);
+    stats.iterations += state.loop_iterations;
+    stats.loop_iterations += loop ? state.loop_iterations : 0;
+    stats.refined_faces += state.loop_refined;
+    active_ = state.kept_points;
+    if (state.loop_exit == kExitStall) {
+      faces_ = state.live_faces;
+      return no_face_refined();
     }
-    if (out && state.needed_rounds > round_capacity_) {
-      round_first_entry_.grow(2 * std::size_t{state.needed_rounds}, round_capacity_);
-      round_capacity_ = 2 * state.needed_rounds;
+    if (state.loop_exit == kExitOverflow) {
+      // Mid-rounds: the host grows what was short, and the rounds go on.
+      grow_after_overflow(state, stats);
+      if (out && state.needed_rejections > rejection_capacity_) {
+        const std::size_t room = 2 * std::size_t{state.needed_rejections};
+        if (room > 0xffffffffu) throw DeviceError("resident engine: too many rejections to record");
+        rejections_.grow(room, rejection_capacity_);
+        rejection_capacity_ = static_cast<u32>(room);
+      }
+      if (out && state.needed_rounds > round_capacity_) {
+        round_first_entry_.grow(2 * std::size_t{state.needed_rounds}, round_capacity_);
+        round_capacity_ = 2 * state.needed_rounds;
+      }
+      from = kRounds;
+      continue;
     }
+    if (state.loop_exit == kExitRoom || (to == kFurthest && state.loop_exit == kExitDone && active_ > 0)) {
+      // The marks are made and the refined count known: room for the split and the rounds.
+      faces_ = state.live_faces;
+      if (out) {
+        out->refined = state.refined;
+        out->first_round = round_ + 1;
+      }
+      if (loop) {
+        grow_for_iteration(std::max<std::size_t>(state.refined, faces_), true, true);
+      } else {
+        grow_for_iteration(state.refined);
+      }
+      from = kSplit;
+      continue;
+    }
+    if (to == kRounds) {
+      // Recording: the iteration's faces, entries and log, read back before the routing.
+      faces_ = state.faces;
+      entries_used_ = state.entries;
+      face_ids = faces_;
+      out->fv.resize(3 * faces_);
+      out->killer.resize(faces_);
+      out->entries.resize(entries_used_);
+      exec_.download(out->fv.data(), fv_.data(), out->fv.size());
+      exec_.download(out->killer.data(), killer_.data(), out->killer.size());
+      exec_.download(out->entries.data(), entries_.data(), out->entries.size());
+      out->round_first_entry.resize(round_ + 1 - out->first_round);
+      exec_.download(out->round_first_entry.data(), round_first_entry_.data(), out->round_first_entry.size());
+      u32 rejected = 0;
+      exec_.download(&rejected, rejection_count_.data(), 1);
+      out->rejections.resize(rejected);  // all of them: every round had room
+      exec_.download(out->rejections.data(), rejections_.data(), out->rejections.size());
+      // The log is filled by atomics in any order: by round, then candidate, the same on every executor.
+      std::sort(out->rejections.begin(), out->rejections.end(), [](const Rejection& a, const Rejection& b) {
+        return a.round != b.round ? a.round < b.round : a.id != b.id ? a.id < b.id : a.kind < b.kind;
+      });
+      from = kRoute;
+      continue;
+    }
+    faces_ = state.live_faces;
+    break;
   }
-  take_counters(state, stats);
-  faces_ = state.faces;
-  entries_used_ = state.entries;
-  if (out) {
-    out->fv.resize(3 * faces_);
-    out->killer.resize(faces_);
-    out->entries.resize(entries_used_);
-    exec_.download(out->fv.data(), fv_.data(), out->fv.size());
-    exec_.download(out->killer.data(), killer_.data(), out->killer.size());
-    exec_.download(out->entries.data(), entries_.data(), out->entries.size());
-    out->round_first_entry.resize(round_ + 1 - out->first_round);
-    exec_.download(out->round_first_entry.data(), round_first_entry_.data(), out->round_first_entry.size());
-    u32 rejected = 0;
-    exec_.download(&rejected, rejection_count_.data(), 1);
-    out->rejections.resize(rejected);  // all of them: every round had room
-    exec_.download(out->rejections.data(), rejections_.data(), out->rejections.size());
-    // The log is filled by atomics in any order: by round, then candidate, the same on every executor.
-    std::sort(out->rejections.begin(), out->rejections.end(), [](const Rejection& a, const Rejection& b) {
-      return a.round != b.round ? a.round < b.round : a.id != b.id ? a.id < b.id : a.kind < b.kind;
-    });
-  }
-  stats.rounds_ms += lap();
-
-  route();
-  const std::size_t face_ids = faces_;
-  compact(face_ids, first + 2 * std::size_t{refined} + 64);
   if (out) {
     out->new_id.resize(face_ids);
     exec_.download(out->new_id.data(), face_rank_.data(), face_ids);
   }
-  stats.route_ms += lap();
   return true;
 }
 

@@ -1,9 +1,10 @@
 // The swap and removal rounds of one iteration (section 3.2, Figs. 3b, 4, 5), written once for every
-// executor that loops them itself: the host twin (HostTeam, one thread), one block on the device (a small
-// mesh) and a cooperative grid (cuda/resident_cuda.cu's BlockTeam and GridTeam).  A team is what runs
-// the body: for_range() splits a range among its threads, barrier() waits for all of them, list_if() appends
-// the indices that pass a test (in any order), exclusive_scan() numbers in index order and gives every
-// thread the total, and leader() is the one thread that writes the state.
+// executor, as the iteration around them is (iteration.hpp): the host twin (HostTeam, one thread), one block
+// on the device (a small mesh) and a cooperative grid (cuda/resident_cuda.cu's BlockTeam and GridTeam).  A
+// team is what runs the body: for_range() splits a range among its threads, barrier() waits for all of them,
+// list_if() appends the indices that pass a test (in any order), exclusive_scan() numbers in index order and
+// gives every thread the total, max_per_segment() keeps the largest key per segment, leader() is the one
+// thread that writes the state, and start_timing() and time() profile the rounds' phases (device teams).
 //
 // design:
 //   repeat
@@ -61,6 +62,7 @@ CUDAHULL_HD inline void end_round(RoundsState* st, u32 faces, u32 entries, u32 r
 template <class Team, class Point, class Log>
 CUDAHULL_HD void swap_and_removal_rounds(const Team& team, const RoundsBuffers<Point, Log>& b) {
   RoundsState* st = b.st;
+  team.start_timing();
   while (true) {
     const u32 faces = st->faces, fresh = st->fresh_from, entries = st->entries, round = st->round + 1;
     const u32 words = (faces + 31) / 32;
@@ -159,7 +161,14 @@ struct HostTeam {
   }
   CUDAHULL_HD void barrier() const {}
   CUDAHULL_HD bool leader() const { return true; }
+  CUDAHULL_HD void start_timing() const {}
   CUDAHULL_HD void time(int) const {}
+  // Per segment, the largest key of the indices below n (op.segment(j), op.key(j), into op.extreme).
+  template <class Op>
+  CUDAHULL_HD void max_per_segment(u32 n, const Op& op) const {
+    for (u32 j = 0; j < n; ++j)
+      atomic_max_u64(&op.extreme[op.segment(j)], op.key(j));
+  }
   // The indices below n that pass, appended at *count (those past `capacity` counted, not written).
   template <class Pred>
   CUDAHULL_HD void list_if(u32 n, const Pred& pred, u32* list, u32* count, u32 capacity) const {

@@ -55,6 +55,13 @@ struct Entry {
 // ---------------------------------------------------------------------------------------------------------
 // Atomics: the device's, or plain operations for the host's sequential loops (the same final values).
 
+template <class T>
+CUDAHULL_HD inline void swap_pointers(T*& a, T*& b) {
+  T* t = a;
+  a = b;
+  b = t;
+}
+
 CUDAHULL_HD inline void atomic_max_u64(u64* at, u64 value) {
 #if defined(__CUDA_ARCH__)
   atomicMax(reinterpret_cast<unsigned long long*>(at), static_cast<unsigned long long>(value));

@@ -304,13 +304,13 @@ struct Apply {
   }
 };
 
-// The state of a fused run of rounds (an executor that loops the rounds itself, CudaExec): what the host
-// sets before and reads after.  The rounds stop when no candidate is left, or when a round's winners would
-// not fit the capacities, before they apply (overflow: the round's work stamped back, the host grows the
-// buffers and the round runs again, with the same claims and winners).
-//   The state stays where the executor computes for the whole run, and the host reads it once an
-//   iteration, after the compaction: the iteration's kernels take their counts from it (refined, faces,
-//   entries), not from the host.  The counters (rounds, edits, work_items, phase_ns) add up over the run.
+// The state of the iteration's launches (iteration.hpp) and of their rounds: what the host reads after a
+// launch.  The rounds stop when no candidate is left, or when a round's winners would not fit the
+// capacities, before they apply (overflow: the round's work stamped back, the host grows the buffers and
+// the round runs again, with the same claims and winners).
+//   The state stays where the executor computes for the whole run, and the host reads it once a launch:
+//   the phases take their counts from it (refined, faces, entries), not from the host.  The counters
+//   (rounds, edits, work_items, phase_ns) add up over the run.
 struct RoundsState {
   u32 faces, fresh_from, entries, round;    // faces and entries in use; faces from fresh_from are new
   u32 face_capacity, entry_capacity;        // set at each launch
@@ -322,41 +322,21 @@ struct RoundsState {
   u32 round_work, round_winners;            // scratch, zero
   u32 refined;                              // faces refined this iteration (SplitFaces)
   u32 live_faces, kept_points;              // the compaction's totals (MoveLive, MovePoints)
-  // A device loop of whole iterations (CudaExec's small-mesh kernel): how many it finished, the faces they
-  // refined, and why it stopped (LoopExit).
+  // A launch of the iteration's phases (iteration.hpp): the iterations it finished, the faces it refined,
+  // and why it stopped (IterationExit).
   u32 loop_iterations, loop_refined, loop_exit;
   u32 faults, vertices;  // the finish's counts: edges not strictly convex (CountFaults), hull vertices
   u32 defects;           // concave edges and thin vertices (CountConcave, CountThin)
   u64 phase_ns[4];       // out, device only: claim, judge, number, apply (profiling)
 };
 
-// Why a device loop of iterations stopped: every point is inside (done), an iteration refined no face
-// (stall: the mesh is as it was), the next iteration might not fit (room: nothing of it done), or a round
-// did not fit (overflow: mid-iteration, after the split; the host goes on with the rounds).
-enum LoopExit : u32 { kLoopDone = 0, kLoopStall = 1, kLoopRoom = 2, kLoopOverflow = 3 };
-
-// The buffers of a device loop of iterations: the current ones and the spares the compaction writes.
-template <class Point>
-struct LoopBuffers {
-  MeshView<Point> m;  // fv, fn: the current faces
-  u32 *fv_spare, *fn_spare;
-  u32 *index, *face, *index_spare, *face_spare;  // the kept points and their faces
-  u32 *keep, *point_rank, *flags, *face_rank, *look, *list;
-  u32 *win_mask, *word_rank;  // the executor's: a bit per face, the wins before each word (rounds.hpp)
-  u64 *extreme, *claim;
-  Candidate* cands;
-  RoundsState* st;
-  u32 first;              // begin with the first distribution (AssignFirst) of ...
-  const u32* first_list;  // ... these points (null: all), into the spares, then compacted into index, face
-};
-
-// What the host gives a fused run of rounds: `begin` (the iteration's first: faces = fresh_from + 3 refined,
+// What a run of rounds starts from: `begin` (the iteration's first: faces = fresh_from + 3 refined,
 // entries = refined, from the state) or not (it goes on after an overflow), and the room there is.
 struct RoundsLaunch {
   u32 begin, fresh_from, face_capacity, entry_capacity, work_capacity;
 };
 
-// A fused run of rounds starts (one thread): the iteration's counts from the refinement's, or those the last
+// A run of rounds starts (one thread): the iteration's counts from the refinement's, or those the last
 // run stopped at; the room there is; no overflow, and no work listed yet (a run that overflowed left its
 // count).
 CUDAHULL_HD inline void start_rounds(RoundsState* st, const RoundsLaunch& launch) {
