@@ -13,6 +13,7 @@
 #include <type_traits>
 
 #include "cuda_backend.hpp"
+#include "cudahull/convex_hull_batch.hpp"
 #include "cudahull/cpu_backend.hpp"
 #include "cudahull/engine.hpp"
 #include "cudahull/errors.hpp"
@@ -21,6 +22,7 @@
 #include "cudahull/hull_checker.hpp"
 #include "cudahull/hull_plan.hpp"
 #include "cudahull/mesh_io.hpp"
+#include "cudahull/parallel.hpp"
 #include "cudahull/phase_times.hpp"
 #include "cudahull/point_io.hpp"
 #include "cudahull/point_writer.hpp"
@@ -518,6 +520,120 @@ int bench_in(const BenchOptions& o, const ConvexHullOptions& request) {
   return kExitOk;
 }
 
+// `cudahull bench --batch B --n N` (issue 27): B clouds of N points of --dist (cloud c from seed + c),
+// packed, timed through convex_hull_batch(); with --vs qhull a loop of Qhull over the same clouds, with
+// --vs loop a loop of single convex_hull() calls, each checked cloud for cloud against the batch.
+template <class Point>
+int bench_batch(const BenchOptions& o, const ConvexHullOptions& request) {
+  if (!o.input.empty())
+    throw std::invalid_argument("bench --batch takes generated clouds (--dist, --n), not INPUT");
+  constexpr Precision precision = precision_of<Point>();
+  const Distribution dist = distribution_from_name(o.distribution);
+  std::vector<Point> points;
+  points.reserve(o.batch * o.count);
+  std::vector<std::size_t> offsets{0};
+  for (std::uint64_t c = 0; c < o.batch; ++c) {
+    for (const Point3& p : generate_points(dist, o.count, o.seed + c))
+      points.push_back(Point{p.x, p.y, p.z});
+    offsets.push_back(points.size());
+  }
+  HullInput input;
+  input.precision = precision;
+  input.count = points.size();
+  const HullPlan plan = plan_hull(request, input);
+  require_runnable(plan);
+  ConvexHullBatchOptions options;
+  options.hull = request;
+  std::vector<double> total;
+  ConvexHullBatch hulls;
+  for (int r = 0; r < o.repeat; ++r) {
+    const auto t0 = Clock::now();
+    hulls = convex_hull_batch(points, offsets, options);
+    total.push_back(ms_since(t0));
+  }
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  auto cloud_of = [&](std::size_t c) {
+    return std::vector<Point>(points.begin() + static_cast<std::ptrdiff_t>(offsets[c]),
+                              points.begin() + static_cast<std::ptrdiff_t>(offsets[c + 1]));
+  };
+  auto batch_vertices = [&](std::size_t c) {
+    return std::vector<PointIndex>(
+        hulls.vertices.begin() + static_cast<std::ptrdiff_t>(hulls.vertex_offsets[c]),
+        hulls.vertices.begin() + static_cast<std::ptrdiff_t>(hulls.vertex_offsets[c + 1]));
+  };
+  const std::string label = o.distribution + " " + std::to_string(o.batch) + "x" + std::to_string(o.count);
+  const double t = median(total);
+  nlohmann::json j{{"input", label},
+                   {"clouds", o.batch},
+                   {"points_per_cloud", o.count},
+                   {"points", points.size()},
+                   {"hull_vertices", hulls.vertices.size()},
+                   {"hull_faces", hulls.faces.size()},
+                   {"backend", hulls.backend},
+                   {"engine", choice_name(plan.engine)},
+                   {"device", plan.backend == BackendChoice::kCuda ? plan.device : "cpu"},
+                   {"precision", precision_name(precision)},
+                   {"plan", plan.reason},
+                   {"threads", plan.backend == BackendChoice::kCuda ? 0u : hardware_workers()},
+                   {"repeat", o.repeat},
+                   {"total_ms", t},
+                   {"us_per_cloud", o.batch ? 1000 * t / static_cast<double>(o.batch) : 0.0},
+                   {"host_huge_pages", huge_pages_in_use()}};
+  // The same clouds one call at a time: Qhull's loop (the reference), or convex_hull()'s.
+  double versus_ms = 0;
+  std::size_t differ = 0;
+  if (!o.versus.empty()) {
+    std::vector<double> loop;
+    for (int r = 0; r < o.repeat; ++r) {
+      differ = 0;
+      double ms = 0;
+      for (std::size_t c = 0; c < o.batch; ++c) {
+        const std::vector<Point> cloud = cloud_of(c);
+        const auto t0 = Clock::now();
+        std::vector<PointIndex> vertices;
+        if (o.versus == "qhull") {
+          try {
+            vertices = run_qhull(cloud, "Qt").vertex_ids;
+          } catch (const std::runtime_error&) {
+            vertices.clear();  // a flat or too small cloud: Qhull refuses it, counted as differing
+          }
+        } else {
+          vertices = convex_hull(cloud, request).vertices;
+        }
+        ms += ms_since(t0);
+        differ += vertices != batch_vertices(c);
+      }
+      loop.push_back(ms);
+    }
+    versus_ms = median(loop);
+    j["versus"] = o.versus;
+    j["versus_ms"] = versus_ms;
+    j["speedup"] = t > 0 ? versus_ms / t : 0.0;
+    j["clouds_with_different_vertices"] = differ;
+  }
+  if (o.json) {
+    std::cout << j.dump() << "\n";
+    return kExitOk;
+  }
+  std::printf("%-28s %8s %10s %10s %12s %12s %9s %s\n", "input", "clouds", "points", "total ms", "us/cloud",
+              o.versus.empty() ? "-" : (o.versus + " ms").c_str(), "speedup", "vertices");
+  std::printf("%-28s %8llu %10zu %10.2f %12.2f %12s %9s %zu%s\n", label.c_str(),
+              static_cast<unsigned long long>(o.batch), points.size(), t,
+              o.batch ? 1000 * t / static_cast<double>(o.batch) : 0.0,
+              o.versus.empty() ? "-" : std::to_string(versus_ms).substr(0, 10).c_str(),
+              o.versus.empty() || t <= 0 ? "-" : (std::to_string(versus_ms / t).substr(0, 6) + "x").c_str(),
+              hulls.vertices.size(),
+              o.versus.empty() ? ""
+              : differ == 0
+                  ? (" (same vertices as " + o.versus + ", every cloud)").c_str()
+                  : (" (" + std::to_string(differ) + " clouds DIFFER from " + o.versus + ")").c_str());
+  std::printf("backend: %s, precision: %s\n", hulls.backend.c_str(), precision_name(precision));
+  return kExitOk;
+}
+
 // How a run goes is plan_hull()'s choice (hull_plan.hpp): the precision first, since the points are read in
 // it, from the input's own (io's resolve_precision() reads a file's header only where --precision auto asks
 // for it); the engine and the backend once the points are read and their range is known.
@@ -535,6 +651,10 @@ int run_hull(const HullOptions& o) {
 
 int run_bench(const BenchOptions& o) {
   const ConvexHullOptions request = request_of(o.backend, o.engine, o.precision);
+  if (o.batch > 0)
+    return planned_precision(request, "") == Precision::kDouble ? bench_batch<Point3d>(o, request)
+                                                                : bench_batch<Point3>(o, request);
+  if (o.versus == "loop") throw std::invalid_argument("--vs loop compares a batch: it needs --batch B");
   return planned_precision(request, o.input) == Precision::kDouble ? bench_in<Point3d>(o, request)
                                                                    : bench_in<Point3>(o, request);
 }

@@ -47,8 +47,11 @@ struct BenchOptions {
   std::string engine = "auto";     // as for hull
   std::string precision = "auto";  // as for hull; "auto" is float for a generated distribution
   int repeat = 3;
-  std::string versus;  // "qhull" or empty
+  std::string versus;  // "qhull", "loop" (with batch) or empty
   bool json = false;
+  // --batch B (issue 27): B clouds of `count` points of `distribution` through convex_hull_batch(); 0: one
+  // cloud through the engines, as before.
+  std::uint64_t batch = 0;
 };
 int run_bench(const BenchOptions& options);
 

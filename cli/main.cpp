@@ -86,7 +86,8 @@ int main(int argc, char** argv) {
   hull_cmd->add_flag("-q,--quiet", hull.quiet, "No progress or summary on stderr");
 
   cli::BenchOptions bench;
-  auto* bench_cmd = app.add_subcommand("bench", "Time the hull against Qhull, as in the paper's Table 1");
+  auto* bench_cmd = app.add_subcommand(
+      "bench", "Time the hull against Qhull, as in the paper's Table 1 (--batch: many clouds in one call)");
   bench_cmd->add_option("INPUT", bench.input, "An input file instead of a generated distribution");
   bench_cmd->add_option("--dist", bench.distribution, dist_help)->capture_default_str();
   bench_cmd->add_option("--n", bench.count, "Number of generated points")->capture_default_str();
@@ -103,9 +104,18 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--repeat", bench.repeat, "Runs to take the median of")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  bench_cmd->add_option("--vs", bench.versus, "Also run this reference in the same process: qhull")
-      ->check(CLI::IsMember({"qhull"}));
+  bench_cmd
+      ->add_option("--vs", bench.versus,
+                   "Also run this reference in the same process: qhull; with --batch, qhull or loop (the "
+                   "clouds one convex_hull() call at a time), each a loop over the clouds, compared cloud "
+                   "for cloud")
+      ->check(CLI::IsMember({"qhull", "loop"}));
   bench_cmd->add_flag("--json", bench.json, "Print one JSON object instead of the table row");
+  bench_cmd
+      ->add_option("--batch", bench.batch,
+                   "Time convex_hull_batch() on this many clouds of --n points of --dist each (cloud c "
+                   "from seed + c)")
+      ->check(CLI::Range(1ull, 100000000ull));
 
   try {
     app.parse(argc, argv);

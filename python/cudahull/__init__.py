@@ -3,7 +3,7 @@
 ``ConvexHull`` is a drop-in for ``scipy.spatial.ConvexHull`` in 2-D and 3-D: the same arguments
 (``qhull_options`` included), attributes, methods and errors (``QhullError``); ``Engine`` steps the
 algorithm one iteration at a time (for notebooks); ``convex_hull`` returns the hull as a dict, with the
-lower-dimensional answer for flat input.
+lower-dimensional answer for flat input; ``convex_hull_batch`` computes the hulls of many clouds in one call.
 
 Points already on the GPU (a CuPy array, a PyTorch CUDA tensor, anything with ``__dlpack__`` or
 ``__cuda_array_interface__`` in CUDA memory) are read in place: no host copy of them is made, and the
@@ -12,13 +12,15 @@ results come back as NumPy arrays, or, with ``device_results=True``, as arrays o
 
 import functools
 import math
+import re
 
 import numpy as np
 
 from . import _cudahull, qhull_options as _qhull_options
 from ._cudahull import SWAP_KINDS, DeviceError, InputError
 
-__all__ = ["ConvexHull", "Engine", "convex_hull", "InputError", "DeviceError", "QhullError", "SWAP_KINDS"]
+__all__ = ["ConvexHull", "Engine", "convex_hull", "convex_hull_batch", "BatchHulls", "InputError", "DeviceError",
+           "QhullError", "SWAP_KINDS"]
 
 try:  # scipy's own, where scipy is importable, so that code catching it catches ours
     from scipy.spatial import QhullError as _QhullErrorBase
@@ -123,6 +125,27 @@ class _DeviceKind:
         import torch
 
         return points[torch.as_tensor(indices, device=points.device)].contiguous()
+
+    def pack_padded(self, points, lengths):
+        """A padded (B, M, 3) array's first lengths[c] rows of each slab, packed into (N, 3), C-contiguous, on
+        the device (a device copy, none where every cloud fills its slab and the array is contiguous)."""
+        self.require_known("padded points in GPU memory")
+        slab = int(points.shape[1])
+        full = bool(np.all(lengths == slab))
+        if self.library == "cupy":
+            import cupy
+
+            if full:
+                return cupy.ascontiguousarray(points).reshape(-1, 3)
+            mask = cupy.arange(slab)[None, :] < cupy.asarray(lengths)[:, None]
+            return cupy.ascontiguousarray(points[mask])
+        import torch
+
+        if full:
+            return points.contiguous().reshape(-1, 3)
+        sizes = torch.as_tensor(lengths, device=points.device)
+        mask = torch.arange(slab, device=points.device)[None, :] < sizes[:, None]
+        return points[mask].contiguous()
 
     def concatenate(self, first, second):
         self.require_known("add_points on points in GPU memory")
@@ -632,3 +655,204 @@ class Engine:
 
     def result(self):
         return self._engine.result()
+
+
+# --- batched hulls (issue 27) ---------------------------------------------------------------------------------
+
+_BATCH_ARRAYS = ("vertex_offsets", "face_offsets", "vertices", "faces", "planes", "volumes", "areas", "dimensions",
+                 "polygon_offsets", "polygons")
+
+
+class BatchHulls:
+    """The hulls of B point clouds, packed, as ``convex_hull_batch`` returns them.
+
+    Cloud ``c``'s vertices are ``vertices[vertex_offsets[c]:vertex_offsets[c + 1]]`` (ascending) and its faces
+    ``faces[face_offsets[c]:face_offsets[c + 1]]`` (outward triangles, counter-clockwise seen from outside)
+    with their ``planes`` (unit outward normal and offset: n . x + d <= 0 inside); indices count from the
+    cloud's first point (for padded input, the row in the cloud's slab).  ``volumes``, ``areas`` and
+    ``dimensions`` hold one value a cloud: a flat cloud gives its lower-dimensional answer as
+    ``convex_hull()`` does (dimension 2, 1, 0; -1 for an empty cloud; volume 0, area both sides of its
+    polygon), with its polygon's corners in order in ``polygons[polygon_offsets[c]:polygon_offsets[c + 1]]``.
+    Offsets are int64; indices int32 (int64 beyond 2**31 points in a cloud, and for PyTorch).  Arrays are of
+    the input's library: NumPy, or CuPy arrays and PyTorch tensors on the input's device.  ``precision`` and
+    ``backend`` say what the hulls were computed in and on.
+    """
+
+    __slots__ = _BATCH_ARRAYS + ("precision", "backend")
+
+    def __len__(self):
+        return int(self.volumes.shape[0])
+
+    def cloud(self, c):
+        """Cloud ``c``'s hull as a dict: ``vertices``, ``faces``, ``planes``, ``polygon``, ``volume``, ``area``,
+        ``dimension``."""
+        if not -len(self) <= c < len(self):
+            raise IndexError(f"cloud {c} of {len(self)}")
+        c %= len(self)
+        v = slice(int(self.vertex_offsets[c]), int(self.vertex_offsets[c + 1]))
+        f = slice(int(self.face_offsets[c]), int(self.face_offsets[c + 1]))
+        p = slice(int(self.polygon_offsets[c]), int(self.polygon_offsets[c + 1]))
+        return {"vertices": self.vertices[v], "faces": self.faces[f], "planes": self.planes[f],
+                "polygon": self.polygons[p], "volume": float(self.volumes[c]), "area": float(self.areas[c]),
+                "dimension": int(self.dimensions[c])}
+
+    def __repr__(self):
+        return (f"BatchHulls({len(self)} clouds, {int(self.vertices.shape[0])} vertices, "
+                f"{int(self.faces.shape[0])} faces, precision={self.precision!r}, backend={self.backend!r})")
+
+
+def _host_integers(values, name):
+    """``offsets`` or ``lengths`` as a 1-D int64 NumPy array; from GPU memory, copied to the host (interim: B + 1
+    values, for the loop over the clouds that runs on the host until the one-launch batch kernel)."""
+    if _cuda_protocol(values) is not None:
+        owner = _DeviceKind(values)
+        if not owner.known:
+            raise ValueError(f"{name} in GPU memory must be a CuPy array or a PyTorch tensor (or NumPy)")
+        values = owner.to_numpy(values)
+    array = np.asarray(values)
+    if array.ndim != 1:
+        raise ValueError(f"{name} must be a 1-D array of integers, not one of shape {array.shape}")
+    if array.size and array.dtype.kind not in "iu":
+        raise ValueError(f"{name} must be integers, not {array.dtype}")
+    return np.ascontiguousarray(array, dtype=np.int64)
+
+
+def _batch_layout(shape, offsets, lengths):
+    """(padded, offsets as int64, lengths as int64 or None) for points of ``shape``: a packed (N, 3) array
+    with B + 1 offsets, or a padded (B, M, 3) array with B lengths (None: every cloud M points)."""
+    if len(shape) == 2 and shape[1] == 3:
+        if lengths is not None:
+            raise ValueError("lengths go with padded (B, M, 3) points; packed (N, 3) points take offsets")
+        if offsets is None:
+            raise ValueError("packed (N, 3) points need offsets: the B + 1 cloud boundaries, from 0 to N")
+        return False, _host_integers(offsets, "offsets"), None
+    if len(shape) == 3 and shape[2] == 3:
+        if offsets is not None:
+            raise ValueError("offsets go with packed (N, 3) points; padded (B, M, 3) points take lengths")
+        clouds, slab = int(shape[0]), int(shape[1])
+        if lengths is None:
+            lengths = np.full(clouds, slab, dtype=np.int64)
+        lengths = _host_integers(lengths, "lengths")
+        if lengths.shape[0] != clouds:
+            raise ValueError(f"lengths must hold one length a cloud: {clouds}, not {lengths.shape[0]}")
+        if lengths.size and (lengths.min() < 0 or lengths.max() > slab):
+            bad = int(np.flatnonzero((lengths < 0) | (lengths > slab))[0])
+            raise ValueError(f"lengths[{bad}] is {int(lengths[bad])}: a cloud holds 0 to {slab} points here")
+        return True, np.concatenate([[0], np.cumsum(lengths)]).astype(np.int64), lengths
+    raise ValueError(f"points must be a packed (N, 3) array with offsets or a padded (B, M, 3) array with "
+                     f"lengths, not one of shape {tuple(shape)}")
+
+
+def _batch_result(raw, offsets, kind=None):
+    """The module's batch dict as a BatchHulls, its arrays NumPy or, for CuPy and PyTorch input, the input's
+    kind on its device."""
+    hulls = BatchHulls()
+    longest = int(np.diff(offsets).max(initial=0))
+    index = np.int32 if longest < 2**31 else np.int64
+    raw["vertices"] = raw["vertices"].astype(index)
+    raw["polygons"] = raw["polygons"].astype(index)
+    raw["faces"] = raw["faces"].astype(index).reshape(-1, 3)
+    raw["planes"] = raw["planes"].reshape(-1, 4)
+    to_input = kind is not None and kind.known
+    for key in _BATCH_ARRAYS:
+        array = raw[key]
+        if to_input:
+            # Interim: the hulls come back to the host and go up again (small next to the points); the
+            # one-launch batch kernel will leave them on the device.  PyTorch's indices are int64, as for
+            # device_results (few operations take int32 there).
+            if kind.library == "torch" and array.dtype == np.int32:
+                array = array.astype(np.int64)
+            array = kind.like_input(array)
+        setattr(hulls, key, array)
+    hulls.precision = raw["precision"]
+    hulls.backend = raw["backend"]
+    return hulls
+
+
+def _batch_call(padded, function, *arguments):
+    """The module's batch function; for padded input an error names the cloud and the point without the row
+    of the packed copy, which the caller never saw."""
+    try:
+        return function(*arguments)
+    except ValueError as error:
+        if not padded:
+            raise
+        raise type(error)(re.sub(r" \(row \d+ of the packed points\)", "", str(error))) from None
+
+
+def convex_hull_batch(points, offsets=None, lengths=None, *, backend="auto", precision="auto", engine="auto",
+                      threads=0):
+    """The exact hulls of B point clouds in one call (issue 27), as a ``BatchHulls``.
+
+    ``points``: a packed (N, 3) array with ``offsets`` (B + 1 cloud boundaries: 0, each cloud's end, the last
+    N), or a padded (B, M, 3) array with ``lengths`` (B cloud sizes, each at most M; None: M each).  NumPy
+    (float32 computed in float, float64 and integers in double), or a CuPy array or PyTorch tensor in GPU
+    memory (float32 or float64, read there: no host copy of the points).  Each cloud's hull is
+    ``convex_hull()``'s on that cloud alone: the same vertex set, faces, planes and measures, and the
+    lower-dimensional answer for a flat cloud.  ``backend``, ``precision`` and ``engine`` as for
+    ``convex_hull``; ``threads``: CPU clouds hulled at once (0: every core), the same result for any.
+
+    On the CPU the clouds run on all cores.  With a GPU the clouds run one after another through the
+    single-cloud GPU path for now (each read in place); the one-launch batch kernel is coming.
+
+    Raises ValueError for a NaN or infinite coordinate (naming the cloud, the point in it and its row in the
+    packed points), and for bad shapes, offsets or lengths; DeviceError as ``convex_hull``.
+    """
+    protocol = _cuda_protocol(points)
+    if protocol is None:
+        if isinstance(points, np.ma.MaskedArray):
+            raise ValueError("masked arrays are not supported: pass the points to keep, packed, with offsets")
+        # A PyTorch tensor on the CPU gets tensors back (NumPy's memory, shared: no copy).
+        kind = _DeviceKind(points) if _DeviceKind(points).library == "torch" else None
+        if kind is not None:
+            points = points.detach()
+        array = np.asarray(points)
+        padded, bounds, lengths = _batch_layout(array.shape, offsets, lengths)
+        if array.dtype != np.float32 and array.dtype != np.float64:
+            if array.dtype.kind not in "biuf":
+                raise ValueError(f"points must be numbers, not {array.dtype}")
+            array = array.astype(np.float64)
+        array = np.ascontiguousarray(array)
+        if padded:
+            slab = array.shape[1]
+            if np.all(lengths == slab):
+                array = array.reshape(-1, 3)
+            else:
+                array = array[np.arange(slab)[None, :] < lengths[:, None]]  # packed, in cloud order
+        raw = _batch_call(padded, _cudahull.convex_hull_batch, np.ascontiguousarray(array), bounds, backend,
+                          precision, engine, int(threads))
+        return _batch_result(raw, bounds, kind)
+
+    # Points in GPU memory.  Interim: offsets (or lengths) are read to the host, padded clouds are packed on
+    # the device (a device copy), and the clouds run one after another through the single-cloud GPU path.
+    if backend == "cpu":
+        raise ValueError("points in GPU memory need backend 'auto' or 'cuda', not 'cpu' (for the CPU backend, "
+                         "pass them as NumPy: cupy.asnumpy(x), x.cpu().numpy())")
+    _check_engine(engine, True)
+    kind = _DeviceKind(points)
+    interface = points.__cuda_array_interface__ if protocol == "cuda_array_interface" else None
+    shape = tuple(interface["shape"] if interface is not None else points.shape)
+    padded, bounds, lengths = _batch_layout(shape, offsets, lengths)
+    usable, why_not = _cuda_device()
+    if not usable:
+        raise DeviceError(f"points in GPU memory, but no usable CUDA device: {why_not}")
+    if padded:
+        points = kind.pack_padded(points, lengths)
+        protocol = _cuda_protocol(points)
+        interface = points.__cuda_array_interface__ if protocol == "cuda_array_interface" else None
+        shape = tuple(interface["shape"] if interface is not None else points.shape)
+    if protocol == "cuda_array_interface":
+        typestr, strides = interface["typestr"], interface.get("strides")
+        if typestr not in ("<f4", "<f8"):
+            raise ValueError("points in GPU memory must be float32 or float64 (convert with .astype())")
+        itemsize = int(typestr[2])
+        if strides is not None and shape[0] > 0 and (
+                strides[1] != itemsize or (shape[0] > 1 and strides[0] != 3 * itemsize)):
+            raise ValueError("points in GPU memory must be C-contiguous: the engine reads them in place")
+        raw = _batch_call(padded, _cudahull.convex_hull_batch_cuda_pointer, interface["data"][0], shape[0],
+                          itemsize == 8, bounds, backend, precision)
+    else:
+        if getattr(points, "requires_grad", False):
+            points = points.detach()  # PyTorch exports no tensor that requires grad; the hulls read values only
+        raw = _batch_call(padded, _cudahull.convex_hull_batch_cuda, points, bounds, backend, precision)
+    return _batch_result(raw, bounds, kind)

@@ -1,6 +1,7 @@
 // cudahull._cudahull: the nanobind extension under the Python package (python/cudahull/__init__.py), which
-// gives it scipy's ConvexHull interface.  It takes C-contiguous (n, 3) float32 or float64 NumPy arrays, as
-// the package hands them over, or such arrays in CUDA memory (DLPack: CuPy, PyTorch; or a raw pointer from
+// gives it scipy's ConvexHull interface (and convex_hull_batch, issue 27).  It takes C-contiguous (n, 3)
+// float32 or float64 NumPy arrays, as the package hands them over, or such arrays in CUDA memory (DLPack:
+// CuPy, PyTorch; or a raw pointer from
 // __cuda_array_interface__), and returns plain dicts of NumPy arrays.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "cudahull/convex_hull.hpp"
+#include "cudahull/convex_hull_batch.hpp"
 #include "cudahull/engine.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/hull_plan.hpp"
@@ -271,6 +273,111 @@ nb::dict convex_hull_cuda_pointer(std::uintptr_t pointer, std::size_t count, std
   return device_hull_of(reinterpret_cast<const float*>(pointer), count, dimension, backend, precision, how);
 }
 
+// --- batched hulls (issue 27) ---------------------------------------------------------------------------
+//
+// The package (convex_hull_batch in __init__.py) packs padded input and checks shapes; here the packed
+// (n, 3) points and B + 1 int64 offsets (host memory) become convex_hull_batch()'s call, and its result a
+// dict of NumPy arrays.
+
+using OffsetArray = nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+
+std::vector<std::size_t> offsets_from(const OffsetArray& offsets) {
+  if (offsets.shape(0) == 0)
+    throw std::invalid_argument("offsets must hold B + 1 cloud boundaries ([0] for no clouds), not none");
+  std::vector<std::size_t> out(offsets.shape(0));
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const std::int64_t value = offsets.data()[k];
+    if (value < 0) throw std::invalid_argument("offsets[" + std::to_string(k) + "] is negative");
+    out[k] = static_cast<std::size_t>(value);
+  }
+  return out;
+}
+
+ConvexHullBatchOptions batch_options_from(const std::string& backend, const std::string& precision,
+                                          const std::string& engine, unsigned threads) {
+  ConvexHullBatchOptions options;
+  options.hull = options_from(backend, precision, engine, {});
+  options.threads = threads;
+  return options;
+}
+
+nb::object offsets_to_numpy(const std::vector<std::size_t>& offsets) {
+  return to_numpy(std::vector<std::int64_t>(offsets.begin(), offsets.end()));
+}
+
+nb::dict batch_to_dict(ConvexHullBatch&& batch) {
+  nb::dict d;
+  d["vertex_offsets"] = offsets_to_numpy(batch.vertex_offsets);
+  d["face_offsets"] = offsets_to_numpy(batch.face_offsets);
+  d["polygon_offsets"] = offsets_to_numpy(batch.polygon_offsets);
+  d["vertices"] = to_numpy(std::move(batch.vertices));
+  d["faces"] = take_rows(std::move(batch.faces));
+  d["planes"] = take_rows(std::move(batch.planes));
+  d["polygons"] = to_numpy(std::move(batch.polygons));
+  d["volumes"] = to_numpy(std::move(batch.volumes));
+  d["areas"] = to_numpy(std::move(batch.areas));
+  d["dimensions"] = to_numpy(std::move(batch.dimensions));
+  d["precision"] = precision_name(batch.precision);
+  d["backend"] = batch.backend;
+  return d;
+}
+
+template <class Scalar>
+nb::dict convex_hull_batch_of(PointArray<Scalar> points, const OffsetArray& offsets,
+                              const std::string& backend, const std::string& precision,
+                              const std::string& engine, unsigned threads) {
+  const std::vector<std::size_t> bounds = offsets_from(offsets);
+  const ConvexHullBatchOptions options = batch_options_from(backend, precision, engine, threads);
+  ConvexHullBatch batch;
+  {
+    nb::gil_scoped_release unlocked;  // the caller's arrays stay alive: the call holds references to them
+    batch = convex_hull_batch(points.data(), points.shape(0), bounds.data(), bounds.size() - 1, options);
+  }
+  return batch_to_dict(std::move(batch));
+}
+
+// Packed points in CUDA memory: each cloud read in place (interim: one cloud at a time through the
+// single-cloud device path, until the one-launch batch kernel).
+template <class Scalar>
+nb::dict device_batch_of(const Scalar* xyz, std::size_t count, const OffsetArray& offsets,
+                         const std::string& backend, const std::string& precision) {
+  const std::vector<std::size_t> bounds = offsets_from(offsets);
+  const ConvexHullBatchOptions options = batch_options_from(backend, precision, "resident", 0);
+  ConvexHullBatch batch;
+  {
+    nb::gil_scoped_release unlocked;
+    batch = convex_hull_batch_device(xyz, count, bounds.data(), bounds.size() - 1, options);
+  }
+  return batch_to_dict(std::move(batch));
+}
+
+nb::dict convex_hull_batch_cuda(const CudaArray& points, const OffsetArray& offsets,
+                                const std::string& backend, const std::string& precision) {
+  const bool is_float = points.dtype() == nb::dtype<float>(),
+             is_double = points.dtype() == nb::dtype<double>();
+  if (!is_float && !is_double)
+    throw std::invalid_argument("points in GPU memory must be float32 or float64 (convert with .astype())");
+  if (points.ndim() != 2 || points.shape(1) != 3)
+    throw std::invalid_argument("packed points in GPU memory must be an (n, 3) array");
+  const std::size_t n = points.shape(0);
+  if (n != 0 && (points.stride(1) != 1 || (n > 1 && points.stride(0) != 3)))
+    throw std::invalid_argument(
+        "points in GPU memory must be C-contiguous: the engine reads them in place "
+        "(cupy.ascontiguousarray(x) "
+        "or x.contiguous() copies them on the device)");
+  if (is_float)
+    return device_batch_of(static_cast<const float*>(points.data()), n, offsets, backend, precision);
+  return device_batch_of(static_cast<const double*>(points.data()), n, offsets, backend, precision);
+}
+
+nb::dict convex_hull_batch_cuda_pointer(std::uintptr_t pointer, std::size_t count, bool is_double,
+                                        const OffsetArray& offsets, const std::string& backend,
+                                        const std::string& precision) {
+  if (is_double)
+    return device_batch_of(reinterpret_cast<const double*>(pointer), count, offsets, backend, precision);
+  return device_batch_of(reinterpret_cast<const float*>(pointer), count, offsets, backend, precision);
+}
+
 // The stepping engine for notebooks: one iteration per step(), its record as a dict of NumPy arrays.
 class StepEngine {
  public:
@@ -434,6 +541,15 @@ NB_MODULE(_cudahull, m) {
   m.def("convex_hull_cuda_pointer", &convex_hull_cuda_pointer, nb::arg("pointer"), nb::arg("count"),
         nb::arg("dimension"), nb::arg("is_double"), nb::arg("backend"), nb::arg("precision"),
         nb::arg("merge"), nb::arg("tolerance"), nb::arg("angle") = 1.0);
+  // Batched hulls (issue 27): packed points and B + 1 offsets; the package packs padded input.
+  m.def("convex_hull_batch", &convex_hull_batch_of<float>, nb::arg("points"), nb::arg("offsets"),
+        nb::arg("backend"), nb::arg("precision"), nb::arg("engine"), nb::arg("threads") = 0);
+  m.def("convex_hull_batch", &convex_hull_batch_of<double>, nb::arg("points"), nb::arg("offsets"),
+        nb::arg("backend"), nb::arg("precision"), nb::arg("engine"), nb::arg("threads") = 0);
+  m.def("convex_hull_batch_cuda", &convex_hull_batch_cuda, nb::arg("points"), nb::arg("offsets"),
+        nb::arg("backend"), nb::arg("precision"));
+  m.def("convex_hull_batch_cuda_pointer", &convex_hull_batch_cuda_pointer, nb::arg("pointer"),
+        nb::arg("count"), nb::arg("is_double"), nb::arg("offsets"), nb::arg("backend"), nb::arg("precision"));
   // Whether a CUDA array can be taken here at all: (usable, why not), before its data is touched.
   m.def("cuda_device", []() {
     const CudaStatus cuda = cuda_status();

@@ -27,6 +27,23 @@ inline unsigned hardware_workers() {
 }
 
 namespace detail {
+// How many SerialScopes are alive on this thread.
+inline thread_local int serial_scopes = 0;
+}  // namespace detail
+
+// While one lives on a thread, parallel_chunks() on that thread runs every range there, as for one worker:
+// for callers that keep every core busy with work of their own (convex_hull_batch(): a cloud a worker, each
+// cloud's engine passes on its worker's thread).  Results do not change: the callers' bodies are written
+// for any split of their range.
+class SerialScope {
+ public:
+  SerialScope() { ++detail::serial_scopes; }
+  ~SerialScope() { --detail::serial_scopes; }
+  SerialScope(const SerialScope&) = delete;
+  SerialScope& operator=(const SerialScope&) = delete;
+};
+
+namespace detail {
 using ChunkCall = void (*)(void* body, std::size_t begin, std::size_t end, unsigned worker);
 // Runs call(body, begin, end, w) for w in [0, workers) on the process's persistent worker threads (the
 // caller takes chunk 0).  Returns false, having run nothing, when the pool cannot take the job: it is busy
@@ -40,7 +57,7 @@ bool run_on_worker_pool(std::size_t n, unsigned workers, ChunkCall call, void* b
 // than the work); `worker` is below the `workers` asked for.  Exceptions from any chunk reach the caller.
 template <class Body>
 void parallel_chunks(std::size_t n, unsigned workers, Body&& body, std::size_t grain = 4096) {
-  if (workers <= 1 || n < grain) {
+  if (workers <= 1 || n < grain || detail::serial_scopes > 0) {
     body(std::size_t{0}, n, 0u);
     return;
   }

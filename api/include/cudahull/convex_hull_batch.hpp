@@ -1,0 +1,99 @@
+// Batched exact hulls (issue 27): the hulls of B point clouds packed in one array, in one call.
+//
+//   #include <cudahull/convex_hull_batch.hpp>
+//   std::vector<cudahull::Point3> points = ...;          // cloud c is points[offsets[c] .. offsets[c + 1])
+//   std::vector<std::size_t> offsets = {0, 1000, 1500, 4000};   // B + 1 boundaries: 3 clouds
+//   cudahull::ConvexHullBatch hulls = cudahull::convex_hull_batch(points, offsets);
+//   for (std::size_t c = 0; c < hulls.size(); ++c)
+//     for (std::size_t k = hulls.vertex_offsets[c]; k < hulls.vertex_offsets[c + 1]; ++k)
+//       use(points[offsets[c] + hulls.vertices[k]]);     // indices into cloud c
+//
+// Each cloud's hull is convex_hull()'s on that cloud alone (convex_hull.hpp): the same vertex set, faces,
+// planes, volume, area and dimension, whatever the thread count.  Flat clouds give their lower-dimensional
+// answer as convex_hull() does.
+//
+// design:
+//   the offsets checked (B + 1 of them, from 0, never decreasing, to the point count)
+//   one plan for the batch (plan_hull() on all its points): where it runs, CPU or CUDA
+//   CPU: the clouds on all cores, a cloud a worker at a time in cloud order (each cloud's engine passes on
+//     its worker's thread, SerialScope); a cloud too large to share the cores runs alone on all of them
+//   CUDA (interim): each cloud in turn through the single-cloud path (convex_hull(), convex_hull_device());
+//     the one-launch batch kernel (issue 27, coming) replaces that loop in one place, run_batch_on_device()
+//     in convex_hull_batch.cpp, and gives the same per-cloud results
+//   errors: the first bad point in packed order raises, named by its cloud, its index in the cloud and its
+//     row in the packed array; clouds after a failed one are not started
+//   the per-cloud hulls packed into flat arrays with offsets, in cloud order
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cudahull/convex_hull.hpp"
+#include "cudahull/types.hpp"
+
+namespace cudahull {
+
+struct ConvexHullBatchOptions {
+  // Every cloud's hull is convex_hull(cloud, hull) (backend, engine, precision, merging); backend and
+  // precision "auto" are resolved once for the whole batch.
+  ConvexHullOptions hull;
+  // CPU backend: how many clouds are hulled at once (0: every core, hardware_workers()).  With 1 every
+  // cloud's hull runs on the calling thread.  The result is the same for every value.
+  unsigned threads = 0;
+};
+
+// The hulls of B clouds, packed: cloud c's vertices are vertices[vertex_offsets[c] .. vertex_offsets[c + 1])
+// and its faces (with their planes) faces[face_offsets[c] .. face_offsets[c + 1]).  Indices are into each
+// cloud (0 is the cloud's first point), as convex_hull() gives them for the cloud alone.
+struct ConvexHullBatch {
+  std::vector<std::size_t> vertex_offsets{0}, face_offsets{0};  // B + 1 each
+  // Per cloud: the strictly extreme points, ascending (among duplicates the lowest index).
+  std::vector<PointIndex> vertices;
+  // Per cloud of dimension 3: outward triangles, counter-clockwise seen from outside; their planes: unit
+  // outward normal and offset (n . x + d <= 0 inside).
+  std::vector<std::array<PointIndex, 3>> faces;
+  std::vector<std::array<double, 4>> planes;
+  // Per cloud, convex_hull()'s `polygon`: for dimension 2 the polygon's corners in order; else none.
+  std::vector<std::size_t> polygon_offsets{0};  // B + 1
+  std::vector<PointIndex> polygons;
+  // Per cloud, as convex_hull()'s: volume and area (a flat cloud: volume 0, area both sides of its
+  // polygon), and the affine dimension (3; 2, 1, 0 for flat input; -1 for an empty cloud).
+  std::vector<double> volumes, areas;
+  std::vector<std::int32_t> dimensions;
+  Precision precision = Precision::kFloat;  // what the hulls were computed in (never kAuto)
+  // The backends that ran, as convex_hull()'s names ("cpu", "cpu-resident", "cuda-resident", "cpu-wide"),
+  // in the order first met, joined by "+" where the clouds differ (a wide-range cloud takes "cpu-wide").
+  std::string backend;
+
+  std::size_t size() const { return volumes.size(); }
+};
+
+// The hulls of the clouds of `points` that `offsets` bound (B + 1 values: 0, then each cloud's end, the last
+// the point count; an empty cloud repeats its start).  Throws std::invalid_argument for bad offsets;
+// InputError for a NaN or infinite coordinate (or, in float, a double beyond float's range), naming the
+// cloud, the point's index in it and its row in `points` ("cloud 2: point 7: y coordinate nan is not finite
+// (row 1507 of the packed points)"); DeviceError as convex_hull() does.
+ConvexHullBatch convex_hull_batch(const std::vector<Point3>& points, const std::vector<std::size_t>& offsets,
+                                  const ConvexHullBatchOptions& options = {});
+ConvexHullBatch convex_hull_batch(const std::vector<Point3d>& points, const std::vector<std::size_t>& offsets,
+                                  const ConvexHullBatchOptions& options = {});
+// The same on `count` x, y, z triples in one contiguous array, with `clouds` + 1 offsets.
+ConvexHullBatch convex_hull_batch(const float* xyz, std::size_t count, const std::size_t* offsets,
+                                  std::size_t clouds, const ConvexHullBatchOptions& options = {});
+ConvexHullBatch convex_hull_batch(const double* xyz, std::size_t count, const std::size_t* offsets,
+                                  std::size_t clouds, const ConvexHullBatchOptions& options = {});
+
+// The same on `count` x, y, z triples in the current CUDA device's memory (the offsets in host memory), read
+// in place.  Interim: each cloud through convex_hull_device() in turn, until the one-launch batch kernel.
+// Throws as convex_hull_device() does (std::invalid_argument for backend cpu).
+ConvexHullBatch convex_hull_batch_device(const float* device_xyz, std::size_t count,
+                                         const std::size_t* offsets, std::size_t clouds,
+                                         const ConvexHullBatchOptions& options = {});
+ConvexHullBatch convex_hull_batch_device(const double* device_xyz, std::size_t count,
+                                         const std::size_t* offsets, std::size_t clouds,
+                                         const ConvexHullBatchOptions& options = {});
+
+}  // namespace cudahull

@@ -1,0 +1,110 @@
+"""convex_hull_batch (issue 27) from CuPy arrays and PyTorch CUDA tensors, against the same clouds given as
+NumPy on the CPU backend: cloud for cloud the same hulls, results of the input's kind on its device, the same
+errors.  Interim: on the GPU the clouds run one at a time through the single-cloud path (the one-launch batch
+kernel is to come).  ctest label gpu: skipped (exit 77) where there is no GPU, CuPy or PyTorch."""
+
+import numpy as np
+import pytest
+
+import cudahull
+
+GPU_USABLE, GPU_WHY = cudahull._cudahull.cuda_device()
+pytestmark = pytest.mark.skipif(not GPU_USABLE, reason=f"no usable CUDA device: {GPU_WHY}")
+
+
+@pytest.fixture(params=["cupy", "torch"])
+def lib(request):
+    module = pytest.importorskip(request.param)
+    if request.param == "torch" and not module.cuda.is_available():
+        pytest.skip("PyTorch sees no CUDA device")
+    return module
+
+
+def on_device(lib, array):
+    if lib.__name__ == "cupy":
+        return lib.asarray(array)
+    return lib.from_numpy(np.ascontiguousarray(array)).cuda()
+
+
+def to_numpy(array):
+    if isinstance(array, np.ndarray):
+        return array
+    if hasattr(array, "get"):
+        return array.get()
+    return array.detach().cpu().numpy()
+
+
+def clouds():
+    """Clouds of every kind and size that the batch must take, small ones most."""
+    rng = np.random.default_rng(27)
+    out = [np.empty((0, 3)), rng.normal(size=(1, 3)), rng.normal(size=(2, 3)), rng.normal(size=(3, 3)),
+           np.repeat(rng.normal(size=(1, 3)), 5, axis=0),  # one point, five times
+           np.outer(np.arange(-20, 20), [1.0, 2, 3]),  # collinear
+           np.column_stack([rng.integers(-50, 50, size=(300, 2)), np.zeros(300)]).astype(np.float64),  # flat
+           rng.integers(0, 6, size=(400, 3)).astype(np.float64)]  # integer grid
+    for n in np.exp(rng.uniform(np.log(4), np.log(5000), size=120)).astype(int):
+        out.append(rng.uniform(-1, 1, size=(n, 3)) if n % 2 else rng.normal(size=(n, 3)))
+    return out
+
+
+CLOUDS = clouds()
+
+
+def assert_as_on_the_cpu(got, points, offsets, library):
+    """Against the CPU's batch with the engine the GPU runs (the resident one): the same meshes face for face,
+    as arrays of `library`; and against the CPU's default engine (stepping): the same vertex sets."""
+    want = cudahull.convex_hull_batch(points, offsets, backend="cpu", engine="resident")
+    assert len(got) == len(want)
+    for key in ("vertex_offsets", "face_offsets", "vertices", "faces", "planes", "dimensions", "polygon_offsets",
+                "polygons", "volumes", "areas"):
+        array = getattr(got, key)
+        assert type(array).__module__.partition(".")[0] == library, key
+        if key in ("volumes", "areas"):
+            assert to_numpy(array) == pytest.approx(getattr(want, key), rel=1e-12, abs=0), key
+        else:
+            assert np.array_equal(to_numpy(array), getattr(want, key)), key
+    stepping = cudahull.convex_hull_batch(points, offsets, backend="cpu")
+    assert np.array_equal(to_numpy(got.vertices), stepping.vertices)
+    assert np.array_equal(to_numpy(got.vertex_offsets), stepping.vertex_offsets)
+
+
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+def test_packed_on_the_device_as_numpys(lib, dtype):
+    points = np.concatenate(CLOUDS).astype(dtype)
+    offsets = np.concatenate([[0], np.cumsum([len(p) for p in CLOUDS])])
+    got = cudahull.convex_hull_batch(on_device(lib, points), offsets)
+    assert got.backend.startswith("cuda") and got.precision == ("float" if dtype == np.float32 else "double")
+    assert_as_on_the_cpu(got, points, offsets, lib.__name__)
+    # Offsets given on the device too.
+    again = cudahull.convex_hull_batch(on_device(lib, points), on_device(lib, offsets.astype(np.int64)))
+    assert np.array_equal(to_numpy(again.vertices), to_numpy(got.vertices))
+
+
+def test_padded_on_the_device_as_packed(lib):
+    slab = max(len(p) for p in CLOUDS)
+    padded = np.full((len(CLOUDS), slab, 3), np.nan)  # NaN padding: no cloud's points
+    for row, cloud in enumerate(CLOUDS):
+        padded[row, :len(cloud)] = cloud
+    lengths = np.array([len(p) for p in CLOUDS])
+    got = cudahull.convex_hull_batch(on_device(lib, padded), lengths=lengths)
+    offsets = np.concatenate([[0], np.cumsum(lengths)])
+    assert_as_on_the_cpu(got, np.concatenate(CLOUDS), offsets, lib.__name__)
+
+
+def test_errors_name_the_cloud_and_the_point(lib):
+    points = np.random.default_rng(3).normal(size=(30, 3))
+    points[17, 1] = np.nan
+    with pytest.raises(ValueError, match=r"^cloud 3: point 2: y coordinate nan is not finite \(row 17 of the "
+                                         r"packed points\)$"):
+        cudahull.convex_hull_batch(on_device(lib, points), [0, 10, 10, 15, 30])
+    with pytest.raises(ValueError, match="need backend 'auto' or 'cuda'"):
+        cudahull.convex_hull_batch(on_device(lib, points), [0, 30], backend="cpu")
+
+
+def test_cuda_backend_on_host_points():
+    points = np.concatenate(CLOUDS)
+    offsets = np.concatenate([[0], np.cumsum([len(p) for p in CLOUDS])])
+    got = cudahull.convex_hull_batch(points, offsets, backend="cuda")
+    want = cudahull.convex_hull_batch(points, offsets, backend="cpu")
+    assert got.backend.startswith("cuda")
+    assert np.array_equal(got.vertices, want.vertices) and np.array_equal(got.dimensions, want.dimensions)

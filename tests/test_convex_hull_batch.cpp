@@ -1,0 +1,517 @@
+// Batched hulls (issue 27): convex_hull_batch() cloud for cloud against convex_hull() on each cloud alone
+// (every field), against Qhull on clouds in general position, and against an exact brute force (Caratheodory,
+// exact predicates) on tiny clouds of every kind; edge cases written out; errors naming the cloud and the
+// point; and the same result on 1, 2, all and more threads than cores.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cudahull/convex_hull.hpp"
+#include "cudahull/convex_hull_batch.hpp"
+#include "cudahull/errors.hpp"
+#include "cudahull/generators.hpp"
+#include "cudahull/parallel.hpp"
+#include "cudahull/predicates.hpp"
+#include "qhull_reference.hpp"
+#include "support/cli_runner.hpp"
+
+namespace cudahull {
+namespace {
+
+ConvexHullBatchOptions on_cpu(unsigned threads = 0, Precision precision = Precision::kAuto) {
+  ConvexHullBatchOptions options;
+  options.hull.backend = BackendChoice::kCpu;
+  options.hull.precision = precision;
+  options.threads = threads;
+  return options;
+}
+
+template <class T>
+std::vector<T> slice(const std::vector<T>& values, std::size_t begin, std::size_t end) {
+  return std::vector<T>(values.begin() + static_cast<std::ptrdiff_t>(begin),
+                        values.begin() + static_cast<std::ptrdiff_t>(end));
+}
+
+// Cloud c of the batch against `hull`, convex_hull() on the cloud alone: every field the batch carries.
+void expect_cloud_is(const ConvexHullBatch& batch, std::size_t c, const ConvexHull& hull) {
+  SCOPED_TRACE("cloud " + std::to_string(c));
+  EXPECT_EQ(batch.dimensions[c], hull.dimension);
+  EXPECT_EQ(slice(batch.vertices, batch.vertex_offsets[c], batch.vertex_offsets[c + 1]), hull.vertices);
+  EXPECT_EQ(slice(batch.faces, batch.face_offsets[c], batch.face_offsets[c + 1]), hull.faces);
+  EXPECT_EQ(slice(batch.planes, batch.face_offsets[c], batch.face_offsets[c + 1]), hull.planes);
+  EXPECT_EQ(slice(batch.polygons, batch.polygon_offsets[c], batch.polygon_offsets[c + 1]), hull.polygon);
+  EXPECT_EQ(batch.volumes[c], hull.volume);
+  EXPECT_EQ(batch.areas[c], hull.area);
+}
+
+template <class Point>
+void expect_each_cloud_is_its_own_hull(const std::vector<Point>& points,
+                                       const std::vector<std::size_t>& offsets, const ConvexHullBatch& batch,
+                                       const ConvexHullOptions& options) {
+  const std::size_t clouds = offsets.size() - 1;
+  ASSERT_EQ(batch.size(), clouds);
+  ASSERT_EQ(batch.vertex_offsets.size(), clouds + 1);
+  ASSERT_EQ(batch.face_offsets.size(), clouds + 1);
+  ASSERT_EQ(batch.polygon_offsets.size(), clouds + 1);
+  EXPECT_EQ(batch.vertex_offsets.back(), batch.vertices.size());
+  EXPECT_EQ(batch.face_offsets.back(), batch.faces.size());
+  EXPECT_EQ(batch.planes.size(), batch.faces.size());
+  for (std::size_t c = 0; c < clouds; ++c)
+    expect_cloud_is(batch, c, convex_hull(slice(points, offsets[c], offsets[c + 1]), options));
+}
+
+bool same_batch(const ConvexHullBatch& a, const ConvexHullBatch& b) {
+  return a.vertex_offsets == b.vertex_offsets && a.face_offsets == b.face_offsets &&
+         a.vertices == b.vertices && a.faces == b.faces && a.planes == b.planes &&
+         a.polygon_offsets == b.polygon_offsets && a.polygons == b.polygons && a.volumes == b.volumes &&
+         a.areas == b.areas && a.dimensions == b.dimensions && a.precision == b.precision;
+}
+
+// --- an exact brute force for tiny clouds ------------------------------------------------------------------
+//
+// A point is a vertex exactly when no earlier point equals it and it is not in the convex hull of the points
+// that differ from it; by Caratheodory it is in that hull exactly when it is in a closed tetrahedron, a
+// closed triangle or a closed segment of them (the lower ones for the tetrahedra that are flat).  Exact
+// predicates on float coordinates.
+
+Vec3d at(const std::vector<Point3>& points, std::size_t i) {
+  return to_vec3d(points[i]);
+}
+
+bool on_segment(Vec3d a, Vec3d b, Vec3d p) {
+  if (!collinear3d(a, b, p)) return false;
+  return std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
+         p.y <= std::max(a.y, b.y) && std::min(a.z, b.z) <= p.z && p.z <= std::max(a.z, b.z);
+}
+
+bool in_triangle(Vec3d a, Vec3d b, Vec3d c, Vec3d p) {
+  if (collinear3d(a, b, c) || orient3d(a, b, c, p) != 0) return false;
+  // Projected on the coordinate plane where the triangle keeps an area.
+  for (int drop = 0; drop < 3; ++drop) {
+    auto u = [&](Vec3d v) { return drop == 0 ? v.y : v.x; };
+    auto w = [&](Vec3d v) { return drop == 2 ? v.y : v.z; };
+    const int turn = orient2d(u(a), w(a), u(b), w(b), u(c), w(c));
+    if (turn == 0) continue;
+    return orient2d(u(a), w(a), u(b), w(b), u(p), w(p)) * turn >= 0 &&
+           orient2d(u(b), w(b), u(c), w(c), u(p), w(p)) * turn >= 0 &&
+           orient2d(u(c), w(c), u(a), w(a), u(p), w(p)) * turn >= 0;
+  }
+  return false;
+}
+
+bool in_tetrahedron(Vec3d a, Vec3d b, Vec3d c, Vec3d d, Vec3d p) {
+  const int o = orient3d(a, b, c, d);
+  if (o == 0) return false;
+  return orient3d(a, b, c, p) * o >= 0 && orient3d(a, b, d, p) * orient3d(a, b, d, c) >= 0 &&
+         orient3d(a, c, d, p) * orient3d(a, c, d, b) >= 0 && orient3d(b, c, d, p) * orient3d(b, c, d, a) >= 0;
+}
+
+std::vector<PointIndex> brute_force_vertices(const std::vector<Point3>& points) {
+  std::vector<PointIndex> vertices;
+  const std::size_t n = points.size();
+  for (std::size_t p = 0; p < n; ++p) {
+    bool extreme = true;
+    std::vector<std::size_t> others;
+    for (std::size_t q = 0; q < n; ++q) {
+      if (points[q] != points[p]) {
+        others.push_back(q);
+      } else if (q < p) {
+        extreme = false;  // a later duplicate
+      }
+    }
+    const Vec3d x = at(points, p);
+    const std::size_t m = others.size();
+    for (std::size_t i = 0; extreme && i < m; ++i) {
+      for (std::size_t j = i + 1; extreme && j < m; ++j) {
+        const Vec3d a = at(points, others[i]), b = at(points, others[j]);
+        if (on_segment(a, b, x)) extreme = false;
+        for (std::size_t k = j + 1; extreme && k < m; ++k) {
+          const Vec3d c = at(points, others[k]);
+          if (in_triangle(a, b, c, x)) extreme = false;
+          for (std::size_t l = k + 1; extreme && l < m; ++l)
+            if (in_tetrahedron(a, b, c, at(points, others[l]), x)) extreme = false;
+        }
+      }
+    }
+    if (extreme) vertices.push_back(static_cast<PointIndex>(p));
+  }
+  return vertices;
+}
+
+// --- clouds of mixed kinds
+// ------------------------------------------------------------------------------------
+
+enum Kind { kCube, kBall, kSphere, kGauss, kFlat, kCollinear, kDuplicated, kGrid, kTinyInteger, kKinds };
+
+// mt19937_64's raw output (std::'s distributions differ between libraries).
+struct Random {
+  std::mt19937_64 engine;
+  explicit Random(std::uint64_t seed) : engine(seed) {}
+  std::uint64_t below(std::uint64_t n) { return engine() % n; }
+  // Log-uniform in [low, high].
+  std::size_t sized(std::size_t low, std::size_t high) {
+    const double u = static_cast<double>(engine() >> 11) * 0x1p-53;
+    return static_cast<std::size_t>(std::exp(std::log(double(low)) + u * std::log(double(high) / low)));
+  }
+};
+
+std::vector<Point3> cloud_of(Kind kind, std::size_t n, std::uint64_t seed, Random& random) {
+  auto integer = [&](int low, int high) {
+    return static_cast<float>(low + int(random.below(high - low + 1)));
+  };
+  std::vector<Point3> cloud;
+  switch (kind) {
+    case kCube:
+      return generate_points(Distribution::kCube, n, seed);
+    case kBall:
+      return generate_points(Distribution::kBall, n, seed);
+    case kSphere:
+      return generate_points(Distribution::kSphere, n, seed);
+    case kGauss:
+      return generate_points(Distribution::kGauss, n, seed);
+    case kFlat:  // exactly on the plane z = 2x - 3y + 1
+      for (std::size_t i = 0; i < n; ++i) {
+        const float x = integer(-100, 100), y = integer(-100, 100);
+        cloud.push_back({x, y, 2 * x - 3 * y + 1});
+      }
+      return cloud;
+    case kCollinear:  // on the line (1, 2, 3) t + (5, -1, 2)
+      for (std::size_t i = 0; i < n; ++i) {
+        const float t = integer(-500, 500);
+        cloud.push_back({t + 5, 2 * t - 1, 3 * t + 2});
+      }
+      return cloud;
+    case kDuplicated: {  // a few distinct points, each many times, in any order
+      const std::vector<Point3> distinct = generate_points(Distribution::kGauss, 4 + random.below(12), seed);
+      for (std::size_t i = 0; i < n; ++i)
+        cloud.push_back(distinct[random.below(distinct.size())]);
+      return cloud;
+    }
+    case kGrid:  // integer points of a 9 x 9 x 9 box: faces, edges and corners full of points
+      for (std::size_t i = 0; i < n; ++i)
+        cloud.push_back({integer(0, 8), integer(0, 8), integer(0, 8)});
+      return cloud;
+    case kTinyInteger:  // a 4 x 4 x 4 box: degenerate at every turn
+      for (std::size_t i = 0; i < n; ++i)
+        cloud.push_back({integer(0, 3), integer(0, 3), integer(0, 3)});
+      return cloud;
+    default:
+      return cloud;
+  }
+}
+
+struct MixedBatch {
+  std::vector<Point3> points;
+  std::vector<std::size_t> offsets{0};
+  std::vector<Kind> kinds;
+  void add(const std::vector<Point3>& cloud, Kind kind) {
+    points.insert(points.end(), cloud.begin(), cloud.end());
+    offsets.push_back(points.size());
+    kinds.push_back(kind);
+  }
+  std::vector<Point3> cloud(std::size_t c) const { return slice(points, offsets[c], offsets[c + 1]); }
+};
+
+// `clouds` clouds of every kind, sizes log-uniform in 4..3000 (tiny integer ones 0..10), every 50th from the
+// fourth empty and from the fifth one point repeated, and one cloud of 60,000 points at `large_at` (large
+// enough beside the others to run alone on every core).
+MixedBatch mixed_batch(std::size_t clouds, std::uint64_t seed, std::size_t large_at) {
+  Random random(seed);
+  MixedBatch batch;
+  for (std::size_t c = 0; c < clouds; ++c) {
+    if (c == large_at) {
+      batch.add(generate_points(Distribution::kBall, 60000, seed + c), kBall);
+      continue;
+    }
+    if (c % 50 == 3 || c % 50 == 4) {
+      batch.add(std::vector<Point3>(c % 50 == 3 ? 0 : 1 + random.below(5), Point3{0.5f, -1, 2}), kDuplicated);
+      continue;
+    }
+    const Kind kind = static_cast<Kind>(c % kKinds);
+    const std::size_t n = kind == kTinyInteger ? random.below(11) : random.sized(4, 3000);
+    batch.add(cloud_of(kind, n, seed + c, random), kind);
+  }
+  return batch;
+}
+
+// --- tests
+// ---------------------------------------------------------------------------------------------------
+
+TEST(ConvexHullBatch, EdgeCasesWrittenOut) {
+  const std::vector<std::vector<Point3d>> clouds{
+      {},                                 // 0: empty
+      {{1, 2, 3}},                        // 1: one point
+      {{0, 0, 0}, {1, 1, 1}},             // 2: two points
+      {{4, 4, 4}, {4, 4, 4}},             // 3: one point twice
+      {{0, 0, 0}, {2, 0, 0}, {0, 3, 0}},  // 4: a triangle
+      {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}},  // 5: three on a line
+      {{0.5, 0.5, 0.5},
+       {0, 0, 0},
+       {1, 0, 0},
+       {0, 1, 0},
+       {1, 1, 0},
+       {0, 0, 1},
+       {1, 0, 1},
+       {0, 1, 1},
+       {1, 1, 1},
+       {1, 1, 1},
+       {0, 0, 0},
+       {0.5, 0, 0}},                                            // 6: a cube, repeats
+      {{0, 0, 5}, {2, 0, 5}, {1, 1, 5}, {2, 2, 5}, {0, 2, 5}},  // 7: a flat square
+      {{3, 0, 0}, {1, 0, 0}, {4, 0, 0}, {0, 0, 0}, {2, 0, 0}},  // 8: collinear
+      {},                                                       // 9: empty, last
+  };
+  std::vector<Point3d> points;
+  std::vector<std::size_t> offsets{0};
+  for (const auto& cloud : clouds) {
+    points.insert(points.end(), cloud.begin(), cloud.end());
+    offsets.push_back(points.size());
+  }
+  const ConvexHullBatch batch = convex_hull_batch(points, offsets, on_cpu());
+  ASSERT_EQ(batch.size(), clouds.size());
+  EXPECT_EQ(batch.precision, Precision::kDouble);
+  EXPECT_EQ(batch.dimensions, (std::vector<std::int32_t>{-1, 0, 1, 0, 2, 1, 3, 2, 1, -1}));
+  auto vertices = [&](std::size_t c) {
+    return slice(batch.vertices, batch.vertex_offsets[c], batch.vertex_offsets[c + 1]);
+  };
+  using V = std::vector<PointIndex>;
+  EXPECT_EQ(vertices(0), V{});
+  EXPECT_EQ(vertices(1), V{0});
+  EXPECT_EQ(vertices(2), (V{0, 1}));
+  EXPECT_EQ(vertices(3), V{0});
+  EXPECT_EQ(vertices(4), (V{0, 1, 2}));
+  EXPECT_EQ(vertices(5), (V{0, 2}));
+  EXPECT_EQ(vertices(6), (V{1, 2, 3, 4, 5, 6, 7, 8}));  // indices into the cloud; the first of each repeat
+  EXPECT_EQ(vertices(7), (V{0, 1, 3, 4}));
+  EXPECT_EQ(vertices(8), (V{2, 3}));
+  EXPECT_EQ(vertices(9), V{});
+  EXPECT_EQ(batch.face_offsets, (std::vector<std::size_t>{0, 0, 0, 0, 0, 0, 0, 12, 12, 12, 12}));
+  EXPECT_EQ(batch.volumes[6], 1.0);
+  EXPECT_EQ(batch.areas[6], 6.0);
+  EXPECT_EQ(batch.areas[4], 6.0);  // both sides of the triangle of area 3
+  EXPECT_EQ(batch.areas[7], 8.0);  // both sides of the 2 x 2 square
+  for (std::size_t c : {0, 1, 2, 3, 4, 5, 7, 8, 9})
+    EXPECT_EQ(batch.volumes[c], 0.0) << c;
+  for (std::size_t f = 0; f < 12; ++f) {  // the cube's planes: unit axis normals, every corner on or below
+    const auto& plane = batch.planes[f];
+    EXPECT_EQ(std::abs(plane[0]) + std::abs(plane[1]) + std::abs(plane[2]), 1.0);
+    for (const Point3d& p : clouds[6])
+      EXPECT_LE(plane[0] * p.x + plane[1] * p.y + plane[2] * p.z + plane[3], 0.0);
+  }
+  expect_each_cloud_is_its_own_hull(points, offsets, batch, on_cpu().hull);
+}
+
+TEST(ConvexHullBatch, NoCloudsAndOneCloud) {
+  const ConvexHullBatch none = convex_hull_batch(std::vector<Point3>{}, {0}, on_cpu());
+  EXPECT_EQ(none.size(), 0u);
+  EXPECT_EQ(none.vertex_offsets, std::vector<std::size_t>{0});
+  EXPECT_EQ(none.face_offsets, std::vector<std::size_t>{0});
+  EXPECT_TRUE(none.vertices.empty() && none.faces.empty());
+
+  const std::vector<Point3> ball = generate_points(Distribution::kBall, 5000, 3);
+  const std::vector<std::size_t> offsets{0, ball.size()};
+  const ConvexHullBatch one = convex_hull_batch(ball, offsets, on_cpu());
+  const ConvexHull alone = convex_hull(ball, on_cpu().hull);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one.precision, Precision::kFloat);
+  EXPECT_EQ(one.backend, alone.backend);
+  EXPECT_EQ(one.vertices, run_qhull(ball).vertex_ids);
+  expect_each_cloud_is_its_own_hull(ball, offsets, one, on_cpu().hull);
+  // The array overload is the same call.
+  const ConvexHullBatch array = convex_hull_batch(&ball[0].x, ball.size(), offsets.data(), 1, on_cpu());
+  EXPECT_TRUE(same_batch(array, one));
+}
+
+// A few hundred clouds of every kind, in float and in double: each cloud convex_hull()'s on it alone; the
+// clouds in general position Qhull's vertices; the tiny ones the brute force's.
+TEST(ConvexHullBatch, MixedCloudsAreEachTheirOwnHull) {
+  const MixedBatch mixed = mixed_batch(360, 27, 150);
+  const ConvexHullBatch batch = convex_hull_batch(mixed.points, mixed.offsets, on_cpu());
+  EXPECT_EQ(batch.precision, Precision::kFloat);
+  expect_each_cloud_is_its_own_hull(mixed.points, mixed.offsets, batch, on_cpu().hull);
+  std::size_t brute_forced = 0, by_qhull = 0;
+  std::vector<int> dimensions_seen(5, 0);
+  for (std::size_t c = 0; c < batch.size(); ++c) {
+    SCOPED_TRACE("cloud " + std::to_string(c) + " of kind " + std::to_string(mixed.kinds[c]));
+    const std::vector<Point3> cloud = mixed.cloud(c);
+    const std::vector<PointIndex> vertices =
+        slice(batch.vertices, batch.vertex_offsets[c], batch.vertex_offsets[c + 1]);
+    ++dimensions_seen[batch.dimensions[c] + 1];
+    if (cloud.size() <= 10) {
+      EXPECT_EQ(vertices, brute_force_vertices(cloud));
+      ++brute_forced;
+    }
+    const Kind kind = mixed.kinds[c];
+    if ((kind == kCube || kind == kBall || kind == kGauss) && cloud.size() >= 4) {
+      EXPECT_EQ(vertices, run_qhull(cloud).vertex_ids);
+      ++by_qhull;
+    }
+  }
+  EXPECT_GE(brute_forced, 40u);
+  EXPECT_GE(by_qhull, 100u);
+  for (int d = -1; d <= 3; ++d)  // every dimension's answer met
+    EXPECT_GT(dimensions_seen[d + 1], 0) << "dimension " << d;
+
+  // In double: the same values widened, so the same vertex sets; each cloud convex_hull()'s in double.
+  std::vector<Point3d> doubles;
+  for (const Point3& p : mixed.points)
+    doubles.push_back({p.x, p.y, p.z});
+  const ConvexHullBatch in_double = convex_hull_batch(doubles, mixed.offsets, on_cpu());
+  EXPECT_EQ(in_double.precision, Precision::kDouble);
+  EXPECT_EQ(in_double.vertices, batch.vertices);
+  EXPECT_EQ(in_double.vertex_offsets, batch.vertex_offsets);
+  expect_each_cloud_is_its_own_hull(doubles, mixed.offsets, in_double, on_cpu().hull);
+  // And float input asked to run in double gives the double batch.
+  EXPECT_TRUE(
+      same_batch(convex_hull_batch(mixed.points, mixed.offsets, on_cpu(0, Precision::kDouble)), in_double));
+}
+
+// Many tiny clouds, most of them degenerate (small integer boxes, flat, collinear, repeated points), against
+// the brute force.
+TEST(ConvexHullBatch, TinyDegenerateCloudsMatchTheBruteForce) {
+  Random random(2027);
+  MixedBatch tiny;
+  const Kind kinds[] = {kTinyInteger, kGrid, kFlat, kCollinear, kDuplicated};
+  for (std::size_t c = 0; c < 500; ++c) {
+    const Kind kind = kinds[c % 5];
+    tiny.add(cloud_of(kind, 4 + random.below(7), c, random), kind);
+  }
+  const ConvexHullBatch batch = convex_hull_batch(tiny.points, tiny.offsets, on_cpu());
+  std::vector<int> dimensions_seen(5, 0);
+  for (std::size_t c = 0; c < batch.size(); ++c) {
+    EXPECT_EQ(slice(batch.vertices, batch.vertex_offsets[c], batch.vertex_offsets[c + 1]),
+              brute_force_vertices(tiny.cloud(c)))
+        << "cloud " << c;
+    if (tiny.kinds[c] == kFlat) EXPECT_LE(batch.dimensions[c], 2) << "cloud " << c;
+    if (tiny.kinds[c] == kCollinear) EXPECT_LE(batch.dimensions[c], 1) << "cloud " << c;
+    ++dimensions_seen[batch.dimensions[c] + 1];
+  }
+  for (int d = 1; d <= 3; ++d)
+    EXPECT_GT(dimensions_seen[d + 1], 0) << "dimension " << d;
+}
+
+// The result is the same on one thread, two, every core and more threads than cores.
+TEST(ConvexHullBatch, ThreadCountChangesNothing) {
+  const MixedBatch mixed = mixed_batch(240, 99, 7);
+  const ConvexHullBatch one = convex_hull_batch(mixed.points, mixed.offsets, on_cpu(1));
+  for (unsigned threads : {2u, hardware_workers(), 2 * hardware_workers() + 3, 0u}) {
+    SCOPED_TRACE("threads " + std::to_string(threads));
+    EXPECT_TRUE(same_batch(convex_hull_batch(mixed.points, mixed.offsets, on_cpu(threads)), one));
+  }
+  expect_each_cloud_is_its_own_hull(mixed.points, mixed.offsets, one, on_cpu().hull);
+}
+
+std::string input_error(const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no InputError";
+}
+
+TEST(ConvexHullBatch, BadPointsAreNamedByCloudAndPoint) {
+  std::vector<Point3d> points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1},  // cloud 0
+                                 {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1},             // cloud 2
+                                 {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};            // cloud 3
+  const std::vector<std::size_t> offsets{0, 5, 5, 9, 13};
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  points[7].y = nan;
+  points[11].z = inf;
+  for (unsigned threads : {1u, 4u}) {
+    // The first bad point in packed order, whichever cloud finishes first.
+    EXPECT_EQ(input_error([&] { convex_hull_batch(points, offsets, on_cpu(threads)); }),
+              "cloud 2: point 2: y coordinate nan is not finite (row 7 of the packed points)");
+  }
+  points[7].y = 1;
+  EXPECT_EQ(input_error([&] { convex_hull_batch(points, offsets, on_cpu()); }),
+            "cloud 3: point 2: z coordinate inf is not finite (row 11 of the packed points)");
+  points[11].z = 1e39;  // finite: taken in double, beyond float's range in float
+  EXPECT_EQ(convex_hull_batch(points, offsets, on_cpu()).dimensions[3], 3);
+  EXPECT_EQ(input_error([&] { convex_hull_batch(points, offsets, on_cpu(0, Precision::kFloat)); }),
+            "cloud 3: point 2: z coordinate 1e+39 does not fit in float (row 11 of the packed points)");
+  std::vector<Point3> floats(6, Point3{1, 2, 3});
+  floats[0].x = -std::numeric_limits<float>::infinity();
+  EXPECT_EQ(input_error([&] {
+              convex_hull_batch(floats, {0, 6}, on_cpu());
+            }),
+            "cloud 0: point 0: x coordinate -inf is not finite (row 0 of the packed points)");
+}
+
+TEST(ConvexHullBatch, BadOffsetsAreRefused) {
+  const std::vector<Point3> points(10, Point3{1, 2, 3});
+  auto refused = [&](const std::vector<std::size_t>& offsets, const std::string& words) {
+    try {
+      convex_hull_batch(points, offsets, on_cpu());
+      ADD_FAILURE() << "offsets taken";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  refused({}, "no offsets");
+  refused({1, 10}, "offsets[0] is 1, not 0");
+  refused({0, 6, 4, 10}, "offsets decrease at cloud 1 (6 then 4)");
+  refused({0, 5}, "the last offset is 5, not the point count 10");
+  refused({0, 5, 11}, "the last offset is 11");
+}
+
+// Without a GPU, the CUDA backend is refused as convex_hull() refuses it; points in GPU memory need one.
+TEST(ConvexHullBatch, CudaNeedsTheGpu) {
+  const std::vector<Point3> points = generate_points(Distribution::kCube, 100, 1);
+  const std::vector<std::size_t> offsets{0, 40, 100};
+  ConvexHullBatchOptions cuda;
+  cuda.hull.backend = BackendChoice::kCuda;
+  EXPECT_THROW(convex_hull_batch_device(&points[0].x, points.size(), offsets.data(), 2, on_cpu()),
+               std::invalid_argument);
+  if (cuda_status().usable) {
+    // Interim CUDA path: each cloud through the single-cloud path on the GPU, the same vertex sets.
+    const ConvexHullBatch on_gpu = convex_hull_batch(points, offsets, cuda);
+    EXPECT_EQ(on_gpu.vertices, convex_hull_batch(points, offsets, on_cpu()).vertices);
+    return;
+  }
+  EXPECT_THROW(convex_hull_batch(points, offsets, cuda), DeviceError);
+  EXPECT_THROW(convex_hull_batch_device(&points[0].x, points.size(), offsets.data(), 2), DeviceError);
+}
+
+// `cudahull bench --batch B --n N`: B clouds of --dist (cloud c from seed + c), timed; --vs qhull and --vs
+// loop compare every cloud's vertices with Qhull's and with single convex_hull() calls.
+TEST(ConvexHullBatch, BenchBatchOnTheCommandLine) {
+  std::size_t qhull_vertices = 0;
+  for (std::uint64_t c = 0; c < 30; ++c)
+    qhull_vertices += run_qhull(generate_points(Distribution::kBall, 200, 5 + c)).vertex_ids.size();
+  for (const std::string versus : {"qhull", "loop"}) {
+    const CliRun r = run_cli({"bench", "--batch", "30", "--n", "200", "--dist", "ball", "--seed", "5",
+                              "--backend", "cpu", "--repeat", "1", "--json", "--vs", versus});
+    ASSERT_EQ(r.exit_code, kExitOk) << describe(r);
+    const auto j = nlohmann::json::parse(r.out, nullptr, false);
+    ASSERT_TRUE(j.is_object()) << r.out;
+    EXPECT_EQ(j.value("input", ""), "ball 30x200");
+    EXPECT_EQ(j.value("clouds", 0u), 30u);
+    EXPECT_EQ(j.value("points", 0u), 6000u);
+    EXPECT_EQ(j.value("hull_vertices", 0u), qhull_vertices);
+    EXPECT_EQ(j.value("precision", ""), "float");
+    EXPECT_EQ(j.value("versus", ""), versus);
+    EXPECT_EQ(j.value("clouds_with_different_vertices", 99u), 0u);
+    EXPECT_GT(j.value("total_ms", 0.0), 0.0);
+  }
+  const CliRun text = run_cli({"bench", "--batch", "3", "--n", "50", "--backend", "cpu", "--repeat", "1"});
+  EXPECT_EQ(text.exit_code, kExitOk) << describe(text);
+  EXPECT_NE(text.out.find("cube 3x50"), std::string::npos) << text.out;
+  const CliRun help = run_cli({"bench", "--help"});
+  EXPECT_NE(help.out.find("--batch"), std::string::npos) << help.out;
+  EXPECT_EQ(run_cli({"bench", "--vs", "loop", "--n", "100"}).exit_code, kExitUsage);
+  TempDir dir;
+  EXPECT_EQ(run_cli({"bench", (dir / "none.ply").string(), "--batch", "3"}).exit_code, kExitUsage);
+}
+
+}  // namespace
+}  // namespace cudahull
