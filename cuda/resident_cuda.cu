@@ -704,7 +704,7 @@ struct CudaExec {
   // Up to this many points left on a mesh of up to this many faces, the driver runs the iterations as a
   // device loop (one block: each pass takes the points and faces a few at a time per thread).
   std::size_t loop_points = tuning("CUDAHULL_LOOP_POINTS", 16384);
-  std::size_t loop_faces = tuning("CUDAHULL_LOOP_FACES", 8192);
+  std::size_t loop_faces = tuning("CUDAHULL_LOOP_FACES", 4096);
 
   // The iteration's phases (iteration.hpp): a device loop in one block; otherwise a cooperative grid for
   // each range of phases (the marks; the split and the rounds, in one block for a small mesh; the routing

@@ -9,7 +9,8 @@
 //   furthest  per face, its furthest kept point (distribution.hpp)
 //   mark      a face refines when that point is strictly inside its cone; the marks' prefix sum numbers
 //             the refined faces.  None: a stall (the mesh is as it was).  Too little room for the split
-//             and the rounds (room_for()): stop, the marks kept; the host grows and goes on from the split
+//             and the rounds (room_for()), or a device loop's mesh grown past its limit: stop, the marks
+//             kept; the host grows and goes on from the split
 //   split     every marked face into three (Fig. 3a)
 //   rounds    swaps and removals until no candidate is left (Figs. 3b, 4, 5; rounds.hpp).  A round
 //             short of room stops before it changes anything; the host grows and goes on from the rounds
@@ -37,15 +38,16 @@ enum IterationPhase : u32 { kFirst = 0, kFurthest = 1, kSplit = 2, kRounds = 3, 
 enum IterationExit : u32 { kExitDone = 0, kExitStall = 1, kExitRoom = 2, kExitOverflow = 3 };
 
 // The room an iteration of `faces` faces that refines `refined` asks for before its split: the children and
-// about two edits a refined face (1.5 to 2.1 on dense spheres), two new slots and one entry each; a round's
+// about two edits a refined face (1.5 to 2.1 on dense spheres), two new slots and one entry each (and an
+// entry a refined face); a round's
 // work (the children and the faces beside the refined ones); the compaction's spares (a split adds two live
 // faces, a swap none, a removal takes two away).  Past these a round stops and the host grows the room.
 struct IterationRoom {
   u64 faces, entries, work, spares;
 };
 CUDAHULL_HD inline IterationRoom room_for(u64 faces, u64 refined) {
-  return IterationRoom{faces + 3 * refined + 9 * refined / 2 + 64, 4 * refined + 64, 4 * refined + 64,
-                       faces + 2 * refined + 64};
+  return IterationRoom{faces + 3 * refined + 9 * refined / 2 + 64, refined + 9 * refined / 4 + 64,
+                       4 * refined + 64, faces + 2 * refined + 64};
 }
 
 // The buffers an iteration works on: the current faces and points and the spares the compaction writes
@@ -72,6 +74,7 @@ struct IterationLaunch {
   u32 iterations;             // then whole iterations from kFurthest until this many have ended
   u32 faces, active, unkept;  // unkept: the listed points not kept are still listed (after kFirst)
   u32 face_capacity, entry_capacity, work_capacity, spare_capacity;
+  u32 face_limit;  // a device loop goes on to another iteration only on a mesh of at most this many faces
   u32 after;
 };
 
@@ -129,7 +132,8 @@ CUDAHULL_HD void resident_iterations(const Team& team, IterationBuffers<Point, L
       }
       const IterationRoom room = room_for(faces, refined);
       if (room.faces > face_room(launch, iterations) || room.entries > launch.entry_capacity ||
-          room.work > launch.work_capacity || room.spares > launch.spare_capacity) {
+          room.work > launch.work_capacity || room.spares > launch.spare_capacity ||
+          (iterations > 0 && faces > launch.face_limit)) {
         exit = kExitRoom;
         break;
       }

@@ -335,8 +335,9 @@ class ResidentHull {
                         " face slots, more than " + std::to_string(kMaxFaces) + " (use --engine stepping)");
     const std::size_t old = capacity_;
     // Doubling while small (a regrowth is a round of allocations and copies, most of an iteration's host
-    // time on a small hull), then a quarter more: the room follows the need (issue 26: memory).
-    const std::size_t step = capacity_ < kDoublingFaces ? 2 * capacity_ : capacity_ + capacity_ / 4;
+    // time on a small hull), then what is asked (room_for() has the headroom; a copy of the faces is a
+    // fraction of an iteration): the room follows the need (issue 26: memory).
+    const std::size_t step = capacity_ < kDoublingFaces ? 2 * capacity_ : 0;
     capacity_ = std::min(std::max(count, step), kMaxFaces);
     killer_.grow(capacity_, faces_);
     look_.grow(capacity_, faces_);
@@ -370,7 +371,9 @@ class ResidentHull {
   }
   void grow_entries(std::size_t count) {
     if (count > entry_capacity_) {
-      entry_capacity_ = std::max(count, entry_capacity_ + entry_capacity_ / 2);
+      // Half as much again while small, then what is asked, as the faces grow.
+      entry_capacity_ =
+          std::max(count, entry_capacity_ < kDoublingFaces ? entry_capacity_ + entry_capacity_ / 2 : 0);
       entries_.grow(entry_capacity_, entries_used_);
     }
   }
@@ -384,6 +387,15 @@ class ResidentHull {
   // between the marks and the split; a larger one waits for it and stays tight in memory.
   static constexpr std::size_t kInitialFaces = std::size_t{1} << 13;
   static constexpr std::size_t kSpeculateFaces = std::size_t{1} << 16;
+
+  // The largest mesh a device loop runs on (one block: past it the grid's launches are faster).
+  std::size_t loop_faces() const {
+    if constexpr (Exec::kDeviceLoop) {
+      return exec_.loop_faces;
+    } else {
+      return 0;
+    }
+  }
 
   // The iteration's buffers as they are now (the rounds' bits are the executor's).
   template <class Log = NoLog>
@@ -427,6 +439,7 @@ class ResidentHull {
                                  u32_of(entry_capacity_),
                                  u32_of(work_capacity_),
                                  u32_of(std::min(fv_out_.capacity() / 3, extreme_.capacity())),
+                                 u32_of(loop_faces()),
                                  0};
     exec_.iterations(iteration_buffers(log), launch, loop);
     RoundsState state{};
@@ -487,7 +500,8 @@ class ResidentHull {
   // Everything grows before the split (the marks are kept), by the refined count (room_for()).  A small
   // mesh (`small`: sized as if every face refined) has work room for every face slot, as the first round's
   // work may be six a refined face (the children and the stamped faces beside them), and on a device loop
-  // spares for them too, as its faces go back and forth between the two.
+  // spares for them too, as its faces go back and forth between the two (a loop is sized for twice its
+  // faces refining: its later iterations grow the mesh, and each stop for room costs a launch and a wait).
   void grow_for_iteration(std::size_t refined, bool small = false, bool loop = false) {
     IterationRoom room = room_for(faces_, refined);
     if (small) room.work = std::max<u64>(room.work, room.faces);
@@ -505,6 +519,17 @@ class ResidentHull {
     grow_for_rounds(room.faces, room.entries, room.work);
     grow_spares(room.spares);
     marks_in_use_ = 0;
+  }
+
+  // The points' buffers follow the kept points down (issue 26: memory): those that hold nothing between
+  // iterations (the compaction's spares, the kept marks and their ranks) are made afresh once the kept
+  // points are fewer than half their room; the current ones follow when they become the spares.
+  void shrink_points() {
+    for (Buffer<u32>* b : {&index_[1], &face_of_[1], &keep_, &point_rank_}) {
+      if (active_ >= b->capacity() / 2) continue;
+      b->release();
+      b->grow(active_);
+    }
   }
 
   // The compaction's outputs become the current faces and points.
@@ -817,9 +842,9 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
   // count, and waits for it.
   const bool small = faces_ <= kSpeculateFaces;
   bool loop = false;
-  if constexpr (Exec::kDeviceLoop) loop = !out && faces_ <= exec_.loop_faces && active_ <= exec_.loop_points;
+  if constexpr (Exec::kDeviceLoop) loop = !out && faces_ <= loop_faces() && active_ <= exec_.loop_points;
   const bool wait_for_refined = out || !small;
-  if (!wait_for_refined) grow_for_iteration(faces_, true, loop);
+  if (!wait_for_refined) grow_for_iteration(loop ? 2 * faces_ : faces_, true, loop);
   if (out) {
     *out = RecordedIteration{};
     out->faces_before = faces_;
@@ -885,8 +910,10 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
         out->refined = state.refined;
         out->first_round = round_ + 1;
       }
+      // A device loop whose mesh grew past its limit hands the iteration to the grid's launches.
+      loop = loop && faces_ <= loop_faces();
       if (loop) {
-        grow_for_iteration(std::max<std::size_t>(state.refined, faces_), true, true);
+        grow_for_iteration(2 * faces_, true, true);
       } else {
         grow_for_iteration(state.refined);
       }
@@ -918,6 +945,7 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
       continue;
     }
     faces_ = state.live_faces;
+    shrink_points();
     break;
   }
   if (out) {

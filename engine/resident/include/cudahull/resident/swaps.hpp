@@ -25,11 +25,15 @@ namespace cudahull::resident {
 struct Candidate {
   u32 kind = kNone;    // kFlip or kFlop, or kNone
   u32 id = 0;          // 6 f + slot: what it claims with
-  u32 claims = 0;      // faces[0..claims): the faces it kills, claimed; the rest are the faces around
   u32 faces[6] = {};   // flip: f, g, A (across x->u), B (u->y), C (y->v), D (v->x); flop: f, h, t, the
                        // outer faces across a->b, b->d, d->a
   u32 vertex[4] = {};  // flip: u, v, x, y; flop: v, a, b, d
 };
+
+// faces[0 .. claimed_faces(c)): the faces a candidate kills, which it claims (the rest are the faces around).
+CUDAHULL_HD inline u32 claimed_faces(const Candidate& c) {
+  return c.kind == kFlip ? 2u : c.kind == kFlop ? 3u : 0u;
+}
 
 // What a candidate's id claims with in round `round`: later rounds win over stale claims, and within a
 // round the lowest id.
@@ -126,7 +130,7 @@ struct FindCandidate {
       log.add(kRejectNotManifold, 6 * f + static_cast<u32>(i), a.v[i], a.v[iv], a.v[ix], a.apex(i));
       return false;
     }
-    out = Candidate{kFlip, 0, 2, {f, g, A, B, C, D}, {a.v[i], a.v[iv], a.v[ix], a.apex(i)}};
+    out = Candidate{kFlip, 0, {f, g, A, B, C, D}, {a.v[i], a.v[iv], a.v[ix], a.apex(i)}};
     return true;
   }
 
@@ -155,7 +159,7 @@ struct FindCandidate {
       log.add(kRejectRemoval, 6 * f + 3 + static_cast<u32>(k), v, a, b, d);
       return false;
     }
-    out = Candidate{kFlop, 0, 3, {f, h, t, ab, bd, da}, {v, a, b, d}};
+    out = Candidate{kFlop, 0, {f, h, t, ab, bd, da}, {v, a, b, d}};
     return true;
   }
 
@@ -232,7 +236,7 @@ struct Claim {
     look[f] = round + 1;  // won (then killed) or lost (then tried again)
     cand.id = 6 * f + static_cast<u32>(slot);
     const u64 key = claim_key(round, cand.id);
-    for (u32 k = 0; k < cand.claims; ++k)
+    for (u32 k = 0; k < claimed_faces(cand); ++k)
       atomic_max_u64(&claim[cand.faces[k]], key);
   }
 };
@@ -244,7 +248,7 @@ struct Won {
   CUDAHULL_HD bool holds(const Candidate& cand) const {
     if (cand.kind == kNone) return false;
     const u64 key = claim_key(round, cand.id);
-    for (u32 k = 0; k < cand.claims; ++k) {
+    for (u32 k = 0; k < claimed_faces(cand); ++k) {
       if (claim[cand.faces[k]] != key) return false;
     }
     return true;
