@@ -7,31 +7,9 @@ import numpy as np
 import pytest
 
 import cudahull
+from device_arrays import gpu_only, on_device, to_numpy
 
-GPU_USABLE, GPU_WHY = cudahull._cudahull.cuda_device()
-pytestmark = pytest.mark.skipif(not GPU_USABLE, reason=f"no usable CUDA device: {GPU_WHY}")
-
-
-@pytest.fixture(params=["cupy", "torch"])
-def lib(request):
-    module = pytest.importorskip(request.param)
-    if request.param == "torch" and not module.cuda.is_available():
-        pytest.skip("PyTorch sees no CUDA device")
-    return module
-
-
-def on_device(lib, array):
-    if lib.__name__ == "cupy":
-        return lib.asarray(array)
-    return lib.from_numpy(np.ascontiguousarray(array)).cuda()
-
-
-def to_numpy(array):
-    if isinstance(array, np.ndarray):
-        return array
-    if hasattr(array, "get"):
-        return array.get()
-    return array.detach().cpu().numpy()
+pytestmark = gpu_only
 
 
 def clouds():
