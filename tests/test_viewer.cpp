@@ -733,6 +733,20 @@ TEST(ViewerHeadless, SubStepsReplayTheStepToTheEnginesMesh) {
   EXPECT_GT(swap_pixels(read_png(dir / "result.png")), 0u);
 }
 
+// --engine auto picks as `cudahull hull` does (plan_hull()): on the CPU backend, the stepping engine.
+TEST(ViewerHeadless, EngineAutoPicksAsTheCommandLine) {
+  TempDir dir;
+  ViewerRun r = run_viewer({"--gen", "ball", "2000", "--seed", "3", "--engine", "auto", "--backend", "cpu",
+                            "--headless", "--width", "64", "--height", "48", "--steps", "2", "--screenshot",
+                            dir / "shot.png"});
+  ASSERT_EQ(r.exit_code, 0) << describe(r);
+  EXPECT_THAT(r.err, HasSubstr("cpu"));
+  EXPECT_THAT(r.err, ::testing::Not(HasSubstr("resident engine"))) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "shot.png"));
+  ViewerRun bad = run_viewer({"--gen", "ball", "20", "--engine", "fastest", "--headless"});
+  EXPECT_NE(bad.exit_code, 0) << describe(bad);
+}
+
 // Issue 15, deliverable 3: the debugger on the resident engine (--engine resident, its records read back
 // each step).  Explain point ends where the engine put each point; the sub-steps replay a step with a
 // removal to the engine's own mesh; next-rejected stops at the first step with a rejected foldover.

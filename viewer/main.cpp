@@ -136,9 +136,10 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
       ->capture_default_str();
   app.add_option("--engine", o.engine,
-                 "stepping (the host edits the mesh, the backend moves the points) or resident (every phase "
-                 "where the points are, on the GPU with a CUDA backend, its records read back each step)")
-      ->check(CLI::IsMember({"stepping", "resident"}))
+                 "stepping (the host edits the mesh, the backend moves the points), resident (every phase "
+                 "where the points are, on the GPU with a CUDA backend, its records read back each step) or "
+                 "auto (as `cudahull hull`: resident on a GPU, stepping on the CPU)")
+      ->check(CLI::IsMember({"stepping", "resident", "auto"}))
       ->capture_default_str();
   std::string precision = "auto";
   app.add_option(

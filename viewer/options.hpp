@@ -14,7 +14,7 @@ namespace cudahull::viewer {
 struct ViewerOptions {
   PointSource source;
   std::string backend = "auto";
-  std::string engine = "stepping";         // --engine: "stepping" or "resident"
+  std::string engine = "stepping";         // --engine: "stepping", "resident" or "auto"
   Precision precision = Precision::kAuto;  // --precision; kAuto as resolve_precision() (point_io.hpp)
   bool headless = false;
   int width = 1280, height = 800;  // window (logical pixels) or headless image (pixels)
