@@ -207,6 +207,19 @@ TEST(Resident, BundledModels) {
   }
 }
 
+// A device loop that ended after an even number of compactions left a small spare for the one-step small
+// finish, which wrote past it (found by review, 523 points; ASan in CI sees the write).
+TEST(Resident, SmallFinishAfterTheDeviceLoop) {
+  const std::vector<Point3> points =
+      read_points(std::string(CUDAHULL_TEST_DATA_DIR) + "/resident/small_finish_after_even_loop.xyz");
+  ASSERT_EQ(points.size(), 523u);
+  ResidentStats stats;
+  const HullMesh hull = resident_hull_host(points, &stats, ResidentPath::kDevice);
+  EXPECT_GT(stats.loop_iterations, 0u);
+  EXPECT_EQ(hull.vertex_ids, exact_hull(points).vertex_ids);
+  expect_exact(points, "small finish after the device loop");
+}
+
 // The shared scans, at the exact extreme-point counts of ../shared/models/README.md (float coordinates).
 TEST(Resident, SharedModelsAtTheirKnownCounts) {
   const std::filesystem::path dir = testing::shared_models_dir();

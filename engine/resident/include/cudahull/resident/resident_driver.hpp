@@ -511,13 +511,15 @@ class ResidentHull {
     // held while the faces' buffers copy into their new ones.
     if (room.work > work_capacity_) release_rounds();
     // The spares are the last iteration's faces, swapped out at the capacity's size: back to the live
-    // faces' size (their contents are dead), before the faces' buffers copy into bigger ones.
-    if (3 * room.spares > fv_out_.capacity() || 3 * (room.spares + room.spares / 4) < fv_out_.capacity()) {
+    // faces' size (their contents are dead), before the faces' buffers copy into bigger ones.  A small
+    // mesh keeps both at the capacity's size instead, so that the swaps need no new blocks and copies.
+    if (!small &&
+        (3 * room.spares > fv_out_.capacity() || 3 * (room.spares + room.spares / 4) < fv_out_.capacity())) {
       fv_out_.release();
       fn_out_.release();
     }
     grow_for_rounds(room.faces, room.entries, room.work);
-    grow_spares(room.spares);
+    grow_spares(small ? std::max<std::size_t>(room.spares, capacity_) : room.spares);
     marks_in_use_ = 0;
   }
 
@@ -630,9 +632,11 @@ class ResidentHull {
   // counts, the renumbered corners and the vertex list lie one after another in fv_out_, and the host reads
   // as many vertices as a closed mesh of genus 0 has (F / 2 + 2, Euler's formula), the rest only if there
   // are more.
-  static_assert(kInitialFaces >= 2 * Exec::kFinishFaces + 1, "fv_out_ holds the counts, corners and list");
   std::optional<BasicHullMesh<Point>> finish_small(u32& faults, bool checked) {
     const std::size_t corners = 3 * faces_, at = 2 + corners;
+    // A spare (nothing in it is kept), whose size follows the live faces: room for the counts, the corners
+    // and a list of up to as many vertices as corners.
+    fv_out_.grow(at + corners);
     u32* out = fv_out_.data();
     exec_.finish_small(view(), faces_, n_, out);
     // (Words past the list, when there are faults or fewer vertices, are read and not used.)
