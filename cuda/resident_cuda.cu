@@ -724,26 +724,18 @@ struct CudaExec {
     // barrier costs more the more blocks wait at it).  The face count is on the device: half the capacity
     // stands for it (a small mesh is sized for every face refining).
     const std::size_t faces = launch.face_capacity / 2, items = std::max<std::size_t>(faces, launch.active);
-    bool after = false;
-    const auto next = [&] {
-      IterationLaunch l = launch;
-      l.after = after ? 1u : 0u;
-      after = true;
-      return l;
-    };
-    if (launch.from <= kFurthest)
-      launch_phases<Point, NoLog, PhaseRange<kFirst, kFurthest>, kBlock, false>(strip_log(b), next(),
-                                                                                blocks_for(items));
-    if (launch.from <= kRounds && launch.to >= kSplit) {
-      if (faces <= one_block_faces_) {
-        launch_phases<Point, Log, PhaseRange<kSplit, kRounds>, kOneBlockThreads, true>(b, next(), 1);
+    for_each_phase_range(launch, [&](auto range, const IterationLaunch& part) {
+      using Range = decltype(range);
+      if constexpr (std::is_same_v<Range, RoundPhases>) {
+        if (faces <= one_block_faces_) {
+          launch_phases<Point, Log, Range, kOneBlockThreads, true>(b, part, 1);
+        } else {
+          launch_phases<Point, Log, Range, kBlock, false>(b, part, blocks_for(faces));
+        }
       } else {
-        launch_phases<Point, Log, PhaseRange<kSplit, kRounds>, kBlock, false>(b, next(), blocks_for(faces));
+        launch_phases<Point, NoLog, Range, kBlock, false>(strip_log(b), part, blocks_for(items));
       }
-    }
-    if (launch.to >= kRoute)
-      launch_phases<Point, NoLog, PhaseRange<kRoute, kCompact>, kBlock, false>(strip_log(b), next(),
-                                                                               blocks_for(items));
+    });
   }
 
   std::uint64_t host_syncs = 0, bytes_to_device = 0, bytes_from_device = 0;

@@ -147,16 +147,9 @@ struct HostExec {
       return;
     }
     // As the device's executor: a range of phases a launch, each after the last (iteration.hpp).
-    IterationLaunch next = launch;
-    if (launch.from <= kFurthest) {
-      resident_iterations(HostTeam{}, b, next, PhaseRange<kFirst, kFurthest>{});
-      next.after = 1;
-    }
-    if (launch.from <= kRounds && launch.to >= kSplit) {
-      resident_iterations(HostTeam{}, b, next, PhaseRange<kSplit, kRounds>{});
-      next.after = 1;
-    }
-    if (launch.to >= kRoute) resident_iterations(HostTeam{}, b, next, PhaseRange<kRoute, kCompact>{});
+    for_each_phase_range(launch, [&](auto range, const IterationLaunch& part) {
+      resident_iterations(HostTeam{}, b, part, range);
+    });
   }
 
   std::vector<u32> win_mask_, word_rank_;  // the rounds' bits per face and ranks per word

@@ -93,6 +93,25 @@ CUDAHULL_HD inline u32 face_room(const IterationLaunch& launch, u32 iterations) 
                                                                              : launch.face_capacity;
 }
 
+// The ranges of phases a launch covers, one kernel each on a grid (marks | split and rounds | routing and
+// compaction): run(Range{}, launch) for each in order, every one after the first marked `after`.
+using MarkPhases = PhaseRange<kFirst, kFurthest>;
+using RoundPhases = PhaseRange<kSplit, kRounds>;
+using CompactPhases = PhaseRange<kRoute, kCompact>;
+template <class Run>
+void for_each_phase_range(IterationLaunch launch, Run&& run) {
+  const u32 from = launch.from, to = launch.to;
+  if (from <= kFurthest) {
+    run(MarkPhases{}, launch);
+    launch.after = 1;
+  }
+  if (from <= kRounds && to >= kSplit) {
+    run(RoundPhases{}, launch);
+    launch.after = 1;
+  }
+  if (to >= kRoute) run(CompactPhases{}, launch);
+}
+
 template <class Team, class Point, class Log, class Range = AllPhases>
 CUDAHULL_HD void resident_iterations(const Team& team, IterationBuffers<Point, Log> b,
                                      const IterationLaunch& launch, Range = {}) {
