@@ -24,6 +24,7 @@
 #include "cudahull/parallel.hpp"
 #include "cudahull/phase_times.hpp"
 #include "cudahull/routing.hpp"
+#include "device_memory.hpp"
 
 namespace cudahull {
 namespace {
@@ -31,8 +32,10 @@ namespace {
 // ---------------------------------------------------------------------------------------------------------
 // Errors: every CUDA call is checked; a failure becomes a one-line DeviceError.
 
+constexpr const char* kWho = "CUDA backend";
+
 [[noreturn]] void fail(const char* what, cudaError_t e) {
-  throw_cuda_error("CUDA backend", what, e);
+  throw_cuda_error(kWho, what, e);
 }
 
 void check(cudaError_t e, const char* what) {
@@ -40,44 +43,8 @@ void check(cudaError_t e, const char* what) {
 }
 
 [[noreturn]] void fail_alloc(const char* what, std::size_t bytes, cudaError_t e, bool pinned) {
-  throw_out_of_memory("CUDA backend", what, bytes, e, pinned);
+  throw_out_of_memory(kWho, what, bytes, e, pinned);
 }
-
-// Grow-only device buffer: reused across iterations, reallocated only when a larger size is needed.
-template <class T>
-class DeviceBuffer {
- public:
-  DeviceBuffer() = default;
-  DeviceBuffer(const DeviceBuffer&) = delete;
-  DeviceBuffer& operator=(const DeviceBuffer&) = delete;
-  ~DeviceBuffer() { cudaFree(ptr_); }
-
-  // Ensures room for n elements; `slack` grows by half again so that a slowly growing size reallocates
-  // rarely.  Contents are not kept.
-  void reserve(std::size_t n, const char* what, bool slack = false) {
-    if (n <= capacity_) return;
-    if (slack) n = std::max(n, capacity_ + capacity_ / 2);
-    n = std::max<std::size_t>(n, 1);
-    check(cudaFree(ptr_), "freeing a device buffer");
-    ptr_ = nullptr;
-    capacity_ = 0;
-    void* p = nullptr;
-    const cudaError_t e = cudaMalloc(&p, n * sizeof(T));
-    if (e != cudaSuccess) fail_alloc(what, n * sizeof(T), e, false);
-    ptr_ = static_cast<T*>(p);
-    capacity_ = n;
-  }
-  T* get() const { return ptr_; }
-  std::size_t capacity() const { return capacity_; }
-  void swap(DeviceBuffer& other) {
-    std::swap(ptr_, other.ptr_);
-    std::swap(capacity_, other.capacity_);
-  }
-
- private:
-  T* ptr_ = nullptr;
-  std::size_t capacity_ = 0;
-};
 
 // Grow-only pinned host buffer (staging for the asynchronous copies).
 class PinnedBuffer {
@@ -497,8 +464,8 @@ class CudaBackend final : public BasicBackend<Point> {
     }
 
     scalars_host_.reserve(64, "result scalars");
-    argmax_result_.reserve(2, "argmax results");
-    argmax_partial_.reserve(static_cast<std::size_t>(sm_count_) * 8, "argmax partials");
+    reserve(argmax_result_, 2, "argmax results");
+    reserve(argmax_partial_, static_cast<std::size_t>(sm_count_) * 8, "argmax partials");
   }
 
   ~CudaBackend() override { cudaSetDevice(device_); }  // the members free the rest
@@ -514,19 +481,20 @@ class CudaBackend final : public BasicBackend<Point> {
       throw DeviceError("CUDA backend: " + std::to_string(n_points_) +
                         " points exceed the 32-bit index range");
     }
-    points_.reserve(n_points_, "the points");
-    active_.reserve(n_points_, "the index array");
-    active_alt_.reserve(n_points_, "the compacted index array");
-    face_of_.reserve(n_points_, "the per-point faces");
+    reserve(points_, n_points_, "the points");
+    reserve(active_, n_points_, "the index array");
+    reserve(active_alt_, n_points_, "the compacted index array");
+    reserve(face_of_, n_points_, "the per-point faces");
     if (n_points_ == 0) return;
     // The per-iteration buffers start at a working size, so that a small hull does not grow them in most
-    // of its iterations (each growth frees, an implicit synchronisation, and allocates again, several times
-    // in a run of a small hull (docs/benchmarks.md, "Measurements behind the code")).
-    tables_dev_.reserve(kInitialTableBytes, "the iteration tables");
+    // of its iterations (each growth gives a block back, a small one after a wait for the stream, and takes
+    // another: with cudaFree and cudaMalloc that was several synchronisations in a run of a small hull
+    // (docs/benchmarks.md, "Measurements behind the code")).
+    reserve(tables_dev_, kInitialTableBytes, "the iteration tables");
     staging_[0].reserve(kInitialTableBytes, "the table staging area");
-    extremes_dev_.reserve(extremes_bytes(kInitialFaces), "the per-face counts and extremes");
+    reserve(extremes_dev_, extremes_bytes(kInitialFaces), "the per-face counts and extremes");
     extremes_host_.reserve(extremes_bytes(kInitialFaces), "the per-face results");
-    planes_.reserve(kInitialFaces, "the prepared face planes");
+    reserve(planes_, kInitialFaces, "the prepared face planes");
     check(cudaMemcpyAsync(points_.get(), points.data(), n_points_ * sizeof(Point), cudaMemcpyHostToDevice,
                           stream_),
           "uploading the points");
@@ -552,7 +520,7 @@ class CudaBackend final : public BasicBackend<Point> {
     select_device();
     if (n_points_ == 0) return {0, 0};
     const unsigned blocks =
-        std::min<unsigned>(blocks_for(n_points_), static_cast<unsigned>(argmax_partial_.capacity() / 2));
+        std::min<unsigned>(blocks_for(n_points_), static_cast<unsigned>(argmax_partial_.size() / 2));
     extremes_x_partial<<<blocks, kBlock, 0, stream_>>>(points_.get(), n_points_, argmax_partial_.get());
     check(cudaGetLastError(), "launching extremes_x_partial");
     for (int slot = 0; slot < 2; ++slot) {
@@ -610,7 +578,7 @@ class CudaBackend final : public BasicBackend<Point> {
     }
     times_ = {};
     auto t0 = Clock::now();
-    tables_dev_.reserve(total, "the iteration tables", true);
+    reserve(tables_dev_, total, "the iteration tables", true);
     times_.allocate = ms_since(t0);
     t0 = Clock::now();
     upload_staged(sources, sizes, offsets, kSections, total);  // ~160 MB at 2M faces
@@ -633,14 +601,14 @@ class CudaBackend final : public BasicBackend<Point> {
     // The pass's results, in the layout compact_index_array copies back in one piece: the number of points
     // kept, then per face the extreme keys and the counts.
     const std::size_t words = (extremes_bytes(face_count_) + 7) / 8;
-    extremes_dev_.reserve(8 * words, "the per-face counts and extremes", true);
+    reserve(extremes_dev_, 8 * words, "the per-face counts and extremes", true);
     unsigned long long* best = extremes_best();
     std::uint32_t* count = extremes_count();
     results_on_host_ = false;
     // Planes prepared once a face pay off when there are more points than faces (not in a sphere's late
     // iterations: two million faces and a few thousand points).
     const bool prepared = n_active_ != 0 && n_active_ >= face_count_;
-    if (prepared) planes_.reserve(face_count_, "the prepared face planes", true);
+    if (prepared) reserve(planes_, face_count_, "the prepared face planes", true);
     const std::size_t threads = std::max({words, tables.retired.size(), prepared ? face_count_ : 0});
     begin_pass_kernel<<<blocks_for(threads), kBlock, 0, stream_>>>(
         reinterpret_cast<unsigned long long*>(extremes_dev_.get()), words, retired, tables.retired.size(),
@@ -710,7 +678,7 @@ class CudaBackend final : public BasicBackend<Point> {
       check(cudaGetLastError(), "launching point_faces_kernel");
     }
     if (!vertices.empty()) {  // O(hull) to the device, nothing back
-      vertex_ids_.reserve(vertices.size(), "the hull vertex ids");
+      reserve(vertex_ids_, vertices.size(), "the hull vertex ids");
       check(cudaMemcpyAsync(vertex_ids_.get(), vertices.data(), vertices.size() * sizeof(PointIndex),
                             cudaMemcpyHostToDevice, stream_),
             "uploading the hull vertex ids");
@@ -727,8 +695,7 @@ class CudaBackend final : public BasicBackend<Point> {
     select_device();
     out.assign(n_points_, -1);
     if (n_points_ == 0) return;
-    DeviceBuffer<std::int32_t> faces;
-    faces.reserve(n_points_, "the debugger's point faces");
+    const DeviceArray<std::int32_t> faces(n_points_, kWho, "the debugger's point faces", stream_);
     check(cudaMemsetAsync(faces.get(), 0xff, n_points_ * sizeof(std::int32_t), stream_),
           "clearing the point faces");  // all bytes 0xff: -1
     if (n_active_ != 0) {
@@ -748,6 +715,17 @@ class CudaBackend final : public BasicBackend<Point> {
 
  private:
   void select_device() { check(cudaSetDevice(device_), "selecting the device"); }
+
+  // Room for n elements in a grow-only device array on the backend's stream (device_memory.hpp): reused
+  // across iterations, replaced only when a larger size is needed; `slack` grows by half again so that a
+  // slowly growing size is replaced rarely.  Contents are not kept.
+  template <class T>
+  void reserve(DeviceArray<T>& array, std::size_t n, const char* what, bool slack = false) {
+    if (n <= array.size()) return;
+    if (slack) n = std::max(n, array.size() + array.size() / 2);
+    array.reset();  // the old block goes first, so that both are never held
+    array = DeviceArray<T>(n, kWho, what, stream_);
+  }
 
   // CUDAHULL_PHASE_TIMES=1 prints where each distribution's time goes on the host side of the backend, next
   // to the engine's phases (docs/benchmarks.md).
@@ -854,7 +832,7 @@ class CudaBackend final : public BasicBackend<Point> {
   template <class Score>
   void launch_argmax(const Score& score, int slot) {
     const unsigned blocks =
-        std::min<unsigned>(blocks_for(n_points_), static_cast<unsigned>(argmax_partial_.capacity()));
+        std::min<unsigned>(blocks_for(n_points_), static_cast<unsigned>(argmax_partial_.size()));
     argmax_partial<<<blocks, kBlock, 0, stream_>>>(points_.get(), n_points_, score, argmax_partial_.get());
     check(cudaGetLastError(), "launching argmax_partial");
     argmax_final<<<1, kBlock, 0, stream_>>>(argmax_partial_.get(), static_cast<int>(blocks),
@@ -890,25 +868,30 @@ class CudaBackend final : public BasicBackend<Point> {
   std::string name_;
   int sm_count_ = 0;
   unsigned distribute_blocks_[2][2] = {};  // [shared accumulators][prepared planes]: resident blocks
-  // Declared first among the resources, so destroyed last: the stream is drained before buffers go.
+  // Destroyed after the buffers and the stream: the pool's free memory goes back to the driver, so that a
+  // backend that is gone holds no device memory (but for the small blocks the allocator caches), as when
+  // each buffer was a cudaMalloc.
+  TrimPoolAtEnd trim_pool_at_end_{0};
+  // Declared first among the buffers, so destroyed after them: each is given back in the stream's order (a
+  // small block after a wait for the stream), then the stream is drained.
   Stream stream_holder_;
   Event event_holder_[2];
   cudaStream_t stream_ = nullptr;
   cudaEvent_t staging_free_[2] = {nullptr, nullptr};  // per staging buffer: its last copy is done
 
   std::size_t n_points_ = 0, n_active_ = 0, face_count_ = 0;
-  DeviceBuffer<Point> points_;
-  DeviceBuffer<PointIndex> active_, active_alt_;
-  DeviceBuffer<PointIndex> vertex_ids_;  // write_point_states_on_device
-  DeviceBuffer<std::int32_t> face_of_;
-  DeviceBuffer<FacePlanes> planes_;
-  DeviceBuffer<unsigned char> tables_dev_, extremes_dev_;
+  DeviceArray<Point> points_;
+  DeviceArray<PointIndex> active_, active_alt_;
+  DeviceArray<PointIndex> vertex_ids_;  // write_point_states_on_device
+  DeviceArray<std::int32_t> face_of_;
+  DeviceArray<FacePlanes> planes_;
+  DeviceArray<unsigned char> tables_dev_, extremes_dev_;
   bool results_on_host_ = false;           // results_host_ holds the last distribution's results
   unsigned char* results_host_ = nullptr;  // extremes_host_ or results_pageable_, by size (read_results())
   std::vector<unsigned char> results_pageable_, tables_pageable_;
   bool all_active_ = false;  // see active_indices()
-  DeviceBuffer<Candidate> argmax_partial_;
-  DeviceBuffer<PointIndex> argmax_result_;
+  DeviceArray<Candidate> argmax_partial_;
+  DeviceArray<PointIndex> argmax_result_;
   PinnedBuffer staging_[2], extremes_host_, scalars_host_;
 
   std::uint64_t bytes_to_ = 0, bytes_from_ = 0;

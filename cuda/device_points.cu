@@ -9,6 +9,7 @@
 #include "cuda_errors.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/predicates.hpp"
+#include "device_memory.hpp"
 
 namespace cudahull {
 
@@ -103,12 +104,9 @@ void require_current_device_memory(const void* xyz) {
 }
 
 std::shared_ptr<void> upload_to_device(const void* host, std::size_t bytes) {
-  void* memory = nullptr;
-  const cudaError_t e = cudaMalloc(&memory, std::max<std::size_t>(bytes, 1));
-  if (e != cudaSuccess) throw_out_of_memory(kWho, "the points", bytes, e);
-  std::shared_ptr<void> owned(memory, [](void* p) { cudaFree(p); });
-  check(cudaMemcpy(memory, host, bytes, cudaMemcpyHostToDevice), "uploading the points");
-  return owned;
+  std::shared_ptr<unsigned char> copy = shared_device_array<unsigned char>(bytes, kWho, "the points");
+  check(cudaMemcpy(copy.get(), host, bytes, cudaMemcpyHostToDevice), "uploading the points");
+  return copy;
 }
 
 template <class Point, class Scalar>
@@ -122,26 +120,21 @@ CheckedDevicePoints<Point> check_device_points(const Scalar* xyz, std::size_t co
 
   Point* out = nullptr;
   if constexpr (!std::is_same_v<decltype(Point::x), Scalar>) {
-    const std::size_t bytes = count * sizeof(Point);
-    void* memory = nullptr;
-    const cudaError_t e = cudaMalloc(&memory, bytes);
-    if (e != cudaSuccess) throw_out_of_memory(kWho, "the points in the hull's precision", bytes, e);
-    result.converted = std::shared_ptr<void>(memory, [](void* p) { cudaFree(p); });
-    out = static_cast<Point*>(memory);
+    const std::shared_ptr<Point> converted =
+        shared_device_array<Point>(count, kWho, "the points in the hull's precision");
+    out = converted.get();
+    result.converted = converted;
     result.points = out;
   } else {
     result.points = reinterpret_cast<const Point*>(xyz);
   }
 
-  unsigned long long* first_bad = nullptr;
-  check(cudaMalloc(&first_bad, sizeof *first_bad), "allocating the check's result");
-  const std::unique_ptr<unsigned long long, void (*)(unsigned long long*)> owned(
-      first_bad, [](unsigned long long* p) { cudaFree(p); });
-  check(cudaMemset(first_bad, 0xff, sizeof *first_bad), "clearing the check's result");
-  check_points_kernel<Point, Scalar><<<grid_for(count), kThreads>>>(xyz, count, out, first_bad);
+  const DeviceArray<unsigned long long> first_bad(1, kWho, "the check's result");
+  check(cudaMemset(first_bad.get(), 0xff, sizeof(unsigned long long)), "clearing the check's result");
+  check_points_kernel<Point, Scalar><<<grid_for(count), kThreads>>>(xyz, count, out, first_bad.get());
   check(cudaGetLastError(), "launching the check");
   unsigned long long bad = 0;
-  check(cudaMemcpy(&bad, first_bad, sizeof bad, cudaMemcpyDeviceToHost), "reading the check's result");
+  check(cudaMemcpy(&bad, first_bad.get(), sizeof bad, cudaMemcpyDeviceToHost), "reading the check's result");
   result.host_syncs = 1;
   result.bytes_from_device = sizeof bad;
   result.first_bad = bad == ~0ull ? count : static_cast<std::size_t>(bad);

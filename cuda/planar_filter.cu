@@ -7,11 +7,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cub/device/device_select.cuh>
-#include <memory>
 #include <type_traits>
 
 #include "cuda_errors.hpp"
 #include "cudahull/predicates.hpp"
+#include "device_memory.hpp"
 #include "device_points.hpp"
 
 namespace cudahull {
@@ -32,15 +32,6 @@ struct InnerPolygon {
 
 void check(cudaError_t e, const char* what) {
   if (e != cudaSuccess) throw_cuda_error(kWho, what, e);
-}
-
-template <class T>
-std::shared_ptr<T> device_array(std::size_t count, const char* what) {
-  void* p = nullptr;
-  const std::size_t bytes = std::max<std::size_t>(count, 1) * sizeof(T);
-  const cudaError_t e = cudaMalloc(&p, bytes);
-  if (e != cudaSuccess) throw_out_of_memory(kWho, what, bytes, e);
-  return std::shared_ptr<T>(static_cast<T*>(p), [](T* q) { cudaFree(q); });
 }
 
 // in_fast_exact_range() (predicates.hpp) for double: one outside it goes to the host's wide-range path;
@@ -178,6 +169,7 @@ PlanarCandidates<Scalar> planar_candidates(const Scalar* xy, std::size_t count) 
   out.first_bad = count;
   if (count == 0) return out;
   check(cudaDeviceSynchronize(), "waiting for the points' producer");
+  const TrimPoolAtEnd trim;  // after the arrays below
 
   // One pass: the check and the extremes; their coordinates beside them; one read of all.
   struct Found {
@@ -185,7 +177,7 @@ PlanarCandidates<Scalar> planar_candidates(const Scalar* xy, std::size_t count) 
     unsigned long long first_bad;
     double xy[kExtremes][2];
   };
-  auto scratch = device_array<Found>(1, "the extremes");
+  const DeviceArray<Found> scratch(1, kWho, "the extremes");
   Found found{};
   found.first_bad = count;
   check(cudaMemcpy(scratch.get(), &found, sizeof found, cudaMemcpyHostToDevice), "clearing the extremes");
@@ -218,22 +210,22 @@ PlanarCandidates<Scalar> planar_candidates(const Scalar* xy, std::size_t count) 
 
   // The survivors, in input order (DeviceSelect is stable), then their coordinates, gathered into a buffer
   // of their number only.
-  auto indices = device_array<unsigned>(count, "the survivors' indices");
-  auto selected = device_array<std::int64_t>(1, "the survivors' count");
+  const DeviceArray<unsigned> indices(count, kWho, "the survivors' indices");
+  const DeviceArray<std::int64_t> selected(1, kWho, "the survivors' count");
   thrust::counting_iterator<unsigned> all(0);
   std::size_t temp_bytes = 0;
   const auto items = static_cast<std::int64_t>(count);
   check(cub::DeviceSelect::If(nullptr, temp_bytes, all, indices.get(), selected.get(), items, keep),
         "sizing the selection");
-  auto temp = device_array<unsigned char>(temp_bytes, "the selection's scratch");
+  const DeviceArray<unsigned char> temp(temp_bytes, kWho, "the selection's scratch");
   check(cub::DeviceSelect::If(temp.get(), temp_bytes, all, indices.get(), selected.get(), items, keep),
         "selecting the survivors");
   std::int64_t selected_count = 0;
   check(cudaMemcpy(&selected_count, selected.get(), sizeof selected_count, cudaMemcpyDeviceToHost),
         "reading the count");
   const auto survivors = static_cast<unsigned>(selected_count);
-  auto coordinates =
-      device_array<Scalar>(2 * static_cast<std::size_t>(survivors), "the survivors' coordinates");
+  const DeviceArray<Scalar> coordinates(2 * static_cast<std::size_t>(survivors), kWho,
+                                        "the survivors' coordinates");
   gather<<<grid_for(survivors), kThreads>>>(xy, indices.get(), survivors, coordinates.get());
   check(cudaGetLastError(), "launching the gather");
   out.indices.resize(survivors);

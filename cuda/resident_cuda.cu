@@ -14,8 +14,6 @@
 #include <cub/device/device_radix_sort.cuh>
 #include <cub/device/device_scan.cuh>
 #include <cub/device/device_select.cuh>
-#include <map>
-#include <mutex>
 #include <string>
 #include <type_traits>
 #include <unordered_map>
@@ -26,7 +24,9 @@
 #include "cudahull/errors.hpp"
 #include "cudahull/resident/resident_driver.hpp"
 #include "cudahull/resident/resident_stepping.hpp"
+#include "device_memory.hpp"
 #include "resident_cuda.hpp"
+#include "teams.cuh"
 
 namespace cudahull {
 namespace resident {
@@ -39,8 +39,8 @@ void check(cudaError_t e, const char* what) {
 constexpr int kBlock = 256;
 constexpr int kOneBlockThreads = 512;  // the rounds of a small mesh (fused_rounds_kernel)
 
-// Device memory the engine holds now and at most (the points included; whole blocks, see BlockCache, whose
-// idle blocks are not counted), for the stats.
+// Device memory the engine holds now and at most (the points included; whole blocks, see device_memory.hpp,
+// whose cached blocks are not counted), for the stats.
 struct DeviceBytes {
   std::size_t now = 0, peak = 0;
   void add(std::size_t bytes) {
@@ -49,115 +49,6 @@ struct DeviceBytes {
   }
 };
 DeviceBytes device_bytes;
-
-// The device's default memory pool, told once to keep what is freed (the default threshold hands it back
-// to the driver at every synchronisation, and the next iteration would allocate it again).
-void pool() {
-  static const bool once = [] {
-    int device = 0;
-    cudaMemPool_t pool = nullptr;
-    if (cudaGetDevice(&device) == cudaSuccess && cudaDeviceGetDefaultMemPool(&pool, device) == cudaSuccess) {
-      std::uint64_t keep = UINT64_MAX;
-      cudaMemPoolSetAttribute(pool, cudaMemPoolAttrReleaseThreshold, &keep);
-    }
-    cudaGetLastError();
-    return true;
-  }();
-  (void)once;
-}
-
-// Hands the pool's free memory beyond kPoolKeep back to the driver after a run (the process may do other
-// things); what it keeps lets the next run of a similar size allocate without mapping memory again.
-constexpr std::size_t kPoolKeep = std::size_t{256} << 20;
-void trim_pool() {
-  int device = 0;
-  cudaMemPool_t pool = nullptr;
-  if (cudaStreamSynchronize(0) == cudaSuccess && cudaGetDevice(&device) == cudaSuccess &&
-      cudaDeviceGetDefaultMemPool(&pool, device) == cudaSuccess)
-    cudaMemPoolTrimTo(pool, kPoolKeep);
-  cudaGetLastError();
-}
-
-// Small device blocks kept for reuse between buffers and runs (a caching allocator, as PyTorch's and CuPy's):
-// a cudaMallocAsync costs the host microseconds even from a warm pool (docs/benchmarks.md, "Measurements
-// behind the code"), and a run grows some 30 buffers, most of them small.  Blocks up to kLargest bytes, in
-// power-of-two sizes, go back to the cache when their buffer grows or dies and are taken again in stream
-// order (the engine runs on the default stream, so a block's last use is ordered before its next); the cache
-// holds at most kKeep bytes and frees what is beyond.  Larger blocks are allocated and freed as before.  It
-// lives until the process ends (a program that resets the device with blocks in it must not run the engine
-// again), and the pool's trim after a run leaves what it holds in place.
-#if defined(CUDA_API_PER_THREAD_DEFAULT_STREAM)
-#error "BlockCache orders a block's reuse after its last use by the one legacy default stream"
-#endif
-class BlockCache {
- public:
-  static constexpr std::size_t kSmallest = 256, kLargest = std::size_t{4} << 20,
-                               kKeep = std::size_t{64} << 20;
-  // A block of at least `bytes` on the current device; its size into `size`, its device into `device`.
-  void* take(std::size_t bytes, std::size_t& size, int& device) {
-    cudaGetDevice(&device);
-    size = bytes;
-    if (bytes <= kLargest) {
-      size = kSmallest;
-      while (size < bytes)
-        size *= 2;
-      const std::lock_guard<std::mutex> lock(mutex_);
-      std::vector<void*>& list = free_[{device, size}];
-      if (!list.empty()) {
-        void* p = list.back();
-        list.pop_back();
-        kept_ -= size;
-        return p;
-      }
-    }
-    void* p = nullptr;
-    cudaError_t e = cudaMallocAsync(&p, size, 0);
-    if (e != cudaSuccess) {  // what the cache holds may be what is missing: back to the driver, then again
-      cudaGetLastError();
-      release(device);
-      cudaMemPool_t pool = nullptr;
-      if (cudaStreamSynchronize(0) == cudaSuccess &&
-          cudaDeviceGetDefaultMemPool(&pool, device) == cudaSuccess)
-        cudaMemPoolTrimTo(pool, 0);
-      cudaGetLastError();
-      e = cudaMallocAsync(&p, size, 0);
-    }
-    if (e != cudaSuccess) throw_out_of_memory("resident engine", "a buffer", bytes, e);
-    return p;
-  }
-  void give(void* p, std::size_t size, int device) {
-    if (size <= kLargest) {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      if (kept_ + size <= kKeep) {
-        free_[{device, size}].push_back(p);
-        kept_ += size;
-        return;
-      }
-    }
-    cudaFreeAsync(p, 0);
-  }
-  // Everything held for `device` (the current one), freed.
-  void release(int device) {
-    const std::lock_guard<std::mutex> lock(mutex_);
-    for (auto& [key, list] : free_) {
-      if (key.first != device) continue;
-      for (void* p : list) {
-        cudaFreeAsync(p, 0);
-        kept_ -= key.second;
-      }
-      list.clear();
-    }
-  }
-
- private:
-  std::mutex mutex_;
-  std::map<std::pair<int, std::size_t>, std::vector<void*>> free_;  // (device, size) -> blocks
-  std::size_t kept_ = 0;
-};
-BlockCache& block_cache() {
-  static BlockCache* cache = new BlockCache;  // never destroyed: the runtime may be gone at exit
-  return *cache;
-}
 
 unsigned blocks_for(std::size_t n) {
   return static_cast<unsigned>((n + kBlock - 1) / kBlock);
@@ -239,174 +130,6 @@ __global__ void fill_kernel(T* at, std::size_t n, T value) {
   const std::size_t i = blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x;
   if (i < n) at[i] = value;
 }
-
-// An exclusive prefix sum over n values by one block (Items per thread at a time), value(i) the i-th;
-// every thread gets the total.  `out` may hold the values: each is read before it is written.
-template <int Block, int Items, class Value>
-__device__ u32 block_exclusive_scan(u32 n, const Value& value, u32* out) {
-  using Scan = cub::BlockScan<u32, Block>;
-  __shared__ typename Scan::TempStorage storage;
-  __syncthreads();  // the values written by the block before
-  u32 carry = 0;
-  for (u32 base = 0; base < n; base += Block * Items) {
-    u32 values[Items], ranks[Items];
-    const u32 first = base + threadIdx.x * Items;
-#pragma unroll
-    for (int k = 0; k < Items; ++k)
-      values[k] = first + k < n ? value(first + k) : 0u;
-    u32 total = 0;
-    __syncthreads();
-    Scan(storage).ExclusiveSum(values, ranks, total);
-#pragma unroll
-    for (int k = 0; k < Items; ++k) {
-      if (first + k < n) out[first + k] = carry + ranks[k];
-    }
-    carry += total;
-  }
-  __syncthreads();
-  return carry;
-}
-
-// The teams that run the rounds' body (rounds.hpp) on the device: one block, or a cooperative grid.
-// Thread 0 times each phase up to the barrier after it (so the slowest block's time), into the state.
-__device__ inline u64 now_ns() {
-  u64 t;
-  asm volatile("mov.u64 %0, %%globaltimer;" : "=l"(t));
-  return t;
-}
-
-// The time since the last lap into the state's phase (the teams' leader).
-__device__ inline void lap_phase(RoundsState* st, u64& t0, int phase) {
-  const u64 t = now_ns();
-  st->phase_ns[phase] += t - t0;
-  t0 = t;
-}
-
-// A block's threads: __syncthreads() for a barrier, which costs far less than the grid's.
-template <int Block>
-struct BlockTeam {
-  RoundsState* st;
-  mutable u64 t0 = 0;
-  template <class F>
-  __device__ void for_range(u32 n, const F& f) const {
-    for (u32 i = threadIdx.x; i < n; i += Block)
-      f(i);
-  }
-  __device__ void barrier() const { __syncthreads(); }
-  __device__ bool leader() const { return threadIdx.x == 0; }
-  __device__ void start_timing() const {
-    if (leader()) t0 = now_ns();
-  }
-  __device__ void time(int phase) const {
-    if (leader()) lap_phase(st, t0, phase);
-  }
-  // A warp appends its ballot at once: one atomic a warp.
-  template <class Pred>
-  __device__ void list_if(u32 n, const Pred& pred, u32* list, u32* count, u32 capacity) const {
-    list_by_warps(threadIdx.x, Block, n, pred, list, count, capacity);
-  }
-  template <class Op>
-  __device__ void max_per_segment(u32 n, const Op& op) const {
-    max_by_warps(threadIdx.x, Block, n, op);
-  }
-  template <class Value>
-  __device__ u32 exclusive_scan(u32 n, const Value& value, u32* out) const {
-    return block_exclusive_scan<Block, 4>(n, value, out);
-  }
-  // Thread `tid` of `threads` (a multiple of 32): the indices below n that pass, appended in any order
-  // (those past `capacity` counted, not written).
-  template <class Pred>
-  __device__ static void list_by_warps(u32 tid, u32 threads, u32 n, const Pred& pred, u32* list, u32* count,
-                                       u32 capacity) {
-    const u32 lane = tid & 31;
-    for (u32 warp_first = tid - lane; warp_first < n; warp_first += threads) {
-      const u32 i = warp_first + lane;
-      const unsigned mask = __ballot_sync(0xffffffffu, i < n && pred(i));
-      if (mask == 0) continue;
-      u32 at = 0;
-      if (lane == 0) at = atomicAdd(count, static_cast<u32>(__popc(mask)));
-      at = __shfl_sync(0xffffffffu, at, 0);
-      const u32 slot = at + __popc(mask & ((1u << lane) - 1));
-      if ((mask & (1u << lane)) && slot < capacity) list[slot] = i;
-    }
-  }
-  // Thread `tid` of `threads`: per segment the largest key.  Lanes of a warp with the same segment combine
-  // their keys first: one atomic per segment and warp (the first iterations have millions of points on a
-  // few faces).
-  template <class Op>
-  __device__ static void max_by_warps(u32 tid, u32 threads, u32 n, const Op& op) {
-    const u32 lane = tid & 31;
-    for (u32 warp_first = tid - lane; warp_first < n; warp_first += threads) {
-      const u32 j = warp_first + lane;
-      const unsigned active = __ballot_sync(0xffffffffu, j < n);
-      if (j >= n) continue;
-      const u32 segment = op.segment(j);
-      const u64 key = op.key(j);
-      const unsigned peers = __match_any_sync(active, segment);
-      u64 best = key;
-      for (unsigned rest = peers; rest != 0; rest &= rest - 1) {
-        const u64 other = __shfl_sync(peers, key, __ffs(rest) - 1);
-        best = other > best ? other : best;
-      }
-      if (lane == static_cast<u32>(__ffs(peers) - 1) && best != 0)
-        atomicMax(reinterpret_cast<unsigned long long*>(&op.extreme[segment]),
-                  static_cast<unsigned long long>(best));
-    }
-  }
-};
-
-// Every thread of a cooperative launch: the grid's barrier.  A prefix sum takes a contiguous tile of the
-// values a block, then block 0 numbers the tiles (block_offset: one a block, and the total after them).
-template <int Block>
-struct GridTeam {
-  RoundsState* st;
-  u32* block_offset;
-  mutable u64 t0 = 0;
-  __device__ u32 tid() const { return blockIdx.x * Block + threadIdx.x; }
-  template <class F>
-  __device__ void for_range(u32 n, const F& f) const {
-    const u32 threads = gridDim.x * Block;
-    for (u32 i = tid(); i < n; i += threads)
-      f(i);
-  }
-  __device__ void barrier() const { cooperative_groups::this_grid().sync(); }
-  __device__ bool leader() const { return tid() == 0; }
-  __device__ void start_timing() const {
-    if (leader()) t0 = now_ns();
-  }
-  __device__ void time(int phase) const {
-    if (leader()) lap_phase(st, t0, phase);
-  }
-  template <class Pred>
-  __device__ void list_if(u32 n, const Pred& pred, u32* list, u32* count, u32 capacity) const {
-    BlockTeam<Block>::list_by_warps(tid(), gridDim.x * Block, n, pred, list, count, capacity);
-  }
-  template <class Op>
-  __device__ void max_per_segment(u32 n, const Op& op) const {
-    BlockTeam<Block>::max_by_warps(tid(), gridDim.x * Block, n, op);
-  }
-  template <class Value>
-  __device__ u32 exclusive_scan(u32 n, const Value& value, u32* out) const {
-    constexpr u32 kChunk = Block * 4;
-    const u32 tile = ((n + gridDim.x - 1) / gridDim.x + kChunk - 1) / kChunk * kChunk;
-    const u32 begin = min(n, blockIdx.x * tile), end = min(n, begin + tile);
-    const u32 sum = block_exclusive_scan<Block, 4>(
-        end - begin, [&](u32 i) { return value(begin + i); }, out + begin);
-    if (threadIdx.x == 0) block_offset[blockIdx.x] = sum;
-    barrier();
-    if (blockIdx.x == 0) {
-      const u32 total = block_exclusive_scan<Block, 1>(
-          gridDim.x, [&](u32 k) { return block_offset[k]; }, block_offset);
-      if (threadIdx.x == 0) block_offset[gridDim.x] = total;
-    }
-    barrier();
-    const u32 offset = block_offset[blockIdx.x];
-    for (u32 i = begin + threadIdx.x; i < end; i += Block)
-      out[i] += offset;
-    barrier();
-    return block_offset[gridDim.x];
-  }
-};
 
 // Per segment the largest key (the records' furthest points).
 template <class Op>
@@ -508,62 +231,48 @@ std::size_t tuning(const char* name, std::size_t value) {
 }
 
 struct CudaExec {
+  // A buffer on the default stream (device_memory.hpp: a cached block, or the pool's, which keeps freed
+  // memory): growing between iterations neither waits for the device nor returns memory to the driver.
   template <class T>
   class Buffer {
    public:
     Buffer() = default;
     Buffer(const Buffer&) = delete;
     Buffer& operator=(const Buffer&) = delete;
-    ~Buffer() {
-      if (ptr_) block_cache().give(ptr_, bytes_, device_);
-      device_bytes.now -= bytes_;
-    }
-    // Stream-ordered allocation (BlockCache, then a pool that keeps freed memory: see pool()): growing
-    // between iterations neither waits for the device nor returns memory to the driver.
+    ~Buffer() { release(); }
     void grow(std::size_t n, std::size_t keep = 0) {
       if (n <= capacity_) return;
-      if (n * sizeof(T) <= bytes_) {  // the block has room (its size is a power of two)
+      if (n * sizeof(T) <= array_.block_bytes()) {  // the block has room (its size is a power of two)
         capacity_ = n;
         return;
       }
-      pool();
       if (keep == 0) release();  // nothing to copy: the old block goes first, so both are never held
-      std::size_t bytes = 0;
-      int device = 0;
-      T* fresh = static_cast<T*>(block_cache().take(n * sizeof(T), bytes, device));
-      if (keep > 0 && ptr_)
-        check(
-            cudaMemcpyAsync(fresh, ptr_, std::min(keep, capacity_) * sizeof(T), cudaMemcpyDeviceToDevice, 0),
-            "growing a buffer");
-      device_bytes.add(bytes);
-      if (ptr_) block_cache().give(ptr_, bytes_, device_);
-      device_bytes.now -= bytes_;
-      ptr_ = fresh;
+      DeviceArray<T> fresh(n, "resident engine", "a buffer");
+      if (keep > 0 && array_.get())
+        check(cudaMemcpyAsync(fresh.get(), array_.get(), std::min(keep, capacity_) * sizeof(T),
+                              cudaMemcpyDeviceToDevice, 0),
+              "growing a buffer");
+      device_bytes.add(fresh.block_bytes());
+      release();
+      array_ = std::move(fresh);
       capacity_ = n;
-      bytes_ = bytes;
-      device_ = device;
     }
-    T* data() { return ptr_; }
+    T* data() { return array_.get(); }
     std::size_t capacity() const { return capacity_; }
     // Back to the cache (or the pool), empty.
     void release() {
-      if (ptr_) block_cache().give(ptr_, bytes_, device_);
-      device_bytes.now -= bytes_;
-      ptr_ = nullptr;
-      capacity_ = bytes_ = 0;
+      device_bytes.now -= array_.block_bytes();
+      array_.reset();
+      capacity_ = 0;
     }
     void swap(Buffer& other) {
-      std::swap(ptr_, other.ptr_);
+      array_.swap(other.array_);
       std::swap(capacity_, other.capacity_);
-      std::swap(bytes_, other.bytes_);
-      std::swap(device_, other.device_);
     }
 
    private:
-    T* ptr_ = nullptr;
-    std::size_t capacity_ = 0,
-                bytes_ = 0;  // elements asked for; bytes of the block (what device_bytes counts)
-    int device_ = 0;
+    DeviceArray<T> array_;
+    std::size_t capacity_ = 0;  // elements asked for (the block's bytes are what device_bytes counts)
   };
 
   template <class Op>
@@ -903,7 +612,7 @@ BasicHullMesh<Point> ResidentCudaHull<Point>::run(ResidentStats* stats) {
     resident::ResidentHull<Point, resident::CudaExec> hull(exec, impl_->device, impl_->count, impl_->host);
     result = hull.run(out);
   }
-  resident::trim_pool();
+  trim_device_pool();
   out.host_syncs = exec.host_syncs;
   out.bytes_to_device = exec.bytes_to_device;
   out.bytes_from_device = exec.bytes_from_device;

@@ -1,0 +1,185 @@
+// The teams that run the resident engine's phases on the device (cudahull/resident/rounds.hpp says what a
+// team provides): one block, whose barrier is __syncthreads(), or a cooperative grid, whose barrier is the
+// grid's.  Small composable pieces: a block's prefix sum (CUB's BlockScan, Items a thread at a time), a
+// warp's ballot append and a warp's per-segment maximum, shared by both teams.
+#pragma once
+
+#include <cuda_runtime.h>
+
+#include <cooperative_groups.h>
+
+#include <cub/block/block_scan.cuh>
+
+#include "cudahull/resident/swaps.hpp"
+
+namespace cudahull::resident {
+
+// An exclusive prefix sum over n values by one block (Items per thread at a time), value(i) the i-th;
+// every thread gets the total.  `out` may hold the values: each is read before it is written.
+template <int Block, int Items, class Value>
+__device__ u32 block_exclusive_scan(u32 n, const Value& value, u32* out) {
+  using Scan = cub::BlockScan<u32, Block>;
+  __shared__ typename Scan::TempStorage storage;
+  __syncthreads();  // the values written by the block before
+  u32 carry = 0;
+  for (u32 base = 0; base < n; base += Block * Items) {
+    u32 values[Items], ranks[Items];
+    const u32 first = base + threadIdx.x * Items;
+#pragma unroll
+    for (int k = 0; k < Items; ++k)
+      values[k] = first + k < n ? value(first + k) : 0u;
+    u32 total = 0;
+    __syncthreads();
+    Scan(storage).ExclusiveSum(values, ranks, total);
+#pragma unroll
+    for (int k = 0; k < Items; ++k) {
+      if (first + k < n) out[first + k] = carry + ranks[k];
+    }
+    carry += total;
+  }
+  __syncthreads();
+  return carry;
+}
+
+// The teams that run the rounds' body (rounds.hpp) on the device: one block, or a cooperative grid.
+// Thread 0 times each phase up to the barrier after it (so the slowest block's time), into the state.
+__device__ inline u64 now_ns() {
+  u64 t;
+  asm volatile("mov.u64 %0, %%globaltimer;" : "=l"(t));
+  return t;
+}
+
+// The time since the last lap into the state's phase (the teams' leader).
+__device__ inline void lap_phase(RoundsState* st, u64& t0, int phase) {
+  const u64 t = now_ns();
+  st->phase_ns[phase] += t - t0;
+  t0 = t;
+}
+
+// A block's threads: __syncthreads() for a barrier, which costs far less than the grid's.
+template <int Block>
+struct BlockTeam {
+  RoundsState* st;
+  mutable u64 t0 = 0;
+  template <class F>
+  __device__ void for_range(u32 n, const F& f) const {
+    for (u32 i = threadIdx.x; i < n; i += Block)
+      f(i);
+  }
+  __device__ void barrier() const { __syncthreads(); }
+  __device__ bool leader() const { return threadIdx.x == 0; }
+  __device__ void start_timing() const {
+    if (leader()) t0 = now_ns();
+  }
+  __device__ void time(int phase) const {
+    if (leader()) lap_phase(st, t0, phase);
+  }
+  // A warp appends its ballot at once: one atomic a warp.
+  template <class Pred>
+  __device__ void list_if(u32 n, const Pred& pred, u32* list, u32* count, u32 capacity) const {
+    list_by_warps(threadIdx.x, Block, n, pred, list, count, capacity);
+  }
+  template <class Op>
+  __device__ void max_per_segment(u32 n, const Op& op) const {
+    max_by_warps(threadIdx.x, Block, n, op);
+  }
+  template <class Value>
+  __device__ u32 exclusive_scan(u32 n, const Value& value, u32* out) const {
+    return block_exclusive_scan<Block, 4>(n, value, out);
+  }
+  // Thread `tid` of `threads` (a multiple of 32): the indices below n that pass, appended in any order
+  // (those past `capacity` counted, not written).
+  template <class Pred>
+  __device__ static void list_by_warps(u32 tid, u32 threads, u32 n, const Pred& pred, u32* list, u32* count,
+                                       u32 capacity) {
+    const u32 lane = tid & 31;
+    for (u32 warp_first = tid - lane; warp_first < n; warp_first += threads) {
+      const u32 i = warp_first + lane;
+      const unsigned mask = __ballot_sync(0xffffffffu, i < n && pred(i));
+      if (mask == 0) continue;
+      u32 at = 0;
+      if (lane == 0) at = atomicAdd(count, static_cast<u32>(__popc(mask)));
+      at = __shfl_sync(0xffffffffu, at, 0);
+      const u32 slot = at + __popc(mask & ((1u << lane) - 1));
+      if ((mask & (1u << lane)) && slot < capacity) list[slot] = i;
+    }
+  }
+  // Thread `tid` of `threads`: per segment the largest key.  Lanes of a warp with the same segment combine
+  // their keys first: one atomic per segment and warp (the first iterations have millions of points on a
+  // few faces).
+  template <class Op>
+  __device__ static void max_by_warps(u32 tid, u32 threads, u32 n, const Op& op) {
+    const u32 lane = tid & 31;
+    for (u32 warp_first = tid - lane; warp_first < n; warp_first += threads) {
+      const u32 j = warp_first + lane;
+      const unsigned active = __ballot_sync(0xffffffffu, j < n);
+      if (j >= n) continue;
+      const u32 segment = op.segment(j);
+      const u64 key = op.key(j);
+      const unsigned peers = __match_any_sync(active, segment);
+      u64 best = key;
+      for (unsigned rest = peers; rest != 0; rest &= rest - 1) {
+        const u64 other = __shfl_sync(peers, key, __ffs(rest) - 1);
+        best = other > best ? other : best;
+      }
+      if (lane == static_cast<u32>(__ffs(peers) - 1) && best != 0)
+        atomicMax(reinterpret_cast<unsigned long long*>(&op.extreme[segment]),
+                  static_cast<unsigned long long>(best));
+    }
+  }
+};
+
+// Every thread of a cooperative launch: the grid's barrier.  A prefix sum takes a contiguous tile of the
+// values a block, then block 0 numbers the tiles (block_offset: one a block, and the total after them).
+template <int Block>
+struct GridTeam {
+  RoundsState* st;
+  u32* block_offset;
+  mutable u64 t0 = 0;
+  __device__ u32 tid() const { return blockIdx.x * Block + threadIdx.x; }
+  template <class F>
+  __device__ void for_range(u32 n, const F& f) const {
+    const u32 threads = gridDim.x * Block;
+    for (u32 i = tid(); i < n; i += threads)
+      f(i);
+  }
+  __device__ void barrier() const { cooperative_groups::this_grid().sync(); }
+  __device__ bool leader() const { return tid() == 0; }
+  __device__ void start_timing() const {
+    if (leader()) t0 = now_ns();
+  }
+  __device__ void time(int phase) const {
+    if (leader()) lap_phase(st, t0, phase);
+  }
+  template <class Pred>
+  __device__ void list_if(u32 n, const Pred& pred, u32* list, u32* count, u32 capacity) const {
+    BlockTeam<Block>::list_by_warps(tid(), gridDim.x * Block, n, pred, list, count, capacity);
+  }
+  template <class Op>
+  __device__ void max_per_segment(u32 n, const Op& op) const {
+    BlockTeam<Block>::max_by_warps(tid(), gridDim.x * Block, n, op);
+  }
+  template <class Value>
+  __device__ u32 exclusive_scan(u32 n, const Value& value, u32* out) const {
+    constexpr u32 kChunk = Block * 4;
+    const u32 tile = ((n + gridDim.x - 1) / gridDim.x + kChunk - 1) / kChunk * kChunk;
+    const u32 begin = min(n, blockIdx.x * tile), end = min(n, begin + tile);
+    const u32 sum = block_exclusive_scan<Block, 4>(
+        end - begin, [&](u32 i) { return value(begin + i); }, out + begin);
+    if (threadIdx.x == 0) block_offset[blockIdx.x] = sum;
+    barrier();
+    if (blockIdx.x == 0) {
+      const u32 total = block_exclusive_scan<Block, 1>(
+          gridDim.x, [&](u32 k) { return block_offset[k]; }, block_offset);
+      if (threadIdx.x == 0) block_offset[gridDim.x] = total;
+    }
+    barrier();
+    const u32 offset = block_offset[blockIdx.x];
+    for (u32 i = begin + threadIdx.x; i < end; i += Block)
+      out[i] += offset;
+    barrier();
+    return block_offset[gridDim.x];
+  }
+};
+
+}  // namespace cudahull::resident
