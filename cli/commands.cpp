@@ -581,6 +581,12 @@ int bench_batch(const BenchOptions& o, const ConvexHullOptions& request) {
                    {"repeat", o.repeat},
                    {"total_ms", t},
                    {"us_per_cloud", o.batch ? 1000 * t / static_cast<double>(o.batch) : 0.0},
+                   {"clouds_batched", hulls.clouds_batched},
+                   {"batch_launches", hulls.batch_launches},
+                   {"device_bytes_peak", hulls.device_bytes_peak},
+                   {"device_ms", hulls.device_ms},
+                   {"describe_ms", hulls.describe_ms},
+                   {"kernel_ms", hulls.kernel_ms},
                    {"host_huge_pages", huge_pages_in_use()}};
   // The same clouds one call at a time: Qhull's loop (the reference), or convex_hull()'s.
   double versus_ms = 0;

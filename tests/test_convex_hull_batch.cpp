@@ -473,9 +473,10 @@ TEST(ConvexHullBatch, CudaNeedsTheGpu) {
   EXPECT_THROW(convex_hull_batch_device(&points[0].x, points.size(), offsets.data(), 2, on_cpu()),
                std::invalid_argument);
   if (cuda_status().usable) {
-    // Interim CUDA path: each cloud through the single-cloud path on the GPU, the same vertex sets.
+    // Both clouds on the batch kernel, the same vertex sets as the CPU's.
     const ConvexHullBatch on_gpu = convex_hull_batch(points, offsets, cuda);
     EXPECT_EQ(on_gpu.vertices, convex_hull_batch(points, offsets, on_cpu()).vertices);
+    EXPECT_EQ(on_gpu.clouds_batched, 2u);
     return;
   }
   EXPECT_THROW(convex_hull_batch(points, offsets, cuda), DeviceError);

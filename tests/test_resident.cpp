@@ -14,6 +14,7 @@
 #include "cudahull/hull_checker.hpp"
 #include "cudahull/point_io.hpp"
 #include "cudahull/resident.hpp"
+#include "cudahull/resident/batch.hpp"
 #include "support/point_sets.hpp"
 #include "support/rng.hpp"
 #include "support/shared_models.hpp"
@@ -220,7 +221,141 @@ TEST(Resident, SmallFinishAfterTheDeviceLoop) {
   expect_exact(points, "small finish after the device loop");
 }
 
-// The shared scans, at the exact extreme-point counts of ../shared/models/README.md (float coordinates).
+// Batched hulls (issue 27): one cloud's whole hull on a team (batch.hpp) as a block of the GPU's batch
+// kernel runs it, here on the host twin, in a slot used before by other clouds: the tetrahedron, the
+// iterations and the finish give exact_hull's vertices and a hull the checker passes; a cloud short of room
+// says so and is done with room for every point; only flat clouds (or defects) go to the single-cloud path.
+template <class Point>
+struct HostBatchSlot {
+  std::vector<resident::u32> fv, fn, fv_spare, fn_spare, killer, look, flags, face_rank, win_mask, word_rank,
+      list, point_words, words, used{0, 0};
+  std::vector<resident::u64> extreme, claim;
+  std::vector<resident::Entry> entries;
+  std::vector<resident::Candidate> cands;
+  resident::RoundsState st{};
+  std::vector<Point> coordinates;
+  resident::BatchSlot slot{};
+  explicit HostBatchSlot(resident::u32 vertices, std::size_t points) {
+    const resident::BatchRoom room = resident::batch_room(vertices);
+    for (auto* b : {&fv, &fn, &fv_spare, &fn_spare})
+      b->assign(3 * room.faces, 0xdeadbeefu);  // stale data, as a slot reused on the device holds
+    for (auto* b : {&killer, &look, &flags, &face_rank})
+      b->assign(room.faces + 1, 0xdeadbeefu);
+    win_mask.assign(room.faces / 32 + 1, 0);
+    word_rank.assign(room.faces / 32 + 1, 0);
+    extreme.assign(room.faces, ~0ull);
+    claim.assign(room.faces, ~0ull);
+    entries.resize(room.entries);
+    list.resize(room.work);
+    cands.resize(room.work);
+    point_words.assign(6 * points, 0xdeadbeefu);
+    words.resize(7 * std::size_t{vertices} + 16);
+    coordinates.resize(vertices);
+    slot = resident::BatchSlot{fv.data(),
+                               fn.data(),
+                               fv_spare.data(),
+                               fn_spare.data(),
+                               killer.data(),
+                               look.data(),
+                               flags.data(),
+                               face_rank.data(),
+                               win_mask.data(),
+                               word_rank.data(),
+                               extreme.data(),
+                               claim.data(),
+                               entries.data(),
+                               list.data(),
+                               cands.data(),
+                               &st,
+                               room};
+  }
+  resident::BatchResult run(const std::vector<Point>& points) {
+    const std::size_t n = points.size();
+    resident::u32* w = point_words.data();
+    const resident::BatchCloud<Point> cloud{
+        points.data(), static_cast<resident::u32>(n), w, w + n, w + 2 * n, w + 3 * n, w + 4 * n, w + 5 * n};
+    used = {0, 0};
+    const resident::BatchOutput<Point> out{words.data(), coordinates.data(), used.data(),
+                                           static_cast<resident::u32>(words.size()),
+                                           static_cast<resident::u32>(coordinates.size())};
+    resident::BatchResult result{};
+    resident::batch_hull(resident::HostTeam{}, slot, cloud, out, &result);
+    return result;
+  }
+};
+
+template <class Point>
+void expect_batch_exact(const std::vector<Point>& points, const std::string& what, int& room_asked,
+                        bool may_need_repair = false) {
+  const BasicHullMesh<Point> oracle = exact_hull(points);
+  const auto n = static_cast<resident::u32>(points.size());
+  HostBatchSlot<Point> first(resident::batch_vertices(n, false), points.size());
+  // The slot served another cloud first (its claims, stamps and state must not leak into this one).
+  const std::vector<Point3> other =
+      generate_points(Distribution::kBall, std::min<std::size_t>(n, 200), 1 + n);
+  std::vector<Point> previous;
+  for (const Point3& q : other)
+    previous.push_back(Point{q.x, q.y, q.z});
+  first.run(previous);
+  resident::BatchResult result = first.run(points);
+  HostBatchSlot<Point>* used = &first;
+  HostBatchSlot<Point> every(n, points.size());
+  if (result.status == resident::kBatchRoom) {
+    ++room_asked;
+    result = every.run(points);
+    used = &every;
+    EXPECT_NE(result.status, resident::kBatchRoom) << what << ": short of room for every point a vertex";
+  }
+  if (result.status == resident::kBatchSingle) {
+    // Flat clouds, and defects the rounds left (the single-cloud path repairs them), only.
+    if (oracle.dimension == 3)
+      EXPECT_TRUE(may_need_repair && used->st.loop_exit == resident::kExitDone && used->st.defects > 0)
+          << what << ": sent to the single-cloud path (exit " << used->st.loop_exit << ", defects "
+          << used->st.defects << ")";
+    return;
+  }
+  ASSERT_EQ(result.status, resident::kBatchDone) << what;
+  ASSERT_EQ(oracle.dimension, 3) << what << ": a flat cloud must go to the single-cloud path";
+  BasicHullMesh<Point> mesh;
+  const resident::u32* words = used->words.data() + result.word_at;
+  for (resident::u32 f = 0; f < result.faces; ++f)
+    mesh.triangles.push_back({words[3 * f], words[3 * f + 1], words[3 * f + 2]});
+  mesh.vertex_ids.assign(words + 3 * result.faces, words + 3 * result.faces + result.vertices);
+  mesh.vertices.assign(used->coordinates.begin() + result.point_at,
+                       used->coordinates.begin() + result.point_at + result.vertices);
+  EXPECT_EQ(mesh.vertex_ids, oracle.vertex_ids) << what;
+  for (std::size_t k = 0; k < mesh.vertex_ids.size(); ++k)
+    EXPECT_TRUE(mesh.vertices[k] == points[mesh.vertex_ids[k]]) << what << " vertex " << k;
+  const CheckResult check = check_hull(points, mesh, 3);
+  EXPECT_TRUE(check.ok) << what << ": " << (check.failures.empty() ? "" : check.failures.front());
+}
+
+TEST(Resident, BatchHullOfOneCloudOnATeam) {
+  int room_asked = 0;
+  for (const char* name : {"ball", "sphere", "cube", "gauss", "grid", "cylinder"}) {
+    const bool coplanar = std::string(name) == "grid" || std::string(name) == "cylinder";
+    for (std::size_t n : {4, 5, 9, 60, 700, 5000}) {
+      const std::vector<Point3> points = generate_points(distribution_from_name(name), n, 17 + n);
+      const std::string what = std::string(name) + " " + std::to_string(n);
+      expect_batch_exact(points, what, room_asked, coplanar);
+      expect_batch_exact(widened(points), what + " in double", room_asked, coplanar);
+    }
+  }
+  EXPECT_GT(room_asked, 0);  // the spheres' hulls outgrow the first pass's room
+  // Flat, collinear and repeated clouds: the single-cloud path; duplicates keep the lowest index.
+  expect_batch_exact(std::vector<Point3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0.5f, 0.5f, 0}},
+                     "square", room_asked);
+  expect_batch_exact(std::vector<Point3>{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}}, "collinear",
+                     room_asked);
+  expect_batch_exact(std::vector<Point3>(6, Point3{1, 2, 3}), "one point six times", room_asked);
+  std::vector<Point3> repeats = generate_points(Distribution::kSphere, 300, 5);
+  for (std::size_t i = 0; i < 300; i += 4)
+    repeats.insert(repeats.begin(), repeats[299 - i]);
+  expect_batch_exact(repeats, "sphere with repeats", room_asked);
+  std::vector<Point3> inside = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 4}, {1, 1, 1}, {0.5f, 0.5f, 0.5f}};
+  expect_batch_exact(inside, "a tetrahedron with points inside", room_asked);
+}
+
 TEST(Resident, SharedModelsAtTheirKnownCounts) {
   const std::filesystem::path dir = testing::shared_models_dir();
   if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no models folder " << dir;

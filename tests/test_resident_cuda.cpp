@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "cudahull/convex_hull_batch.hpp"
 #include "cudahull/cpu_backend.hpp"
 #include "cudahull/engine.hpp"
 #include "cudahull/exact_hull.hpp"
@@ -109,6 +110,62 @@ class ResidentCuda : public ::testing::Test {
     if (!info.usable) GTEST_SKIP() << "no usable CUDA device: " << info.reason;
   }
 };
+
+// Batched hulls (issue 27): the batch kernel's clouds, from host points and from device memory, in float and
+// double, equal the CPU backend's batch cloud for cloud (which is convex_hull() on each cloud alone): vertex
+// sets, dimensions, face counts, volumes and areas.  Mixed clouds: every distribution, 1 to 6,000 points,
+// repeats, flat and collinear ones, and one cloud too large for a block.
+TEST_F(ResidentCuda, BatchEqualsTheCpuCloudForCloud) {
+  testing::Rng r(27);
+  const std::vector<std::string> names = distribution_names();
+  std::vector<Point3> points;
+  std::vector<std::size_t> offsets{0};
+  for (int c = 0; c < 3000; ++c) {
+    const std::size_t n = c == 1500    ? 300000
+                          : c % 7 == 0 ? r.below(12)
+                                       : 4 + r.below(c % 3 == 0 ? 6000 : 400);
+    std::vector<Point3> cloud = generate_points(distribution_from_name(names[c % names.size()]), n, 100 + c);
+    if (c % 11 == 0)  // repeats
+      for (std::size_t i = 0; i < n; i += 3)
+        cloud.push_back(cloud[i]);
+    if (c % 13 == 0)  // flat
+      for (Point3& p : cloud)
+        p.z = 0.5f;
+    if (c % 17 == 0)  // collinear
+      for (Point3& p : cloud)
+        p = {p.x, 2 * p.x, -p.x};
+    points.insert(points.end(), cloud.begin(), cloud.end());
+    offsets.push_back(points.size());
+  }
+  for (const Precision precision : {Precision::kFloat, Precision::kDouble}) {
+    ConvexHullBatchOptions cpu, cuda;
+    cpu.hull.backend = BackendChoice::kCpu;
+    cuda.hull.backend = BackendChoice::kCuda;
+    cpu.hull.precision = cuda.hull.precision = precision;
+    const ConvexHullBatch want = convex_hull_batch(points, offsets, cpu);
+    Point3* device = nullptr;
+    ASSERT_EQ(cudaMalloc(&device, points.size() * sizeof(Point3)), cudaSuccess);
+    ASSERT_EQ(cudaMemcpy(device, points.data(), points.size() * sizeof(Point3), cudaMemcpyHostToDevice),
+              cudaSuccess);
+    const ConvexHullBatch from_host = convex_hull_batch(points, offsets, cuda);
+    const ConvexHullBatch from_device =
+        convex_hull_batch_device(&device->x, points.size(), offsets.data(), offsets.size() - 1, cuda);
+    cudaFree(device);
+    for (const ConvexHullBatch* got : {&from_host, &from_device}) {
+      const std::string what = std::string(got == &from_host ? "host points" : "device points") +
+                               (precision == Precision::kDouble ? ", double" : ", float");
+      EXPECT_GT(got->clouds_batched, offsets.size() / 2) << what;  // the rest: tiny, large, flat, repaired
+      EXPECT_EQ(got->vertex_offsets, want.vertex_offsets) << what;
+      EXPECT_EQ(got->vertices, want.vertices) << what;
+      EXPECT_EQ(got->face_offsets, want.face_offsets) << what;
+      EXPECT_EQ(got->dimensions, want.dimensions) << what;
+      for (std::size_t c = 0; c + 1 < offsets.size(); ++c) {
+        EXPECT_NEAR(got->volumes[c], want.volumes[c], 1e-9 * std::abs(want.volumes[c]) + 1e-30) << what << c;
+        EXPECT_NEAR(got->areas[c], want.areas[c], 1e-9 * std::abs(want.areas[c]) + 1e-30) << what << c;
+      }
+    }
+  }
+}
 
 TEST_F(ResidentCuda, GeneratedDistributionsMatchTheHostExecutor) {
   for (const char* name : {"cube", "ball", "sphere", "gauss", "paraboloid", "cylinder", "grid"}) {

@@ -252,7 +252,7 @@ void measure_solid(const std::vector<Point>& vertices, const std::vector<PointIn
 }
 
 template <class Point>
-ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend) {
+ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend, bool neighbors = true) {
   ConvexHull hull;
   hull.dimension = mesh.dimension;
   hull.precision = std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
@@ -292,7 +292,7 @@ ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend)
         }
       },
       std::size_t{1} << 12);
-  hull.neighbors = face_neighbors(mesh.triangles, mesh.vertices.size());
+  if (neighbors) hull.neighbors = face_neighbors(mesh.triangles, mesh.vertices.size());
   return hull;
 }
 
@@ -845,12 +845,15 @@ template std::vector<Point3d> checked_points<Point3d>(const float*, std::size_t)
 template std::vector<Point3d> checked_points<Point3d>(const double*, std::size_t);
 
 template <class Point>
-ConvexHull hull_from_mesh(const BasicHullMesh<Point>& mesh, std::string backend) {
-  return describe_exact(mesh, std::move(backend));
+ConvexHull hull_from_mesh(const BasicHullMesh<Point>& mesh, std::string backend,
+                          const ConvexHullOptions& options, bool neighbors) {
+  if (!neighbors && options.merge == MergeMode::kExact)
+    return describe_exact(mesh, std::move(backend), false);
+  return describe(mesh, std::move(backend), options);
 }
 
-template ConvexHull hull_from_mesh(const HullMesh&, std::string);
-template ConvexHull hull_from_mesh(const HullMeshd&, std::string);
+template ConvexHull hull_from_mesh(const HullMesh&, std::string, const ConvexHullOptions&, bool);
+template ConvexHull hull_from_mesh(const HullMeshd&, std::string, const ConvexHullOptions&, bool);
 
 template std::unique_ptr<BasicBackend<Point3>> make_backend(BackendChoice, std::string*);
 template std::unique_ptr<BasicBackend<Point3d>> make_backend(BackendChoice, std::string*);

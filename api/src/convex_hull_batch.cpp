@@ -1,29 +1,32 @@
 // convex_hull_batch(): B clouds' hulls in one call (issue 27).  The design is in convex_hull_batch.hpp's
-// header; here the CPU runs the clouds on all cores, and the CUDA backend, for now, runs them one at a time
-// through the single-cloud path.
+// header; here the CPU runs the clouds on all cores, and the CUDA backend runs every small cloud on a block
+// of one launch (batch_cuda.hpp) and the rest through the single-cloud path.
 //
-// design: where a batched device path plugs in
-//   run_batch_on_device() is the one place the CUDA backend runs a batch.  Today it loops over the clouds,
-//   each through convex_hull() (host points) or convex_hull_device() (points in GPU memory).  The one-launch
-//   batch kernel replaces that loop: it takes the packed points (in GPU memory, or uploaded once), the
-//   offsets and the options, and returns one ConvexHull per cloud (from each cloud's exact mesh through
-//   hull_from_mesh(), so planes, volumes and areas are computed as convex_hull() computes them), or throws
-//   for the lowest failing cloud.  Everything around it (the checks, the plan, the errors' wording, the
-//   packing) stays as it is.
+// design: the device path
+//   points: in GPU memory, checked there once (check_device_points); host points checked on the host and
+//     uploaded once.  A bad point, or double coordinates outside the exact range, make the clouds run in
+//     turn through the single-cloud path, which names the point or takes its wide path
+//   batch_meshes_cuda(): the exact meshes of the clouds a block takes, read back in one piece
+//   each mesh described as convex_hull() describes one (hull_from_mesh(): planes, volume, area, merging),
+//     on all cores; the other clouds through convex_hull() or convex_hull_device(), in cloud order
 #include "cudahull/convex_hull_batch.hpp"
 
 #include <algorithm>
 #include <atomic>
 #include <charconv>
+#include <chrono>
 #include <exception>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 
+#include "batch_cuda.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/hull_plan.hpp"
 #include "cudahull/parallel.hpp"
+#include "cudahull/predicates.hpp"
+#include "device_points.hpp"
 
 namespace cudahull {
 
@@ -119,13 +122,13 @@ void run_batch_on_host(const std::size_t* offsets, std::size_t clouds, unsigned 
   if (failed != clouds) std::rethrow_exception(errors[failed]);
 }
 
-// The one place the CUDA backend runs a batch (see the design note at the top).  Interim: the clouds in
-// turn through the single-cloud path, `hull_of(c)`; the first failing cloud's exception is thrown (an
-// InputError named by its cloud).
+// The clouds in turn through the single-cloud path, `hull_of(c)`, where `pending` (or, when null, every
+// cloud) says; the first failing cloud's exception is thrown (an InputError named by its cloud).
 template <class HullOf>
-void run_batch_on_device(const std::size_t* offsets, std::size_t clouds, std::vector<ConvexHull>& hulls,
-                         HullOf hull_of) {
+void run_each_on_device(const std::size_t* offsets, std::size_t clouds, std::vector<ConvexHull>& hulls,
+                        HullOf hull_of, const std::vector<std::uint8_t>* pending = nullptr) {
   for (std::size_t c = 0; c < clouds; ++c) {
+    if (pending && !(*pending)[c]) continue;
     try {
       hulls[c] = hull_of(c);
     } catch (const InputError& error) {
@@ -134,11 +137,93 @@ void run_batch_on_device(const std::size_t* offsets, std::size_t clouds, std::ve
   }
 }
 
+// The one place the CUDA backend runs a batch of checked points in device memory: the clouds a block takes,
+// in one launch (batch_meshes_cuda(), or two), each described as convex_hull() describes its exact mesh, on
+// all cores; the rest (too small or too large for a block, flat, or with a defect the single-cloud path
+// repairs) and those `single` marks through `hull_of(c)`.
+// What the batch kernel did, for ConvexHullBatch.
+struct DeviceBatchStats {
+  std::size_t clouds_batched = 0, device_bytes_peak = 0;
+  unsigned launches = 0;
+  double device_ms = 0, describe_ms = 0, kernel_ms = 0;
+};
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+template <class Point, class HullOf>
+DeviceBatchStats run_batch_on_device(const Point* device_points, std::size_t count,
+                                     const std::size_t* offsets, std::size_t clouds,
+                                     const ConvexHullOptions& options, std::vector<ConvexHull>& hulls,
+                                     HullOf hull_of, const std::vector<std::uint8_t>& single = {}) {
+  const auto start = std::chrono::steady_clock::now();
+  const BatchMeshes<Point> meshes =
+      batch_meshes_cuda(device_points, count, offsets, clouds, single.empty() ? nullptr : single.data());
+  DeviceBatchStats stats;
+  stats.device_ms = ms_since(start);
+  stats.kernel_ms = meshes.kernel_ms;
+  const auto describe_start = std::chrono::steady_clock::now();
+  stats.launches = meshes.passes;
+  stats.device_bytes_peak = meshes.device_bytes + count * sizeof(Point);
+  parallel_chunks(
+      clouds, hardware_workers(),
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        const SerialScope serial;  // a cloud's description on its worker's thread
+        for (std::size_t c = begin; c < end; ++c) {
+          if (meshes.done[c]) hulls[c] = hull_from_mesh(meshes.mesh(c), "cuda-resident", options, false);
+        }
+      },
+      64);
+  stats.describe_ms = ms_since(describe_start);
+  std::vector<std::uint8_t> pending(clouds);
+  for (std::size_t c = 0; c < clouds; ++c) {
+    pending[c] = !meshes.done[c];
+    stats.clouds_batched += meshes.done[c];
+  }
+  run_each_on_device(offsets, clouds, hulls, hull_of, &pending);
+  return stats;
+}
+
+// Host points for the device: checked and packed in the plan's precision (a bad point: the clouds in turn
+// name it, as the single-cloud path does), uploaded once; a double cloud outside the exact range takes the
+// single-cloud path (its wide path on the host).
+template <class Point, class Scalar, class HullOf>
+DeviceBatchStats run_host_batch_on_device(const Scalar* xyz, std::size_t count, const std::size_t* offsets,
+                                          std::size_t clouds, const ConvexHullOptions& options,
+                                          std::vector<ConvexHull>& hulls, HullOf hull_of) {
+  std::vector<Point> packed;
+  try {
+    packed = checked_points<Point>(xyz, count);
+  } catch (const InputError&) {
+    run_each_on_device(offsets, clouds, hulls, hull_of);
+    return {};
+  }
+  std::vector<std::uint8_t> single(clouds, 0);
+  if constexpr (std::is_same_v<Point, Point3d>) {
+    for (std::size_t c = 0; c < clouds; ++c) {
+      for (std::size_t i = offsets[c]; i < offsets[c + 1] && !single[c]; ++i)
+        single[c] = !in_fast_exact_range(packed[i].x) || !in_fast_exact_range(packed[i].y) ||
+                    !in_fast_exact_range(packed[i].z);
+    }
+  }
+  const std::shared_ptr<void> on_device = upload_to_device(packed.data(), packed.size() * sizeof(Point));
+  return run_batch_on_device(static_cast<const Point*>(on_device.get()), count, offsets, clouds, options,
+                             hulls, hull_of, single);
+}
+
 // The per-cloud hulls packed into flat arrays, in cloud order (the copies on all cores: a batch of 100,000
 // clouds has millions of faces).
-ConvexHullBatch pack(std::vector<ConvexHull>&& hulls, Precision precision) {
+ConvexHullBatch pack(std::vector<ConvexHull>&& hulls, Precision precision,
+                     const DeviceBatchStats& stats = {}) {
   ConvexHullBatch batch;
   batch.precision = precision;
+  batch.clouds_batched = stats.clouds_batched;
+  batch.batch_launches = stats.launches;
+  batch.device_bytes_peak = stats.device_bytes_peak;
+  batch.device_ms = stats.device_ms;
+  batch.describe_ms = stats.describe_ms;
+  batch.kernel_ms = stats.kernel_ms;
   const std::size_t clouds = hulls.size();
   batch.vertex_offsets.assign(clouds + 1, 0);
   batch.face_offsets.assign(clouds + 1, 0);
@@ -194,10 +279,12 @@ HullPlan batch_plan(std::size_t count, Precision own, bool on_device, const Conv
   return plan_hull(options, input);
 }
 
-// The batch of host points: `hull_of(begin, n, options)` is convex_hull() on the n points from row `begin`.
-template <class HullOf>
-ConvexHullBatch host_batch(std::size_t count, const std::size_t* offsets, std::size_t clouds, Precision own,
-                           const ConvexHullBatchOptions& options, HullOf hull_of) {
+// The batch of host points (`count` x, y, z triples at `xyz`): `hull_of(begin, n, options)` is convex_hull()
+// on the n points from row `begin`.
+template <class Scalar, class HullOf>
+ConvexHullBatch host_batch(const Scalar* xyz, std::size_t count, const std::size_t* offsets,
+                           std::size_t clouds, const ConvexHullBatchOptions& options, HullOf hull_of) {
+  constexpr Precision own = std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat;
   check_offsets(count, offsets, clouds);
   const HullPlan plan = batch_plan(count, own, false, options.hull);
   if (!plan.unavailable.empty()) throw DeviceError(plan.unavailable);
@@ -207,20 +294,22 @@ ConvexHullBatch host_batch(std::size_t count, const std::size_t* offsets, std::s
   each.precision = plan.precision;
   std::vector<ConvexHull> hulls(clouds);
   auto cloud = [&](std::size_t c) { return hull_of(offsets[c], offsets[c + 1] - offsets[c], each); };
+  DeviceBatchStats stats;
   if (plan.backend == BackendChoice::kCuda) {
-    run_batch_on_device(offsets, clouds, hulls, cloud);
+    stats = plan.precision == Precision::kDouble
+                ? run_host_batch_on_device<Point3d>(xyz, count, offsets, clouds, each, hulls, cloud)
+                : run_host_batch_on_device<Point3>(xyz, count, offsets, clouds, each, hulls, cloud);
   } else {
     const unsigned threads = options.threads != 0 ? options.threads : hardware_workers();
     run_batch_on_host(offsets, clouds, std::max(1u, threads), hulls, cloud);
   }
-  return pack(std::move(hulls), plan.precision);
+  return pack(std::move(hulls), plan.precision, stats);
 }
 
 template <class Scalar>
 ConvexHullBatch array_batch(const Scalar* xyz, std::size_t count, const std::size_t* offsets,
                             std::size_t clouds, const ConvexHullBatchOptions& options) {
-  constexpr Precision own = std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat;
-  return host_batch(count, offsets, clouds, own, options,
+  return host_batch(xyz, count, offsets, clouds, options,
                     [xyz](std::size_t begin, std::size_t n, const ConvexHullOptions& each) {
                       return convex_hull(xyz + 3 * begin, n, each);
                     });
@@ -231,13 +320,14 @@ ConvexHullBatch vector_batch(const std::vector<Point>& points, const std::vector
                              const ConvexHullBatchOptions& options) {
   if (offsets.empty())
     throw std::invalid_argument("convex_hull_batch: no offsets (B + 1 of them are needed, {0} for none)");
-  constexpr Precision own = std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
-  return host_batch(points.size(), offsets.data(), offsets.size() - 1, own, options,
-                    [&points](std::size_t begin, std::size_t n, const ConvexHullOptions& each) {
-                      const auto first = points.begin() + static_cast<std::ptrdiff_t>(begin);
-                      return convex_hull(std::vector<Point>(first, first + static_cast<std::ptrdiff_t>(n)),
-                                         each);
-                    });
+  using Scalar = decltype(Point::x);
+  static_assert(sizeof(Point) == 3 * sizeof(Scalar), "x, y, z packed");
+  return host_batch(
+      reinterpret_cast<const Scalar*>(points.data()), points.size(), offsets.data(), offsets.size() - 1,
+      options, [&points](std::size_t begin, std::size_t n, const ConvexHullOptions& each) {
+        const auto first = points.begin() + static_cast<std::ptrdiff_t>(begin);
+        return convex_hull(std::vector<Point>(first, first + static_cast<std::ptrdiff_t>(n)), each);
+      });
 }
 
 template <class Scalar>
@@ -251,10 +341,21 @@ ConvexHullBatch device_batch(const Scalar* device_xyz, std::size_t count, const 
   ConvexHullOptions each = options.hull;
   each.precision = plan.precision;
   std::vector<ConvexHull> hulls(clouds);
-  run_batch_on_device(offsets, clouds, hulls, [&](std::size_t c) {
+  const auto cloud = [&](std::size_t c) {
     return convex_hull_device(device_xyz + 3 * offsets[c], offsets[c + 1] - offsets[c], each);
-  });
-  return pack(std::move(hulls), plan.precision);
+  };
+  const auto on_device = [&](auto point) {
+    using Point = decltype(point);
+    const CheckedDevicePoints<Point> checked = check_device_points<Point>(device_xyz, count);
+    if (checked.first_bad != count) {  // the clouds in turn: the bad point named, or the wide path taken
+      run_each_on_device(offsets, clouds, hulls, cloud);
+      return DeviceBatchStats{};
+    }
+    return run_batch_on_device(checked.points, count, offsets, clouds, each, hulls, cloud);
+  };
+  const DeviceBatchStats stats =
+      plan.precision == Precision::kDouble ? on_device(Point3d{}) : on_device(Point3{});
+  return pack(std::move(hulls), plan.precision, stats);
 }
 
 }  // namespace

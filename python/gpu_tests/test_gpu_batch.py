@@ -1,7 +1,8 @@
 """convex_hull_batch (issue 27) from CuPy arrays and PyTorch CUDA tensors, against the same clouds given as
 NumPy on the CPU backend: cloud for cloud the same hulls, results of the input's kind on its device, the same
-errors.  Interim: on the GPU the clouds run one at a time through the single-cloud path (the one-launch batch
-kernel is to come).  ctest label gpu: skipped (exit 77) where there is no GPU, CuPy or PyTorch."""
+errors.  The GPU runs the small clouds on its batch kernel (a block a cloud, from section 3.1's tetrahedron),
+the CPU each cloud alone: the same vertex sets, and the same faces in another order.  ctest label gpu:
+skipped (exit 77) where there is no GPU, CuPy or PyTorch."""
 
 import numpy as np
 import pytest
@@ -28,9 +29,21 @@ def clouds():
 CLOUDS = clouds()
 
 
+def canonical(faces, planes):
+    """A cloud's faces each from its least corner (orientation kept), in order, with their planes."""
+    faces = np.asarray(faces).copy()
+    roll = np.argmin(faces, axis=1)
+    for r in (1, 2):
+        faces[roll == r] = np.roll(faces[roll == r], -r, axis=1)
+    order = np.lexsort(faces.T[::-1])
+    return faces[order], np.asarray(planes)[order]
+
+
 def assert_as_on_the_cpu(got, points, offsets, library):
-    """Against the CPU's batch with the engine the GPU runs (the resident one): the same meshes face for face,
-    as arrays of `library`; and against the CPU's default engine (stepping): the same vertex sets."""
+    """Against the CPU's batch with the engine the GPU runs (the resident one): the same vertex sets, measures
+    and flat answers, as arrays of `library`; the same faces with the same planes, in any order, for every
+    cloud in general position (a coplanar facet may be cut along either diagonal); and against the CPU's
+    default engine (stepping): the same vertex sets."""
     want = cudahull.convex_hull_batch(points, offsets, backend="cpu", engine="resident")
     assert len(got) == len(want)
     for key in ("vertex_offsets", "face_offsets", "vertices", "faces", "planes", "dimensions", "polygon_offsets",
@@ -39,8 +52,22 @@ def assert_as_on_the_cpu(got, points, offsets, library):
         assert type(array).__module__.partition(".")[0] == library, key
         if key in ("volumes", "areas"):
             assert to_numpy(array) == pytest.approx(getattr(want, key), rel=1e-12, abs=0), key
-        else:
+        elif key not in ("faces", "planes"):
             assert np.array_equal(to_numpy(array), getattr(want, key)), key
+    bounds = to_numpy(got.face_offsets)
+    faces, planes = to_numpy(got.faces), to_numpy(got.planes)
+    general = 0
+    for c in range(len(want)):
+        points_c = points[offsets[c]:offsets[c + 1]]
+        if len(points_c) < 4 or np.all(points_c == np.round(points_c)):
+            continue  # tiny, or integer coordinates: coplanar facets
+        b, e = bounds[c], bounds[c + 1]
+        got_faces, got_planes = canonical(faces[b:e], planes[b:e])
+        want_faces, want_planes = canonical(want.faces[b:e], want.planes[b:e])
+        assert np.array_equal(got_faces, want_faces), c
+        assert got_planes == pytest.approx(want_planes, rel=0, abs=1e-12), c
+        general += 1
+    assert general > 100
     stepping = cudahull.convex_hull_batch(points, offsets, backend="cpu")
     assert np.array_equal(to_numpy(got.vertices), stepping.vertices)
     assert np.array_equal(to_numpy(got.vertex_offsets), stepping.vertex_offsets)

@@ -138,9 +138,11 @@ ConvexHull convex_hull_device(const double* device_xyz, std::size_t count,
 template <class Point, class Scalar>
 std::vector<Point> checked_points(const Scalar* xyz, std::size_t count);
 
-// What convex_hull() returns, for an exact hull that the Engine (result()) or exact_hull() computed.
+// What convex_hull() returns, for an exact hull that the Engine (result()) or exact_hull() computed, merged
+// where `options` ask for it; without `neighbors` (a batch keeps none), the exact hull's are not found.
 template <class Point>
-ConvexHull hull_from_mesh(const BasicHullMesh<Point>& mesh, std::string backend);
+ConvexHull hull_from_mesh(const BasicHullMesh<Point>& mesh, std::string backend,
+                          const ConvexHullOptions& options = {}, bool neighbors = true);
 
 // A backend for the stepping Engine, as ConvexHullOptions::backend picks it; `chosen_because` (if given)
 // gets the reason in words ("as requested", "auto: no usable CUDA device: ...").  Point3 or Point3d.

@@ -67,6 +67,15 @@ struct ConvexHullBatch {
   // The backends that ran, as convex_hull()'s names ("cpu", "cpu-resident", "cuda-resident", "cpu-wide"),
   // in the order first met, joined by "+" where the clouds differ (a wide-range cloud takes "cpu-wide").
   std::string backend;
+  // The CUDA backend: the clouds its batch kernel hulled (the rest took the single-cloud path), the
+  // launches it made (a second for clouds whose hulls outgrew the first's room), and the most device memory
+  // it held at once, the points included.
+  std::size_t clouds_batched = 0;
+  unsigned batch_launches = 0;
+  std::size_t device_bytes_peak = 0;
+  // Milliseconds: the batch kernel's launches with their reads (the points' upload and check before them
+  // not included), and describing its meshes on the host (planes, volumes, areas: hull_from_mesh()).
+  double device_ms = 0, describe_ms = 0, kernel_ms = 0;  // kernel_ms: the launches alone, in device_ms
 
   std::size_t size() const { return volumes.size(); }
 };

@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# Batched hulls on the GPU machine (issue 27), in one run: the gpu tests that cover the batch kernel (and
+# the device allocator every CUDA path shares), compute-sanitizer on a batch, `cudahull bench --batch` at the
+# issue's sizes against a loop of Qhull, then the Python module built there, its gpu tests, and
+# python/bench/bench_batch.py from PyTorch tensors against loops of scipy and of single calls.
+# Carried: .carry/bin.tar.xz (cudahull, test_resident_cuda, test_cuda_backend, test_convex_hull_batch, built
+# here for sm_90, unpacked into .carry/bin), .carry/lib (Qhull's and GMP's shared libraries), .carry/models, and .carry-py as
+# python/gpu_tests/run_on_gpu_machine.sh says.
+#   PART=tests|bench|python|all bash bench/batch_h100.sh
+set -uo pipefail
+O=${OUT:-/tmp/out}
+PART=${PART:-all}
+mkdir -p $O .carry/bin
+tar -xJf .carry/bin.tar.xz -C .carry/bin
+export LD_LIBRARY_PATH=$PWD/.carry/lib CUDAHULL_MODELS_DIR=$PWD/.carry/models
+B=.carry/bin
+failed=0
+nvidia-smi -L
+
+if [ "$PART" = all ] || [ "$PART" = tests ]; then
+  for t in test_resident_cuda test_cuda_backend test_convex_hull_batch; do
+    timeout 300 $B/$t ${FILTER:+--gtest_filter=$FILTER} >$O/$t.txt 2>&1
+    echo "$t exit $?"; grep -E "^\[  (PASSED|FAILED)|Failure|SKIPPED" $O/$t.txt | head -8
+  done
+  timeout 200 compute-sanitizer --tool memcheck --error-exitcode 9 $B/cudahull bench --batch 300 --n 700 \
+    --dist sphere --backend cuda --repeat 1 >$O/memcheck.txt 2>&1
+  echo "memcheck exit $?"; tail -3 $O/memcheck.txt
+  timeout 200 compute-sanitizer --tool racecheck --error-exitcode 9 $B/cudahull bench --batch 40 --n 3000 \
+    --dist ball --backend cuda --repeat 1 >$O/racecheck.txt 2>&1
+  echo "racecheck exit $?"; tail -3 $O/racecheck.txt
+fi
+
+if [ "$PART" = all ] || [ "$PART" = bench ]; then
+  : >$O/batch_cli.jsonl
+  for args in "10000 1000 ball" "100000 100 ball" "100 100000 ball" "10000 1000 sphere" "1000 5000 cube"; do
+    set -- $args
+    timeout 240 $B/cudahull bench --batch $1 --n $2 --dist $3 --backend cuda --repeat 5 --vs qhull --json \
+      >>$O/batch_cli.jsonl 2>$O/batch_cli_err.txt || { echo "bench $args failed"; cat $O/batch_cli_err.txt; }
+  done
+  python3 - <<PY
+import json
+for l in open('$O/batch_cli.jsonl'):
+    j = json.loads(l)
+    print(j['input'], 'total', round(j['total_ms'], 2), 'ms; qhull loop', round(j.get('versus_ms', 0)), 'ms;',
+          'batched', j['clouds_batched'], 'launches', j['batch_launches'], 'peak MB',
+          round(j['device_bytes_peak'] / 2**20), 'differ', j.get('clouds_with_different_vertices'),
+          'device', round(j['device_ms'], 1), 'kernel', round(j['kernel_ms'], 1), 'describe', round(j['describe_ms'], 1))
+PY
+fi
+
+if [ "$PART" = ncu ]; then  # issue 26: every kernel's time on the smallest hulls, this build and OLD's
+  for bin in ${OLD:-cudahull_base} cudahull; do
+    for args in ".carry/models/dragon_scans.ply" "--dist gauss --n 1000000"; do
+      timeout 120 ncu --metrics gpu__time_duration.sum --csv $B/$bin bench $args --engine resident --repeat 1 \
+        >$O/ncu_${bin}_$(echo $args | tr -c 'a-z0-9' _).csv 2>/dev/null
+      python3 - $O/ncu_${bin}_$(echo $args | tr -c 'a-z0-9' _).csv "$bin $args" <<'PY'
+import csv, sys, collections
+rows = [r for r in csv.reader(open(sys.argv[1])) if len(r) > 10]
+head, body = rows[0], rows[1:]
+k, v = head.index('Kernel Name'), head.index('Metric Value')
+t = collections.Counter(); n = collections.Counter()
+for r in body:
+    name = r[k].split('(')[0].split('<')[0][-40:]
+    t[name] += float(r[v].replace(',', '')); n[name] += 1
+print(sys.argv[2], 'kernels', sum(n.values()), 'gpu us', round(sum(t.values()) / 1000, 1))
+for name, ns in t.most_common(8): print('   ', name, n[name], round(ns / 1000, 1))
+PY
+    done
+  done
+fi
+
+if [ "$PART" = all ] || [ "$PART" = python ]; then
+  PART=none python/gpu_tests/run_on_gpu_machine.sh >$O/py_build.txt 2>&1 || { echo "module build failed"; tail $O/py_build.txt; }
+  export PYTHONPATH=/tmp/build-py/python:/tmp/site
+  timeout 300 python3 -m pytest -q -p no:cacheprovider -rs python/gpu_tests 2>&1 | tee $O/pytest_gpu.txt | tail -6
+  : >$O/batch_py.jsonl
+  for args in "10000 1000" "100000 100" "100 100000"; do
+    set -- $args
+    timeout 200 python3 python/bench/bench_batch.py --batch $1 --n $2 --json $O/batch_py.jsonl || failed=1
+  done
+fi
+exit $failed
