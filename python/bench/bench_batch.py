@@ -6,7 +6,7 @@ The loops run on the first ``--loop`` clouds and are scaled to B (stated in the 
 those clouds' vertex sets is checked against scipy's (general position: scipy is exact there).
 
     python3 python/bench/bench_batch.py --batch 10000 --n 1000 [--dist ball] [--repeat 5] [--loop 300]
-        [--json FILE]
+        [--json FILE] [--profile]
 """
 import argparse
 import json
@@ -53,12 +53,19 @@ def main():
     ap.add_argument("--loop", type=int, default=300, help="clouds the loops run on (scaled to --batch)")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--json")
+    ap.add_argument("--profile", action="store_true", help="print where one batch call spends its time")
     a = ap.parse_args()
 
     points = clouds(a.dist, a.batch, a.n, a.seed)
     cudahull.convex_hull_batch(points[: min(a.batch, 64)])  # warm: the module, the CUDA context, the pools
     torch.cuda.reset_peak_memory_stats()
     hulls, batch_ms = timed(lambda: cudahull.convex_hull_batch(points), a.repeat)
+    if a.profile:
+        import cProfile
+        import pstats
+        profile = cProfile.Profile()
+        profile.runcall(cudahull.convex_hull_batch, points)
+        pstats.Stats(profile).sort_stats("cumulative").print_stats(12)
 
     k = min(a.loop, a.batch)
     host = points[:k].cpu().numpy().astype(np.float64)

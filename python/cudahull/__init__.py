@@ -702,8 +702,8 @@ class BatchHulls:
 
 
 def _host_integers(values, name):
-    """``offsets`` or ``lengths`` as a 1-D int64 NumPy array; from GPU memory, copied to the host (interim: B + 1
-    values, for the loop over the clouds that runs on the host until the one-launch batch kernel)."""
+    """``offsets`` or ``lengths`` as a 1-D int64 NumPy array; from GPU memory, copied to the host (B + 1 values:
+    the batch's plan, which clouds the kernel takes and its room, is made on the host)."""
     if _cuda_protocol(values) is not None:
         owner = _DeviceKind(values)
         if not owner.known:
@@ -757,8 +757,8 @@ def _batch_result(raw, offsets, kind=None):
     for key in _BATCH_ARRAYS:
         array = raw[key]
         if to_input:
-            # Interim: the hulls come back to the host and go up again (small next to the points); the
-            # one-launch batch kernel will leave them on the device.  PyTorch's indices are int64, as for
+            # The hulls come back to the host (they are described there) and go up again: most of a GPU
+            # batch's time today (docs/benchmarks.md, "Batched hulls").  PyTorch's indices are int64, as for
             # device_results (few operations take int32 there).
             if kind.library == "torch" and array.dtype == np.int32:
                 array = array.astype(np.int64)
@@ -792,8 +792,9 @@ def convex_hull_batch(points, offsets=None, lengths=None, *, backend="auto", pre
     lower-dimensional answer for a flat cloud.  ``backend``, ``precision`` and ``engine`` as for
     ``convex_hull``; ``threads``: CPU clouds hulled at once (0: every core), the same result for any.
 
-    On the CPU the clouds run on all cores.  With a GPU the clouds run one after another through the
-    single-cloud GPU path for now (each read in place); the one-launch batch kernel is coming.
+    On the CPU the clouds run on all cores.  With a GPU one launch hulls every cloud of 4 to 131,072 points, a
+    block a cloud (the same vertex sets and faces as ``convex_hull()``, the faces in another order); flat,
+    tiny and larger clouds take the single-cloud GPU path.
 
     Raises ValueError for a NaN or infinite coordinate (naming the cloud, the point in it and its row in the
     packed points), and for bad shapes, offsets or lengths; DeviceError as ``convex_hull``.
@@ -823,8 +824,8 @@ def convex_hull_batch(points, offsets=None, lengths=None, *, backend="auto", pre
                           precision, engine, int(threads))
         return _batch_result(raw, bounds, kind)
 
-    # Points in GPU memory.  Interim: offsets (or lengths) are read to the host, padded clouds are packed on
-    # the device (a device copy), and the clouds run one after another through the single-cloud GPU path.
+    # Points in GPU memory.  Offsets (or lengths) are read to the host, padded clouds are packed on the
+    # device (a device copy), and the batch runs there (convex_hull_batch_device in C++).
     if backend == "cpu":
         raise ValueError("points in GPU memory need backend 'auto' or 'cuda', not 'cpu' (for the CPU backend, "
                          "pass them as NumPy: cupy.asnumpy(x), x.cpu().numpy())")

@@ -336,8 +336,8 @@ nb::dict convex_hull_batch_of(PointArray<Scalar> points, const OffsetArray& offs
   return batch_to_dict(std::move(batch));
 }
 
-// Packed points in CUDA memory: each cloud read in place (interim: one cloud at a time through the
-// single-cloud device path, until the one-launch batch kernel).
+// Packed points in CUDA memory, read in place: the batch kernel, and the single-cloud device path for the
+// clouds it does not take (convex_hull_batch_device()).
 template <class Scalar>
 nb::dict device_batch_of(const Scalar* xyz, std::size_t count, const OffsetArray& offsets,
                          const std::string& backend, const std::string& precision) {

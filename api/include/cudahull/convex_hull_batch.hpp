@@ -8,18 +8,21 @@
 //     for (std::size_t k = hulls.vertex_offsets[c]; k < hulls.vertex_offsets[c + 1]; ++k)
 //       use(points[offsets[c] + hulls.vertices[k]]);     // indices into cloud c
 //
-// Each cloud's hull is convex_hull()'s on that cloud alone (convex_hull.hpp): the same vertex set, faces,
-// planes, volume, area and dimension, whatever the thread count.  Flat clouds give their lower-dimensional
-// answer as convex_hull() does.
+// Each cloud's hull is convex_hull()'s on that cloud alone (convex_hull.hpp): the same vertex set, planes,
+// volume, area and dimension, whatever the thread count; the same faces (on the GPU's batch kernel, in
+// general position, in another order).  Flat clouds give their lower-dimensional answer as convex_hull()
+// does.
 //
 // design:
 //   the offsets checked (B + 1 of them, from 0, never decreasing, to the point count)
 //   one plan for the batch (plan_hull() on all its points): where it runs, CPU or CUDA
 //   CPU: the clouds on all cores, a cloud a worker at a time in cloud order (each cloud's engine passes on
 //     its worker's thread, SerialScope); a cloud too large to share the cores runs alone on all of them
-//   CUDA (interim): each cloud in turn through the single-cloud path (convex_hull(), convex_hull_device());
-//     the one-launch batch kernel (issue 27, coming) replaces that loop in one place, run_batch_on_device()
-//     in convex_hull_batch.cpp, and gives the same per-cloud results
+//   CUDA: the points checked once and on the device (host points uploaded once); one launch of the batch
+//     kernel (cuda/batch_cuda.hpp: a block a cloud, the resident engine's iteration) for the clouds of 4 to
+//     131,072 points, a second for those whose hulls outgrew the first's room; each mesh described as
+//     convex_hull() describes one; flat, tiny and larger clouds, and those with defects, through the
+//     single-cloud path (convex_hull(), convex_hull_device())
 //   errors: the first bad point in packed order raises, named by its cloud, its index in the cloud and its
 //     row in the packed array; clouds after a failed one are not started
 //   the per-cloud hulls packed into flat arrays with offsets, in cloud order
@@ -96,7 +99,7 @@ ConvexHullBatch convex_hull_batch(const double* xyz, std::size_t count, const st
                                   std::size_t clouds, const ConvexHullBatchOptions& options = {});
 
 // The same on `count` x, y, z triples in the current CUDA device's memory (the offsets in host memory), read
-// in place.  Interim: each cloud through convex_hull_device() in turn, until the one-launch batch kernel.
+// in place, on the batch kernel (the rest through convex_hull_device()).
 // Throws as convex_hull_device() does (std::invalid_argument for backend cpu).
 ConvexHullBatch convex_hull_batch_device(const float* device_xyz, std::size_t count,
                                          const std::size_t* offsets, std::size_t clouds,
