@@ -50,7 +50,7 @@ fi
 
 if [ "$PART" = ncu ]; then  # issue 26: every kernel's time on the smallest hulls, this build and OLD's
   for bin in ${OLD:-cudahull_base} cudahull; do
-    for args in ".carry/models/dragon_scans.ply" "--dist gauss --n 1000000"; do
+    for args in ".carry/models/dragon_scans.ply" "--dist ball --n 1000000"; do
       timeout 120 ncu --metrics gpu__time_duration.sum --csv $B/$bin bench $args --engine resident --repeat 1 \
         >$O/ncu_${bin}_$(echo $args | tr -c 'a-z0-9' _).csv 2>/dev/null
       python3 - $O/ncu_${bin}_$(echo $args | tr -c 'a-z0-9' _).csv "$bin $args" <<'PY'

@@ -7,7 +7,8 @@
 //     expects (batch_vertices()); a block takes clouds one after another from a counter (a large one does
 //     not hold the others up) and runs batch_hull() on each.  Per point, the iteration's own arrays (six
 //     words) at the cloud's place in the packed points
-//   pass 2: the clouds that asked for more room, with room for every point a vertex
+//   pass 2: the clouds that asked for more room, with room for every point a vertex (up to kSecondPassPoints
+//     points; larger ones take the single-cloud path)
 //   read back: the results (status, sizes, places), then the words and coordinates the hulls took
 #include <cuda_runtime.h>
 
@@ -35,6 +36,7 @@ using resident::u64;
 
 constexpr const char* kWho = "batched hulls";
 constexpr int kThreads = 128;  // a block a cloud: most small clouds' phases have fewer items than this
+constexpr u32 kSecondPassPoints = 16384;  // the largest cloud the second launch takes
 
 void check(cudaError_t e, const char* what) {
   if (e != cudaSuccess) throw_cuda_error(kWho, what, e);
@@ -300,6 +302,9 @@ BatchMeshes<Point> batch_meshes_cuda(const Point* device_points, std::size_t cou
   for (std::size_t k = 0; k < listed.size(); ++k) {
     if (first[k].status != resident::kBatchRoom) continue;
     const u32 c = listed[k], n = static_cast<u32>(offsets[c + 1] - offsets[c]);
+    // Room for every point a vertex costs a slot some 900 bytes a point: a larger cloud takes the
+    // single-cloud path, which grows its room as it goes.
+    if (n > kSecondPassPoints) continue;
     again.push_back(c);
     vertices = std::max(vertices, n);
     word_room += 7 * std::size_t{n};

@@ -158,8 +158,16 @@ DeviceBatchStats run_batch_on_device(const Point* device_points, std::size_t cou
                                      const ConvexHullOptions& options, std::vector<ConvexHull>& hulls,
                                      HullOf hull_of, const std::vector<std::uint8_t>& single = {}) {
   const auto start = std::chrono::steady_clock::now();
-  const BatchMeshes<Point> meshes =
-      batch_meshes_cuda(device_points, count, offsets, clouds, single.empty() ? nullptr : single.data());
+  BatchMeshes<Point> meshes;
+  try {
+    meshes =
+        batch_meshes_cuda(device_points, count, offsets, clouds, single.empty() ? nullptr : single.data());
+  } catch (const DeviceError& error) {
+    // Out of device memory for the batch's room: every cloud through the single-cloud path, which grows
+    // its room as it goes.
+    if (std::string(error.what()).find("out of device memory") == std::string::npos) throw;
+    meshes.done.assign(clouds, 0);
+  }
   DeviceBatchStats stats;
   stats.device_ms = ms_since(start);
   stats.kernel_ms = meshes.kernel_ms;
@@ -295,7 +303,9 @@ ConvexHullBatch host_batch(const Scalar* xyz, std::size_t count, const std::size
   std::vector<ConvexHull> hulls(clouds);
   auto cloud = [&](std::size_t c) { return hull_of(offsets[c], offsets[c + 1] - offsets[c], each); };
   DeviceBatchStats stats;
-  if (plan.backend == BackendChoice::kCuda) {
+  if (plan.backend == BackendChoice::kCuda && plan.engine == EngineChoice::kStepping) {
+    run_each_on_device(offsets, clouds, hulls, cloud);  // the stepping engine asked for: cloud by cloud
+  } else if (plan.backend == BackendChoice::kCuda) {
     stats = plan.precision == Precision::kDouble
                 ? run_host_batch_on_device<Point3d>(xyz, count, offsets, clouds, each, hulls, cloud)
                 : run_host_batch_on_device<Point3>(xyz, count, offsets, clouds, each, hulls, cloud);

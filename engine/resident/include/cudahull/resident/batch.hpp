@@ -212,7 +212,10 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
       slot.room.work, slot.room.faces, 0xffffffffu, 0};
   resident_iterations(team, b, launch);
   team.barrier();
-  if (st->loop_exit == kExitStall && st->loop_iterations == 0) {
+  // Every thread reads the exit before the relaunch's leader writes the state again.
+  const bool first_stalled = st->loop_exit == kExitStall && st->loop_iterations == 0;
+  team.barrier();
+  if (first_stalled) {
     // No face refined in the first iteration: the points the first distribution did not keep are still
     // listed.  Compacted, none may be left (every point inside the tetrahedron: the hull is done).
     const IterationLaunch compact{
