@@ -48,9 +48,10 @@ for l in open('$O/batch_cli.jsonl'):
 PY
 fi
 
-if [ "$PART" = ncu ]; then  # issue 26: every kernel's time on the smallest hulls, this build and OLD's
+if [ "$PART" = ncu ]; then  # issue 26: every kernel's time (NCU_INPUTS="ARGS|ARGS"), this build and OLD's
+  IFS='|' read -ra ncu_inputs <<< "${NCU_INPUTS:-.carry/models/dragon_scans.ply|--dist ball --n 1000000}"
   for bin in ${OLD:-cudahull_base} cudahull; do
-    for args in ".carry/models/dragon_scans.ply" "--dist ball --n 1000000"; do
+    for args in "${ncu_inputs[@]}"; do
       timeout 120 ncu --metrics gpu__time_duration.sum --csv $B/$bin bench $args --engine resident --repeat 1 \
         >$O/ncu_${bin}_$(echo $args | tr -c 'a-z0-9' _).csv 2>/dev/null
       python3 - $O/ncu_${bin}_$(echo $args | tr -c 'a-z0-9' _).csv "$bin $args" <<'PY'
