@@ -42,10 +42,12 @@ void check(cudaError_t e, const char* what) {
   if (e != cudaSuccess) throw_cuda_error(kWho, what, e);
 }
 
-// The clouds with more points than this take the single-cloud path (or CUDAHULL_BATCH_BLOCK_POINTS).
+// The clouds with more points than this take the single-cloud path (or CUDAHULL_BATCH_BLOCK_POINTS, up to
+// 2^20: a block's room, batch_room(), counts its face slots in 32 bits).
 std::size_t block_points() {
   const char* env = std::getenv("CUDAHULL_BATCH_BLOCK_POINTS");
-  return env ? std::strtoull(env, nullptr, 10) : std::size_t{1} << 17;
+  return std::min<std::size_t>(env ? std::strtoull(env, nullptr, 10) : std::size_t{1} << 17,
+                               std::size_t{1} << 20);
 }
 
 // The batch's device arrays (device_memory.hpp, on the default stream), given back with their owner, and

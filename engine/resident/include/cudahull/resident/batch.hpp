@@ -118,7 +118,8 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
                             const BatchOutput<Point>& out, BatchResult* result) {
   const u32 n = cloud.n;
   RoundsState* st = slot.st;
-  const auto finish = [&](u32 status) {
+  // The cloud ends here (every thread together) with `status` and no hull in the output.
+  const auto end_with = [&](u32 status) {
     if (team.leader()) *result = BatchResult{status, 0, 0, 0, 0};
     team.barrier();
   };
@@ -147,8 +148,8 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
   for (int k = 0; k < 4; ++k)
     p[k] = to_vec3d(cloud.points[corner[k]]);
   const int sign = orient3d(p[0], p[1], p[2], p[3]);
-  if (sign == 0) return finish(kBatchSingle);
-  if (sign > 0) {  // p3 below (p0, p2, p1): that face points away from it
+  if (sign == 0) return end_with(kBatchSingle);
+  if (sign > 0) {  // p3 above (p0, p1, p2): that face would point at it; (p0, p2, p1) points away
     const u32 t = corner[1];
     corner[1] = corner[2];
     corner[2] = t;
@@ -161,7 +162,7 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
   const Vec3d c{(p[0].x + p[1].x + p[2].x + p[3].x) / 4, (p[0].y + p[1].y + p[2].y + p[3].y) / 4,
                 (p[0].z + p[1].z + p[2].z + p[3].z) / 4};
   for (const auto& f : kFaces) {
-    if (orient3d(p[f[0]], p[f[1]], p[f[2]], c) >= 0) return finish(kBatchSingle);
+    if (orient3d(p[f[0]], p[f[1]], p[f[2]], c) >= 0) return end_with(kBatchSingle);
   }
   team.barrier();  // every thread has read the maxima before the first mesh overwrites them
   if (team.leader()) {
@@ -227,8 +228,8 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
     team.barrier();
   }
   const u32 exit = st->loop_exit;
-  if (exit == kExitRoom || exit == kExitOverflow) return finish(kBatchRoom);
-  if (exit != kExitDone || st->kept_points != 0) return finish(kBatchSingle);
+  if (exit == kExitRoom || exit == kExitOverflow) return end_with(kBatchRoom);
+  if (exit != kExitDone || st->kept_points != 0) return end_with(kBatchSingle);
 
   // The finish: the mesh is in the spares after an odd number of compactions.
   MeshView<Point> m = b.m;
@@ -250,7 +251,7 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
   const CountThin thin{creases, used, &st->defects};
   team.for_range(n, [&](u32 i) { thin(i); });
   team.barrier();
-  if (st->defects != 0) return finish(kBatchSingle);
+  if (st->defects != 0) return end_with(kBatchSingle);
   const u32 vertices = team.exclusive_scan(
       n, [&](u32 i) { return used[i]; }, rank);
   team.for_range(n, [&](u32 i) {
