@@ -412,10 +412,12 @@ struct CudaExec {
   static constexpr bool kDeviceLoop = true;  // whole iterations of a small mesh in one launch
   // Up to this many points left on a mesh of up to this many faces, the driver runs the iterations as a
   // device loop (one block: each pass takes the points and faces a few at a time per thread).  Past 512
-  // faces the grid's launches are faster (docs/benchmarks.md, "The device loop's face limit": ball 1M
-  // 3.2 ms at 4,096, 2.3 at 512).
+  // faces the grid's launches are faster while many points are left (docs/benchmarks.md, "The device
+  // loop's face limit": ball 1M 3.2 ms at 4,096, 2.3 at 512), but not with few (cube 10M).
   std::size_t loop_points = tuning("CUDAHULL_LOOP_POINTS", 16384);
   std::size_t loop_faces = tuning("CUDAHULL_LOOP_FACES", 512);
+  // And on a mesh of up to this many faces with no more points left than faces (loop_goes_on()).
+  std::size_t loop_few_points_faces = tuning("CUDAHULL_LOOP_FEW_POINTS_FACES", 4096);
 
   // The iteration's phases (iteration.hpp): a device loop in one block; otherwise a cooperative grid for
   // each range of phases (the marks; the split and the rounds, in one block for a small mesh; the routing

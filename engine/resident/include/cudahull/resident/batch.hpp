@@ -209,8 +209,8 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
   b.st = st;
   b.first_list = nullptr;
   const IterationLaunch launch{
-      kFirst,         kCompact,        0xffffffffu, 4, n, 0, slot.room.faces, slot.room.entries,
-      slot.room.work, slot.room.faces, 0xffffffffu, 0};
+      kFirst,         kCompact,        0xffffffffu, 4,           n, 0, slot.room.faces, slot.room.entries,
+      slot.room.work, slot.room.faces, 0xffffffffu, 0xffffffffu, 0};
   resident_iterations(team, b, launch);
   team.barrier();
   // Every thread reads the exit before the relaunch's leader writes the state again.
@@ -220,8 +220,8 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
     // No face refined in the first iteration: the points the first distribution did not keep are still
     // listed.  Compacted, none may be left (every point inside the tetrahedron: the hull is done).
     const IterationLaunch compact{
-        kCompact,       kCompact,        1,           4, n, 1, slot.room.faces, slot.room.entries,
-        slot.room.work, slot.room.faces, 0xffffffffu, 0};
+        kCompact,       kCompact,        1,           4,           n, 1, slot.room.faces, slot.room.entries,
+        slot.room.work, slot.room.faces, 0xffffffffu, 0xffffffffu, 0};
     resident_iterations(team, b, compact);
     team.barrier();
     if (team.leader() && st->kept_points != 0) st->loop_exit = kExitStall;

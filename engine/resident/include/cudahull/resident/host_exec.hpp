@@ -161,7 +161,7 @@ struct HostExec {
 // compare its mesh with HostExec's and so check the driver's device paths without a GPU.
 struct DevicePathHostExec : HostExec {
   static constexpr bool kDeviceLoop = true;
-  std::size_t loop_points = 16384, loop_faces = 512;  // as CudaExec's
+  std::size_t loop_points = 16384, loop_faces = 512, loop_few_points_faces = 4096;  // as CudaExec's
   static constexpr std::size_t kFinishFaces = kSmallFinishFaces;
 
   // As the GPU's finish_small_kernel: out = [faults, vertices, the corners renumbered, the vertex list].

@@ -74,9 +74,19 @@ struct IterationLaunch {
   u32 iterations;             // then whole iterations from kFurthest until this many have ended
   u32 faces, active, unkept;  // unkept: the listed points not kept are still listed (after kFirst)
   u32 face_capacity, entry_capacity, work_capacity, spare_capacity;
-  u32 face_limit;  // a device loop goes on to another iteration only on a mesh of at most this many faces
+  // A device loop goes on to another iteration only on a mesh of at most face_limit faces, or of at most
+  // few_points_face_limit with no more points left than faces (loop_goes_on()).
+  u32 face_limit, few_points_face_limit;
   u32 after;
 };
+
+// Whether a device loop (one block) runs an iteration on a mesh of `faces` faces with `active` points left:
+// on a small mesh, or on a larger one with few points (little work an iteration, where the grid's launches
+// cost more than they share out; on ball 1M, thousands of points on a few thousand faces, the grid is
+// faster: docs/benchmarks.md, "The device loop's face limit").
+CUDAHULL_HD inline bool loop_goes_on(u32 faces, u32 active, u32 face_limit, u32 few_points_face_limit) {
+  return faces <= face_limit || (faces <= few_points_face_limit && active <= faces);
+}
 
 // The phases a kernel is compiled with (a cooperative grid runs a range a launch: each kernel keeps the
 // registers of its own phases).
@@ -152,7 +162,7 @@ CUDAHULL_HD void resident_iterations(const Team& team, IterationBuffers<Point, L
       const IterationRoom room = room_for(faces, refined);
       if (room.faces > face_room(launch, iterations) || room.entries > launch.entry_capacity ||
           room.work > launch.work_capacity || room.spares > launch.spare_capacity ||
-          (iterations > 0 && faces > launch.face_limit)) {
+          (iterations > 0 && !loop_goes_on(faces, active, launch.face_limit, launch.few_points_face_limit))) {
         exit = kExitRoom;
         break;
       }

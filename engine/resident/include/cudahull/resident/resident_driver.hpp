@@ -396,6 +396,19 @@ class ResidentHull {
       return 0;
     }
   }
+  // The largest mesh it runs on with no more points left than faces (loop_goes_on()).
+  std::size_t loop_few_points_faces() const {
+    if constexpr (Exec::kDeviceLoop) {
+      return exec_.loop_few_points_faces;
+    } else {
+      return 0;
+    }
+  }
+  bool loop_goes_on_here() const {
+    const auto u32_of = [](std::size_t n) { return static_cast<u32>(std::min<std::size_t>(n, 0xffffffffu)); };
+    return loop_goes_on(u32_of(faces_), u32_of(active_), u32_of(loop_faces()),
+                        u32_of(loop_few_points_faces()));
+  }
 
   // The iteration's buffers as they are now (the rounds' bits are the executor's).
   template <class Log = NoLog>
@@ -440,6 +453,7 @@ class ResidentHull {
                                  u32_of(work_capacity_),
                                  u32_of(std::min(fv_out_.capacity() / 3, extreme_.capacity())),
                                  u32_of(loop_faces()),
+                                 u32_of(loop_few_points_faces()),
                                  0};
     exec_.iterations(iteration_buffers(log), launch, loop);
     RoundsState state{};
@@ -846,7 +860,7 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
   // count, and waits for it.
   const bool small = faces_ <= kSpeculateFaces;
   bool loop = false;
-  if constexpr (Exec::kDeviceLoop) loop = !out && faces_ <= loop_faces() && active_ <= exec_.loop_points;
+  if constexpr (Exec::kDeviceLoop) loop = !out && loop_goes_on_here() && active_ <= exec_.loop_points;
   const bool wait_for_refined = out || !small;
   if (!wait_for_refined) grow_for_iteration(loop ? 2 * faces_ : faces_, true, loop);
   if (out) {
@@ -915,7 +929,7 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
         out->first_round = round_ + 1;
       }
       // A device loop whose mesh grew past its limit hands the iteration to the grid's launches.
-      loop = loop && faces_ <= loop_faces();
+      loop = loop && loop_goes_on_here();
       if (loop) {
         grow_for_iteration(2 * faces_, true, true);
       } else {
