@@ -753,11 +753,11 @@ class CudaBackend final : public BasicBackend<Point> {
   // (docs/benchmarks.md, "Measurements behind the code").  So the tables go up by size:
   // - below kSmallPinned, through one pinned buffer (small, so cheap to grow);
   // - below kPinnedStaging, gathered in ordinary memory and copied from there (the driver stages such
-  //   copies through pinned buffers of its own; growing a pinned buffer for a 10M-point ball's tables, up
-  //   to 2.5 MB, cost 6 ms);
+  //   copies through pinned buffers of its own; growing a pinned buffer for a 10M-point ball's tables cost
+  //   more than the copies);
   // - above, through two pinned buffers of kStagingChunk bytes, made once, taking turns: the cores fill one
   //   while the other's copy runs.  One pinned area as large as the tables was pinned afresh as a sphere's
-  //   tables grew 2-3x an iteration: 337 of the 1M-point sphere's 431 device milliseconds
+  //   tables grew 2-3x an iteration: most of the 1M-point sphere's device time
   //   (docs/benchmarks.md).
   // read_results() picks its buffer by the same sizes (through_pinned()).
   static constexpr std::size_t kSmallPinned = std::size_t{256} << 10;

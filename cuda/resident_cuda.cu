@@ -412,8 +412,8 @@ struct CudaExec {
   static constexpr bool kDeviceLoop = true;  // whole iterations of a small mesh in one launch
   // Up to this many points left on a mesh of up to this many faces, the driver runs the iterations as a
   // device loop (one block: each pass takes the points and faces a few at a time per thread).  Past 512
-  // faces the grid's launches are faster while many points are left (docs/benchmarks.md, "The device
-  // loop's face limit": ball 1M 3.2 ms at 4,096, 2.3 at 512), but not with few (cube 10M).
+  // faces the grid's launches are faster while many points are left (ball 1M), but not with few (cube
+  // 10M): docs/benchmarks.md, "The device loop's face limit".
   std::size_t loop_points = tuning("CUDAHULL_LOOP_POINTS", 16384);
   std::size_t loop_faces = tuning("CUDAHULL_LOOP_FACES", 512);
   // And on a mesh of up to this many faces with no more points left than faces (loop_goes_on()).

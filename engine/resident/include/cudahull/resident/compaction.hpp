@@ -1,5 +1,13 @@
 // Compaction between the resident engine's iterations: the live faces renumbered 0..F-1 and the kept points
 // packed, both by a prefix sum of their marks (section 4).
+//
+// design:
+//   faces    MarkLive: 1 on a face no edit killed; the marks' prefix sum is each live face's new id;
+//            MoveLive writes it into the spares with its links renumbered (a link to a killed face cannot
+//            remain: every edit relinks its neighbours, Figs. 3-5)
+//   points   the routing's keep marks (Algorithm 2) prefix-summed; MovePoints packs each kept point with its
+//            face renumbered the same way
+//   reset    ResetFaces: the live faces unstamped, with no furthest point, for the next iteration
 #pragma once
 
 #include <cstddef>

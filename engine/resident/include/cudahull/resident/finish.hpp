@@ -1,6 +1,16 @@
 // The resident engine's finish, once no point is outside: the defects counted (CountFaults, then
 // CountConcave and CountThin: flat edges inside coplanar facets are no defect), the result renumbered where
 // it is, the device side of the local repair (fault_repair.hpp plans it), and what the records read back.
+//
+// design:
+//   check    CountFaults: the edges that are not strictly convex; none, and the mesh is the exact hull
+//            with every vertex strictly extreme (section 3's convexity, checked exactly)
+//   defects  with some: CountConcave (concave edges) and CountThin (a vertex with fewer than three creases
+//            lies inside a facet or an edge); none, and the flat edges only triangulate coplanar facets
+//   repair   the defects' faces stamped with rings around them (FaultRing, SpreadStamp), read back
+//            (GatherRows), re-hulled on the host and written (WriteRows), then checked (CheckRepaired)
+//   result   the vertices in index order (FlagCorners and a prefix sum, or the corners sorted) and each
+//            corner renumbered to its vertex's rank (RenumberCorners, FindCorners)
 #pragma once
 
 #include <cstddef>
