@@ -3,8 +3,8 @@
 //
 // design:
 //   faces    MarkLive: 1 on a face no edit killed; the marks' prefix sum is each live face's new id;
-//            MoveLive writes it into the spares with its links renumbered (a link to a killed face cannot
-//            remain: every edit relinks its neighbours, Figs. 3-5)
+//            MoveLive writes it into the spares, each link renumbered by the same ranks (after the rounds
+//            every link is to a live face: the refinement's and the rounds' gathers relink them, Figs. 3-5)
 //   points   the routing's keep marks (Algorithm 2) prefix-summed; MovePoints packs each kept point with its
 //            face renumbered the same way
 //   reset    ResetFaces: the live faces unstamped, with no furthest point, for the next iteration
