@@ -152,12 +152,8 @@ std::vector<BatchResult> run_pass(const Point* points, std::size_t count, const 
                                   std::size_t& held) {
   BatchMemory memory(held, meshes.device_bytes);
   auto* kernel = batch_kernel<Point, kThreads>;
-  int device = 0, sms = 0, per_sm = 0;
-  check(cudaGetDevice(&device), "querying the device");
-  check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), "querying the SMs");
-  check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, kernel, kThreads, 0), "the occupancy");
   const u32 slots = static_cast<u32>(
-      std::min<std::size_t>(listed.size(), static_cast<std::size_t>(std::max(1, sms * per_sm))));
+      std::min<std::size_t>(listed.size(), resident::blocks_that_fit(kernel, kThreads, kWho)));
 
   PassArgs<Point> a{};
   a.points = points;

@@ -25,7 +25,8 @@ void throw_out_of_memory(const char* who, const char* what, std::size_t bytes, c
   if (!pinned && cudaMemGetInfo(&free_bytes, &total_bytes) == cudaSuccess)
     msg += " (" + memory_text(free_bytes) + " free of " + memory_text(total_bytes) + ")";
   cudaGetLastError();
-  throw DeviceError(msg + ": " + cuda_error_text(e));
+  if (pinned) throw DeviceError(msg + ": " + cuda_error_text(e));
+  throw OutOfDeviceMemory(msg + ": " + cuda_error_text(e));
 }
 
 }  // namespace cudahull

@@ -537,13 +537,7 @@ struct CudaExec {
       return;
     }
     unsigned& fit = resident_blocks_[reinterpret_cast<const void*>(kernel)];
-    if (fit == 0) {
-      int device = 0, sms = 0, per_sm = 0;
-      check(cudaGetDevice(&device), "querying the device");
-      check(cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device), "querying the SMs");
-      check(cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, kernel, Block, 0), "the occupancy");
-      fit = static_cast<unsigned>(std::max(1, sms * per_sm));
-    }
+    if (fit == 0) fit = blocks_that_fit(kernel, Block, "resident engine");
     const unsigned blocks = std::max(1u, std::min(fit, wanted));
     block_offset_.grow(blocks + 1);
     IterationBuffers<Point, Log> args_b = b;

@@ -8,11 +8,26 @@
 
 #include <cooperative_groups.h>
 
+#include <algorithm>
+
 #include <cub/block/block_scan.cuh>
 
+#include "cuda_errors.hpp"
 #include "cudahull/resident/swaps.hpp"
 
 namespace cudahull::resident {
+
+// How many blocks of `threads` threads of `kernel` the current device runs at once (at least one): the most
+// a cooperative launch may have, and a persistent launch's slots.  Throws DeviceError named by `who`.
+template <class Kernel>
+unsigned blocks_that_fit(Kernel* kernel, int threads, const char* who) {
+  int device = 0, sms = 0, per_sm = 0;
+  cudaError_t e = cudaGetDevice(&device);
+  if (e == cudaSuccess) e = cudaDeviceGetAttribute(&sms, cudaDevAttrMultiProcessorCount, device);
+  if (e == cudaSuccess) e = cudaOccupancyMaxActiveBlocksPerMultiprocessor(&per_sm, kernel, threads, 0);
+  if (e != cudaSuccess) throw_cuda_error(who, "querying the occupancy", e);
+  return static_cast<unsigned>(std::max(1, sms * per_sm));
+}
 
 // An exclusive prefix sum over n values by one block (Items per thread at a time), value(i) the i-th;
 // every thread gets the total.  `out` may hold the values: each is read before it is written.

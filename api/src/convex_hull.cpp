@@ -18,6 +18,7 @@
 #include "cudahull/exact_hull.hpp"
 #include "cudahull/hull_plan.hpp"
 #include "cudahull/parallel.hpp"
+#include "cudahull/phase_times.hpp"
 #include "cudahull/plane.hpp"
 #include "cudahull/resident.hpp"
 #include "device_info.hpp"
@@ -115,18 +116,12 @@ std::vector<Point> copy_checked(std::size_t count, Coordinate coordinate) {
   return points;
 }
 
-using Clock = std::chrono::steady_clock;
-
 // This process's CUDA device as convex_hull()'s plans ask for it: cheaply (cuda_device_present()), since
 // reading the device's properties would cost more than a small hull.
 CudaStatus device_presence() {
   CudaStatus status;
   status.usable = cuda_device_present(&status.reason);
   return status;
-}
-
-double ms_since(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
 struct Vec {

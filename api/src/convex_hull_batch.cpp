@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <atomic>
 #include <charconv>
-#include <chrono>
 #include <exception>
 #include <limits>
 #include <stdexcept>
@@ -23,9 +22,10 @@
 
 #include "batch_cuda.hpp"
 #include "cudahull/errors.hpp"
+#include "cudahull/exact_hull.hpp"
 #include "cudahull/hull_plan.hpp"
 #include "cudahull/parallel.hpp"
-#include "cudahull/predicates.hpp"
+#include "cudahull/phase_times.hpp"
 #include "device_points.hpp"
 
 namespace cudahull {
@@ -137,10 +137,6 @@ void run_each_on_device(const std::size_t* offsets, std::size_t clouds, std::vec
   }
 }
 
-// The one place the CUDA backend runs a batch of checked points in device memory: the clouds a block takes,
-// in one launch (batch_meshes_cuda(), or two), each described as convex_hull() describes its exact mesh, on
-// all cores; the rest (too small or too large for a block, flat, or with a defect the single-cloud path
-// repairs) and those `single` marks through `hull_of(c)`.
 // What the batch kernel did, for ConvexHullBatch.
 struct DeviceBatchStats {
   std::size_t clouds_batched = 0, device_bytes_peak = 0;
@@ -148,30 +144,28 @@ struct DeviceBatchStats {
   double device_ms = 0, describe_ms = 0, kernel_ms = 0;
 };
 
-double ms_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
+// The one place the CUDA backend runs a batch of checked points in device memory: the clouds a block takes,
+// in one launch (batch_meshes_cuda(), or two), each described as convex_hull() describes its exact mesh, on
+// all cores; the rest (too small or too large for a block, flat, or with a defect the single-cloud path
+// repairs) and those `single` marks through `hull_of(c)`.
 template <class Point, class HullOf>
 DeviceBatchStats run_batch_on_device(const Point* device_points, std::size_t count,
                                      const std::size_t* offsets, std::size_t clouds,
                                      const ConvexHullOptions& options, std::vector<ConvexHull>& hulls,
                                      HullOf hull_of, const std::vector<std::uint8_t>& single = {}) {
-  const auto start = std::chrono::steady_clock::now();
+  const Clock::time_point start = Clock::now();
   BatchMeshes<Point> meshes;
   try {
     meshes =
         batch_meshes_cuda(device_points, count, offsets, clouds, single.empty() ? nullptr : single.data());
-  } catch (const DeviceError& error) {
-    // Out of device memory for the batch's room: every cloud through the single-cloud path, which grows
-    // its room as it goes.
-    if (std::string(error.what()).find("out of device memory") == std::string::npos) throw;
+  } catch (const OutOfDeviceMemory&) {
+    // No room for the batch: every cloud through the single-cloud path, which grows its room as it goes.
     meshes.done.assign(clouds, 0);
   }
   DeviceBatchStats stats;
   stats.device_ms = ms_since(start);
   stats.kernel_ms = meshes.kernel_ms;
-  const auto describe_start = std::chrono::steady_clock::now();
+  const Clock::time_point describe_start = Clock::now();
   stats.launches = meshes.passes;
   stats.device_bytes_peak = meshes.device_bytes + count * sizeof(Point);
   parallel_chunks(
@@ -209,11 +203,8 @@ DeviceBatchStats run_host_batch_on_device(const Scalar* xyz, std::size_t count, 
   }
   std::vector<std::uint8_t> single(clouds, 0);
   if constexpr (std::is_same_v<Point, Point3d>) {
-    for (std::size_t c = 0; c < clouds; ++c) {
-      for (std::size_t i = offsets[c]; i < offsets[c + 1] && !single[c]; ++i)
-        single[c] = !in_fast_exact_range(packed[i].x) || !in_fast_exact_range(packed[i].y) ||
-                    !in_fast_exact_range(packed[i].z);
-    }
+    for (std::size_t c = 0; c < clouds; ++c)
+      single[c] = !in_fast_exact_range(packed.data() + offsets[c], offsets[c + 1] - offsets[c]);
   }
   const std::shared_ptr<void> on_device = upload_to_device(packed.data(), packed.size() * sizeof(Point));
   return run_batch_on_device(static_cast<const Point*>(on_device.get()), count, offsets, clouds, options,

@@ -674,10 +674,14 @@ BasicHullMesh<Point> exact_hull(const std::vector<Point>& points, const std::vec
   return hull_with<FastPredicates>(points, ids);
 }
 
-bool in_fast_exact_range(const std::vector<Point3d>& points) {
-  return std::all_of(points.begin(), points.end(), [](const Point3d& p) {
+bool in_fast_exact_range(const Point3d* points, std::size_t count) {
+  return std::all_of(points, points + count, [](const Point3d& p) {
     return in_fast_exact_range(p.x) && in_fast_exact_range(p.y) && in_fast_exact_range(p.z);
   });
+}
+
+bool in_fast_exact_range(const std::vector<Point3d>& points) {
+  return in_fast_exact_range(points.data(), points.size());
 }
 
 HullMeshd exact_hull_any(const std::vector<Point3d>& points, const std::vector<PointIndex>& ids) {

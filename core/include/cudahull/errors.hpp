@@ -28,6 +28,12 @@ class DeviceError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Out of device memory (a DeviceError): a caller with a path that needs less may take it instead.
+class OutOfDeviceMemory : public DeviceError {
+ public:
+  using DeviceError::DeviceError;
+};
+
 // An output file could not be written.
 class OutputError : public std::runtime_error {
  public:

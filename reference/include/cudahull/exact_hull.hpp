@@ -37,9 +37,11 @@ int affine_dimension(const std::vector<Point>& points);
 // std::invalid_argument.
 HullMeshd exact_hull_any(const std::vector<Point3d>& points, const std::vector<PointIndex>& ids = {});
 
-// Whether every coordinate of `points` is inside the fast exact range (in_fast_exact_range(),
-// predicates.hpp): then exact_hull() and the engines are exact on them, and exact_hull_any() is exact_hull().
+// Whether every coordinate of `points` (or of the `count` points at `points`) is inside the fast exact range
+// (in_fast_exact_range(), predicates.hpp): then exact_hull() and the engines are exact on them, and
+// exact_hull_any() is exact_hull().
 bool in_fast_exact_range(const std::vector<Point3d>& points);
+bool in_fast_exact_range(const Point3d* points, std::size_t count);
 
 extern template HullMesh exact_hull(const std::vector<Point3>&, const std::vector<PointIndex>&);
 extern template HullMeshd exact_hull(const std::vector<Point3d>&, const std::vector<PointIndex>&);

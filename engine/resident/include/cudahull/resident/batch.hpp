@@ -233,11 +233,9 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
 
   // The finish: the mesh is in the spares after an odd number of compactions.
   MeshView<Point> m = b.m;
-  u32* other = slot.fv_spare;
   if (st->loop_iterations % 2 == 1) {
     m.fv = slot.fv_spare;
     m.fn = slot.fn_spare;
-    other = slot.fv;
   }
   const u32 faces = st->live_faces;
   u32 *creases = cloud.keep, *used = cloud.point_rank, *rank = cloud.index, *list = cloud.index_spare;
@@ -257,7 +255,6 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
   team.for_range(n, [&](u32 i) {
     if (used[i]) list[rank[i]] = i;
   });
-  team.for_range(3 * faces, [&](u32 k) { other[k] = rank[m.fv[k]]; });
   if (team.leader()) {
     const u32 words = 3 * faces + vertices;
     const u32 word_at = atomic_add_u32(&out.used[0], words);
@@ -268,7 +265,8 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
   team.barrier();
   if (result->status != kBatchDone) return;
   const BatchResult at = *result;
-  team.for_range(3 * faces, [&](u32 k) { out.words[at.word_at + k] = other[k]; });
+  const RenumberCorners corners{m.fv, rank, out.words + at.word_at};
+  team.for_range(3 * faces, [&](u32 k) { corners(k); });
   team.for_range(vertices, [&](u32 k) {
     out.words[at.word_at + 3 * faces + k] = list[k];
     out.coordinates[at.point_at + k] = cloud.points[list[k]];

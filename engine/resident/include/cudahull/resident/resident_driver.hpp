@@ -404,8 +404,9 @@ class ResidentHull {
       return 0;
     }
   }
+  // A count as the device's 32 bits, held at the largest (a capacity past it is never reached).
+  static u32 u32_of(std::size_t n) { return static_cast<u32>(std::min<std::size_t>(n, 0xffffffffu)); }
   bool loop_goes_on_here() const {
-    const auto u32_of = [](std::size_t n) { return static_cast<u32>(std::min<std::size_t>(n, 0xffffffffu)); };
     return loop_goes_on(u32_of(faces_), u32_of(active_), u32_of(loop_faces()),
                         u32_of(loop_few_points_faces()));
   }
@@ -441,7 +442,6 @@ class ResidentHull {
   // launch swapped them; the counters go to the stats.
   template <class Log = NoLog>
   RoundsState run_phases(u32 from, u32 to, bool loop, const Log& log = {}) {
-    const auto u32_of = [](std::size_t n) { return static_cast<u32>(std::min<std::size_t>(n, 0xffffffffu)); };
     const IterationLaunch launch{from,
                                  to,
                                  loop ? 0xffffffffu : 1u,
