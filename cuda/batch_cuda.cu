@@ -1,24 +1,34 @@
 // Batched hulls on the device (batch_cuda.hpp).
 //
 // design:
-//   the clouds a block takes: 4 .. kBlockPoints points (fewer: the single-cloud path's lower-dimensional
+//   the clouds the kernel takes: 4 .. block_points() points (fewer: the single-cloud path's lower-dimensional
 //     answer; more: the single-cloud path's grid, which a large cloud fills better)
-//   pass 1: as many blocks as fit at once, each with a slot of face room for the largest hull the pass
-//     expects (batch_vertices()); a block takes clouds one after another from a counter (a large one does
-//     not hold the others up) and runs batch_hull() on each.  Per point, the iteration's own arrays (six
-//     words) at the cloud's place in the packed points
-//   pass 2: the clouds that asked for more room, with room for every point a vertex (up to kSecondPassPoints
-//     points; larger ones take the single-cloud path)
-//   read back: the results (status, sizes, places), then the words and coordinates the hulls took
+//   teams: a cloud of more than kLargeBlockPoints points on a block of kLargeThreads (its points' phases are
+//     the work), the rest on a block of kThreads (a small hull's phases have a few dozen items: the latency
+//     of its barriers, not the threads, sets its time); the resident engine's iteration on each
+//     (resident::batch_hull(), the block's barrier)
+//   pass 1: a launch a kind of team, as many blocks as fit at once, each team with a slot of face room for
+//     the largest hull its launch expects (batch_vertices()); a team takes clouds one after another from a
+//     counter (a large one does not hold the others up).  Per point, the iteration's own arrays (six words)
+//     at the cloud's place in the packed points
+//   pass 2: the clouds that asked for more room, with room for every point a vertex (up to
+//     kSecondPassPoints points; larger ones take the single-cloud path)
+//   read back: the results alone (status and sizes a cloud); the hulls stay on the device (BatchRun's
+//     outputs)
+//   describe (describe_batch_cuda()): a warp a done cloud, into the packed result's columns at the offsets
+//     the caller laid out: vertex ids, faces on the cloud's indices, planes (a lane a face), the volume and
+//     area (lane 0, face after face in the mesh's order, as convex_hull() sums them on the host)
 #include <cuda_runtime.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "batch_cuda.hpp"
 #include "cuda_errors.hpp"
+#include "cudahull/detail/plane_impl.hpp"
 #include "cudahull/resident/batch.hpp"
 #include "device_memory.hpp"
 #include "teams.cuh"
@@ -35,12 +45,43 @@ using resident::u32;
 using resident::u64;
 
 constexpr const char* kWho = "batched hulls";
-constexpr int kThreads = 128;  // a block a cloud: most small clouds' phases have fewer items than this
+constexpr int kThreads = 128;       // a block a cloud: most small clouds' phases have fewer items than this
+constexpr int kLargeThreads = 512;  // a block a large cloud: its points' phases are the work
 constexpr u32 kSecondPassPoints = 16384;  // the largest cloud the second launch takes
+// The clouds of up to this many points take a warp each (CUDAHULL_BATCH_WARP_POINTS), those of more than
+// kLargeBlockPoints a block of kLargeThreads (CUDAHULL_BATCH_LARGE_BLOCK_POINTS), the rest a block of
+// kThreads.
+constexpr std::size_t kLargeBlockPoints = 16384;
 
 void check(cudaError_t e, const char* what) {
   if (e != cudaSuccess) throw_cuda_error(kWho, what, e);
 }
+
+// Milliseconds of the default stream's work between construction and stop() (CUDA events).
+class EventTimer {
+ public:
+  EventTimer() {
+    check(cudaEventCreate(&events_[0]), "timing the batch");
+    check(cudaEventCreate(&events_[1]), "timing the batch");
+    cudaEventRecord(events_[0], 0);
+  }
+  EventTimer(const EventTimer&) = delete;
+  EventTimer& operator=(const EventTimer&) = delete;
+  ~EventTimer() {
+    cudaEventDestroy(events_[0]);
+    cudaEventDestroy(events_[1]);
+  }
+  void stop() const { cudaEventRecord(events_[1], 0); }
+  // After the stop's work has finished (a synchronising copy or call).
+  double ms() const {
+    float ms = 0;
+    cudaEventElapsedTime(&ms, events_[0], events_[1]);
+    return ms;
+  }
+
+ private:
+  cudaEvent_t events_[2];
+};
 
 // The clouds with more points than this take the single-cloud path (or CUDAHULL_BATCH_BLOCK_POINTS, up to
 // 2^20: a block's room, batch_room(), counts its face slots in 32 bits).
@@ -48,6 +89,12 @@ std::size_t block_points() {
   const char* env = std::getenv("CUDAHULL_BATCH_BLOCK_POINTS");
   return std::min<std::size_t>(env ? std::strtoull(env, nullptr, 10) : std::size_t{1} << 17,
                                std::size_t{1} << 20);
+}
+
+// A size from the environment variable `name`, or `fallback`.
+std::size_t env_points(const char* name, std::size_t fallback) {
+  const char* env = std::getenv(name);
+  return env ? std::strtoull(env, nullptr, 10) : fallback;
 }
 
 // The batch's device arrays (device_memory.hpp, on the default stream), given back with their owner, and
@@ -117,8 +164,27 @@ __device__ BatchSlot slot_of(const PassArgs<Point>& a, u32 s) {
   return slot;
 }
 
-template <class Point, int Block>
-__global__ void __launch_bounds__(Block) batch_kernel(PassArgs<Point> a) {
+// Listed cloud k's hull on `team` in `slot`.
+template <class Team, class Point>
+__device__ void hull_listed(const Team& team, const BatchSlot& slot, const PassArgs<Point>& a, u32 k) {
+  const u32 c = a.clouds[k], begin = a.offsets[c], n = a.offsets[c + 1] - begin;
+  const std::size_t at = begin, total = a.points_total;
+  u32* w = a.point_words;
+  const BatchCloud<Point> cloud{a.points + at,
+                                n,
+                                w + at,
+                                w + total + at,
+                                w + 2 * total + at,
+                                w + 3 * total + at,
+                                w + 4 * total + at,
+                                w + 5 * total + at};
+  resident::batch_hull(team, slot, cloud, a.out, a.results + k);
+}
+
+// A pass's kernel: each block a team, taking clouds from the counter until none is left.  kMinBlocks: the
+// blocks an SM must hold at once (__launch_bounds__: the registers a thread may use).
+template <class Point, int Block, int kMinBlocks>
+__global__ void __launch_bounds__(Block, kMinBlocks) batch_kernel(PassArgs<Point> a) {
   __shared__ u32 taken;
   const BatchSlot slot = slot_of(a, blockIdx.x);
   const resident::BlockTeam<Block> team{slot.st};
@@ -128,32 +194,47 @@ __global__ void __launch_bounds__(Block) batch_kernel(PassArgs<Point> a) {
     const u32 k = taken;
     __syncthreads();  // every thread has read it before thread 0 takes the next
     if (k >= a.count) return;
-    const u32 c = a.clouds[k], begin = a.offsets[c], n = a.offsets[c + 1] - begin;
-    const std::size_t at = begin, total = a.points_total;
-    u32* w = a.point_words;
-    const BatchCloud<Point> cloud{a.points + at,
-                                  n,
-                                  w + at,
-                                  w + total + at,
-                                  w + 2 * total + at,
-                                  w + 3 * total + at,
-                                  w + 4 * total + at,
-                                  w + 5 * total + at};
-    resident::batch_hull(team, slot, cloud, a.out, a.results + k);
+    hull_listed(team, slot, a, k);
   }
 }
 
+// The kinds of team a pass runs its clouds on: a block of kThreads, or of kLargeThreads.  The small blocks
+// are held to the registers of five blocks an SM: at the 168 a thread the iteration would take, three fit,
+// and the SM waits on memory with nothing to issue (ncu: 83% of cycles); with five the batch kernel runs
+// some 25% faster (docs/benchmarks.md, "Batched hulls").
+enum class TeamKind { kBlock, kLargeBlock };
+template <TeamKind kKind>
+constexpr int kBlockThreads = kKind == TeamKind::kLargeBlock ? kLargeThreads : kThreads;
+template <TeamKind kKind>
+constexpr int kMinBlocksOf = kKind == TeamKind::kLargeBlock ? 1 : 5;
+
 // One pass over the listed clouds (ids into `offsets`), each with room for a hull of `vertices` vertices;
-// results per listed cloud into `results`, the hulls' words and coordinates into `meshes` (appended).
-template <class Point>
+// the results per listed cloud read back, the hulls kept on the device in `run.outputs`.
+template <TeamKind kKind, class Point>
 std::vector<BatchResult> run_pass(const Point* points, std::size_t count, const u32* device_offsets,
                                   const std::vector<u32>& listed, u32 vertices, std::size_t word_room,
-                                  std::size_t coordinate_room, BatchMeshes<Point>& meshes,
-                                  std::size_t& held) {
-  BatchMemory memory(held, meshes.device_bytes);
-  auto* kernel = batch_kernel<Point, kThreads>;
-  const u32 slots = static_cast<u32>(
-      std::min<std::size_t>(listed.size(), resident::blocks_that_fit(kernel, kThreads, kWho)));
+                                  std::size_t coordinate_room, BatchRun<Point>& run, std::size_t& held) {
+  BatchMemory memory(held, run.device_bytes);
+  constexpr int kBlock = kBlockThreads<kKind>;
+  auto* kernel = batch_kernel<Point, kBlock, kMinBlocksOf<kKind>>;
+  const u32 slots =
+      static_cast<u32>(std::min<std::size_t>(listed.size(), resident::blocks_that_fit(kernel, kBlock, kWho)));
+
+  // What the pass leaves for the describe: its hulls, its results and its cloud list.
+  auto output = std::make_shared<typename BatchRun<Point>::PassOutput>();
+  static_assert(sizeof(BatchResult) == 5 * sizeof(u32));
+  const std::size_t result_words = 5 * listed.size();
+  output->words = DeviceArray<u32>(word_room, kWho, "the hulls' words");
+  output->coordinates = DeviceArray<Point>(coordinate_room, kWho, "the hulls' vertices");
+  // The results, then the counter of clouds taken and the two of output taken, in one block.
+  output->results = DeviceArray<u32>(result_words + 3, kWho, "the results");
+  output->clouds = DeviceArray<u32>(listed.size(), kWho, "the cloud list");
+  output->listed = static_cast<u32>(listed.size());
+  const std::size_t kept = output->words.block_bytes() + output->coordinates.block_bytes() +
+                           output->results.block_bytes() + output->clouds.block_bytes();
+  run.kept_bytes += kept;
+  held += kept;
+  run.device_bytes = std::max(run.device_bytes, held);
 
   PassArgs<Point> a{};
   a.points = points;
@@ -181,144 +262,213 @@ std::vector<BatchResult> run_pass(const Point* points, std::size_t count, const 
   s.cands = memory.take<resident::Candidate>(std::size_t{slots} * room.work, "the rounds' candidates");
   s.st = memory.take<resident::RoundsState>(slots, "the states");
   a.point_words = memory.take<u32>(6 * count, "the points' marks");
-  a.out.words = memory.take<u32>(word_room, "the hulls' words");
-  a.out.coordinates = memory.take<Point>(coordinate_room, "the hulls' vertices");
+  a.out.words = output->words.get();
+  a.out.coordinates = output->coordinates.get();
   a.out.word_capacity = static_cast<u32>(word_room);
   a.out.coordinate_capacity = static_cast<u32>(coordinate_room);
-  // The results, then the counter of clouds taken and the two of output taken, in one block.
-  static_assert(sizeof(BatchResult) == 5 * sizeof(u32));
-  const std::size_t result_words = 5 * listed.size();
-  u32* results_then_counters = memory.take<u32>(result_words + 3, "the results");
-  a.results = reinterpret_cast<BatchResult*>(results_then_counters);
-  a.next = results_then_counters + result_words;
+  a.results = reinterpret_cast<BatchResult*>(output->results.get());
+  a.next = output->results.get() + result_words;
   a.out.used = a.next + 1;
-  u32* clouds = memory.take<u32>(listed.size(), "the cloud list");
-  a.clouds = clouds;
-  check(cudaMemcpyAsync(clouds, listed.data(), listed.size() * sizeof(u32), cudaMemcpyHostToDevice, 0),
+  a.clouds = output->clouds.get();
+  check(cudaMemcpyAsync(output->clouds.get(), listed.data(), listed.size() * sizeof(u32),
+                        cudaMemcpyHostToDevice, 0),
         "uploading the cloud list");
   check(cudaMemsetAsync(a.next, 0, 3 * sizeof(u32), 0), "clearing the counters");
-  cudaEvent_t events[2];
-  check(cudaEventCreate(&events[0]), "timing the batch");
-  check(cudaEventCreate(&events[1]), "timing the batch");
-  cudaEventRecord(events[0], 0);
-  kernel<<<slots, kThreads>>>(a);
+  const EventTimer timer;
+  kernel<<<slots, kBlock>>>(a);
   check(cudaGetLastError(), "launching the batch");
-  cudaEventRecord(events[1], 0);
-  std::vector<u32> got(result_words + 3);
-  check(cudaMemcpy(got.data(), results_then_counters, got.size() * sizeof(u32), cudaMemcpyDeviceToHost),
-        "reading the results (kernel fault)");
-  float kernel_ms = 0;
-  cudaEventElapsedTime(&kernel_ms, events[0], events[1]);
-  cudaEventDestroy(events[0]);
-  cudaEventDestroy(events[1]);
-  meshes.kernel_ms += kernel_ms;
+  timer.stop();
   std::vector<BatchResult> results(listed.size());
-  std::copy(got.begin(), got.begin() + static_cast<std::ptrdiff_t>(result_words),
-            reinterpret_cast<u32*>(results.data()));
-  const std::size_t words_used = std::min<std::size_t>(got[result_words + 1], word_room),
-                    coordinates_used = std::min<std::size_t>(got[result_words + 2], coordinate_room);
-  // The places are this pass's: moved past what earlier passes read.
-  const std::size_t word_base = meshes.words.size(), point_base = meshes.coordinates.size();
-  meshes.words.resize(word_base + words_used);
-  meshes.coordinates.resize(point_base + coordinates_used);
-  check(cudaMemcpy(meshes.words.data() + word_base, a.out.words, words_used * sizeof(u32),
-                   cudaMemcpyDeviceToHost),
-        "reading the hulls");
-  check(cudaMemcpy(meshes.coordinates.data() + point_base, a.out.coordinates,
-                   coordinates_used * sizeof(Point), cudaMemcpyDeviceToHost),
-        "reading the hulls' vertices");
+  check(cudaMemcpy(results.data(), a.results, result_words * sizeof(u32), cudaMemcpyDeviceToHost),
+        "reading the results (kernel fault)");
+  run.kernel_ms += timer.ms();
   for (std::size_t k = 0; k < listed.size(); ++k) {
     if (results[k].status != resident::kBatchDone) continue;
     const u32 c = listed[k];
-    meshes.done[c] = 1;
-    meshes.faces[c] = results[k].faces;
-    meshes.vertices[c] = results[k].vertices;
-    meshes.word_at[c] = word_base + results[k].word_at;
-    meshes.point_at[c] = point_base + results[k].point_at;
+    run.done[c] = 1;
+    run.faces[c] = results[k].faces;
+    run.vertices[c] = results[k].vertices;
   }
-  ++meshes.passes;
+  run.outputs.push_back(std::move(output));
+  ++run.passes;
   return results;
+}
+
+// The describe (describe_batch_cuda()): a warp a done cloud of a pass.
+template <class Point>
+struct DescribeArgs {
+  const u32* words;          // the pass's output: per cloud 3 corners a face (into its vertex list), the list
+  const Point* coordinates;  // per cloud its vertices', in the list's order
+  const BatchResult* results;
+  const u32* clouds;  // the pass's clouds, as listed
+  u32 listed;
+  BatchColumns columns;
+};
+
+constexpr int kDescribeThreads = 128;
+
+template <class Point>
+__global__ void __launch_bounds__(kDescribeThreads) describe_kernel(DescribeArgs<Point> a) {
+  const u32 lane = threadIdx.x % 32, warps = gridDim.x * (kDescribeThreads / 32);
+  for (u32 k = blockIdx.x * (kDescribeThreads / 32) + threadIdx.x / 32; k < a.listed; k += warps) {
+    const BatchResult r = a.results[k];
+    if (r.status != resident::kBatchDone) continue;
+    const u32 c = a.clouds[k];
+    const std::int64_t vertex_at = a.columns.vertex_offsets[c], face_at = a.columns.face_offsets[c];
+    const u32* corners = a.words + r.word_at;
+    const u32* ids = corners + 3 * std::size_t{r.faces};
+    const Point* xyz = a.coordinates + r.point_at;
+    for (u32 v = lane; v < r.vertices; v += 32)
+      a.columns.vertices[vertex_at + v] = static_cast<std::int32_t>(ids[v]);
+    for (u32 f = lane; f < r.faces; f += 32) {
+      const u32 w[3] = {corners[3 * f], corners[3 * f + 1], corners[3 * f + 2]};
+      std::int32_t* face = a.columns.faces + 3 * (face_at + f);
+      for (int j = 0; j < 3; ++j)
+        face[j] = static_cast<std::int32_t>(ids[w[j]]);
+      detail::facet_plane_in_range(to_vec3d(xyz[w[0]]), to_vec3d(xyz[w[1]]), to_vec3d(xyz[w[2]]),
+                                   a.columns.planes + 4 * (face_at + f));
+    }
+    if (lane == 0) {
+      // As convex_hull() measures a mesh (convex_hull.cpp, measure_solid): the centroid of the vertices in
+      // the list's order, then the faces in the mesh's order, one after another: the same bits.
+      const Vec3d centroid =
+          detail::centroid_of(r.vertices, [&](unsigned long long v) { return to_vec3d(xyz[v]); });
+      detail::SolidMeasures measures;
+      for (u32 f = 0; f < r.faces; ++f)
+        measures.add_face(to_vec3d(xyz[corners[3 * f]]), to_vec3d(xyz[corners[3 * f + 1]]),
+                          to_vec3d(xyz[corners[3 * f + 2]]), centroid);
+      a.columns.volumes[c] = measures.volume();
+      a.columns.areas[c] = measures.area();
+      a.columns.dimensions[c] = 3;
+    }
+  }
 }
 
 }  // namespace
 
 template <class Point>
-BasicHullMesh<Point> BatchMeshes<Point>::mesh(std::size_t c) const {
-  BasicHullMesh<Point> out;
-  const std::size_t f = faces[c], v = vertices[c];
-  const std::uint32_t* w = words.data() + word_at[c];
-  out.triangles.resize(f);
-  for (std::size_t k = 0; k < f; ++k)
-    out.triangles[k] = {w[3 * k], w[3 * k + 1], w[3 * k + 2]};
-  out.vertex_ids.assign(w + 3 * f, w + 3 * f + v);
-  out.vertices.assign(coordinates.begin() + static_cast<std::ptrdiff_t>(point_at[c]),
-                      coordinates.begin() + static_cast<std::ptrdiff_t>(point_at[c] + v));
-  return out;
-}
+struct BatchRun<Point>::PassOutput {
+  DeviceArray<u32> words;
+  DeviceArray<Point> coordinates;
+  DeviceArray<u32> results;  // BatchResult a listed cloud, then the counters
+  DeviceArray<u32> clouds;   // the listed clouds
+  u32 listed = 0;
+};
 
 template <class Point>
-BatchMeshes<Point> batch_meshes_cuda(const Point* device_points, std::size_t count,
-                                     const std::size_t* offsets, std::size_t clouds,
-                                     const std::uint8_t* skip) {
-  BatchMeshes<Point> meshes;
-  meshes.done.assign(clouds, 0);
-  meshes.faces.assign(clouds, 0);
-  meshes.vertices.assign(clouds, 0);
-  meshes.word_at.assign(clouds, 0);
-  meshes.point_at.assign(clouds, 0);
+BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, const std::size_t* offsets,
+                               std::size_t clouds, const std::uint8_t* skip) {
+  BatchRun<Point> run;
+  run.done.assign(clouds, 0);
+  run.faces.assign(clouds, 0);
+  run.vertices.assign(clouds, 0);
   // Indices are 32 bits on the device: a larger batch takes the single-cloud path cloud by cloud.
-  if (count >= 0xffffffffu / 8 || clouds >= 0xffffffffu / 8) return meshes;
+  if (count >= 0xffffffffu / 8 || clouds >= 0xffffffffu / 8) return run;
   const std::size_t largest = block_points();
-  std::vector<u32> listed;
-  u32 vertices = 0;
-  std::size_t word_room = 0, coordinate_room = 0;
+  // Pass 1's clouds by the team that takes them (warp, block, large block), each group with room for its
+  // largest hull.
+  struct Group {
+    std::vector<u32> listed;
+    u32 vertices = 0;
+    std::size_t word_room = 0, coordinate_room = 0;
+    void add(u32 c, u32 v) {
+      listed.push_back(c);
+      vertices = std::max(vertices, v);
+      word_room += 7 * std::size_t{v};  // 2 v faces of 3 corners, and v vertices
+      coordinate_room += v;
+    }
+  };
+  Group groups[2];  // TeamKind's order
+  const std::size_t large_points = env_points("CUDAHULL_BATCH_LARGE_BLOCK_POINTS", kLargeBlockPoints);
   for (std::size_t c = 0; c < clouds; ++c) {
     const std::size_t n = offsets[c + 1] - offsets[c];
     if (n < 4 || n > largest || (skip && skip[c])) continue;
-    listed.push_back(static_cast<u32>(c));
-    const u32 v = resident::batch_vertices(static_cast<u32>(n), false);
-    vertices = std::max(vertices, v);
-    word_room += 7 * std::size_t{v};  // 2 v faces of 3 corners, and v vertices
-    coordinate_room += v;
+    const int kind = n > large_points ? 1 : 0;
+    groups[kind].add(static_cast<u32>(c), resident::batch_vertices(static_cast<u32>(n), false));
   }
-  if (listed.empty()) return meshes;
+  if (groups[0].listed.empty() && groups[1].listed.empty()) return run;
 
   const TrimPoolAtEnd trim;  // after the arrays below: what the batch freed beyond the pool's keep, back
   std::size_t held = 0;
-  BatchMemory memory(held, meshes.device_bytes);
+  BatchMemory memory(held, run.device_bytes);
   u32* device_offsets = memory.take<u32>(clouds + 1, "the offsets");
   {
     const std::vector<u32> narrow(offsets, offsets + clouds + 1);
     check(cudaMemcpy(device_offsets, narrow.data(), narrow.size() * sizeof(u32), cudaMemcpyHostToDevice),
           "uploading the offsets");
   }
-  const std::vector<BatchResult> first = run_pass(device_points, count, device_offsets, listed, vertices,
-                                                  word_room, coordinate_room, meshes, held);
-  std::vector<u32> again;
-  vertices = 0;
-  word_room = coordinate_room = 0;
-  for (std::size_t k = 0; k < listed.size(); ++k) {
-    if (first[k].status != resident::kBatchRoom) continue;
-    const u32 c = listed[k], n = static_cast<u32>(offsets[c + 1] - offsets[c]);
-    // Room for every point a vertex costs a slot some 900 bytes a point: a larger cloud takes the
-    // single-cloud path, which grows its room as it goes.
-    if (n > kSecondPassPoints) continue;
-    again.push_back(c);
-    vertices = std::max(vertices, n);
-    word_room += 7 * std::size_t{n};
-    coordinate_room += n;
+  Group again;
+  const auto first_pass = [&](auto kind, const Group& group) {
+    if (group.listed.empty()) return;
+    const std::vector<BatchResult> results =
+        run_pass<decltype(kind)::value>(device_points, count, device_offsets, group.listed, group.vertices,
+                                        group.word_room, group.coordinate_room, run, held);
+    for (std::size_t k = 0; k < group.listed.size(); ++k) {
+      if (results[k].status != resident::kBatchRoom) continue;
+      const u32 c = group.listed[k], n = static_cast<u32>(offsets[c + 1] - offsets[c]);
+      // Room for every point a vertex costs a slot some 900 bytes a point: a larger cloud takes the
+      // single-cloud path, which grows its room as it goes.
+      if (n <= kSecondPassPoints) again.add(c, n);
+    }
+  };
+  first_pass(std::integral_constant<TeamKind, TeamKind::kBlock>{}, groups[0]);
+  first_pass(std::integral_constant<TeamKind, TeamKind::kLargeBlock>{}, groups[1]);
+  run.clouds_in_second_pass = again.listed.size();
+  if (!again.listed.empty()) {
+    run_pass<TeamKind::kBlock>(device_points, count, device_offsets, again.listed, again.vertices,
+                               again.word_room, again.coordinate_room, run, held);
   }
-  meshes.clouds_in_second_pass = again.size();
-  if (!again.empty())
-    run_pass(device_points, count, device_offsets, again, vertices, word_room, coordinate_room, meshes, held);
-  return meshes;
+  return run;
 }
 
-template struct BatchMeshes<Point3>;
-template struct BatchMeshes<Point3d>;
-template BatchMeshes<Point3> batch_meshes_cuda(const Point3*, std::size_t, const std::size_t*, std::size_t,
-                                               const std::uint8_t*);
-template BatchMeshes<Point3d> batch_meshes_cuda(const Point3d*, std::size_t, const std::size_t*, std::size_t,
-                                                const std::uint8_t*);
+template <class Point>
+double describe_batch_cuda(const BatchRun<Point>& run, const BatchColumns& columns) {
+  const EventTimer timer;
+  for (const auto& output : run.outputs) {
+    DescribeArgs<Point> a{};
+    a.words = output->words.get();
+    a.coordinates = output->coordinates.get();
+    a.results = reinterpret_cast<const BatchResult*>(output->results.get());
+    a.clouds = output->clouds.get();
+    a.listed = output->listed;
+    a.columns = columns;
+    const u32 blocks = (output->listed + kDescribeThreads / 32 - 1) / (kDescribeThreads / 32);
+    describe_kernel<Point><<<blocks, kDescribeThreads>>>(a);
+    check(cudaGetLastError(), "launching the describe");
+  }
+  timer.stop();
+  check(cudaDeviceSynchronize(), "describing the hulls (kernel fault)");
+  return timer.ms();
+}
+
+std::shared_ptr<void> batch_column(std::size_t bytes, const char* what) {
+  // No pool trim when it dies (shared_device_array's): the caller's library may free a result's columns one
+  // by one, in its own loop; the next batch's trim hands back what they held.
+  const auto owner = std::make_shared<DeviceArray<char>>(bytes, kWho, what);
+  return std::shared_ptr<void>(owner, owner->get());
+}
+
+void copy_to_device(void* device, const void* host, std::size_t bytes) {
+  if (bytes != 0) check(cudaMemcpy(device, host, bytes, cudaMemcpyHostToDevice), "copying up the hulls");
+}
+
+void copy_to_host(void* host, const void* device, std::size_t bytes) {
+  if (bytes != 0) check(cudaMemcpy(host, device, bytes, cudaMemcpyDeviceToHost), "reading back the hulls");
+}
+
+int current_cuda_device() {
+  int device = 0;
+  check(cudaGetDevice(&device), "asking for the device");
+  return device;
+}
+
+template struct BatchRun<Point3>;
+template struct BatchRun<Point3d>;
+template BatchRun<Point3> batch_run_cuda(const Point3*, std::size_t, const std::size_t*, std::size_t,
+                                         const std::uint8_t*);
+template BatchRun<Point3d> batch_run_cuda(const Point3d*, std::size_t, const std::size_t*, std::size_t,
+                                          const std::uint8_t*);
+template double describe_batch_cuda(const BatchRun<Point3>&, const BatchColumns&);
+template double describe_batch_cuda(const BatchRun<Point3d>&, const BatchColumns&);
 
 }  // namespace cudahull

@@ -1,42 +1,63 @@
 // Batched hulls on the device (issue 27): every small cloud of a batch on one block, each running the
 // resident engine's own iteration (cudahull/resident/batch.hpp), in one launch, or two where some clouds
-// asked for more room than the first pass gave them.
+// asked for more room than the first pass gave them; then the hulls described on the device, into the
+// packed result, where they stay.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "cudahull/types.hpp"
 
 namespace cudahull {
 
-// The exact meshes of a batch's clouds, as the device made them, read back in one piece.
+// The batch kernel's run: which clouds it hulled, their sizes, and their hulls kept on the device (each
+// pass's output) for describe_batch_cuda().
 template <class Point>
-struct BatchMeshes {
-  // Per cloud: 1 when its exact hull (dimension 3) is here; 0 when the single-cloud path must take it
-  // (fewer than 4 points or more than a block takes, a flat cloud, a stall, or a defect that the
+struct BatchRun {
+  // Per cloud: 1 when its exact hull (dimension 3) is on the device; 0 when the single-cloud path must take
+  // it (fewer than 4 points or more than a block takes, a flat cloud, a stall, or a defect that the
   // single-cloud path's local repair mends).
   std::vector<std::uint8_t> done;
-  // Cloud c's hull: vertex ids (its own indices, ascending), their coordinates and the triangles on them.
-  BasicHullMesh<Point> mesh(std::size_t c) const;
-
-  std::vector<std::uint32_t> faces, vertices;  // per cloud
-  std::vector<std::size_t> word_at, point_at;  // per cloud: where its words and coordinates begin
-  std::vector<std::uint32_t> words;            // per cloud: 3 corners a face, then the vertex list
-  std::vector<Point> coordinates;              // per cloud: its vertices'
+  std::vector<std::uint32_t> faces, vertices;  // per done cloud, its hull's
   unsigned passes = 0;                         // launches (a second for the clouds short of room)
   std::size_t clouds_in_second_pass = 0;
-  std::size_t device_bytes = 0;  // the most device memory the batch held at once
+  std::size_t device_bytes = 0;  // the most device memory the run held at once (the points not included)
+  std::size_t kept_bytes = 0;    // what the passes' outputs hold until they are described
   double kernel_ms = 0;          // the launches alone (CUDA events)
+  struct PassOutput;             // a pass's hulls on the device (batch_cuda.cu)
+  std::vector<std::shared_ptr<PassOutput>> outputs;
 };
 
 // The clouds of `count` points at `device_points` (the current device's memory), bounded by `offsets`
 // (B + 1 of them, in host memory), each on one block, but those `skip` marks (when given: B flags).
-// Throws DeviceError.
+// Throws DeviceError (OutOfDeviceMemory where the device has no room for the batch).
 template <class Point>
-BatchMeshes<Point> batch_meshes_cuda(const Point* device_points, std::size_t count,
-                                     const std::size_t* offsets, std::size_t clouds,
-                                     const std::uint8_t* skip = nullptr);
+BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, const std::size_t* offsets,
+                               std::size_t clouds, const std::uint8_t* skip = nullptr);
+
+// Where describe_batch_cuda() writes, in the current device's memory: the packed result's columns
+// (convex_hull_batch.hpp's DeviceConvexHullBatch), the offsets already there.
+struct BatchColumns {
+  const std::int64_t *vertex_offsets, *face_offsets;  // B + 1 each
+  std::int32_t *vertices, *faces, *dimensions;        // faces: 3 corners a face
+  double *planes, *volumes, *areas;                   // planes: 4 a face
+};
+
+// The done clouds of `run` described into `columns`, as convex_hull() describes an exact mesh: the vertex
+// ids, the faces on them, each face's plane (detail::facet_plane_in_range), the volume and area (summed
+// face by face in the mesh's order), dimension 3.  Returns the milliseconds the launch took (CUDA events).
+template <class Point>
+double describe_batch_cuda(const BatchRun<Point>& run, const BatchColumns& columns);
+
+// The result's plumbing for the API, which sees no CUDA header: a column of `bytes` in the current device's
+// memory (given back with the last pointer), copies on the default stream (the host waits), the device.
+// Each throws DeviceError.
+std::shared_ptr<void> batch_column(std::size_t bytes, const char* what);
+void copy_to_device(void* device, const void* host, std::size_t bytes);
+void copy_to_host(void* host, const void* device, std::size_t bytes);
+int current_cuda_device();
 
 }  // namespace cudahull

@@ -13,6 +13,7 @@
 
 #include "cudahull/convex_hull_batch.hpp"
 #include "cudahull/cpu_backend.hpp"
+#include "cudahull/detail/plane_impl.hpp"
 #include "cudahull/engine.hpp"
 #include "cudahull/exact_hull.hpp"
 #include "cudahull/generators.hpp"
@@ -150,7 +151,14 @@ TEST_F(ResidentCuda, BatchEqualsTheCpuCloudForCloud) {
     const ConvexHullBatch from_host = convex_hull_batch(points, offsets, cuda);
     const ConvexHullBatch from_device =
         convex_hull_batch_device(&device->x, points.size(), offsets.data(), offsets.size() - 1, cuda);
+    // The result left on the device: the same values, read back here.
+    const DeviceConvexHullBatch left =
+        convex_hull_batch_device_results(&device->x, points.size(), offsets.data(), offsets.size() - 1, cuda);
+    const ConvexHullBatch from_device_result = left.to_host();
     cudaFree(device);
+    EXPECT_EQ(from_device_result.faces, from_device.faces);
+    EXPECT_EQ(from_device_result.planes, from_device.planes);
+    EXPECT_EQ(from_device_result.volumes, from_device.volumes);
     for (const ConvexHullBatch* got : {&from_host, &from_device}) {
       const std::string what = std::string(got == &from_host ? "host points" : "device points") +
                                (precision == Precision::kDouble ? ", double" : ", float");
@@ -162,6 +170,26 @@ TEST_F(ResidentCuda, BatchEqualsTheCpuCloudForCloud) {
       for (std::size_t c = 0; c + 1 < offsets.size(); ++c) {
         EXPECT_NEAR(got->volumes[c], want.volumes[c], 1e-9 * std::abs(want.volumes[c]) + 1e-30) << what << c;
         EXPECT_NEAR(got->areas[c], want.areas[c], 1e-9 * std::abs(want.areas[c]) + 1e-30) << what << c;
+        if (got->dimensions[c] != 3) continue;
+        // The device's describe is the host's arithmetic (plane_impl.hpp): each face's plane, recomputed here
+        // from the result's own faces, is the same bits; the measures, summed here in the result's order.
+        const auto point = [&](PointIndex i) {
+          const Point3& p = points[offsets[c] + i];
+          return precision == Precision::kDouble ? Vec3d{p.x, p.y, p.z} : to_vec3d(p);
+        };
+        const Vec3d centroid = detail::centroid_of(
+            got->vertex_offsets[c + 1] - got->vertex_offsets[c],
+            [&](unsigned long long k) { return point(got->vertices[got->vertex_offsets[c] + k]); });
+        detail::SolidMeasures measures;
+        for (std::size_t f = got->face_offsets[c]; f < got->face_offsets[c + 1]; ++f) {
+          const auto& face = got->faces[f];
+          std::array<double, 4> plane;
+          detail::facet_plane_in_range(point(face[0]), point(face[1]), point(face[2]), plane.data());
+          ASSERT_EQ(plane, got->planes[f]) << what << " cloud " << c << " face " << f;
+          measures.add_face(point(face[0]), point(face[1]), point(face[2]), centroid);
+        }
+        EXPECT_NEAR(got->volumes[c], measures.volume(), 1e-13 * measures.volume()) << what << c;
+        EXPECT_NEAR(got->areas[c], measures.area(), 1e-13 * measures.area()) << what << c;
       }
     }
   }

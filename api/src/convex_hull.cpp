@@ -13,6 +13,7 @@
 
 #include "cuda_backend.hpp"
 #include "cudahull/cpu_backend.hpp"
+#include "cudahull/detail/plane_impl.hpp"
 #include "cudahull/engine.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/exact_hull.hpp"
@@ -184,28 +185,15 @@ std::vector<std::array<std::int32_t, 3>> face_neighbors(const std::vector<Triang
   return neighbors;
 }
 
-// A facet's plane, accurate on slivers too (issue 25).  The cross product in double first: each component
-// is within 3u of its permanent (|products| summed; Shewchuk's orient2d bound), so where the permanents are
-// within 32 times the normal's length its direction is within about 100u of the exact one, and every point
-// lies within ~5e-14 x scale of the plane (a point is at most twice the scale from the face's corner).
-// Otherwise (a sliver, where the products cancel) plane_through() evaluates the normal exactly and rounds it.
+// A facet's plane, accurate on slivers too (issue 25): detail::facet_plane_in_range() (plane_impl.hpp, which
+// the batch kernel's device describe shares: the same bits on both).
 std::array<double, 4> facet_plane(Vec3d a, Vec3d b, Vec3d c) {
   const double coordinates[9] = {a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z};
   if (std::all_of(std::begin(coordinates), std::end(coordinates),
                   [](double v) { return in_fast_exact_range(v); })) {
-    const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
-    const double vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
-    const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-    const double px = std::fabs(uy * vz) + std::fabs(uz * vy), py = std::fabs(uz * vx) + std::fabs(ux * vz),
-                 pz = std::fabs(ux * vy) + std::fabs(uy * vx);
-    const double length2 = nx * nx + ny * ny + nz * nz;
-    if (length2 > 0 && px * px + py * py + pz * pz <= 1024 * length2) {
-      const double length = std::sqrt(length2);
-      const double n[3] = {nx / length, ny / length, nz / length};
-      auto height = [&](Vec3d p) { return n[0] * p.x + n[1] * p.y + n[2] * p.z; };
-      return {n[0], n[1], n[2], -std::max({height(a), height(b), height(c)})};
-    }
-    return plane_through(a, b, c);
+    std::array<double, 4> plane;
+    detail::facet_plane_in_range(a, b, c, plane.data());
+    return plane;
   }
   // Outside the exact range (the wide path's hulls): the cross product in long double, whose exponent range
   // holds every product of double differences (none over- or underflows), rounded; accurate to the last
@@ -228,22 +216,14 @@ std::array<double, 4> facet_plane(Vec3d a, Vec3d b, Vec3d c) {
 template <class Point>
 void measure_solid(const std::vector<Point>& vertices, const std::vector<PointIndex>* corners,
                    const std::vector<Triangle>& triangles, ConvexHull& hull) {
-  Vec centroid{0, 0, 0};
   const std::size_t count = corners ? corners->size() : vertices.size();
-  for (std::size_t k = 0; k < count; ++k) {
-    const Vec v = as_vec(vertices[corners ? (*corners)[k] : k]);
-    centroid = {centroid.x + v.x, centroid.y + v.y, centroid.z + v.z};
-  }
-  const double n = static_cast<double>(count);
-  centroid = {centroid.x / n, centroid.y / n, centroid.z / n};
-  double six_volume = 0, twice_area = 0;
-  for (const Triangle& t : triangles) {
-    const Vec a = as_vec(vertices[t[0]]), b = as_vec(vertices[t[1]]), c = as_vec(vertices[t[2]]);
-    twice_area += norm(cross(b - a, c - a));
-    six_volume += dot(cross(b - centroid, c - centroid), a - centroid);
-  }
-  hull.volume = six_volume / 6;
-  hull.area = twice_area / 2;
+  const Vec3d centroid = detail::centroid_of(
+      count, [&](std::size_t k) { return to_vec3d(vertices[corners ? (*corners)[k] : k]); });
+  detail::SolidMeasures measures;
+  for (const Triangle& t : triangles)
+    measures.add_face(to_vec3d(vertices[t[0]]), to_vec3d(vertices[t[1]]), to_vec3d(vertices[t[2]]), centroid);
+  hull.volume = measures.volume();
+  hull.area = measures.area();
 }
 
 template <class Point>

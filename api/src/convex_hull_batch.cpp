@@ -6,9 +6,13 @@
 //   points: in GPU memory, checked there once (check_device_points); host points checked on the host and
 //     uploaded once.  A bad point, or double coordinates outside the exact range, make the clouds run in
 //     turn through the single-cloud path, which names the point or takes its wide path
-//   batch_meshes_cuda(): the exact meshes of the clouds a block takes, read back in one piece
-//   each mesh described as convex_hull() describes one (hull_from_mesh(): planes, volume, area, merging),
-//     on all cores; the other clouds through convex_hull() or convex_hull_device(), in cloud order
+//   batch_run_cuda(): the exact meshes of the clouds a block takes, left on the device; the results alone
+//     (sizes) read back
+//   the other clouds through convex_hull() or convex_hull_device(), in cloud order
+//   the result assembled on the device (assemble_on_device()): offsets laid out on the host from the sizes,
+//     the kernel's meshes described there (describe_batch_cuda(): the planes, volumes and areas as
+//     convex_hull() computes them, the same code), the other clouds' hulls copied up; read back in one copy
+//     a column for a host result (DeviceConvexHullBatch::to_host())
 #include "cudahull/convex_hull_batch.hpp"
 
 #include <algorithm>
@@ -137,69 +141,194 @@ void run_each_on_device(const std::size_t* offsets, std::size_t clouds, std::vec
   }
 }
 
-// What the batch kernel did, for ConvexHullBatch.
-struct DeviceBatchStats {
-  std::size_t clouds_batched = 0, device_bytes_peak = 0;
-  unsigned launches = 0;
-  double device_ms = 0, describe_ms = 0, kernel_ms = 0;
-};
+// The other clouds' hulls (the single-cloud path's), by cloud, in cloud order.
+using HostedHulls = std::vector<std::pair<std::size_t, ConvexHull>>;
+
+// `name` joined to the report's backends unless it is there ("+" between them, in the order first met).
+void add_backend(ConvexHullBatchReport& report, const std::string& name) {
+  if (report.backend.empty()) {
+    report.backend = name;
+  } else if (!name.empty() && ("+" + report.backend + "+").find("+" + name + "+") == std::string::npos) {
+    report.backend += "+" + name;
+  }
+}
+
+template <class T>
+DeviceColumn<T> device_column(std::size_t size, const char* what) {
+  return {std::static_pointer_cast<T>(batch_column(size * sizeof(T), what)), size};
+}
+
+std::vector<std::int64_t> as_int64(const std::vector<std::size_t>& values) {
+  return std::vector<std::int64_t>(values.begin(), values.end());
+}
+
+// The packed result on the device: the offsets laid out from every cloud's sizes (the kernel's hulls' and
+// the hosted ones'), the kernel's hulls described into place (describe_batch_cuda()), the hosted hulls
+// copied up, a run of consecutive hosted clouds at a time (their places are consecutive in both).
+template <class Point>
+DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls&& hosted,
+                                         std::size_t clouds) {
+  DeviceConvexHullBatch batch;
+  batch.device = current_cuda_device();
+  batch.vertex_offsets.assign(clouds + 1, 0);
+  batch.face_offsets.assign(clouds + 1, 0);
+  batch.polygon_offsets.assign(clouds + 1, 0);
+  std::size_t h = 0;
+  bool named = false;  // the kernel's name joined once (the loop runs over 100,000 clouds)
+  for (std::size_t c = 0; c < clouds; ++c) {
+    std::size_t vertices = 0, faces = 0, polygon = 0;
+    if (run.done[c]) {
+      vertices = run.vertices[c];
+      faces = run.faces[c];
+      if (!named) add_backend(batch, "cuda-resident");
+      named = true;
+    } else {
+      const ConvexHull& hull = hosted[h++].second;
+      vertices = hull.vertices.size();
+      faces = hull.faces.size();
+      polygon = hull.polygon.size();
+      add_backend(batch, hull.backend);
+    }
+    batch.vertex_offsets[c + 1] = batch.vertex_offsets[c] + vertices;
+    batch.face_offsets[c + 1] = batch.face_offsets[c] + faces;
+    batch.polygon_offsets[c + 1] = batch.polygon_offsets[c] + polygon;
+  }
+  const std::size_t vertices = batch.vertex_offsets[clouds], faces = batch.face_offsets[clouds],
+                    polygons = batch.polygon_offsets[clouds];
+  batch.device_vertex_offsets = device_column<std::int64_t>(clouds + 1, "the vertex offsets");
+  batch.device_face_offsets = device_column<std::int64_t>(clouds + 1, "the face offsets");
+  batch.device_polygon_offsets = device_column<std::int64_t>(clouds + 1, "the polygon offsets");
+  batch.vertices = device_column<std::int32_t>(vertices, "the vertices");
+  batch.faces = device_column<std::int32_t>(3 * faces, "the faces");
+  batch.polygons = device_column<std::int32_t>(polygons, "the polygons");
+  batch.dimensions = device_column<std::int32_t>(clouds, "the dimensions");
+  batch.planes = device_column<double>(4 * faces, "the planes");
+  batch.volumes = device_column<double>(clouds, "the volumes");
+  batch.areas = device_column<double>(clouds, "the areas");
+  const auto up = [](auto& column, const auto& values, std::size_t at = 0) {
+    copy_to_device(column.data.get() + at, values.data(), values.size() * sizeof(values[0]));
+  };
+  up(batch.device_vertex_offsets, as_int64(batch.vertex_offsets));
+  up(batch.device_face_offsets, as_int64(batch.face_offsets));
+  up(batch.device_polygon_offsets, as_int64(batch.polygon_offsets));
+  if (std::find(run.done.begin(), run.done.end(), 1) != run.done.end()) {
+    const BatchColumns columns{batch.device_vertex_offsets.data.get(),
+                               batch.device_face_offsets.data.get(),
+                               batch.vertices.data.get(),
+                               batch.faces.data.get(),
+                               batch.dimensions.data.get(),
+                               batch.planes.data.get(),
+                               batch.volumes.data.get(),
+                               batch.areas.data.get()};
+    describe_batch_cuda(run, columns);
+  }
+  // The hosted clouds, a run of consecutive ones at a time.
+  for (std::size_t first = 0; first < hosted.size();) {
+    std::size_t end = first + 1;
+    while (end < hosted.size() && hosted[end].first == hosted[end - 1].first + 1)
+      ++end;
+    const std::size_t c0 = hosted[first].first;
+    std::vector<std::int32_t> ids, corners, polygon, dimensions;
+    std::vector<double> planes, volumes, areas;
+    for (std::size_t k = first; k < end; ++k) {
+      ConvexHull& hull = hosted[k].second;
+      ids.insert(ids.end(), hull.vertices.begin(), hull.vertices.end());
+      for (const auto& face : hull.faces)
+        corners.insert(corners.end(), face.begin(), face.end());
+      for (const auto& plane : hull.planes)
+        planes.insert(planes.end(), plane.begin(), plane.end());
+      polygon.insert(polygon.end(), hull.polygon.begin(), hull.polygon.end());
+      volumes.push_back(hull.volume);
+      areas.push_back(hull.area);
+      dimensions.push_back(hull.dimension);
+      hull = ConvexHull{};  // its memory back now
+    }
+    up(batch.vertices, ids, batch.vertex_offsets[c0]);
+    up(batch.faces, corners, 3 * batch.face_offsets[c0]);
+    up(batch.planes, planes, 4 * batch.face_offsets[c0]);
+    up(batch.polygons, polygon, batch.polygon_offsets[c0]);
+    up(batch.volumes, volumes, c0);
+    up(batch.areas, areas, c0);
+    up(batch.dimensions, dimensions, c0);
+    first = end;
+  }
+  std::size_t result_bytes = 0;
+  for (const std::size_t bytes : {3 * (clouds + 1) * sizeof(std::int64_t),
+                                  (vertices + 3 * faces + polygons + clouds) * sizeof(std::int32_t),
+                                  (4 * faces + 2 * clouds) * sizeof(double)})
+    result_bytes += bytes;
+  batch.device_bytes_peak = std::max(run.device_bytes, run.kept_bytes + result_bytes);
+  return batch;
+}
 
 // The one place the CUDA backend runs a batch of checked points in device memory: the clouds a block takes,
-// in one launch (batch_meshes_cuda(), or two), each described as convex_hull() describes its exact mesh, on
-// all cores; the rest (too small or too large for a block, flat, or with a defect the single-cloud path
-// repairs) and those `single` marks through `hull_of(c)`.
+// in one launch (batch_run_cuda(), or two); the rest (too small or too large for a block, flat, or with a
+// defect the single-cloud path repairs) and those `single` marks through `hull_of(c)`, in cloud order; the
+// result assembled on the device (assemble_on_device()).
 template <class Point, class HullOf>
-DeviceBatchStats run_batch_on_device(const Point* device_points, std::size_t count,
-                                     const std::size_t* offsets, std::size_t clouds,
-                                     const ConvexHullOptions& options, std::vector<ConvexHull>& hulls,
-                                     HullOf hull_of, const std::vector<std::uint8_t>& single = {}) {
+DeviceConvexHullBatch run_batch_on_device(const Point* device_points, std::size_t count,
+                                          const std::size_t* offsets, std::size_t clouds, HullOf hull_of,
+                                          const std::vector<std::uint8_t>& single = {}) {
   const Clock::time_point start = Clock::now();
-  BatchMeshes<Point> meshes;
+  BatchRun<Point> run;
   try {
-    meshes =
-        batch_meshes_cuda(device_points, count, offsets, clouds, single.empty() ? nullptr : single.data());
+    run = batch_run_cuda(device_points, count, offsets, clouds, single.empty() ? nullptr : single.data());
   } catch (const OutOfDeviceMemory&) {
     // No room for the batch: every cloud through the single-cloud path, which grows its room as it goes.
-    meshes.done.assign(clouds, 0);
+    run = BatchRun<Point>{};
+    run.done.assign(clouds, 0);
+    run.faces.assign(clouds, 0);
+    run.vertices.assign(clouds, 0);
   }
-  DeviceBatchStats stats;
-  stats.device_ms = ms_since(start);
-  stats.kernel_ms = meshes.kernel_ms;
-  const Clock::time_point describe_start = Clock::now();
-  stats.launches = meshes.passes;
-  stats.device_bytes_peak = meshes.device_bytes + count * sizeof(Point);
-  parallel_chunks(
-      clouds, hardware_workers(),
-      [&](std::size_t begin, std::size_t end, unsigned) {
-        const SerialScope serial;  // a cloud's description on its worker's thread
-        for (std::size_t c = begin; c < end; ++c) {
-          if (meshes.done[c]) hulls[c] = hull_from_mesh(meshes.mesh(c), "cuda-resident", options, false);
-        }
-      },
-      64);
-  stats.describe_ms = ms_since(describe_start);
-  std::vector<std::uint8_t> pending(clouds);
+  HostedHulls hosted;
   for (std::size_t c = 0; c < clouds; ++c) {
-    pending[c] = !meshes.done[c];
-    stats.clouds_batched += meshes.done[c];
+    if (run.done[c]) continue;
+    try {
+      hosted.emplace_back(c, hull_of(c));
+    } catch (const InputError& error) {
+      throw in_cloud(error, c, offsets[c]);
+    }
   }
-  run_each_on_device(offsets, clouds, hulls, hull_of, &pending);
-  return stats;
+  const Clock::time_point describe_start = Clock::now();
+  DeviceConvexHullBatch batch = assemble_on_device(run, std::move(hosted), clouds);
+  batch.describe_ms = ms_since(describe_start);
+  batch.device_ms = ms_since(start);
+  batch.kernel_ms = run.kernel_ms;
+  batch.batch_launches = run.passes;
+  batch.device_bytes_peak += count * sizeof(Point);
+  for (std::size_t c = 0; c < clouds; ++c)
+    batch.clouds_batched += run.done[c];
+  return batch;
+}
+
+// Every cloud through the single-cloud path (`hull_of(c)`), the result assembled on the device.
+template <class HullOf>
+DeviceConvexHullBatch run_each_into_device(const std::size_t* offsets, std::size_t clouds, HullOf hull_of) {
+  BatchRun<Point3> none;
+  none.done.assign(clouds, 0);
+  HostedHulls hosted;
+  for (std::size_t c = 0; c < clouds; ++c) {
+    try {
+      hosted.emplace_back(c, hull_of(c));
+    } catch (const InputError& error) {
+      throw in_cloud(error, c, offsets[c]);
+    }
+  }
+  return assemble_on_device(none, std::move(hosted), clouds);
 }
 
 // Host points for the device: checked and packed in the plan's precision (a bad point: the clouds in turn
 // name it, as the single-cloud path does), uploaded once; a double cloud outside the exact range takes the
 // single-cloud path (its wide path on the host).
 template <class Point, class Scalar, class HullOf>
-DeviceBatchStats run_host_batch_on_device(const Scalar* xyz, std::size_t count, const std::size_t* offsets,
-                                          std::size_t clouds, const ConvexHullOptions& options,
-                                          std::vector<ConvexHull>& hulls, HullOf hull_of) {
+DeviceConvexHullBatch run_host_batch_on_device(const Scalar* xyz, std::size_t count,
+                                               const std::size_t* offsets, std::size_t clouds,
+                                               HullOf hull_of) {
   std::vector<Point> packed;
   try {
     packed = checked_points<Point>(xyz, count);
   } catch (const InputError&) {
-    run_each_on_device(offsets, clouds, hulls, hull_of);
-    return {};
+    return run_each_into_device(offsets, clouds, hull_of);
   }
   std::vector<std::uint8_t> single(clouds, 0);
   if constexpr (std::is_same_v<Point, Point3d>) {
@@ -207,22 +336,15 @@ DeviceBatchStats run_host_batch_on_device(const Scalar* xyz, std::size_t count, 
       single[c] = !in_fast_exact_range(packed.data() + offsets[c], offsets[c + 1] - offsets[c]);
   }
   const std::shared_ptr<void> on_device = upload_to_device(packed.data(), packed.size() * sizeof(Point));
-  return run_batch_on_device(static_cast<const Point*>(on_device.get()), count, offsets, clouds, options,
-                             hulls, hull_of, single);
+  return run_batch_on_device(static_cast<const Point*>(on_device.get()), count, offsets, clouds, hull_of,
+                             single);
 }
 
 // The per-cloud hulls packed into flat arrays, in cloud order (the copies on all cores: a batch of 100,000
 // clouds has millions of faces).
-ConvexHullBatch pack(std::vector<ConvexHull>&& hulls, Precision precision,
-                     const DeviceBatchStats& stats = {}) {
+ConvexHullBatch pack(std::vector<ConvexHull>&& hulls, Precision precision) {
   ConvexHullBatch batch;
   batch.precision = precision;
-  batch.clouds_batched = stats.clouds_batched;
-  batch.batch_launches = stats.launches;
-  batch.device_bytes_peak = stats.device_bytes_peak;
-  batch.device_ms = stats.device_ms;
-  batch.describe_ms = stats.describe_ms;
-  batch.kernel_ms = stats.kernel_ms;
   const std::size_t clouds = hulls.size();
   batch.vertex_offsets.assign(clouds + 1, 0);
   batch.face_offsets.assign(clouds + 1, 0);
@@ -238,12 +360,7 @@ ConvexHullBatch pack(std::vector<ConvexHull>&& hulls, Precision precision,
     batch.volumes[c] = hull.volume;
     batch.areas[c] = hull.area;
     batch.dimensions[c] = hull.dimension;
-    if (batch.backend.empty()) {
-      batch.backend = hull.backend;
-    } else if (!hull.backend.empty() &&
-               ("+" + batch.backend + "+").find("+" + hull.backend + "+") == std::string::npos) {
-      batch.backend += "+" + hull.backend;
-    }
+    add_backend(batch, hull.backend);
   }
   batch.vertices.resize(batch.vertex_offsets[clouds]);
   batch.faces.resize(batch.face_offsets[clouds]);
@@ -291,20 +408,26 @@ ConvexHullBatch host_batch(const Scalar* xyz, std::size_t count, const std::size
   ConvexHullOptions each = options.hull;
   each.backend = plan.backend;
   each.precision = plan.precision;
-  std::vector<ConvexHull> hulls(clouds);
   auto cloud = [&](std::size_t c) { return hull_of(offsets[c], offsets[c + 1] - offsets[c], each); };
-  DeviceBatchStats stats;
-  if (plan.backend == BackendChoice::kCuda && plan.engine == EngineChoice::kStepping) {
-    run_each_on_device(offsets, clouds, hulls, cloud);  // the stepping engine asked for: cloud by cloud
-  } else if (plan.backend == BackendChoice::kCuda) {
-    stats = plan.precision == Precision::kDouble
-                ? run_host_batch_on_device<Point3d>(xyz, count, offsets, clouds, each, hulls, cloud)
-                : run_host_batch_on_device<Point3>(xyz, count, offsets, clouds, each, hulls, cloud);
+  // On the device: the batch kernel, unless the stepping engine or merged facets (which the device's describe
+  // does not make) are asked for, which run cloud by cloud.
+  if (plan.backend == BackendChoice::kCuda && plan.engine != EngineChoice::kStepping &&
+      each.merge == MergeMode::kExact) {
+    ConvexHullBatch batch =
+        plan.precision == Precision::kDouble
+            ? run_host_batch_on_device<Point3d>(xyz, count, offsets, clouds, cloud).to_host()
+            : run_host_batch_on_device<Point3>(xyz, count, offsets, clouds, cloud).to_host();
+    batch.precision = plan.precision;
+    return batch;
+  }
+  std::vector<ConvexHull> hulls(clouds);
+  if (plan.backend == BackendChoice::kCuda) {
+    run_each_on_device(offsets, clouds, hulls, cloud);
   } else {
     const unsigned threads = options.threads != 0 ? options.threads : hardware_workers();
     run_batch_on_host(offsets, clouds, std::max(1u, threads), hulls, cloud);
   }
-  return pack(std::move(hulls), plan.precision, stats);
+  return pack(std::move(hulls), plan.precision);
 }
 
 template <class Scalar>
@@ -332,8 +455,8 @@ ConvexHullBatch vector_batch(const std::vector<Point>& points, const std::vector
 }
 
 template <class Scalar>
-ConvexHullBatch device_batch(const Scalar* device_xyz, std::size_t count, const std::size_t* offsets,
-                             std::size_t clouds, const ConvexHullBatchOptions& options) {
+DeviceConvexHullBatch device_batch(const Scalar* device_xyz, std::size_t count, const std::size_t* offsets,
+                                   std::size_t clouds, const ConvexHullBatchOptions& options) {
   check_offsets(count, offsets, clouds);
   constexpr Precision own = std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat;
   const HullPlan plan = batch_plan(count, own, true, options.hull);
@@ -341,22 +464,23 @@ ConvexHullBatch device_batch(const Scalar* device_xyz, std::size_t count, const 
   if (!plan.unavailable.empty()) throw DeviceError(plan.unavailable);
   ConvexHullOptions each = options.hull;
   each.precision = plan.precision;
-  std::vector<ConvexHull> hulls(clouds);
   const auto cloud = [&](std::size_t c) {
     return convex_hull_device(device_xyz + 3 * offsets[c], offsets[c + 1] - offsets[c], each);
   };
   const auto on_device = [&](auto point) {
     using Point = decltype(point);
     const CheckedDevicePoints<Point> checked = check_device_points<Point>(device_xyz, count);
-    if (checked.first_bad != count) {  // the clouds in turn: the bad point named, or the wide path taken
-      run_each_on_device(offsets, clouds, hulls, cloud);
-      return DeviceBatchStats{};
-    }
-    return run_batch_on_device(checked.points, count, offsets, clouds, each, hulls, cloud);
+    // A bad point: the clouds in turn (the bad point named, or the wide path taken).  The stepping engine,
+    // or merged facets (which the device's describe does not make), asked for: cloud by cloud.
+    if (checked.first_bad != count || plan.engine == EngineChoice::kStepping ||
+        each.merge != MergeMode::kExact)
+      return run_each_into_device(offsets, clouds, cloud);
+    return run_batch_on_device(checked.points, count, offsets, clouds, cloud);
   };
-  const DeviceBatchStats stats =
+  DeviceConvexHullBatch batch =
       plan.precision == Precision::kDouble ? on_device(Point3d{}) : on_device(Point3{});
-  return pack(std::move(hulls), plan.precision, stats);
+  batch.precision = plan.precision;
+  return batch;
 }
 
 }  // namespace
@@ -384,13 +508,52 @@ ConvexHullBatch convex_hull_batch(const double* xyz, std::size_t count, const st
 ConvexHullBatch convex_hull_batch_device(const float* device_xyz, std::size_t count,
                                          const std::size_t* offsets, std::size_t clouds,
                                          const ConvexHullBatchOptions& options) {
-  return device_batch(device_xyz, count, offsets, clouds, options);
+  return device_batch(device_xyz, count, offsets, clouds, options).to_host();
 }
 
 ConvexHullBatch convex_hull_batch_device(const double* device_xyz, std::size_t count,
                                          const std::size_t* offsets, std::size_t clouds,
                                          const ConvexHullBatchOptions& options) {
+  return device_batch(device_xyz, count, offsets, clouds, options).to_host();
+}
+
+DeviceConvexHullBatch convex_hull_batch_device_results(const float* device_xyz, std::size_t count,
+                                                       const std::size_t* offsets, std::size_t clouds,
+                                                       const ConvexHullBatchOptions& options) {
   return device_batch(device_xyz, count, offsets, clouds, options);
+}
+
+DeviceConvexHullBatch convex_hull_batch_device_results(const double* device_xyz, std::size_t count,
+                                                       const std::size_t* offsets, std::size_t clouds,
+                                                       const ConvexHullBatchOptions& options) {
+  return device_batch(device_xyz, count, offsets, clouds, options);
+}
+
+ConvexHullBatch DeviceConvexHullBatch::to_host() const {
+  ConvexHullBatch batch;
+  static_cast<ConvexHullBatchReport&>(batch) = *this;
+  batch.vertex_offsets = vertex_offsets;
+  batch.face_offsets = face_offsets;
+  batch.polygon_offsets = polygon_offsets;
+  const std::size_t clouds = size();
+  batch.vertices.resize(vertices.size);
+  batch.faces.resize(faces.size / 3);
+  batch.planes.resize(planes.size / 4);
+  batch.polygons.resize(polygons.size);
+  batch.volumes.resize(clouds);
+  batch.areas.resize(clouds);
+  batch.dimensions.resize(clouds);
+  // int32 indices into PointIndex (uint32: the same bytes for indices under 2^31).
+  static_assert(sizeof(PointIndex) == sizeof(std::int32_t) &&
+                sizeof(batch.faces[0]) == 3 * sizeof(PointIndex));
+  copy_to_host(batch.vertices.data(), vertices.data.get(), vertices.size * sizeof(std::int32_t));
+  copy_to_host(batch.faces.data(), faces.data.get(), faces.size * sizeof(std::int32_t));
+  copy_to_host(batch.planes.data(), planes.data.get(), planes.size * sizeof(double));
+  copy_to_host(batch.polygons.data(), polygons.data.get(), polygons.size * sizeof(std::int32_t));
+  copy_to_host(batch.volumes.data(), volumes.data.get(), clouds * sizeof(double));
+  copy_to_host(batch.areas.data(), areas.data.get(), clouds * sizeof(double));
+  copy_to_host(batch.dimensions.data(), dimensions.data.get(), clouds * sizeof(std::int32_t));
+  return batch;
 }
 
 }  // namespace cudahull

@@ -92,11 +92,13 @@ def main():
         "scipy_loop_ms": scipy_ms, "single_call_loop_ms": loop_ms, "loops_timed_on": k,
         "vs_scipy": scipy_ms / best, "vs_single_calls": loop_ms / best,
         "hull_vertices": int(vertices.size), "differ_from_scipy": int(differ),
-        "torch_peak_bytes": torch.cuda.max_memory_allocated(),
+        "torch_peak_bytes": torch.cuda.max_memory_allocated(), **hulls.report,
     }
     print(f"{row['input']}: batch {best:.2f} ms (median {row['batch_ms_median']:.2f}); scipy loop "
           f"{scipy_ms:.0f} ms ({row['vs_scipy']:.0f}x); single calls {loop_ms:.0f} ms ({row['vs_single_calls']:.0f}x)"
-          f" [loops on {k} clouds, scaled]; {differ} of {k} clouds differ from scipy")
+          f" [loops on {k} clouds, scaled]; {differ} of {k} clouds differ from scipy; kernel "
+          f"{row['kernel_ms']:.2f} ms, describe {row['describe_ms']:.2f} ms, device peak "
+          f"{row['device_bytes_peak'] / 2**20:.0f} MiB")
     if a.json:
         with open(a.json, "a") as f:
             f.write(json.dumps(row) + "\n")

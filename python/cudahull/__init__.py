@@ -675,10 +675,13 @@ class BatchHulls:
     polygon), with its polygon's corners in order in ``polygons[polygon_offsets[c]:polygon_offsets[c + 1]]``.
     Offsets are int64; indices int32 (int64 beyond 2**31 points in a cloud, and for PyTorch).  Arrays are of
     the input's library: NumPy, or CuPy arrays and PyTorch tensors on the input's device.  ``precision`` and
-    ``backend`` say what the hulls were computed in and on.
+    ``backend`` say what the hulls were computed in and on; ``report`` (a dict) what the GPU did: the clouds
+    its batch kernel hulled (``clouds_batched``), its launches, the most device memory the call held
+    (``device_bytes_peak``, the points included) and milliseconds (``device_ms``, ``kernel_ms``,
+    ``describe_ms``).
     """
 
-    __slots__ = _BATCH_ARRAYS + ("precision", "backend")
+    __slots__ = _BATCH_ARRAYS + ("precision", "backend", "report")
 
     def __len__(self):
         return int(self.volumes.shape[0])
@@ -744,28 +747,32 @@ def _batch_layout(shape, offsets, lengths):
 
 
 def _batch_result(raw, offsets, kind=None):
-    """The module's batch dict as a BatchHulls, its arrays NumPy or, for CuPy and PyTorch input, the input's
-    kind on its device."""
+    """The module's batch dict as a BatchHulls.  Its arrays are NumPy (from the host), or, for points in GPU
+    memory, already the input's CuPy arrays or PyTorch tensors, sharing the result's device memory."""
     hulls = BatchHulls()
-    longest = int(np.diff(offsets).max(initial=0))
-    index = np.int32 if longest < 2**31 else np.int64
-    raw["vertices"] = raw["vertices"].astype(index)
-    raw["polygons"] = raw["polygons"].astype(index)
-    raw["faces"] = raw["faces"].astype(index).reshape(-1, 3)
-    raw["planes"] = raw["planes"].reshape(-1, 4)
-    to_input = kind is not None and kind.known
+    on_host = isinstance(raw["volumes"], np.ndarray)
+    if on_host:
+        longest = int(np.diff(offsets).max(initial=0))
+        index = np.int32 if longest < 2**31 else np.int64
+        raw["vertices"] = raw["vertices"].astype(index)
+        raw["polygons"] = raw["polygons"].astype(index)
+        raw["faces"] = raw["faces"].astype(index).reshape(-1, 3)
+        raw["planes"] = raw["planes"].reshape(-1, 4)
+    torch_indices = kind is not None and kind.library == "torch"
     for key in _BATCH_ARRAYS:
         array = raw[key]
-        if to_input:
-            # The hulls come back to the host (they are described there) and go up again: most of a GPU
-            # batch's time today (docs/benchmarks.md, "Batched hulls").  PyTorch's indices are int64, as for
-            # device_results (few operations take int32 there).
-            if kind.library == "torch" and array.dtype == np.int32:
+        if on_host and kind is not None and kind.known:
+            # A PyTorch tensor on the CPU: tensors back.  Indices int64, as for device_results (few PyTorch
+            # operations take int32).
+            if torch_indices and array.dtype == np.int32:
                 array = array.astype(np.int64)
             array = kind.like_input(array)
+        elif not on_host and torch_indices and key in ("vertices", "faces", "polygons", "dimensions"):
+            array = array.long()  # on the device
         setattr(hulls, key, array)
     hulls.precision = raw["precision"]
     hulls.backend = raw["backend"]
+    hulls.report = raw["report"]
     return hulls
 
 
@@ -794,7 +801,8 @@ def convex_hull_batch(points, offsets=None, lengths=None, *, backend="auto", pre
 
     On the CPU the clouds run on all cores.  With a GPU one launch hulls every cloud of 4 to 131,072 points, a
     block a cloud (the same vertex sets and faces as ``convex_hull()``, the faces in another order); flat,
-    tiny and larger clouds take the single-cloud GPU path.
+    tiny and larger clouds take the single-cloud GPU path.  The hulls are described on the GPU, and for CuPy
+    and PyTorch input the result's arrays are the GPU's own (no copy to the host and back).
 
     Raises ValueError for a NaN or infinite coordinate (naming the cloud, the point in it and its row in the
     packed points), and for bad shapes, offsets or lengths; DeviceError as ``convex_hull``.
@@ -831,6 +839,7 @@ def convex_hull_batch(points, offsets=None, lengths=None, *, backend="auto", pre
                          "pass them as NumPy: cupy.asnumpy(x), x.cpu().numpy())")
     _check_engine(engine, True)
     kind = _DeviceKind(points)
+    library = kind.library if kind.known else "numpy"  # the result's arrays: the input's, on its device
     interface = points.__cuda_array_interface__ if protocol == "cuda_array_interface" else None
     shape = tuple(interface["shape"] if interface is not None else points.shape)
     padded, bounds, lengths = _batch_layout(shape, offsets, lengths)
@@ -851,9 +860,9 @@ def convex_hull_batch(points, offsets=None, lengths=None, *, backend="auto", pre
                 strides[1] != itemsize or (shape[0] > 1 and strides[0] != 3 * itemsize)):
             raise ValueError("points in GPU memory must be C-contiguous: the engine reads them in place")
         raw = _batch_call(padded, _cudahull.convex_hull_batch_cuda_pointer, interface["data"][0], shape[0],
-                          itemsize == 8, bounds, backend, precision)
+                          itemsize == 8, bounds, backend, precision, library)
     else:
         if getattr(points, "requires_grad", False):
             points = points.detach()  # PyTorch exports no tensor that requires grad; the hulls read values only
-        raw = _batch_call(padded, _cudahull.convex_hull_batch_cuda, points, bounds, backend, precision)
+        raw = _batch_call(padded, _cudahull.convex_hull_batch_cuda, points, bounds, backend, precision, library)
     return _batch_result(raw, bounds, kind)

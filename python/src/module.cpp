@@ -2,7 +2,8 @@
 // gives it scipy's ConvexHull interface (and convex_hull_batch, issue 27).  It takes C-contiguous (n, 3)
 // float32 or float64 NumPy arrays, as the package hands them over, or such arrays in CUDA memory (DLPack:
 // CuPy, PyTorch; or a raw pointer from
-// __cuda_array_interface__), and returns plain dicts of NumPy arrays.
+// __cuda_array_interface__), and returns plain dicts of NumPy arrays (a batch on the device: of PyTorch
+// tensors or CuPy arrays that share the result's device memory).
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/string.h>
@@ -305,8 +306,21 @@ nb::object offsets_to_numpy(const std::vector<std::size_t>& offsets) {
   return to_numpy(std::vector<std::int64_t>(offsets.begin(), offsets.end()));
 }
 
+// What ran (ConvexHullBatchReport), for BatchHulls.report.
+nb::dict report_dict(const ConvexHullBatchReport& report) {
+  nb::dict d;
+  d["clouds_batched"] = report.clouds_batched;
+  d["batch_launches"] = report.batch_launches;
+  d["device_bytes_peak"] = report.device_bytes_peak;
+  d["device_ms"] = report.device_ms;
+  d["kernel_ms"] = report.kernel_ms;
+  d["describe_ms"] = report.describe_ms;
+  return d;
+}
+
 nb::dict batch_to_dict(ConvexHullBatch&& batch) {
   nb::dict d;
+  d["report"] = report_dict(batch);
   d["vertex_offsets"] = offsets_to_numpy(batch.vertex_offsets);
   d["face_offsets"] = offsets_to_numpy(batch.face_offsets);
   d["polygon_offsets"] = offsets_to_numpy(batch.polygon_offsets);
@@ -336,23 +350,69 @@ nb::dict convex_hull_batch_of(PointArray<Scalar> points, const OffsetArray& offs
   return batch_to_dict(std::move(batch));
 }
 
+// A result column in device memory as an array of `Framework` (PyTorch, CuPy) on its device, sharing the
+// memory (DLPack): the capsule holds the column alive.  `width` values a row (1: a vector).
+template <class Framework, class T>
+nb::object column_array(const DeviceColumn<T>& column, std::size_t width, int device) {
+  auto* owned = new std::shared_ptr<T>(column.data);
+  nb::capsule owner(owned, [](void* p) noexcept { delete static_cast<std::shared_ptr<T>*>(p); });
+  const std::size_t rows = column.size / width;
+  if (width == 1)
+    return nb::ndarray<Framework, T>(column.data.get(), {rows}, owner, {}, nb::dtype<T>(),
+                                     nb::device::cuda::value, device)
+        .cast();
+  return nb::ndarray<Framework, T>(column.data.get(), {rows, width}, owner, {}, nb::dtype<T>(),
+                                   nb::device::cuda::value, device)
+      .cast();
+}
+
+template <class Framework>
+nb::dict device_batch_to_dict(DeviceConvexHullBatch&& batch) {
+  const int device = batch.device;
+  nb::dict d;
+  d["report"] = report_dict(batch);
+  d["vertex_offsets"] = column_array<Framework>(batch.device_vertex_offsets, 1, device);
+  d["face_offsets"] = column_array<Framework>(batch.device_face_offsets, 1, device);
+  d["polygon_offsets"] = column_array<Framework>(batch.device_polygon_offsets, 1, device);
+  d["vertices"] = column_array<Framework>(batch.vertices, 1, device);
+  d["faces"] = column_array<Framework>(batch.faces, 3, device);
+  d["planes"] = column_array<Framework>(batch.planes, 4, device);
+  d["polygons"] = column_array<Framework>(batch.polygons, 1, device);
+  d["volumes"] = column_array<Framework>(batch.volumes, 1, device);
+  d["areas"] = column_array<Framework>(batch.areas, 1, device);
+  d["dimensions"] = column_array<Framework>(batch.dimensions, 1, device);
+  d["precision"] = precision_name(batch.precision);
+  d["backend"] = batch.backend;
+  return d;
+}
+
 // Packed points in CUDA memory, read in place: the batch kernel, and the single-cloud device path for the
-// clouds it does not take (convex_hull_batch_device()).
+// clouds it does not take (convex_hull_batch_device_results()).  The result stays on the device, as arrays
+// of `library` ("torch", "cupy"), or comes back as NumPy ("numpy").
 template <class Scalar>
 nb::dict device_batch_of(const Scalar* xyz, std::size_t count, const OffsetArray& offsets,
-                         const std::string& backend, const std::string& precision) {
+                         const std::string& backend, const std::string& precision,
+                         const std::string& library) {
   const std::vector<std::size_t> bounds = offsets_from(offsets);
   const ConvexHullBatchOptions options = batch_options_from(backend, precision, "resident", 0);
-  ConvexHullBatch batch;
+  DeviceConvexHullBatch batch;
   {
     nb::gil_scoped_release unlocked;
-    batch = convex_hull_batch_device(xyz, count, bounds.data(), bounds.size() - 1, options);
+    batch = convex_hull_batch_device_results(xyz, count, bounds.data(), bounds.size() - 1, options);
   }
-  return batch_to_dict(std::move(batch));
+  if (library == "torch") return device_batch_to_dict<nb::pytorch>(std::move(batch));
+  if (library == "cupy") return device_batch_to_dict<nb::cupy>(std::move(batch));
+  ConvexHullBatch host;
+  {
+    nb::gil_scoped_release unlocked;
+    host = batch.to_host();
+  }
+  return batch_to_dict(std::move(host));
 }
 
 nb::dict convex_hull_batch_cuda(const CudaArray& points, const OffsetArray& offsets,
-                                const std::string& backend, const std::string& precision) {
+                                const std::string& backend, const std::string& precision,
+                                const std::string& library) {
   const bool is_float = points.dtype() == nb::dtype<float>(),
              is_double = points.dtype() == nb::dtype<double>();
   if (!is_float && !is_double)
@@ -366,16 +426,18 @@ nb::dict convex_hull_batch_cuda(const CudaArray& points, const OffsetArray& offs
         "(cupy.ascontiguousarray(x) "
         "or x.contiguous() copies them on the device)");
   if (is_float)
-    return device_batch_of(static_cast<const float*>(points.data()), n, offsets, backend, precision);
-  return device_batch_of(static_cast<const double*>(points.data()), n, offsets, backend, precision);
+    return device_batch_of(static_cast<const float*>(points.data()), n, offsets, backend, precision, library);
+  return device_batch_of(static_cast<const double*>(points.data()), n, offsets, backend, precision, library);
 }
 
 nb::dict convex_hull_batch_cuda_pointer(std::uintptr_t pointer, std::size_t count, bool is_double,
                                         const OffsetArray& offsets, const std::string& backend,
-                                        const std::string& precision) {
+                                        const std::string& precision, const std::string& library) {
   if (is_double)
-    return device_batch_of(reinterpret_cast<const double*>(pointer), count, offsets, backend, precision);
-  return device_batch_of(reinterpret_cast<const float*>(pointer), count, offsets, backend, precision);
+    return device_batch_of(reinterpret_cast<const double*>(pointer), count, offsets, backend, precision,
+                           library);
+  return device_batch_of(reinterpret_cast<const float*>(pointer), count, offsets, backend, precision,
+                         library);
 }
 
 // The stepping engine for notebooks: one iteration per step(), its record as a dict of NumPy arrays.
@@ -547,9 +609,10 @@ NB_MODULE(_cudahull, m) {
   m.def("convex_hull_batch", &convex_hull_batch_of<double>, nb::arg("points"), nb::arg("offsets"),
         nb::arg("backend"), nb::arg("precision"), nb::arg("engine"), nb::arg("threads") = 0);
   m.def("convex_hull_batch_cuda", &convex_hull_batch_cuda, nb::arg("points"), nb::arg("offsets"),
-        nb::arg("backend"), nb::arg("precision"));
+        nb::arg("backend"), nb::arg("precision"), nb::arg("library"));
   m.def("convex_hull_batch_cuda_pointer", &convex_hull_batch_cuda_pointer, nb::arg("pointer"),
-        nb::arg("count"), nb::arg("is_double"), nb::arg("offsets"), nb::arg("backend"), nb::arg("precision"));
+        nb::arg("count"), nb::arg("is_double"), nb::arg("offsets"), nb::arg("backend"), nb::arg("precision"),
+        nb::arg("library"));
   // Whether a CUDA array can be taken here at all: (usable, why not), before its data is touched.
   m.def("cuda_device", []() {
     const CudaStatus cuda = cuda_status();

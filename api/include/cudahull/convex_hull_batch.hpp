@@ -20,9 +20,11 @@
 //     its worker's thread, SerialScope); a cloud too large to share the cores runs alone on all of them
 //   CUDA: the points checked once and on the device (host points uploaded once); one launch of the batch
 //     kernel (cuda/batch_cuda.hpp: a block a cloud, the resident engine's iteration) for the clouds of 4 to
-//     131,072 points, a second for those whose hulls outgrew the first's room; each mesh described as
-//     convex_hull() describes one; flat, tiny and larger clouds, and those with defects, through the
-//     single-cloud path (convex_hull(), convex_hull_device())
+//     131,072 points, a second for those whose hulls outgrew the first's room; flat, tiny and larger clouds,
+//     and those with defects, through the single-cloud path (convex_hull(), convex_hull_device()); then the
+//     result laid out on the device (offsets from every cloud's sizes), the kernel's meshes described there
+//     as convex_hull() describes one (the same code: cudahull/detail/plane_impl.hpp), the other clouds'
+//     hulls copied up into place; read back only for a host result
 //   errors: the first bad point in packed order raises, named by its cloud, its index in the cloud and its
 //     row in the packed array; clouds after a failed one are not started
 //   the per-cloud hulls packed into flat arrays with offsets, in cloud order
@@ -31,6 +33,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -48,10 +51,28 @@ struct ConvexHullBatchOptions {
   unsigned threads = 0;
 };
 
+// What ran, for both kinds of result.
+struct ConvexHullBatchReport {
+  Precision precision = Precision::kFloat;  // what the hulls were computed in (never kAuto)
+  // The backends that ran, as convex_hull()'s names ("cpu", "cpu-resident", "cuda-resident", "cpu-wide"),
+  // in the order first met, joined by "+" where the clouds differ (a wide-range cloud takes "cpu-wide").
+  std::string backend;
+  // The CUDA backend: the clouds its batch kernel hulled (the rest took the single-cloud path), the
+  // launches it made (a second for clouds whose hulls outgrew the first's room), and the most device memory
+  // it held at once, the points and the result included.
+  std::size_t clouds_batched = 0;
+  unsigned batch_launches = 0;
+  std::size_t device_bytes_peak = 0;
+  // Milliseconds: the whole device part (the batch kernel's launches, the other clouds' single-cloud path,
+  // the describe; the points' upload and check before it not included), and of it the batch kernel's
+  // launches alone and the describe (planes, volumes, areas, on the device) with the result's assembly.
+  double device_ms = 0, describe_ms = 0, kernel_ms = 0;
+};
+
 // The hulls of B clouds, packed: cloud c's vertices are vertices[vertex_offsets[c] .. vertex_offsets[c + 1])
 // and its faces (with their planes) faces[face_offsets[c] .. face_offsets[c + 1]).  Indices are into each
 // cloud (0 is the cloud's first point), as convex_hull() gives them for the cloud alone.
-struct ConvexHullBatch {
+struct ConvexHullBatch : ConvexHullBatchReport {
   std::vector<std::size_t> vertex_offsets{0}, face_offsets{0};  // B + 1 each
   // Per cloud: the strictly extreme points, ascending (among duplicates the lowest index).
   std::vector<PointIndex> vertices;
@@ -66,21 +87,30 @@ struct ConvexHullBatch {
   // polygon), and the affine dimension (3; 2, 1, 0 for flat input; -1 for an empty cloud).
   std::vector<double> volumes, areas;
   std::vector<std::int32_t> dimensions;
-  Precision precision = Precision::kFloat;  // what the hulls were computed in (never kAuto)
-  // The backends that ran, as convex_hull()'s names ("cpu", "cpu-resident", "cuda-resident", "cpu-wide"),
-  // in the order first met, joined by "+" where the clouds differ (a wide-range cloud takes "cpu-wide").
-  std::string backend;
-  // The CUDA backend: the clouds its batch kernel hulled (the rest took the single-cloud path), the
-  // launches it made (a second for clouds whose hulls outgrew the first's room), and the most device memory
-  // it held at once, the points included.
-  std::size_t clouds_batched = 0;
-  unsigned batch_launches = 0;
-  std::size_t device_bytes_peak = 0;
-  // Milliseconds: the batch kernel's launches with their reads (the points' upload and check before them
-  // not included), and describing its meshes on the host (planes, volumes, areas: hull_from_mesh()).
-  double device_ms = 0, describe_ms = 0, kernel_ms = 0;  // kernel_ms: the launches alone, in device_ms
 
   std::size_t size() const { return volumes.size(); }
+};
+
+// `size` values of T in the memory of CUDA device `device`, alive while any copy of `data` is.
+template <class T>
+struct DeviceColumn {
+  std::shared_ptr<T> data;
+  std::size_t size = 0;
+};
+
+// ConvexHullBatch's arrays left in device memory, where the points were (convex_hull_batch_device_results):
+// the same values, the indices as int32 (a cloud on the device holds under 2^31 points), the offsets as
+// int64 (and on the host too).  Faces are 3 corners a row, planes 4 values a row, packed.
+struct DeviceConvexHullBatch : ConvexHullBatchReport {
+  int device = 0;  // the CUDA device that holds the columns
+  std::vector<std::size_t> vertex_offsets{0}, face_offsets{0}, polygon_offsets{0};  // B + 1 each, host
+  DeviceColumn<std::int64_t> device_vertex_offsets, device_face_offsets, device_polygon_offsets;
+  DeviceColumn<std::int32_t> vertices, faces, polygons, dimensions;
+  DeviceColumn<double> planes, volumes, areas;
+
+  std::size_t size() const { return volumes.size; }
+  // The same hulls read back (one copy a column).  Throws DeviceError.
+  ConvexHullBatch to_host() const;
 };
 
 // The hulls of the clouds of `points` that `offsets` bound (B + 1 values: 0, then each cloud's end, the last
@@ -107,5 +137,15 @@ ConvexHullBatch convex_hull_batch_device(const float* device_xyz, std::size_t co
 ConvexHullBatch convex_hull_batch_device(const double* device_xyz, std::size_t count,
                                          const std::size_t* offsets, std::size_t clouds,
                                          const ConvexHullBatchOptions& options = {});
+
+// The same, the result left in the current device's memory: no hull crosses to the host but those of the
+// clouds that take the single-cloud path (fewer than 4 points, flat, too large for a block), which cross
+// up.  What the Python module hands to CuPy and PyTorch.
+DeviceConvexHullBatch convex_hull_batch_device_results(const float* device_xyz, std::size_t count,
+                                                       const std::size_t* offsets, std::size_t clouds,
+                                                       const ConvexHullBatchOptions& options = {});
+DeviceConvexHullBatch convex_hull_batch_device_results(const double* device_xyz, std::size_t count,
+                                                       const std::size_t* offsets, std::size_t clouds,
+                                                       const ConvexHullBatchOptions& options = {});
 
 }  // namespace cudahull

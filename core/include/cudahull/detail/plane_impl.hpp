@@ -1,0 +1,244 @@
+// Inline implementation of the facet planes (cudahull/plane.hpp) and of a hull's measures, for the host and
+// the device alike (CUDAHULL_HD): the batch kernel describes its hulls on the device with the same code as
+// convex_hull() on the host, so the planes, volumes and areas are the same bits on every backend.
+//
+// design:
+//   facet_plane_in_range  the plane of a face whose corners are in the fast exact range: the cross product in
+//                         double where it cannot cancel (within 32 times the normal's length of its
+//                         permanents), else the exact one rounded (plane_through); see convex_hull.cpp
+//   plane_through         plane.cpp's exact plane: the cross product's components as exact expansions, each
+//                         rounded once (Compress's guess, corrected by exact comparisons)
+//   SolidMeasures         six times the volume and twice the area, summed face by face in the order given,
+//                         from the centroid of the vertices (every tetrahedron positive: nothing cancels)
+// Every operation is explicitly rounded (the predicates' add_rn, mul_rn; div_rn, sqrt_rn here), so neither
+// the host's contraction nor the device's fused multiply-add changes a bit.
+#pragma once
+
+#include "cudahull/host_device.hpp"
+#include "cudahull/predicates.hpp"
+
+#if !defined(__CUDA_ARCH__)
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#endif
+
+namespace cudahull {
+namespace detail {
+
+CUDAHULL_HD inline double div_rn(double a, double b) {
+#if defined(__CUDA_ARCH__)
+  return __ddiv_rn(a, b);
+#else
+  return a / b;
+#endif
+}
+CUDAHULL_HD inline double sqrt_rn(double a) {
+#if defined(__CUDA_ARCH__)
+  return __dsqrt_rn(a);
+#else
+  return std::sqrt(a);
+#endif
+}
+CUDAHULL_HD inline double max3(double a, double b, double c) {
+  const double ab = a < b ? b : a;
+  return ab < c ? c : ab;
+}
+
+constexpr int kPlaneComponents = 16;  // pair_cross's output
+constexpr int kPlaneSteps = 4;        // rounding corrections; Compress's guess needs at most two
+
+// Shewchuk 1997, fig. 15 and Theorem 23: `e` (nonoverlapping, increasing magnitude, length >= 1) rewritten
+// as a nonadjacent expansion whose largest component, returned, differs from the sum by less than one of
+// its ulps.  Only used as a first guess, so its accuracy affects the number of correction steps, not the
+// result.
+CUDAHULL_HD inline double compress_largest(int len, const double* e) {
+  double h[kPlaneComponents];
+  int bottom = len - 1;
+  double q = e[bottom];
+  for (int i = len - 2; i >= 0; --i) {
+    double qnew, tail;
+    fast_two_sum(q, e[i], qnew, tail);
+    if (tail != 0.0) {
+      h[bottom--] = qnew;
+      q = tail;
+    } else {
+      q = qnew;
+    }
+  }
+  for (int i = bottom + 1; i < len; ++i) {
+    double qnew, tail;
+    fast_two_sum(h[i], q, qnew, tail);
+    q = qnew;
+  }
+  return q;
+}
+
+// The next double from r towards +infinity (up) or -infinity.
+CUDAHULL_HD inline double next_double(double r, bool up) {
+#if defined(__CUDA_ARCH__)
+  return nextafter(r, up ? __longlong_as_double(0x7ff0000000000000LL) : -__longlong_as_double(0x7ff0000000000000LL));
+#else
+  return std::nextafter(r, up ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity());
+#endif
+}
+CUDAHULL_HD inline bool is_even_double(double r) {
+#if defined(__CUDA_ARCH__)
+  return (__double_as_longlong(r) & 1) == 0;
+#else
+  std::uint64_t bits;
+  std::memcpy(&bits, &r, sizeof bits);
+  return (bits & 1) == 0;
+#endif
+}
+CUDAHULL_HD inline bool is_finite_double(double r) {
+  return r - r == 0.0;  // false for infinities and NaN
+}
+
+// The double nearest to the exact sum of `e` (as produced by expansion_sum: nonoverlapping, increasing
+// magnitude, no zero components except a lone zero), ties to even.
+CUDAHULL_HD inline double round_expansion(int len, const double* e) {
+  double r = compress_largest(len, e);
+  // The remainder e - r, exactly.  Each correction step appends at most one component.
+  double rem[kPlaneComponents + kPlaneSteps + 1], next_rem[kPlaneComponents + kPlaneSteps + 1];
+  double twice[kPlaneComponents + kPlaneSteps + 1];
+  double minus_r = -r;
+  int rlen = expansion_sum(len, e, 1, &minus_r, rem);
+  for (int step = 0; step < kPlaneSteps; ++step) {
+    const double top = rem[rlen - 1];  // carries the remainder's sign
+    if (top == 0.0) return r;          // r is the exact value
+    const double neighbour = next_double(r, top > 0);
+    if (!is_finite_double(neighbour)) return r;  // beyond the largest double: out of contract
+    // Adjacent doubles: the gap is a power of two and the subtraction exact.  Compare 2 * rem with it
+    // rather than rem with half of it, which could underflow.
+    double minus_gap = sub_rn(r, neighbour);
+    for (int i = 0; i < rlen; ++i)
+      twice[i] = mul_rn(2.0, rem[i]);
+    const int side = expansion_sum_sign(rlen, twice, 1, &minus_gap);  // sign of 2 rem - gap
+    const int direction = top > 0 ? 1 : -1;
+    if (side == -direction) return r;  // less than half way to the neighbour
+    if (side == 0) return is_even_double(r) ? r : neighbour;  // exactly half way: the even one
+    // Past half way: the neighbour is nearer; the remainder from it is rem - gap.
+    rlen = expansion_sum(rlen, rem, 1, &minus_gap, next_rem);
+    for (int i = 0; i < rlen; ++i)
+      rem[i] = next_rem[i];
+    r = neighbour;
+  }
+  return r;  // not reached: Compress's guess is within one ulp, so two steps suffice
+}
+
+// u_j v_k - u_k v_j, rounded to nearest.
+CUDAHULL_HD inline double rounded_minor(const Pair& uj, const Pair& vk, const Pair& uk, const Pair& vj) {
+  if (uj.len == 1 && vk.len == 1 && uk.len == 1 && vj.len == 1) {
+    // Shortcut, common for float32 input: when both products are exact in double, their rounded difference
+    // is the exact minor rounded to nearest.
+    double p, p_err, q, q_err;
+    two_product(uj.v[0], vk.v[0], p, p_err);
+    two_product(uk.v[0], vj.v[0], q, q_err);
+    if (p_err == 0.0 && q_err == 0.0) return add_rn(sub_rn(p, q), 0.0);
+  }
+  double h[kPlaneComponents];
+  const int len = pair_cross(uj, vk, uk, vj, h);
+  return add_rn(round_expansion(len, h), 0.0);  // + 0.0: a zero component is +0, never -0
+}
+
+// (b - a) x (c - a), each component the exact value rounded to nearest (plane.hpp's cross_rounded).
+CUDAHULL_HD inline void cross_rounded(const Vec3d& a, const Vec3d& b, const Vec3d& c, double* n) {
+  const Pair ux = exact_diff(b.x, a.x), uy = exact_diff(b.y, a.y), uz = exact_diff(b.z, a.z);
+  const Pair vx = exact_diff(c.x, a.x), vy = exact_diff(c.y, a.y), vz = exact_diff(c.z, a.z);
+  n[0] = rounded_minor(uy, vz, uz, vy);
+  n[1] = rounded_minor(uz, vx, ux, vz);
+  n[2] = rounded_minor(ux, vy, uy, vx);
+}
+
+// The unit normal `n` (its length `length`, any positive scale) and offset d = -max(n . corners) into `plane`.
+CUDAHULL_HD inline void unit_plane(double x, double y, double z, double length, const Vec3d& a, const Vec3d& b,
+                                   const Vec3d& c, double* plane) {
+  const double nx = div_rn(x, length), ny = div_rn(y, length), nz = div_rn(z, length);
+  const auto height = [&](const Vec3d& p) {
+    return add_rn(add_rn(mul_rn(nx, p.x), mul_rn(ny, p.y)), mul_rn(nz, p.z));
+  };
+  plane[0] = nx;
+  plane[1] = ny;
+  plane[2] = nz;
+  plane[3] = -max3(height(a), height(b), height(c));
+}
+
+// plane.hpp's plane_through into plane[0..3].
+CUDAHULL_HD inline void plane_through(const Vec3d& a, const Vec3d& b, const Vec3d& c, double* plane) {
+  double n[3];
+  cross_rounded(a, b, c, n);
+  const double largest = max3(abs_d(n[0]), abs_d(n[1]), abs_d(n[2]));
+  if (largest == 0.0) {  // collinear or coincident: no plane
+    plane[0] = plane[1] = plane[2] = plane[3] = 0.0;
+    return;
+  }
+  // Scale by a power of two (exact) so that the largest component lies in [1, 2): the squares can neither
+  // overflow nor underflow whatever the input's magnitude.
+  const int exponent = ilogb(largest);
+  const double x = ldexp(n[0], -exponent), y = ldexp(n[1], -exponent), z = ldexp(n[2], -exponent);
+  const double length = sqrt_rn(add_rn(add_rn(mul_rn(x, x), mul_rn(y, y)), mul_rn(z, z)));
+  unit_plane(x, y, z, length, a, b, c, plane);
+}
+
+// A hull face's plane (its corners in the fast exact range), accurate on slivers too.  The cross product in
+// double first: each component is within 3u of its permanent (|products| summed; Shewchuk's orient2d
+// bound), so where the permanents are within 32 times the normal's length its direction is within about
+// 100u of the exact one, and every point lies within ~5e-14 x scale of the plane.  Otherwise (a sliver,
+// where the products cancel) plane_through() evaluates the normal exactly and rounds it.
+CUDAHULL_HD inline void facet_plane_in_range(const Vec3d& a, const Vec3d& b, const Vec3d& c, double* plane) {
+  const double ux = sub_rn(b.x, a.x), uy = sub_rn(b.y, a.y), uz = sub_rn(b.z, a.z);
+  const double vx = sub_rn(c.x, a.x), vy = sub_rn(c.y, a.y), vz = sub_rn(c.z, a.z);
+  const double nx = sub_rn(mul_rn(uy, vz), mul_rn(uz, vy)), ny = sub_rn(mul_rn(uz, vx), mul_rn(ux, vz)),
+               nz = sub_rn(mul_rn(ux, vy), mul_rn(uy, vx));
+  const double px = add_rn(abs_d(mul_rn(uy, vz)), abs_d(mul_rn(uz, vy))),
+               py = add_rn(abs_d(mul_rn(uz, vx)), abs_d(mul_rn(ux, vz))),
+               pz = add_rn(abs_d(mul_rn(ux, vy)), abs_d(mul_rn(uy, vx)));
+  const double length2 = add_rn(add_rn(mul_rn(nx, nx), mul_rn(ny, ny)), mul_rn(nz, nz));
+  const double permanent2 = add_rn(add_rn(mul_rn(px, px), mul_rn(py, py)), mul_rn(pz, pz));
+  if (length2 > 0 && permanent2 <= mul_rn(1024.0, length2)) {
+    unit_plane(nx, ny, nz, sqrt_rn(length2), a, b, c, plane);
+    return;
+  }
+  plane_through(a, b, c, plane);
+}
+
+// A closed outward mesh's six times volume and twice area, face by face in the order given (the order is
+// part of the result: the same order gives the same bits), from `centroid` (inside the solid: the mean of
+// its vertices, centroid_of()).
+struct SolidMeasures {
+  double six_volume = 0, twice_area = 0;
+  CUDAHULL_HD void add_face(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& centroid) {
+    const auto sub = [](const Vec3d& p, const Vec3d& q) {
+      return Vec3d{sub_rn(p.x, q.x), sub_rn(p.y, q.y), sub_rn(p.z, q.z)};
+    };
+    const auto cross = [](const Vec3d& p, const Vec3d& q) {
+      return Vec3d{sub_rn(mul_rn(p.y, q.z), mul_rn(p.z, q.y)), sub_rn(mul_rn(p.z, q.x), mul_rn(p.x, q.z)),
+                   sub_rn(mul_rn(p.x, q.y), mul_rn(p.y, q.x))};
+    };
+    const auto dot = [](const Vec3d& p, const Vec3d& q) {
+      return add_rn(add_rn(mul_rn(p.x, q.x), mul_rn(p.y, q.y)), mul_rn(p.z, q.z));
+    };
+    const Vec3d n = cross(sub(b, a), sub(c, a));
+    twice_area = add_rn(twice_area, sqrt_rn(dot(n, n)));
+    six_volume = add_rn(six_volume, dot(cross(sub(b, centroid), sub(c, centroid)), sub(a, centroid)));
+  }
+  CUDAHULL_HD double volume() const { return div_rn(six_volume, 6.0); }
+  CUDAHULL_HD double area() const { return div_rn(twice_area, 2.0); }
+};
+
+// The mean of `count` points, `point(k)` the k-th, summed in order.
+template <class PointAt>
+CUDAHULL_HD Vec3d centroid_of(unsigned long long count, PointAt point) {
+  Vec3d sum{0, 0, 0};
+  for (unsigned long long k = 0; k < count; ++k) {
+    const Vec3d p = point(k);
+    sum = {add_rn(sum.x, p.x), add_rn(sum.y, p.y), add_rn(sum.z, p.z)};
+  }
+  const double n = static_cast<double>(count);
+  return {div_rn(sum.x, n), div_rn(sum.y, n), div_rn(sum.z, n)};
+}
+
+}  // namespace detail
+}  // namespace cudahull
