@@ -1,0 +1,32 @@
+#!/bin/sh
+# compute-sanitizer on the batch kernel (issue 27; ctest label gpu): memcheck on spheres of 700 points (every
+# point a vertex: the second launch), synccheck and racecheck on 2,000 clouds of 6 points (most end in the
+# compaction-only relaunch), synccheck on 30 spheres of 30,000 (the 512-thread blocks).  Each run's vertex
+# sets are compared with Qhull's (--vs qhull: a differing cloud fails the test).  Exit 77 (skipped) where
+# there is no GPU or no compute-sanitizer.
+#   tests/batch_sanitizer.sh PATH/TO/cudahull
+cli=$1
+command -v compute-sanitizer >/dev/null 2>&1 || { echo "batch_sanitizer: no compute-sanitizer: skipped"; exit 77; }
+nvidia-smi -L >/dev/null 2>&1 || { echo "batch_sanitizer: no GPU: skipped"; exit 77; }
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+check() {
+  tool=$1
+  shift
+  if ! compute-sanitizer --tool "$tool" --error-exitcode 9 "$cli" bench --batch "$@" --backend cuda --repeat 1 \
+    --vs qhull >"$log" 2>&1; then
+    cat "$log"
+    echo "batch_sanitizer: $tool on --batch $* failed"
+    exit 1
+  fi
+  if ! grep -q "same vertices as qhull, every cloud" "$log"; then
+    cat "$log"
+    echo "batch_sanitizer: --batch $*: vertex sets differ from Qhull's"
+    exit 1
+  fi
+  echo "batch_sanitizer: $tool on --batch $*: $(tail -1 "$log")"
+}
+check memcheck 300 --n 700 --dist sphere
+check synccheck 2000 --n 6 --dist ball
+check racecheck 2000 --n 6 --dist ball
+check synccheck 30 --n 30000 --dist sphere
