@@ -133,7 +133,7 @@ struct PassArgs {
   const u32* clouds;   // the pass's clouds
   u32 count;           // how many
   u32* next;           // the next of them to take
-  BatchSlot slot;      // slot 0's pointers; slot s is `s` rooms further on
+  BatchSlot slot;      // slot 0's pointers; slot s is `s` rooms further on (the state: the kernel's own)
   u32* point_words;    // six arrays of the batch's point count, one after another
   u32 points_total;
   BatchOutput<Point> out;
@@ -160,7 +160,6 @@ __device__ BatchSlot slot_of(const PassArgs<Point>& a, u32 s) {
   slot.entries += std::size_t{s} * room.entries;
   slot.list += std::size_t{s} * room.work;
   slot.cands += std::size_t{s} * room.work;
-  slot.st += s;
   return slot;
 }
 
@@ -186,7 +185,12 @@ __device__ void hull_listed(const Team& team, const BatchSlot& slot, const PassA
 template <class Point, int Block, int kMinBlocks>
 __global__ void __launch_bounds__(Block, kMinBlocks) batch_kernel(PassArgs<Point> a) {
   __shared__ u32 taken;
-  const BatchSlot slot = slot_of(a, blockIdx.x);
+  // The team's state (RoundsState: its counts, read by every thread after nearly every barrier) in shared
+  // memory, not in the slot: the SM's own memory, not L2 (generic pointers: the engine's code is the same).
+  // 2-3% off the kernel on small clouds (docs/benchmarks.md, "Batched hulls").
+  __shared__ resident::RoundsState state;
+  BatchSlot slot = slot_of(a, blockIdx.x);
+  slot.st = &state;
   const resident::BlockTeam<Block> team{slot.st};
   while (true) {
     if (threadIdx.x == 0) taken = atomicAdd(a.next, 1u);
@@ -260,7 +264,6 @@ std::vector<BatchResult> run_pass(const Point* points, std::size_t count, const 
   s.entries = memory.take<resident::Entry>(std::size_t{slots} * room.entries, "the decision entries");
   s.list = memory.take<u32>(std::size_t{slots} * room.work, "the rounds' work");
   s.cands = memory.take<resident::Candidate>(std::size_t{slots} * room.work, "the rounds' candidates");
-  s.st = memory.take<resident::RoundsState>(slots, "the states");
   a.point_words = memory.take<u32>(6 * count, "the points' marks");
   a.out.words = output->words.get();
   a.out.coordinates = output->coordinates.get();
