@@ -78,9 +78,11 @@ CUDAHULL_HD inline double compress_largest(int len, const double* e) {
 // The next double from r towards +infinity (up) or -infinity.
 CUDAHULL_HD inline double next_double(double r, bool up) {
 #if defined(__CUDA_ARCH__)
-  return nextafter(r, up ? __longlong_as_double(0x7ff0000000000000LL) : -__longlong_as_double(0x7ff0000000000000LL));
+  return nextafter(
+      r, up ? __longlong_as_double(0x7ff0000000000000LL) : -__longlong_as_double(0x7ff0000000000000LL));
 #else
-  return std::nextafter(r, up ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity());
+  return std::nextafter(
+      r, up ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity());
 #endif
 }
 CUDAHULL_HD inline bool is_even_double(double r) {
@@ -117,7 +119,7 @@ CUDAHULL_HD inline double round_expansion(int len, const double* e) {
       twice[i] = mul_rn(2.0, rem[i]);
     const int side = expansion_sum_sign(rlen, twice, 1, &minus_gap);  // sign of 2 rem - gap
     const int direction = top > 0 ? 1 : -1;
-    if (side == -direction) return r;  // less than half way to the neighbour
+    if (side == -direction) return r;                         // less than half way to the neighbour
     if (side == 0) return is_even_double(r) ? r : neighbour;  // exactly half way: the even one
     // Past half way: the neighbour is nearer; the remainder from it is rem - gap.
     rlen = expansion_sum(rlen, rem, 1, &minus_gap, next_rem);
@@ -152,9 +154,10 @@ CUDAHULL_HD inline void cross_rounded(const Vec3d& a, const Vec3d& b, const Vec3
   n[2] = rounded_minor(ux, vy, uy, vx);
 }
 
-// The unit normal `n` (its length `length`, any positive scale) and offset d = -max(n . corners) into `plane`.
-CUDAHULL_HD inline void unit_plane(double x, double y, double z, double length, const Vec3d& a, const Vec3d& b,
-                                   const Vec3d& c, double* plane) {
+// The unit normal `n` (its length `length`, any positive scale) and offset d = -max(n . corners) into
+// `plane`.
+CUDAHULL_HD inline void unit_plane(double x, double y, double z, double length, const Vec3d& a,
+                                   const Vec3d& b, const Vec3d& c, double* plane) {
   const double nx = div_rn(x, length), ny = div_rn(y, length), nz = div_rn(z, length);
   const auto height = [&](const Vec3d& p) {
     return add_rn(add_rn(mul_rn(nx, p.x), mul_rn(ny, p.y)), mul_rn(nz, p.z));
