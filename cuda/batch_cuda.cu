@@ -48,9 +48,9 @@ constexpr const char* kWho = "batched hulls";
 constexpr int kThreads = 128;       // a block a cloud: most small clouds' phases have fewer items than this
 constexpr int kLargeThreads = 512;  // a block a large cloud: its points' phases are the work
 constexpr u32 kSecondPassPoints = 16384;  // the largest cloud the second launch takes
-// The clouds of up to this many points take a warp each (CUDAHULL_BATCH_WARP_POINTS), those of more than
-// kLargeBlockPoints a block of kLargeThreads (CUDAHULL_BATCH_LARGE_BLOCK_POINTS), the rest a block of
-// kThreads.
+// The clouds of more than this many points take a block of kLargeThreads (CUDAHULL_BATCH_LARGE_BLOCK_POINTS),
+// the rest a block of kThreads: 100 clouds of 100,000 points ran three times faster; 10,000 of 1,000 on 512
+// threads 1.8 times slower (docs/benchmarks.md, "Batched hulls").
 constexpr std::size_t kLargeBlockPoints = 16384;
 
 void check(cudaError_t e, const char* what) {
@@ -368,7 +368,7 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   // Indices are 32 bits on the device: a larger batch takes the single-cloud path cloud by cloud.
   if (count >= 0xffffffffu / 8 || clouds >= 0xffffffffu / 8) return run;
   const std::size_t largest = block_points();
-  // Pass 1's clouds by the team that takes them (warp, block, large block), each group with room for its
+  // Pass 1's clouds by the block that takes them (kThreads, kLargeThreads), each group with room for its
   // largest hull.
   struct Group {
     std::vector<u32> listed;
@@ -425,8 +425,7 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
 }
 
 template <class Point>
-double describe_batch_cuda(const BatchRun<Point>& run, const BatchColumns& columns) {
-  const EventTimer timer;
+void describe_batch_cuda(const BatchRun<Point>& run, const BatchColumns& columns) {
   for (const auto& output : run.outputs) {
     DescribeArgs<Point> a{};
     a.words = output->words.get();
@@ -439,9 +438,7 @@ double describe_batch_cuda(const BatchRun<Point>& run, const BatchColumns& colum
     describe_kernel<Point><<<blocks, kDescribeThreads>>>(a);
     check(cudaGetLastError(), "launching the describe");
   }
-  timer.stop();
   check(cudaDeviceSynchronize(), "describing the hulls (kernel fault)");
-  return timer.ms();
 }
 
 std::shared_ptr<void> batch_column(std::size_t bytes, const char* what) {
@@ -459,6 +456,10 @@ void copy_to_host(void* host, const void* device, std::size_t bytes) {
   if (bytes != 0) check(cudaMemcpy(host, device, bytes, cudaMemcpyDeviceToHost), "reading back the hulls");
 }
 
+void finish_device_work() {
+  check(cudaStreamSynchronize(0), "finishing the hulls");
+}
+
 int current_cuda_device() {
   int device = 0;
   check(cudaGetDevice(&device), "asking for the device");
@@ -471,7 +472,7 @@ template BatchRun<Point3> batch_run_cuda(const Point3*, std::size_t, const std::
                                          const std::uint8_t*);
 template BatchRun<Point3d> batch_run_cuda(const Point3d*, std::size_t, const std::size_t*, std::size_t,
                                           const std::uint8_t*);
-template double describe_batch_cuda(const BatchRun<Point3>&, const BatchColumns&);
-template double describe_batch_cuda(const BatchRun<Point3d>&, const BatchColumns&);
+template void describe_batch_cuda(const BatchRun<Point3>&, const BatchColumns&);
+template void describe_batch_cuda(const BatchRun<Point3d>&, const BatchColumns&);
 
 }  // namespace cudahull

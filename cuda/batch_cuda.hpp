@@ -1,7 +1,7 @@
 // Batched hulls on the device (issue 27): every small cloud of a batch on one block, each running the
-// resident engine's own iteration (cudahull/resident/batch.hpp), in one launch, or two where some clouds
-// asked for more room than the first pass gave them; then the hulls described on the device, into the
-// packed result, where they stay.
+// resident engine's own iteration (cudahull/resident/batch.hpp), in one launch (two where some clouds are
+// large enough for a block of 512 threads), and one more for the clouds that asked for more room than the
+// first pass gave them; then the hulls described on the device, into the packed result, where they stay.
 #pragma once
 
 #include <cstddef>
@@ -22,7 +22,7 @@ struct BatchRun {
   // single-cloud path's local repair mends).
   std::vector<std::uint8_t> done;
   std::vector<std::uint32_t> faces, vertices;  // per done cloud, its hull's
-  unsigned passes = 0;                         // launches (a second for the clouds short of room)
+  unsigned passes = 0;                         // launches (one more for the clouds short of room)
   std::size_t clouds_in_second_pass = 0;
   std::size_t device_bytes = 0;  // the most device memory the run held at once (the points not included)
   std::size_t kept_bytes = 0;    // what the passes' outputs hold until they are described
@@ -48,9 +48,9 @@ struct BatchColumns {
 
 // The done clouds of `run` described into `columns`, as convex_hull() describes an exact mesh: the vertex
 // ids, the faces on them, each face's plane (detail::facet_plane_in_range), the volume and area (summed
-// face by face in the mesh's order), dimension 3.  Returns the milliseconds the launch took (CUDA events).
+// face by face in the mesh's order), dimension 3.  Waits for the device.
 template <class Point>
-double describe_batch_cuda(const BatchRun<Point>& run, const BatchColumns& columns);
+void describe_batch_cuda(const BatchRun<Point>& run, const BatchColumns& columns);
 
 // The result's plumbing for the API, which sees no CUDA header: a column of `bytes` in the current device's
 // memory (given back with the last pointer), copies on the default stream (the host waits), the device.
@@ -58,6 +58,9 @@ double describe_batch_cuda(const BatchRun<Point>& run, const BatchColumns& colum
 std::shared_ptr<void> batch_column(std::size_t bytes, const char* what);
 void copy_to_device(void* device, const void* host, std::size_t bytes);
 void copy_to_host(void* host, const void* device, std::size_t bytes);
+// The default stream's work done (a pageable copy to the device may return before its data has landed):
+// before a result is handed to a library whose streams do not wait for the default stream.
+void finish_device_work();
 int current_cuda_device();
 
 }  // namespace cudahull

@@ -171,8 +171,9 @@ TEST_F(ResidentCuda, BatchEqualsTheCpuCloudForCloud) {
         EXPECT_NEAR(got->volumes[c], want.volumes[c], 1e-9 * std::abs(want.volumes[c]) + 1e-30) << what << c;
         EXPECT_NEAR(got->areas[c], want.areas[c], 1e-9 * std::abs(want.areas[c]) + 1e-30) << what << c;
         if (got->dimensions[c] != 3) continue;
-        // The device's describe is the host's arithmetic (plane_impl.hpp): each face's plane, recomputed here
-        // from the result's own faces, is the same bits; the measures, summed here in the result's order.
+        // The device's describe is the host's arithmetic (plane_impl.hpp): each face's plane and the
+        // measures, recomputed here from the result's own faces (in their order, from the centroid of the
+        // ascending vertices), are the same bits.
         const auto point = [&](PointIndex i) {
           const Point3& p = points[offsets[c] + i];
           return precision == Precision::kDouble ? Vec3d{p.x, p.y, p.z} : to_vec3d(p);
@@ -188,8 +189,8 @@ TEST_F(ResidentCuda, BatchEqualsTheCpuCloudForCloud) {
           ASSERT_EQ(plane, got->planes[f]) << what << " cloud " << c << " face " << f;
           measures.add_face(point(face[0]), point(face[1]), point(face[2]), centroid);
         }
-        EXPECT_NEAR(got->volumes[c], measures.volume(), 1e-13 * measures.volume()) << what << c;
-        EXPECT_NEAR(got->areas[c], measures.area(), 1e-13 * measures.area()) << what << c;
+        EXPECT_EQ(got->volumes[c], measures.volume()) << what << c;
+        EXPECT_EQ(got->areas[c], measures.area()) << what << c;
       }
     }
   }

@@ -258,6 +258,7 @@ DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls
                                   (4 * faces + 2 * clouds) * sizeof(double)})
     result_bytes += bytes;
   batch.device_bytes_peak = std::max(run.device_bytes, run.kept_bytes + result_bytes);
+  finish_device_work();  // the last copies landed before a library on another stream reads the columns
   return batch;
 }
 
@@ -454,10 +455,21 @@ ConvexHullBatch vector_batch(const std::vector<Point>& points, const std::vector
       });
 }
 
+// `int32_indices`: the result is kept on the device, whose index columns are int32 (a cloud of 2^31 points
+// or more is refused); a host result's indices are PointIndex, read back bit for bit.
 template <class Scalar>
 DeviceConvexHullBatch device_batch(const Scalar* device_xyz, std::size_t count, const std::size_t* offsets,
-                                   std::size_t clouds, const ConvexHullBatchOptions& options) {
+                                   std::size_t clouds, const ConvexHullBatchOptions& options,
+                                   bool int32_indices = false) {
   check_offsets(count, offsets, clouds);
+  for (std::size_t c = 0; int32_indices && c < clouds; ++c) {
+    if (offsets[c + 1] - offsets[c] >= (std::size_t{1} << 31))
+      throw std::invalid_argument(
+          "convex_hull_batch_device_results: cloud " + std::to_string(c) + " has " +
+          std::to_string(offsets[c + 1] - offsets[c]) +
+          " points, more than the result's int32 indices hold (convex_hull_batch_device "
+          "returns the result on the host)");
+  }
   constexpr Precision own = std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat;
   const HullPlan plan = batch_plan(count, own, true, options.hull);
   if (plan.backend == BackendChoice::kCpu) throw std::invalid_argument(plan.unavailable);
@@ -520,13 +532,13 @@ ConvexHullBatch convex_hull_batch_device(const double* device_xyz, std::size_t c
 DeviceConvexHullBatch convex_hull_batch_device_results(const float* device_xyz, std::size_t count,
                                                        const std::size_t* offsets, std::size_t clouds,
                                                        const ConvexHullBatchOptions& options) {
-  return device_batch(device_xyz, count, offsets, clouds, options);
+  return device_batch(device_xyz, count, offsets, clouds, options, true);
 }
 
 DeviceConvexHullBatch convex_hull_batch_device_results(const double* device_xyz, std::size_t count,
                                                        const std::size_t* offsets, std::size_t clouds,
                                                        const ConvexHullBatchOptions& options) {
-  return device_batch(device_xyz, count, offsets, clouds, options);
+  return device_batch(device_xyz, count, offsets, clouds, options, true);
 }
 
 ConvexHullBatch DeviceConvexHullBatch::to_host() const {

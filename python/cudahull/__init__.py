@@ -800,9 +800,10 @@ def convex_hull_batch(points, offsets=None, lengths=None, *, backend="auto", pre
     ``convex_hull``; ``threads``: CPU clouds hulled at once (0: every core), the same result for any.
 
     On the CPU the clouds run on all cores.  With a GPU one launch hulls every cloud of 4 to 131,072 points, a
-    block a cloud (the same vertex sets and faces as ``convex_hull()``, the faces in another order); flat,
-    tiny and larger clouds take the single-cloud GPU path.  The hulls are described on the GPU, and for CuPy
-    and PyTorch input the result's arrays are the GPU's own (no copy to the host and back).
+    block a cloud (the same vertex sets and faces as ``convex_hull()``, the faces in another order; clouds of
+    more than 16,384 points on larger blocks, in a launch of their own); flat, tiny and larger clouds take the
+    single-cloud GPU path.  The hulls are described on the GPU, and for CuPy and PyTorch input the result's
+    arrays are the GPU's own (the kernel's hulls never cross to the host).
 
     Raises ValueError for a NaN or infinite coordinate (naming the cloud, the point in it and its row in the
     packed points), and for bad shapes, offsets or lengths; DeviceError as ``convex_hull``.
@@ -843,6 +844,8 @@ def convex_hull_batch(points, offsets=None, lengths=None, *, backend="auto", pre
     interface = points.__cuda_array_interface__ if protocol == "cuda_array_interface" else None
     shape = tuple(interface["shape"] if interface is not None else points.shape)
     padded, bounds, lengths = _batch_layout(shape, offsets, lengths)
+    if int(np.diff(bounds).max(initial=0)) >= 2**31:
+        library = "numpy"  # the device's result holds int32 indices: this one comes back, as int64, and goes up
     usable, why_not = _cuda_device()
     if not usable:
         raise DeviceError(f"points in GPU memory, but no usable CUDA device: {why_not}")

@@ -113,3 +113,37 @@ def test_cuda_backend_on_host_points():
     want = cudahull.convex_hull_batch(points, offsets, backend="cpu")
     assert got.backend.startswith("cuda")
     assert np.array_equal(got.vertices, want.vertices) and np.array_equal(got.dimensions, want.dimensions)
+
+
+def test_results_are_the_devices_own(lib):
+    """The result's arrays are the input library's, on the GPU, of the documented dtypes and shapes (PyTorch's
+    indices int64, CuPy's int32), equal to the host result's values; they outlive the input and the call's
+    other arrays; an empty batch and a batch of only tiny clouds (all on the single-cloud path) come back the
+    same way; `report` says what the GPU did."""
+    rng = np.random.default_rng(5)
+    points = rng.normal(size=(3000, 3))
+    offsets = np.array([0, 1000, 1003, 3000])
+    got = cudahull.convex_hull_batch(on_device(lib, points), offsets)
+    want = cudahull.convex_hull_batch(points, offsets, backend="cpu", engine="resident")
+    index = "int64" if lib.__name__ == "torch" else "int32"
+    for key, dtype, shape in (("vertex_offsets", "int64", (4,)), ("face_offsets", "int64", (4,)),
+                              ("vertices", index, want.vertices.shape), ("faces", index, want.faces.shape),
+                              ("planes", "float64", want.planes.shape), ("volumes", "float64", (3,)),
+                              ("areas", "float64", (3,)), ("dimensions", index, (3,))):
+        array = getattr(got, key)
+        assert type(array).__module__.partition(".")[0] == lib.__name__, key
+        assert str(array.dtype).rpartition(".")[2] == dtype, key
+        assert tuple(array.shape) == shape, key
+    assert got.report["clouds_batched"] == 2 and got.report["batch_launches"] >= 1
+    assert got.report["device_bytes_peak"] > points.nbytes
+    vertices = got.vertices
+    del got
+    import gc
+    gc.collect()
+    cudahull.convex_hull_batch(on_device(lib, rng.normal(size=(5000, 3))), [0, 5000])  # reuses freed blocks
+    assert np.array_equal(to_numpy(vertices), want.vertices)
+    empty = cudahull.convex_hull_batch(on_device(lib, np.empty((0, 3))), [0])
+    assert len(empty) == 0 and tuple(empty.vertex_offsets.shape) == (1,)
+    tiny = cudahull.convex_hull_batch(on_device(lib, points[:9]), [0, 3, 3, 9])
+    assert tiny.report["clouds_batched"] == 1  # the 6-point cloud; the others are lower-dimensional
+    assert np.array_equal(to_numpy(tiny.dimensions), [2, -1, 3])

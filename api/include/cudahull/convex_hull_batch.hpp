@@ -20,11 +20,13 @@
 //     its worker's thread, SerialScope); a cloud too large to share the cores runs alone on all of them
 //   CUDA: the points checked once and on the device (host points uploaded once); one launch of the batch
 //     kernel (cuda/batch_cuda.hpp: a block a cloud, the resident engine's iteration) for the clouds of 4 to
-//     131,072 points, a second for those whose hulls outgrew the first's room; flat, tiny and larger clouds,
-//     and those with defects, through the single-cloud path (convex_hull(), convex_hull_device()); then the
-//     result laid out on the device (offsets from every cloud's sizes), the kernel's meshes described there
-//     as convex_hull() describes one (the same code: cudahull/detail/plane_impl.hpp), the other clouds'
-//     hulls copied up into place; read back only for a host result
+//     131,072 points (another for those of more than 16,384, on blocks of 512 threads), one more for those
+//     whose hulls outgrew the first's room; flat, tiny and larger clouds, and those with defects, through
+//     the single-cloud path (convex_hull(), convex_hull_device()); then the result laid out on the device
+//     (offsets from every cloud's sizes), the kernel's meshes described there as convex_hull() describes one
+//     (the same code: cudahull/detail/plane_impl.hpp), the other clouds' hulls copied up into place; read
+//     back only for a host result.  Merged facets (ConvexHullOptions::merge other than exact) and the
+//     stepping engine run cloud by cloud through the single-cloud path
 //   errors: the first bad point in packed order raises, named by its cloud, its index in the cloud and its
 //     row in the packed array; clouds after a failed one are not started
 //   the per-cloud hulls packed into flat arrays with offsets, in cloud order
@@ -44,7 +46,8 @@ namespace cudahull {
 
 struct ConvexHullBatchOptions {
   // Every cloud's hull is convex_hull(cloud, hull) (backend, engine, precision, merging); backend and
-  // precision "auto" are resolved once for the whole batch.
+  // precision "auto" are resolved once for the whole batch.  On the CUDA backend, merging (merge other than
+  // exact) and the stepping engine take the single-cloud path cloud by cloud, not the batch kernel.
   ConvexHullOptions hull;
   // CPU backend: how many clouds are hulled at once (0: every core, hardware_workers()).  With 1 every
   // cloud's hull runs on the calling thread.  The result is the same for every value.
@@ -58,8 +61,8 @@ struct ConvexHullBatchReport {
   // in the order first met, joined by "+" where the clouds differ (a wide-range cloud takes "cpu-wide").
   std::string backend;
   // The CUDA backend: the clouds its batch kernel hulled (the rest took the single-cloud path), the
-  // launches it made (a second for clouds whose hulls outgrew the first's room), and the most device memory
-  // it held at once, the points and the result included.
+  // launches it made (one a size of block, and one more for clouds whose hulls outgrew the first's room),
+  // and the most device memory it held at once, the points and the result included.
   std::size_t clouds_batched = 0;
   unsigned batch_launches = 0;
   std::size_t device_bytes_peak = 0;
@@ -99,8 +102,11 @@ struct DeviceColumn {
 };
 
 // ConvexHullBatch's arrays left in device memory, where the points were (convex_hull_batch_device_results):
-// the same values, the indices as int32 (a cloud on the device holds under 2^31 points), the offsets as
-// int64 (and on the host too).  Faces are 3 corners a row, planes 4 values a row, packed.
+// the same values, the indices as int32 (a cloud of 2^31 points or more is refused), the offsets as int64
+// (and as std::size_t on the host).  Faces are 3 corners a row, planes 4 values a row, packed.  The
+// default stream's work is done when it is returned; a column's memory goes back to the cache (in the
+// default stream's order) with the last copy of its `data`: work of the caller's on other streams must be
+// done by then.
 struct DeviceConvexHullBatch : ConvexHullBatchReport {
   int device = 0;  // the CUDA device that holds the columns
   std::vector<std::size_t> vertex_offsets{0}, face_offsets{0}, polygon_offsets{0};  // B + 1 each, host
@@ -140,7 +146,8 @@ ConvexHullBatch convex_hull_batch_device(const double* device_xyz, std::size_t c
 
 // The same, the result left in the current device's memory: no hull crosses to the host but those of the
 // clouds that take the single-cloud path (fewer than 4 points, flat, too large for a block), which cross
-// up.  What the Python module hands to CuPy and PyTorch.
+// up.  What the Python module hands to CuPy and PyTorch.  Throws std::invalid_argument for a cloud of 2^31
+// points or more (the int32 indices).
 DeviceConvexHullBatch convex_hull_batch_device_results(const float* device_xyz, std::size_t count,
                                                        const std::size_t* offsets, std::size_t clouds,
                                                        const ConvexHullBatchOptions& options = {});
