@@ -147,3 +147,23 @@ def test_results_are_the_devices_own(lib):
     tiny = cudahull.convex_hull_batch(on_device(lib, points[:9]), [0, 3, 3, 9])
     assert tiny.report["clouds_batched"] == 1  # the 6-point cloud; the others are lower-dimensional
     assert np.array_equal(to_numpy(tiny.dimensions), [2, -1, 3])
+
+
+def test_one_wide_cloud_leaves_the_others_on_the_kernel(lib):
+    """A double cloud beyond the fast exact range (coordinates near 1e80) takes the wide path alone: the
+    clouds around it stay on the batch kernel, and every cloud equals the CPU's."""
+    rng = np.random.default_rng(11)
+    clouds = [rng.normal(size=(200, 3)) for _ in range(6)]
+    clouds[2] = clouds[2] * 1e80
+    points = np.concatenate(clouds)
+    offsets = np.concatenate([[0], np.cumsum([len(c) for c in clouds])])
+    got = cudahull.convex_hull_batch(on_device(lib, points), offsets)
+    want = cudahull.convex_hull_batch(points, offsets, backend="cpu")
+    assert got.report["clouds_batched"] == 5
+    assert "cpu-wide" in got.backend
+    assert np.array_equal(to_numpy(got.vertex_offsets), want.vertex_offsets)
+    assert np.array_equal(to_numpy(got.vertices), want.vertices)
+    bad = points.copy()
+    bad[850, 2] = np.inf  # cloud 4, point 50
+    with pytest.raises(ValueError, match=r"^cloud 4: point 50: z coordinate .* is not finite"):
+        cudahull.convex_hull_batch(on_device(lib, bad), offsets)
