@@ -10,7 +10,7 @@
 //                         rounded once (Compress's guess, corrected by exact comparisons)
 //   SolidMeasures         six times the volume and twice the area, summed face by face in the order given,
 //                         from the centroid of the vertices (every tetrahedron positive: nothing cancels)
-// Every operation is explicitly rounded (the predicates' add_rn, mul_rn; div_rn, sqrt_rn here), so neither
+// Every operation is explicitly rounded (the predicates' add_rn, mul_rn, div_rn, sqrt_rn), so neither
 // the host's contraction nor the device's fused multiply-add changes a bit.
 #pragma once
 
@@ -27,20 +27,6 @@
 namespace cudahull {
 namespace detail {
 
-CUDAHULL_HD inline double div_rn(double a, double b) {
-#if defined(__CUDA_ARCH__)
-  return __ddiv_rn(a, b);
-#else
-  return a / b;
-#endif
-}
-CUDAHULL_HD inline double sqrt_rn(double a) {
-#if defined(__CUDA_ARCH__)
-  return __dsqrt_rn(a);
-#else
-  return std::sqrt(a);
-#endif
-}
 CUDAHULL_HD inline double max3(double a, double b, double c) {
   const double ab = a < b ? b : a;
   return ab < c ? c : ab;

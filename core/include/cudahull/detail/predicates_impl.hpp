@@ -88,6 +88,20 @@ CUDAHULL_HD inline double mul_rn(double a, double b) {
   return p;
 #endif
 }
+CUDAHULL_HD inline double div_rn(double a, double b) {
+#if defined(__CUDA_ARCH__)
+  return __ddiv_rn(a, b);
+#else
+  return a / b;
+#endif
+}
+CUDAHULL_HD inline double sqrt_rn(double a) {
+#if defined(__CUDA_ARCH__)
+  return __dsqrt_rn(a);
+#else
+  return std::sqrt(a);
+#endif
+}
 CUDAHULL_HD inline double fma_rn(double a, double b, double c) {
 #if defined(__CUDA_ARCH__)
   return __fma_rn(a, b, c);
