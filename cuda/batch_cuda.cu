@@ -85,16 +85,15 @@ class EventTimer {
 
 // The clouds with more points than this take the single-cloud path (or CUDAHULL_BATCH_BLOCK_POINTS, up to
 // 2^20: a block's room, batch_room(), counts its face slots in 32 bits).
-std::size_t block_points() {
-  const char* env = std::getenv("CUDAHULL_BATCH_BLOCK_POINTS");
-  return std::min<std::size_t>(env ? std::strtoull(env, nullptr, 10) : std::size_t{1} << 17,
-                               std::size_t{1} << 20);
-}
-
 // A size from the environment variable `name`, or `fallback`.
 std::size_t env_points(const char* name, std::size_t fallback) {
   const char* env = std::getenv(name);
   return env ? std::strtoull(env, nullptr, 10) : fallback;
+}
+
+std::size_t block_points() {
+  return std::min<std::size_t>(env_points("CUDAHULL_BATCH_BLOCK_POINTS", std::size_t{1} << 17),
+                               std::size_t{1} << 20);
 }
 
 // The batch's device arrays (device_memory.hpp, on the default stream), given back with their owner, and
@@ -361,10 +360,7 @@ struct BatchRun<Point>::PassOutput {
 template <class Point>
 BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, const std::size_t* offsets,
                                std::size_t clouds, const std::uint8_t* skip) {
-  BatchRun<Point> run;
-  run.done.assign(clouds, 0);
-  run.faces.assign(clouds, 0);
-  run.vertices.assign(clouds, 0);
+  BatchRun<Point> run(clouds);
   // Indices are 32 bits on the device: a larger batch takes the single-cloud path cloud by cloud.
   if (count >= 0xffffffffu / 8 || clouds >= 0xffffffffu / 8) return run;
   const std::size_t largest = block_points();

@@ -17,6 +17,8 @@ namespace cudahull {
 // pass's output) for describe_batch_cuda().
 template <class Point>
 struct BatchRun {
+  // A run of `clouds` clouds in which none is done yet (or none will be: the single-cloud path takes all).
+  explicit BatchRun(std::size_t clouds = 0) : done(clouds, 0), faces(clouds, 0), vertices(clouds, 0) {}
   // Per cloud: 1 when its exact hull (dimension 3) is on the device; 0 when the single-cloud path must take
   // it (fewer than 4 points or more than a block takes, a flat cloud, a stall, or a defect that the
   // single-cloud path's local repair mends).

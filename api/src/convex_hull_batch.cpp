@@ -128,15 +128,16 @@ void run_batch_on_host(const std::size_t* offsets, std::size_t clouds, unsigned 
   if (failed != clouds) std::rethrow_exception(errors[failed]);
 }
 
-// The clouds in turn through the single-cloud path, `hull_of(c)`, where `pending` (or, when null, every
-// cloud) says; the first failing cloud's exception is thrown (an InputError named by its cloud).
-template <class HullOf>
-void run_each_on_device(const std::size_t* offsets, std::size_t clouds, std::vector<ConvexHull>& hulls,
-                        HullOf hull_of, const std::vector<std::uint8_t>* pending = nullptr) {
+// The clouds in turn through the single-cloud path, `hull_of(c)`, but those `skip` marks (when given), each
+// hull handed to `keep(c, hull)`; the first failing cloud's exception is thrown (an InputError named by its
+// cloud), and no cloud after it starts.
+template <class HullOf, class Keep>
+void run_each_on_device(const std::size_t* offsets, std::size_t clouds, HullOf hull_of, Keep keep,
+                        const std::vector<std::uint8_t>* skip = nullptr) {
   for (std::size_t c = 0; c < clouds; ++c) {
-    if (pending && !(*pending)[c]) continue;
+    if (skip && (*skip)[c]) continue;
     try {
-      hulls[c] = hull_of(c);
+      keep(c, hull_of(c));
     } catch (const InputError& error) {
       throw in_cloud(error, c, offsets[c]);
     }
@@ -145,6 +146,17 @@ void run_each_on_device(const std::size_t* offsets, std::size_t clouds, std::vec
 
 // The other clouds' hulls (the single-cloud path's), by cloud, in cloud order.
 using HostedHulls = std::vector<std::pair<std::size_t, ConvexHull>>;
+
+// The single-cloud path's hulls of the clouds `skip` does not mark (when given), in cloud order.
+template <class HullOf>
+HostedHulls hosted_hulls(const std::size_t* offsets, std::size_t clouds, HullOf hull_of,
+                         const std::vector<std::uint8_t>* skip = nullptr) {
+  HostedHulls hosted;
+  run_each_on_device(
+      offsets, clouds, hull_of,
+      [&](std::size_t c, ConvexHull&& hull) { hosted.emplace_back(c, std::move(hull)); }, skip);
+  return hosted;
+}
 
 // `name` joined to the report's backends unless it is there ("+" between them, in the order first met).
 void add_backend(ConvexHullBatchReport& report, const std::string& name) {
@@ -176,14 +188,13 @@ DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls
   batch.face_offsets.assign(clouds + 1, 0);
   batch.polygon_offsets.assign(clouds + 1, 0);
   std::size_t h = 0;
-  bool named = false;  // the kernel's name joined once (the loop runs over 100,000 clouds)
   for (std::size_t c = 0; c < clouds; ++c) {
     std::size_t vertices = 0, faces = 0, polygon = 0;
     if (run.done[c]) {
       vertices = run.vertices[c];
       faces = run.faces[c];
-      if (!named) add_backend(batch, "cuda-resident");
-      named = true;
+      ++batch.clouds_batched;
+      if (batch.clouds_batched == 1) add_backend(batch, "cuda-resident");  // once: 100,000 clouds come here
     } else {
       const ConvexHull& hull = hosted[h++].second;
       vertices = hull.vertices.size();
@@ -213,7 +224,7 @@ DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls
   up(batch.device_vertex_offsets, as_int64(batch.vertex_offsets));
   up(batch.device_face_offsets, as_int64(batch.face_offsets));
   up(batch.device_polygon_offsets, as_int64(batch.polygon_offsets));
-  if (std::find(run.done.begin(), run.done.end(), 1) != run.done.end()) {
+  if (batch.clouds_batched != 0) {
     const BatchColumns columns{batch.device_vertex_offsets.data.get(),
                                batch.device_face_offsets.data.get(),
                                batch.vertices.data.get(),
@@ -278,20 +289,9 @@ DeviceConvexHullBatch run_batch_on_device(const Point* device_points, std::size_
     run = batch_run_cuda(device_points, count, offsets, clouds, single.empty() ? nullptr : single.data());
   } catch (const OutOfDeviceMemory&) {
     // No room for the batch: every cloud through the single-cloud path, which grows its room as it goes.
-    run = BatchRun<Point>{};
-    run.done.assign(clouds, 0);
-    run.faces.assign(clouds, 0);
-    run.vertices.assign(clouds, 0);
+    run = BatchRun<Point>(clouds);
   }
-  HostedHulls hosted;
-  for (std::size_t c = 0; c < clouds; ++c) {
-    if (run.done[c]) continue;
-    try {
-      hosted.emplace_back(c, hull_of(c));
-    } catch (const InputError& error) {
-      throw in_cloud(error, c, offsets[c]);
-    }
-  }
+  HostedHulls hosted = hosted_hulls(offsets, clouds, hull_of, &run.done);
   const Clock::time_point describe_start = Clock::now();
   DeviceConvexHullBatch batch = assemble_on_device(run, std::move(hosted), clouds);
   batch.describe_ms = ms_since(describe_start);
@@ -299,25 +299,13 @@ DeviceConvexHullBatch run_batch_on_device(const Point* device_points, std::size_
   batch.kernel_ms = run.kernel_ms;
   batch.batch_launches = run.passes;
   batch.device_bytes_peak += count * sizeof(Point);
-  for (std::size_t c = 0; c < clouds; ++c)
-    batch.clouds_batched += run.done[c];
   return batch;
 }
 
 // Every cloud through the single-cloud path (`hull_of(c)`), the result assembled on the device.
 template <class HullOf>
 DeviceConvexHullBatch run_each_into_device(const std::size_t* offsets, std::size_t clouds, HullOf hull_of) {
-  BatchRun<Point3> none;
-  none.done.assign(clouds, 0);
-  HostedHulls hosted;
-  for (std::size_t c = 0; c < clouds; ++c) {
-    try {
-      hosted.emplace_back(c, hull_of(c));
-    } catch (const InputError& error) {
-      throw in_cloud(error, c, offsets[c]);
-    }
-  }
-  return assemble_on_device(none, std::move(hosted), clouds);
+  return assemble_on_device(BatchRun<Point3>(clouds), hosted_hulls(offsets, clouds, hull_of), clouds);
 }
 
 // Host points for the device: checked and packed in the plan's precision (a bad point: the clouds in turn
@@ -425,7 +413,8 @@ ConvexHullBatch host_batch(const Scalar* xyz, std::size_t count, const std::size
   }
   std::vector<ConvexHull> hulls(clouds);
   if (plan.backend == BackendChoice::kCuda) {
-    run_each_on_device(offsets, clouds, hulls, cloud);
+    run_each_on_device(offsets, clouds, cloud,
+                       [&](std::size_t c, ConvexHull&& hull) { hulls[c] = std::move(hull); });
   } else {
     const unsigned threads = options.threads != 0 ? options.threads : hardware_workers();
     run_batch_on_host(offsets, clouds, std::max(1u, threads), hulls, cloud);

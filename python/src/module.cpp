@@ -356,18 +356,14 @@ template <class Framework, class T>
 nb::object column_array(const DeviceColumn<T>& column, std::size_t width, int device) {
   auto* owned = new std::shared_ptr<T>(column.data);
   nb::capsule owner(owned, [](void* p) noexcept { delete static_cast<std::shared_ptr<T>*>(p); });
-  const std::size_t rows = column.size / width;
-  if (width == 1)
-    return nb::ndarray<Framework, T>(column.data.get(), {rows}, owner, {}, nb::dtype<T>(),
-                                     nb::device::cuda::value, device)
-        .cast();
-  return nb::ndarray<Framework, T>(column.data.get(), {rows, width}, owner, {}, nb::dtype<T>(),
-                                   nb::device::cuda::value, device)
+  const std::size_t shape[2] = {column.size / width, width};
+  return nb::ndarray<Framework, T>(column.data.get(), width == 1 ? 1 : 2, shape, owner, nullptr,
+                                   nb::dtype<T>(), nb::device::cuda::value, device)
       .cast();
 }
 
 template <class Framework>
-nb::dict device_batch_to_dict(DeviceConvexHullBatch&& batch) {
+nb::dict device_batch_to_dict(const DeviceConvexHullBatch& batch) {
   const int device = batch.device;
   nb::dict d;
   d["report"] = report_dict(batch);
@@ -400,8 +396,8 @@ nb::dict device_batch_of(const Scalar* xyz, std::size_t count, const OffsetArray
     nb::gil_scoped_release unlocked;
     batch = convex_hull_batch_device_results(xyz, count, bounds.data(), bounds.size() - 1, options);
   }
-  if (library == "torch") return device_batch_to_dict<nb::pytorch>(std::move(batch));
-  if (library == "cupy") return device_batch_to_dict<nb::cupy>(std::move(batch));
+  if (library == "torch") return device_batch_to_dict<nb::pytorch>(batch);
+  if (library == "cupy") return device_batch_to_dict<nb::cupy>(batch);
   ConvexHullBatch host;
   {
     nb::gil_scoped_release unlocked;
