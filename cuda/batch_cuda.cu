@@ -5,8 +5,8 @@
 //     answer; more: the single-cloud path's grid, which a large cloud fills better)
 //   teams: a cloud of more than kLargeBlockPoints points on a block of kLargeThreads (its points' phases are
 //     the work), the rest on a block of kThreads (a small hull's phases have a few dozen items: the latency
-//     of its barriers, not the threads, sets its time); the resident engine's iteration on each
-//     (resident::batch_hull(), the block's barrier)
+//     of its barriers, not the threads, sets its time), five blocks an SM, or four for clouds of more than
+//     kMidBlockPoints; the resident engine's iteration on each (resident::batch_hull(), the block's barrier)
 //   pass 1: a launch a kind of team, as many blocks as fit at once, each team with a slot of face room for
 //     the largest hull its launch expects (batch_vertices()); a team takes clouds one after another from a
 //     counter (a large one does not hold the others up).  Per point, the iteration's own arrays (six words)
@@ -52,6 +52,10 @@ constexpr u32 kSecondPassPoints = 16384;  // the largest cloud the second launch
 // the rest a block of kThreads: 100 clouds of 100,000 points ran three times faster; 10,000 of 1,000 on 512
 // threads 1.8 times slower (docs/benchmarks.md, "Batched hulls").
 constexpr std::size_t kLargeBlockPoints = 16384;
+// The clouds of more than this many points (and up to kLargeBlockPoints) take the blocks of four an SM
+// (TeamKind::kMidBlock; CUDAHULL_BATCH_MID_BLOCK_POINTS): from 300 points on they ran 4-13% faster than
+// at five, the same at 200 (docs/benchmarks.md, "Batched hulls").
+constexpr std::size_t kMidBlockPoints = 256;
 
 void check(cudaError_t e, const char* what) {
   if (e != cudaSuccess) throw_cuda_error(kWho, what, e);
@@ -204,12 +208,15 @@ __global__ void __launch_bounds__(Block, kMinBlocks) batch_kernel(PassArgs<Point
 // The kinds of team a pass runs its clouds on: a block of kThreads, or of kLargeThreads.  The small blocks
 // are held to the registers of five blocks an SM: at the 168 a thread the iteration would take, three fit,
 // and the SM waits on memory with nothing to issue (ncu: 83% of cycles); with five the batch kernel runs
-// some 25% faster (docs/benchmarks.md, "Batched hulls").
-enum class TeamKind { kBlock, kLargeBlock };
+// some 25% faster (docs/benchmarks.md, "Batched hulls").  Clouds of more than kMidBlockPoints take four an
+// SM: 128 registers a thread spill less, and their longer phases wait on memory more than on the barriers.
+enum class TeamKind { kBlock, kMidBlock, kLargeBlock };
 template <TeamKind kKind>
 constexpr int kBlockThreads = kKind == TeamKind::kLargeBlock ? kLargeThreads : kThreads;
 template <TeamKind kKind>
-constexpr int kMinBlocksOf = kKind == TeamKind::kLargeBlock ? 1 : 5;
+constexpr int kMinBlocksOf = kKind == TeamKind::kLargeBlock ? 1
+                             : kKind == TeamKind::kMidBlock ? 4
+                                                            : 5;
 
 // One pass over the listed clouds (ids into `offsets`), each with room for a hull of `vertices` vertices;
 // the results per listed cloud read back, the hulls kept on the device in `run.outputs`.
@@ -364,7 +371,7 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   // Indices are 32 bits on the device: a larger batch takes the single-cloud path cloud by cloud.
   if (count >= 0xffffffffu / 8 || clouds >= 0xffffffffu / 8) return run;
   const std::size_t largest = block_points();
-  // Pass 1's clouds by the block that takes them (kThreads, kLargeThreads), each group with room for its
+  // Pass 1's clouds by the kind of block that takes them (TeamKind), each group with room for its
   // largest hull.
   struct Group {
     std::vector<u32> listed;
@@ -377,15 +384,18 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
       coordinate_room += v;
     }
   };
-  Group groups[2];  // TeamKind's order
+  Group groups[3];  // TeamKind's order
   const std::size_t large_points = env_points("CUDAHULL_BATCH_LARGE_BLOCK_POINTS", kLargeBlockPoints);
+  const std::size_t mid_points = env_points("CUDAHULL_BATCH_MID_BLOCK_POINTS", kMidBlockPoints);
+  bool any = false;
   for (std::size_t c = 0; c < clouds; ++c) {
     const std::size_t n = offsets[c + 1] - offsets[c];
     if (n < 4 || n > largest || (skip && skip[c])) continue;
-    const int kind = n > large_points ? 1 : 0;
+    const int kind = n > large_points ? 2 : n > mid_points ? 1 : 0;
     groups[kind].add(static_cast<u32>(c), resident::batch_vertices(static_cast<u32>(n), false));
+    any = true;
   }
-  if (groups[0].listed.empty() && groups[1].listed.empty()) return run;
+  if (!any) return run;
 
   const TrimPoolAtEnd trim;  // after the arrays below: what the batch freed beyond the pool's keep, back
   std::size_t held = 0;
@@ -411,7 +421,8 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
     }
   };
   first_pass(std::integral_constant<TeamKind, TeamKind::kBlock>{}, groups[0]);
-  first_pass(std::integral_constant<TeamKind, TeamKind::kLargeBlock>{}, groups[1]);
+  first_pass(std::integral_constant<TeamKind, TeamKind::kMidBlock>{}, groups[1]);
+  first_pass(std::integral_constant<TeamKind, TeamKind::kLargeBlock>{}, groups[2]);
   run.clouds_in_second_pass = again.listed.size();
   if (!again.listed.empty()) {
     run_pass<TeamKind::kBlock>(device_points, count, device_offsets, again.listed, again.vertices,

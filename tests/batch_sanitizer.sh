@@ -1,9 +1,9 @@
 #!/bin/sh
-# compute-sanitizer on the batch kernel (issue 27; ctest label gpu): memcheck on spheres of 700 points (every
-# point a vertex: the second launch), synccheck and racecheck on 2,000 clouds of 6 points (most end in the
-# compaction-only relaunch), synccheck on 30 balls of 30,000 (the 512-thread blocks, their finish and the
-# describe).  Each run's vertex sets are compared with Qhull's (--vs qhull: a differing cloud fails the
-# test).  Exit 77 (skipped) where there is no GPU or no compute-sanitizer.
+# compute-sanitizer on the batch kernel (issue 27; ctest label gpu): memcheck on spheres of 700 points (the
+# blocks of four an SM, then, every point a vertex, the second launch), synccheck and racecheck on 2,000
+# clouds of 6 points (most end in the compaction-only relaunch), synccheck on 30 balls of 30,000 (the
+# 512-thread blocks, their finish and the describe).  Each run's vertex sets are compared with Qhull's (--vs
+# qhull: a differing cloud fails the test).  Exit 77 (skipped) where there is no GPU or no compute-sanitizer.
 #   tests/batch_sanitizer.sh PATH/TO/cudahull
 cli=$1
 command -v compute-sanitizer >/dev/null 2>&1 || { echo "batch_sanitizer: no compute-sanitizer: skipped"; exit 77; }

@@ -3,10 +3,10 @@
 // of one launch (batch_cuda.hpp) and the rest through the single-cloud path.
 //
 // design: the device path
-//   points: in GPU memory, checked there once (check_device_points); host points checked on the host and
-//     uploaded once.  A double cloud outside the fast exact range takes the single-cloud path (its wide
-//     path), the others stay on the kernel (clouds_with_bad_points()); a NaN or an infinity sends its cloud
-//     and those after it there, which names the point (host points: every cloud in turn)
+//   points: in GPU memory, checked there once (check_device_points); host points uploaded once as given
+//     and checked there alike.  A double cloud outside the fast exact range takes the single-cloud path
+//     (its wide path), the others stay on the kernel (clouds_with_bad_points()); a NaN or an infinity sends
+//     its cloud and those after it there, which names the point
 //   batch_run_cuda(): the exact meshes of the clouds a block takes, left on the device; the results alone
 //     (sizes) read back
 //   the other clouds through convex_hull() or convex_hull_device(), in cloud order
@@ -308,27 +308,64 @@ DeviceConvexHullBatch run_each_into_device(const std::size_t* offsets, std::size
   return assemble_on_device(BatchRun<Point3>(clouds), hosted_hulls(offsets, clouds, hull_of), clouds);
 }
 
-// Host points for the device: checked and packed in the plan's precision (a bad point: the clouds in turn
-// name it, as the single-cloud path does), uploaded once; a double cloud outside the exact range takes the
-// single-cloud path (its wide path on the host).
+// The clouds that must take the single-cloud path for a point the batch kernel cannot take (`first_bad`:
+// the device check's first, or `count`): in double, a coordinate outside the fast exact range is no error
+// (the wide path hulls its cloud), so its cloud is marked and the points after it checked again, for up
+// to kMaxWideClouds clouds; a NaN or an infinity (or, from the other precision, a coordinate it cannot
+// hold) marks its cloud and every one after it (the single-cloud path raises there, naming the point,
+// before a later cloud runs).  Empty: no cloud.
+constexpr int kMaxWideClouds = 64;
+template <class Point, class Scalar>
+std::vector<std::uint8_t> clouds_with_bad_points(const Scalar* device_xyz, std::size_t count,
+                                                 const std::size_t* offsets, std::size_t clouds,
+                                                 std::size_t first_bad) {
+  std::vector<std::uint8_t> single;
+  for (int marked = 0; first_bad != count; ++marked) {
+    if (single.empty()) single.assign(clouds, 0);
+    // The cloud that holds it: the last whose start is at or before it (an empty cloud holds none).
+    const std::size_t c =
+        static_cast<std::size_t>(std::upper_bound(offsets, offsets + clouds + 1, first_bad) - offsets) - 1;
+    const std::array<double, 3> p = read_device_point(device_xyz, first_bad);
+    const bool wide_only = std::is_same_v<decltype(Point::x), Scalar> && std::isfinite(p[0]) &&
+                           std::isfinite(p[1]) && std::isfinite(p[2]);
+    if (!wide_only || marked == kMaxWideClouds) {
+      std::fill(single.begin() + static_cast<std::ptrdiff_t>(c), single.end(), 1);
+      break;
+    }
+    single[c] = 1;
+    const std::size_t next = offsets[c + 1];
+    first_bad = count;
+    if (next < count) {
+      const CheckedDevicePoints<Point> rest = check_device_points<Point>(device_xyz + 3 * next, count - next);
+      if (rest.first_bad != count - next) first_bad = next + rest.first_bad;
+    }
+  }
+  return single;
+}
+
+// Points in device memory (the caller's, or host points uploaded as given), in their own precision:
+// checked there once and converted to the plan's (check_device_points), the clouds with a point the kernel
+// cannot take marked (clouds_with_bad_points()), and the batch run; `hull_of(c)`: the single-cloud path.
+template <class Point, class Scalar, class HullOf>
+DeviceConvexHullBatch checked_batch_on_device(const Scalar* device_xyz, std::size_t count,
+                                              const std::size_t* offsets, std::size_t clouds,
+                                              HullOf hull_of) {
+  const CheckedDevicePoints<Point> checked = check_device_points<Point>(device_xyz, count);
+  const std::vector<std::uint8_t> single =
+      clouds_with_bad_points<Point>(device_xyz, count, offsets, clouds, checked.first_bad);
+  return run_batch_on_device(checked.points, count, offsets, clouds, hull_of, single);
+}
+
+// Host points for the device: uploaded as given and checked on the device, as device input is (checking
+// and packing them on one host core took longer than the batch itself: docs/benchmarks.md, "Host points").
+// The single-cloud path reads them on the host.
 template <class Point, class Scalar, class HullOf>
 DeviceConvexHullBatch run_host_batch_on_device(const Scalar* xyz, std::size_t count,
                                                const std::size_t* offsets, std::size_t clouds,
                                                HullOf hull_of) {
-  std::vector<Point> packed;
-  try {
-    packed = checked_points<Point>(xyz, count);
-  } catch (const InputError&) {
-    return run_each_into_device(offsets, clouds, hull_of);
-  }
-  std::vector<std::uint8_t> single(clouds, 0);
-  if constexpr (std::is_same_v<Point, Point3d>) {
-    for (std::size_t c = 0; c < clouds; ++c)
-      single[c] = !in_fast_exact_range(packed.data() + offsets[c], offsets[c + 1] - offsets[c]);
-  }
-  const std::shared_ptr<void> on_device = upload_to_device(packed.data(), packed.size() * sizeof(Point));
-  return run_batch_on_device(static_cast<const Point*>(on_device.get()), count, offsets, clouds, hull_of,
-                             single);
+  const std::shared_ptr<void> on_device = upload_to_device(xyz, 3 * count * sizeof(Scalar));
+  return checked_batch_on_device<Point>(static_cast<const Scalar*>(on_device.get()), count, offsets, clouds,
+                                        hull_of);
 }
 
 // The per-cloud hulls packed into flat arrays, in cloud order (the copies on all cores: a batch of 100,000
@@ -446,41 +483,6 @@ ConvexHullBatch vector_batch(const std::vector<Point>& points, const std::vector
       });
 }
 
-// The clouds that must take the single-cloud path for a point the batch kernel cannot take (`first_bad`:
-// the device check's first, or `count`): in double, a coordinate outside the fast exact range is no error
-// (the wide path hulls its cloud), so its cloud is marked and the points after it checked again, for up
-// to kMaxWideClouds clouds; a NaN or an infinity (or, from the other precision, a coordinate it cannot
-// hold) marks its cloud and every one after it (the single-cloud path raises there, naming the point,
-// before a later cloud runs).  Empty: no cloud.
-constexpr int kMaxWideClouds = 64;
-template <class Point, class Scalar>
-std::vector<std::uint8_t> clouds_with_bad_points(const Scalar* device_xyz, std::size_t count,
-                                                 const std::size_t* offsets, std::size_t clouds,
-                                                 std::size_t first_bad) {
-  std::vector<std::uint8_t> single;
-  for (int marked = 0; first_bad != count; ++marked) {
-    if (single.empty()) single.assign(clouds, 0);
-    // The cloud that holds it: the last whose start is at or before it (an empty cloud holds none).
-    const std::size_t c =
-        static_cast<std::size_t>(std::upper_bound(offsets, offsets + clouds + 1, first_bad) - offsets) - 1;
-    const std::array<double, 3> p = read_device_point(device_xyz, first_bad);
-    const bool wide_only = std::is_same_v<decltype(Point::x), Scalar> && std::isfinite(p[0]) &&
-                           std::isfinite(p[1]) && std::isfinite(p[2]);
-    if (!wide_only || marked == kMaxWideClouds) {
-      std::fill(single.begin() + static_cast<std::ptrdiff_t>(c), single.end(), 1);
-      break;
-    }
-    single[c] = 1;
-    const std::size_t next = offsets[c + 1];
-    first_bad = count;
-    if (next < count) {
-      const CheckedDevicePoints<Point> rest = check_device_points<Point>(device_xyz + 3 * next, count - next);
-      if (rest.first_bad != count - next) first_bad = next + rest.first_bad;
-    }
-  }
-  return single;
-}
-
 // `int32_indices`: the result is kept on the device, whose index columns are int32 (a cloud of 2^31 points
 // or more is refused); a host result's indices are PointIndex, read back bit for bit.
 template <class Scalar>
@@ -507,14 +509,11 @@ DeviceConvexHullBatch device_batch(const Scalar* device_xyz, std::size_t count, 
   };
   const auto on_device = [&](auto point) {
     using Point = decltype(point);
-    const CheckedDevicePoints<Point> checked = check_device_points<Point>(device_xyz, count);
     // The stepping engine, or merged facets (which the device's describe does not make), asked for: cloud by
     // cloud.
     if (plan.engine == EngineChoice::kStepping || each.merge != MergeMode::kExact)
       return run_each_into_device(offsets, clouds, cloud);
-    const std::vector<std::uint8_t> single =
-        clouds_with_bad_points<Point>(device_xyz, count, offsets, clouds, checked.first_bad);
-    return run_batch_on_device(checked.points, count, offsets, clouds, cloud, single);
+    return checked_batch_on_device<Point>(device_xyz, count, offsets, clouds, cloud);
   };
   DeviceConvexHullBatch batch =
       plan.precision == Precision::kDouble ? on_device(Point3d{}) : on_device(Point3{});
