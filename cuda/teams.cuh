@@ -106,9 +106,12 @@ __device__ inline void lap_phase(RoundsState* st, u64& t0, int phase) {
   t0 = t;
 }
 
-// A block's threads: __syncthreads() for a barrier, which costs far less than the grid's.
-template <int Block>
+// A block's threads: __syncthreads() for a barrier, which costs far less than the grid's.  kCompact: the
+// rounds' candidate search as loops (FindCandidate::first), for a kernel whose blocks are in different
+// phases at once (the batch's).
+template <int Block, bool kCompact = false>
 struct BlockTeam {
+  static constexpr bool kCompactCode = kCompact;
   RoundsState* st;
   mutable u64 t0 = 0;
   template <class F>
@@ -192,6 +195,7 @@ struct BlockTeam {
 // values a block, then block 0 numbers the tiles (block_offset: one a block, and the total after them).
 template <int Block>
 struct GridTeam {
+  static constexpr bool kCompactCode = false;
   RoundsState* st;
   u32* block_offset;
   mutable u64 t0 = 0;

@@ -107,7 +107,7 @@ CUDAHULL_HD void swap_and_removal_rounds(const Team& team, const RoundsBuffers<P
     team.barrier();
     FindCandidate<Point, Log> find = b.find;
     if constexpr (kRecording) find.log.round = round;
-    const Claim<Point, FindCandidate<Point, Log>> claimer{find, round, b.claim, b.look};
+    const Claim<Point, FindCandidate<Point, Log>, Team::kCompactCode> claimer{find, round, b.claim, b.look};
     team.for_range(work, [&](u32 i) { claimer.claim_for(b.list[i], b.cands[i]); });
     team.barrier();
     team.time(0);
@@ -154,6 +154,7 @@ CUDAHULL_HD void swap_and_removal_rounds(const Team& team, const RoundsBuffers<P
 
 // The host's team: one thread, in index order.
 struct HostTeam {
+  static constexpr bool kCompactCode = false;
   template <class F>
   CUDAHULL_HD void for_range(u32 n, const F& f) const {
     for (u32 i = 0; i < n; ++i)

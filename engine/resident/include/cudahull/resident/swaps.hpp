@@ -165,16 +165,25 @@ struct FindCandidate {
 
   // The first candidate of face f: its three edges, then its three corners.  slot receives 0..5.  (Two
   // loops of three, which unroll: one loop over the six slots made the rounds slower (docs/benchmarks.md,
-  // "Measurements behind the code").)
-  CUDAHULL_HD bool operator()(u32 f, Candidate& out, int& slot) const {
+  // "Measurements behind the code").)  kCompact: the loops stay loops, a third of their code (the batch
+  // kernel, whose blocks run different phases at once and wait on the instruction cache).
+  template <bool kCompact = false>
+  CUDAHULL_HD bool first(u32 f, Candidate& out, int& slot) const {
+    [[maybe_unused]] constexpr int kUnroll = kCompact ? 1 : 3;
     Around<Point> around;
     around.gather(m, f);
+#if defined(__CUDA_ARCH__)
+#pragma unroll(kUnroll)
+#endif
     for (int i = 0; i < 3; ++i) {
       if (flip(around, i, out)) {
         slot = i;
         return true;
       }
     }
+#if defined(__CUDA_ARCH__)
+#pragma unroll(kUnroll)
+#endif
     for (int k = 0; k < 3; ++k) {
       if (flop(around, k, out)) {
         slot = 3 + k;
@@ -216,8 +225,9 @@ struct FixLinks {
   }
 };
 
-// Each work face finds its first candidate, keeps it, and claims the candidate's faces.
-template <class Point, class Find = FindCandidate<Point>>
+// Each work face finds its first candidate, keeps it, and claims the candidate's faces (kCompact: as
+// FindCandidate::first's).
+template <class Point, class Find = FindCandidate<Point>, bool kCompact = false>
 struct Claim {
   Find find;
   u32 round;
@@ -225,7 +235,7 @@ struct Claim {
   u32* look;
   CUDAHULL_HD void claim_for(u32 f, Candidate& cand) const {
     int slot = 0;
-    if (!find(f, cand, slot)) {
+    if (!find.template first<kCompact>(f, cand, slot)) {
       cand.kind = kNone;
       return;
     }
