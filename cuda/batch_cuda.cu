@@ -208,11 +208,12 @@ __global__ void __launch_bounds__(Block, kMinBlocks) batch_kernel(PassArgs<Point
   }
 }
 
-// The kinds of team a pass runs its clouds on: a block of kThreads, or of kLargeThreads.  The small blocks
-// are held to the registers of five blocks an SM: at the 168 a thread the iteration would take, three fit,
-// and the SM waits on memory with nothing to issue (ncu: 83% of cycles); with five the batch kernel runs
-// some 25% faster (docs/benchmarks.md, "Batched hulls").  Clouds of more than kMidBlockPoints take four an
-// SM: 128 registers a thread spill less, and their longer phases wait on memory more than on the barriers.
+// The kinds of team a pass runs its clouds on: a block of kThreads (five an SM, or four above
+// kMidBlockPoints), or of kLargeThreads.  The small blocks are held to the registers of five blocks an SM:
+// at the 168 a thread the iteration would take, three fit, and the SM waits on memory with nothing to
+// issue (ncu: 83% of cycles); with five the batch kernel runs some 25% faster (docs/benchmarks.md,
+// "Batched hulls").  Clouds of more than kMidBlockPoints take four an SM: 128 registers a thread spill
+// less, and their longer phases wait on memory more than on the barriers.
 enum class TeamKind { kBlock, kMidBlock, kLargeBlock };
 template <TeamKind kKind>
 constexpr int kBlockThreads = kKind == TeamKind::kLargeBlock ? kLargeThreads : kThreads;
@@ -427,7 +428,11 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   first_pass(std::integral_constant<TeamKind, TeamKind::kMidBlock>{}, groups[1]);
   first_pass(std::integral_constant<TeamKind, TeamKind::kLargeBlock>{}, groups[2]);
   run.clouds_in_second_pass = again.listed.size();
-  if (!again.listed.empty()) {
+  // Room for every point: the blocks of the largest of its clouds' kind (below kLargeBlockPoints).
+  if (!again.listed.empty() && again.vertices > mid_points) {
+    run_pass<TeamKind::kMidBlock>(device_points, count, device_offsets, again.listed, again.vertices,
+                                  again.word_room, again.coordinate_room, run, held);
+  } else if (!again.listed.empty()) {
     run_pass<TeamKind::kBlock>(device_points, count, device_offsets, again.listed, again.vertices,
                                again.word_room, again.coordinate_room, run, held);
   }

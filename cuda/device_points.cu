@@ -54,6 +54,33 @@ __global__ void check_points_kernel(const Scalar* xyz, std::size_t count, Point*
   }
 }
 
+// Each point that `acceptable` refuses marks its cloud: kCloudWide when every coordinate is finite and
+// Point keeps Scalar's precision (a double outside the fast exact range), else kCloudBad.
+template <class Point, class Scalar>
+__global__ void check_clouds_kernel(const Scalar* xyz, std::size_t count, const unsigned long long* offsets,
+                                    std::size_t clouds, unsigned* marks) {
+  const std::size_t stride = static_cast<std::size_t>(gridDim.x) * blockDim.x;
+  for (std::size_t i = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x; i < count;
+       i += stride) {
+    Point p;
+    const Scalar x = xyz[3 * i], y = xyz[3 * i + 1], z = xyz[3 * i + 2];
+    if (acceptable<Point>(x, p.x) & acceptable<Point>(y, p.y) & acceptable<Point>(z, p.z)) continue;
+    const bool finite = isfinite(static_cast<double>(x)) && isfinite(static_cast<double>(y)) &&
+                        isfinite(static_cast<double>(z));
+    const bool wide = finite && std::is_same_v<decltype(Point::x), Scalar>;
+    // The cloud that holds i: the last whose start is at or before it (empty clouds hold none).
+    std::size_t lo = 0, hi = clouds;  // offsets[lo] <= i < offsets[hi]
+    while (hi - lo > 1) {
+      const std::size_t mid = lo + (hi - lo) / 2;
+      if (offsets[mid] <= i)
+        lo = mid;
+      else
+        hi = mid;
+    }
+    atomicOr(&marks[lo], wide ? unsigned{kCloudWide} : unsigned{kCloudBad});
+  }
+}
+
 unsigned grid_for(std::size_t count) {
   // Enough blocks to fill the device several times over; more only adds blocks with nothing to do.
   return grid_stride_blocks(count, kThreads, 16);
@@ -141,6 +168,28 @@ CheckedDevicePoints<Point> check_device_points(const Scalar* xyz, std::size_t co
   return result;
 }
 
+template <class Point, class Scalar>
+std::vector<std::uint8_t> check_device_clouds(const Scalar* xyz, std::size_t count,
+                                              const std::size_t* offsets, std::size_t clouds) {
+  std::vector<std::uint8_t> result(clouds, kCloudGood);
+  if (count == 0 || clouds == 0) return result;
+  static_assert(sizeof(std::size_t) == sizeof(unsigned long long));
+  const DeviceArray<unsigned long long> bounds(clouds + 1, kWho, "the clouds' offsets");
+  const DeviceArray<unsigned> marks(clouds, kWho, "the clouds' marks");
+  check(cudaMemcpy(bounds.get(), offsets, (clouds + 1) * sizeof(unsigned long long), cudaMemcpyHostToDevice),
+        "uploading the clouds' offsets");
+  check(cudaMemset(marks.get(), 0, clouds * sizeof(unsigned)), "clearing the clouds' marks");
+  check_clouds_kernel<Point, Scalar>
+      <<<grid_for(count), kThreads>>>(xyz, count, bounds.get(), clouds, marks.get());
+  check(cudaGetLastError(), "launching the clouds' check");
+  std::vector<unsigned> host(clouds);
+  check(cudaMemcpy(host.data(), marks.get(), clouds * sizeof(unsigned), cudaMemcpyDeviceToHost),
+        "reading the clouds' marks");
+  for (std::size_t c = 0; c < clouds; ++c)
+    result[c] = host[c] & kCloudBad ? kCloudBad : static_cast<std::uint8_t>(host[c]);
+  return result;
+}
+
 template <class Scalar>
 std::array<double, 3> read_device_point(const Scalar* xyz, std::size_t index) {
   Scalar c[3];
@@ -161,6 +210,14 @@ std::vector<Scalar> download_values(const Scalar* values, std::size_t count) {
   return host;
 }
 
+template std::vector<std::uint8_t> check_device_clouds<Point3>(const float*, std::size_t, const std::size_t*,
+                                                               std::size_t);
+template std::vector<std::uint8_t> check_device_clouds<Point3>(const double*, std::size_t, const std::size_t*,
+                                                               std::size_t);
+template std::vector<std::uint8_t> check_device_clouds<Point3d>(const float*, std::size_t, const std::size_t*,
+                                                                std::size_t);
+template std::vector<std::uint8_t> check_device_clouds<Point3d>(const double*, std::size_t,
+                                                                const std::size_t*, std::size_t);
 template std::vector<float> download_values(const float*, std::size_t);
 template std::vector<double> download_values(const double*, std::size_t);
 template std::array<double, 3> read_device_point(const float*, std::size_t);

@@ -46,6 +46,16 @@ struct CheckedDevicePoints {
 template <class Point, class Scalar>
 CheckedDevicePoints<Point> check_device_points(const Scalar* xyz, std::size_t count);
 
+// Per cloud of a batch (cloud c: points offsets[c] .. offsets[c + 1], B = `clouds`, host offsets), what
+// check_device_points() would find in it for Point: kCloudWide where its points are finite and only some
+// lie outside the fast exact range (double in double: the wide path takes the cloud), kCloudBad where one
+// cannot be taken at all (a NaN or an infinity; from the other precision, a value it cannot hold), else 0.
+// One pass over the points (a binary search in the offsets for each bad one).  Throws DeviceError.
+enum CloudCheck : std::uint8_t { kCloudGood = 0, kCloudWide = 1, kCloudBad = 2 };
+template <class Point, class Scalar>
+std::vector<std::uint8_t> check_device_clouds(const Scalar* xyz, std::size_t count,
+                                              const std::size_t* offsets, std::size_t clouds);
+
 // The `count` values at `values` in device memory, copied to the host after the device is idle (for the
 // paths that finish on the host: the wide range, a degenerate 2-D input).  Float or double.
 template <class Scalar>

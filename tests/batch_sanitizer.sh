@@ -1,9 +1,10 @@
 #!/bin/sh
 # compute-sanitizer on the batch kernel (issue 27; ctest label gpu): memcheck on spheres of 700 points (the
-# blocks of four an SM, then, every point a vertex, the second launch), synccheck and racecheck on 2,000
-# clouds of 6 points (most end in the compaction-only relaunch), synccheck on 30 balls of 30,000 (the
-# 512-thread blocks, their finish and the describe).  Each run's vertex sets are compared with Qhull's (--vs
-# qhull: a differing cloud fails the test).  Exit 77 (skipped) where there is no GPU or no compute-sanitizer.
+# blocks of four an SM, then, every point a vertex, the second launch), synccheck and racecheck on 60 balls
+# of 1,000 (four an SM: prefix sums over more than a block of values) and on 2,000 clouds of 6 points (most
+# end in the compaction-only relaunch), synccheck on 30 balls of 30,000 (the 512-thread blocks, their
+# finish and the describe).  Each run's vertex sets are compared with Qhull's (--vs qhull: a differing cloud
+# fails the test).  Exit 77 (skipped) where there is no GPU or no compute-sanitizer.
 #   tests/batch_sanitizer.sh PATH/TO/cudahull
 cli=$1
 command -v compute-sanitizer >/dev/null 2>&1 || { echo "batch_sanitizer: no compute-sanitizer: skipped"; exit 77; }
@@ -27,6 +28,8 @@ check() {
   echo "batch_sanitizer: $tool on --batch $*: $(tail -1 "$log")"
 }
 check memcheck 300 --n 700 --dist sphere
+check synccheck 60 --n 1000 --dist ball
+check racecheck 60 --n 1000 --dist ball
 check synccheck 2000 --n 6 --dist ball
 check racecheck 2000 --n 6 --dist ball
 check synccheck 30 --n 30000 --dist ball

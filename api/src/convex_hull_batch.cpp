@@ -1,6 +1,6 @@
 // convex_hull_batch(): B clouds' hulls in one call (issue 27).  The design is in convex_hull_batch.hpp's
 // header; here the CPU runs the clouds on all cores, and the CUDA backend runs every small cloud on a block
-// of one launch (batch_cuda.hpp) and the rest through the single-cloud path.
+// (a launch a kind of block, batch_cuda.hpp) and the rest through the single-cloud path.
 //
 // design: the device path
 //   points: in GPU memory, checked there once (check_device_points); host points uploaded once as given
@@ -276,9 +276,10 @@ DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls
 }
 
 // The one place the CUDA backend runs a batch of checked points in device memory: the clouds a block takes,
-// in one launch (batch_run_cuda(), or two); the rest (too small or too large for a block, flat, or with a
-// defect the single-cloud path repairs) and those `single` marks through `hull_of(c)`, in cloud order; the
-// result assembled on the device (assemble_on_device()).
+// in a launch a kind of block (batch_run_cuda(), and one more for those that outgrew their room); the rest
+// (too small or too large for a block, flat, or with a defect the single-cloud path repairs) and those
+// `single` marks through `hull_of(c)`, in cloud order; the result assembled on the device
+// (assemble_on_device()).
 template <class Point, class HullOf>
 DeviceConvexHullBatch run_batch_on_device(const Point* device_points, std::size_t count,
                                           const std::size_t* offsets, std::size_t clouds, HullOf hull_of,
@@ -309,63 +310,48 @@ DeviceConvexHullBatch run_each_into_device(const std::size_t* offsets, std::size
 }
 
 // The clouds that must take the single-cloud path for a point the batch kernel cannot take (`first_bad`:
-// the device check's first, or `count`): in double, a coordinate outside the fast exact range is no error
-// (the wide path hulls its cloud), so its cloud is marked and the points after it checked again, for up
-// to kMaxWideClouds clouds; a NaN or an infinity (or, from the other precision, a coordinate it cannot
-// hold) marks its cloud and every one after it (the single-cloud path raises there, naming the point,
-// before a later cloud runs).  Empty: no cloud.
-constexpr int kMaxWideClouds = 64;
+// the device check's first, or `count`): a double cloud outside the fast exact range is no error (the wide
+// path hulls it alone, the others stay on the kernel); a NaN or an infinity (or, from the other precision,
+// a value it cannot hold) marks its cloud and every one after it (the single-cloud path raises there,
+// naming the point, before a later cloud runs).  Only when a point is bad, one more pass over them
+// (check_device_clouds()).  Empty: no cloud.
 template <class Point, class Scalar>
 std::vector<std::uint8_t> clouds_with_bad_points(const Scalar* device_xyz, std::size_t count,
                                                  const std::size_t* offsets, std::size_t clouds,
                                                  std::size_t first_bad) {
-  std::vector<std::uint8_t> single;
-  for (int marked = 0; first_bad != count; ++marked) {
-    if (single.empty()) single.assign(clouds, 0);
-    // The cloud that holds it: the last whose start is at or before it (an empty cloud holds none).
-    const std::size_t c =
-        static_cast<std::size_t>(std::upper_bound(offsets, offsets + clouds + 1, first_bad) - offsets) - 1;
-    const std::array<double, 3> p = read_device_point(device_xyz, first_bad);
-    const bool wide_only = std::is_same_v<decltype(Point::x), Scalar> && std::isfinite(p[0]) &&
-                           std::isfinite(p[1]) && std::isfinite(p[2]);
-    if (!wide_only || marked == kMaxWideClouds) {
-      std::fill(single.begin() + static_cast<std::ptrdiff_t>(c), single.end(), 1);
-      break;
-    }
-    single[c] = 1;
-    const std::size_t next = offsets[c + 1];
-    first_bad = count;
-    if (next < count) {
-      const CheckedDevicePoints<Point> rest = check_device_points<Point>(device_xyz + 3 * next, count - next);
-      if (rest.first_bad != count - next) first_bad = next + rest.first_bad;
-    }
-  }
+  if (first_bad == count) return {};
+  std::vector<std::uint8_t> single = check_device_clouds<Point>(device_xyz, count, offsets, clouds);
+  std::fill(std::find(single.begin(), single.end(), kCloudBad), single.end(), kCloudBad);
+  for (std::uint8_t& mark : single)
+    mark = mark != kCloudGood;
   return single;
 }
 
 // Points in device memory (the caller's, or host points uploaded as given), in their own precision:
 // checked there once and converted to the plan's (check_device_points), the clouds with a point the kernel
 // cannot take marked (clouds_with_bad_points()), and the batch run; `hull_of(c)`: the single-cloud path.
+// `upload`: host points' copy, let go once converted (the batch reads the converted points).
 template <class Point, class Scalar, class HullOf>
 DeviceConvexHullBatch checked_batch_on_device(const Scalar* device_xyz, std::size_t count,
-                                              const std::size_t* offsets, std::size_t clouds,
-                                              HullOf hull_of) {
+                                              const std::size_t* offsets, std::size_t clouds, HullOf hull_of,
+                                              std::shared_ptr<void> upload = nullptr) {
   const CheckedDevicePoints<Point> checked = check_device_points<Point>(device_xyz, count);
   const std::vector<std::uint8_t> single =
       clouds_with_bad_points<Point>(device_xyz, count, offsets, clouds, checked.first_bad);
+  if (checked.converted) upload.reset();
   return run_batch_on_device(checked.points, count, offsets, clouds, hull_of, single);
 }
 
-// Host points for the device: uploaded as given and checked on the device, as device input is (checking
-// and packing them on one host core took longer than the batch itself: docs/benchmarks.md, "Host points").
-// The single-cloud path reads them on the host.
+// Host points for the device: uploaded as given and checked on the device, as device input is (the host's
+// check and packed copy of every point cost more than the batch itself: docs/benchmarks.md, "Shorter code
+// for the batch kernel").  The single-cloud path reads them on the host.
 template <class Point, class Scalar, class HullOf>
 DeviceConvexHullBatch run_host_batch_on_device(const Scalar* xyz, std::size_t count,
                                                const std::size_t* offsets, std::size_t clouds,
                                                HullOf hull_of) {
-  const std::shared_ptr<void> on_device = upload_to_device(xyz, 3 * count * sizeof(Scalar));
-  return checked_batch_on_device<Point>(static_cast<const Scalar*>(on_device.get()), count, offsets, clouds,
-                                        hull_of);
+  std::shared_ptr<void> upload = upload_to_device(xyz, 3 * count * sizeof(Scalar));
+  const auto* device_xyz = static_cast<const Scalar*>(upload.get());
+  return checked_batch_on_device<Point>(device_xyz, count, offsets, clouds, hull_of, std::move(upload));
 }
 
 // The per-cloud hulls packed into flat arrays, in cloud order (the copies on all cores: a batch of 100,000

@@ -107,12 +107,34 @@ def test_errors_name_the_cloud_and_the_point(lib):
 
 
 def test_cuda_backend_on_host_points():
+    """Host points on the CUDA backend are uploaded as given and checked on the device: the CPU's hulls, a
+    double cloud beyond the fast exact range alone on the wide path, and a bad point named as the CPU names
+    it (in the precision asked for)."""
     points = np.concatenate(CLOUDS)
     offsets = np.concatenate([[0], np.cumsum([len(p) for p in CLOUDS])])
     got = cudahull.convex_hull_batch(points, offsets, backend="cuda")
     want = cudahull.convex_hull_batch(points, offsets, backend="cpu")
     assert got.backend.startswith("cuda")
     assert np.array_equal(got.vertices, want.vertices) and np.array_equal(got.dimensions, want.dimensions)
+    rng = np.random.default_rng(13)
+    clouds = [rng.normal(size=(300, 3)) for _ in range(5)]
+    clouds[1] = clouds[1] * 1e80
+    wide = np.concatenate(clouds)
+    offsets = np.concatenate([[0], np.cumsum([len(c) for c in clouds])])
+    got = cudahull.convex_hull_batch(wide, offsets, backend="cuda")
+    want = cudahull.convex_hull_batch(wide, offsets, backend="cpu")
+    assert got.report["clouds_batched"] == 4 and "cpu-wide" in got.backend
+    assert np.array_equal(got.vertex_offsets, want.vertex_offsets) and np.array_equal(got.vertices, want.vertices)
+    assert_many_wide_clouds_stay_apart(lambda points: points)
+    narrow = np.concatenate([clouds[0], clouds[2], clouds[3]])
+    for value, precision, message in ((np.nan, "auto", "nan is not finite"),
+                                      (1e39, "float", "1e\\+39 does not fit in float")):
+        bad = narrow.copy()
+        bad[610, 1] = value  # cloud 2, point 10
+        for backend in ("cpu", "cuda"):
+            with pytest.raises(ValueError, match=r"^cloud 2: point 10: y coordinate " + message +
+                                                 r" \(row 610 of the packed points\)$"):
+                cudahull.convex_hull_batch(bad, [0, 300, 600, 900], backend=backend, precision=precision)
 
 
 def test_results_are_the_devices_own(lib):
@@ -167,3 +189,18 @@ def test_one_wide_cloud_leaves_the_others_on_the_kernel(lib):
     bad[850, 2] = np.inf  # cloud 4, point 50
     with pytest.raises(ValueError, match=r"^cloud 4: point 50: z coordinate .* is not finite"):
         cudahull.convex_hull_batch(on_device(lib, bad), offsets)
+    assert_many_wide_clouds_stay_apart(lambda points: on_device(lib, points))
+
+
+def assert_many_wide_clouds_stay_apart(place):
+    """75 wide clouds among 150, from points placed by `place`: each takes the wide path alone, the other 75
+    the kernel, every cloud the CPU's."""
+    rng = np.random.default_rng(17)
+    clouds = [rng.normal(size=(50, 3)) * (1e80 if c % 2 else 1) for c in range(150)]
+    points = np.concatenate(clouds)
+    offsets = np.arange(151) * 50
+    got = cudahull.convex_hull_batch(place(points), offsets)
+    want = cudahull.convex_hull_batch(points, offsets, backend="cpu")
+    assert got.report["clouds_batched"] == 75
+    assert np.array_equal(to_numpy(got.vertex_offsets), want.vertex_offsets)
+    assert np.array_equal(to_numpy(got.vertices), want.vertices)

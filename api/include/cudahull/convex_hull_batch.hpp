@@ -18,15 +18,15 @@
 //   one plan for the batch (plan_hull() on all its points): where it runs, CPU or CUDA
 //   CPU: the clouds on all cores, a cloud a worker at a time in cloud order (each cloud's engine passes on
 //     its worker's thread, SerialScope); a cloud too large to share the cores runs alone on all of them
-//   CUDA: the points checked once and on the device (host points uploaded once); one launch of the batch
-//     kernel (cuda/batch_cuda.hpp: a block a cloud, the resident engine's iteration) for the clouds of 4 to
-//     131,072 points (another for those of more than 16,384, on blocks of 512 threads), one more for those
-//     whose hulls outgrew the first's room; flat, tiny and larger clouds, and those with defects, through
-//     the single-cloud path (convex_hull(), convex_hull_device()); then the result laid out on the device
-//     (offsets from every cloud's sizes), the kernel's meshes described there as convex_hull() describes one
-//     (the same code: cudahull/detail/plane_impl.hpp), the other clouds' hulls copied up into place; read
-//     back only for a host result.  Merged facets (ConvexHullOptions::merge other than exact) and the
-//     stepping engine run cloud by cloud through the single-cloud path
+//   CUDA: the points checked once and on the device (host points uploaded once, as given); a launch of the
+//     batch kernel (cuda/batch_cuda.hpp: a block a cloud, the resident engine's iteration) a kind of block
+//     for the clouds of 4 to 131,072 points (128 threads; four blocks an SM above 256 points; 512 threads
+//     above 16,384), one more for those whose hulls outgrew the first's room; flat, tiny and larger clouds,
+//     and those with defects, through the single-cloud path (convex_hull(), convex_hull_device()); then the
+//     result laid out on the device (offsets from every cloud's sizes), the kernel's meshes described there
+//     as convex_hull() describes one (the same code: cudahull/detail/plane_impl.hpp), the other clouds' hulls
+//     copied up into place; read back only for a host result.  Merged facets (ConvexHullOptions::merge other
+//     than exact) and the stepping engine run cloud by cloud through the single-cloud path
 //   errors: the first bad point in packed order raises, named by its cloud, its index in the cloud and its
 //     row in the packed array; clouds after a failed one are not started
 //   the per-cloud hulls packed into flat arrays with offsets, in cloud order
