@@ -411,11 +411,13 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
           "uploading the offsets");
   }
   Group again;
+  const auto pass = [&](auto kind, const Group& group) {
+    return run_pass<decltype(kind)::value>(device_points, count, device_offsets, group.listed, group.vertices,
+                                           group.word_room, group.coordinate_room, run, held);
+  };
   const auto first_pass = [&](auto kind, const Group& group) {
     if (group.listed.empty()) return;
-    const std::vector<BatchResult> results =
-        run_pass<decltype(kind)::value>(device_points, count, device_offsets, group.listed, group.vertices,
-                                        group.word_room, group.coordinate_room, run, held);
+    const std::vector<BatchResult> results = pass(kind, group);
     for (std::size_t k = 0; k < group.listed.size(); ++k) {
       if (results[k].status != resident::kBatchRoom) continue;
       const u32 c = group.listed[k], n = static_cast<u32>(offsets[c + 1] - offsets[c]);
@@ -429,12 +431,11 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   first_pass(std::integral_constant<TeamKind, TeamKind::kLargeBlock>{}, groups[2]);
   run.clouds_in_second_pass = again.listed.size();
   // Room for every point: the blocks of the largest of its clouds' kind (below kLargeBlockPoints).
-  if (!again.listed.empty() && again.vertices > mid_points) {
-    run_pass<TeamKind::kMidBlock>(device_points, count, device_offsets, again.listed, again.vertices,
-                                  again.word_room, again.coordinate_room, run, held);
-  } else if (!again.listed.empty()) {
-    run_pass<TeamKind::kBlock>(device_points, count, device_offsets, again.listed, again.vertices,
-                               again.word_room, again.coordinate_room, run, held);
+  if (!again.listed.empty()) {
+    if (again.vertices > mid_points)
+      pass(std::integral_constant<TeamKind, TeamKind::kMidBlock>{}, again);
+    else
+      pass(std::integral_constant<TeamKind, TeamKind::kBlock>{}, again);
   }
   return run;
 }

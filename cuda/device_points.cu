@@ -38,6 +38,13 @@ __device__ bool acceptable(Scalar c, decltype(Point::x)& out) {
   }
 }
 
+// Point i of `xyz` in Point's precision (into p), and whether the hull in Point can take it.
+template <class Point, class Scalar>
+__device__ bool acceptable_point(const Scalar* xyz, std::size_t i, Point& p) {
+  return acceptable<Point>(xyz[3 * i], p.x) & acceptable<Point>(xyz[3 * i + 1], p.y) &
+         acceptable<Point>(xyz[3 * i + 2], p.z);
+}
+
 // One pass: every point tested (the lowest failing index wins through atomicMin, so the error names the
 // same point as the host path's scan) and, when `out` is given, written in Point's precision.
 template <class Point, class Scalar>
@@ -47,8 +54,7 @@ __global__ void check_points_kernel(const Scalar* xyz, std::size_t count, Point*
   for (std::size_t i = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x; i < count;
        i += stride) {
     Point p;
-    const bool good = acceptable<Point>(xyz[3 * i], p.x) & acceptable<Point>(xyz[3 * i + 1], p.y) &
-                      acceptable<Point>(xyz[3 * i + 2], p.z);
+    const bool good = acceptable_point(xyz, i, p);
     if (!good) atomicMin(first_bad, static_cast<unsigned long long>(i));
     if (out) out[i] = p;
   }
@@ -63,10 +69,10 @@ __global__ void check_clouds_kernel(const Scalar* xyz, std::size_t count, const 
   for (std::size_t i = static_cast<std::size_t>(blockIdx.x) * blockDim.x + threadIdx.x; i < count;
        i += stride) {
     Point p;
-    const Scalar x = xyz[3 * i], y = xyz[3 * i + 1], z = xyz[3 * i + 2];
-    if (acceptable<Point>(x, p.x) & acceptable<Point>(y, p.y) & acceptable<Point>(z, p.z)) continue;
-    const bool finite = isfinite(static_cast<double>(x)) && isfinite(static_cast<double>(y)) &&
-                        isfinite(static_cast<double>(z));
+    if (acceptable_point(xyz, i, p)) continue;
+    const bool finite = isfinite(static_cast<double>(xyz[3 * i])) &&
+                        isfinite(static_cast<double>(xyz[3 * i + 1])) &&
+                        isfinite(static_cast<double>(xyz[3 * i + 2]));
     const bool wide = finite && std::is_same_v<decltype(Point::x), Scalar>;
     // The cloud that holds i: the last whose start is at or before it (empty clouds hold none).
     std::size_t lo = 0, hi = clouds;  // offsets[lo] <= i < offsets[hi]
