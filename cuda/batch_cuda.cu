@@ -3,14 +3,16 @@
 // design:
 //   the clouds the kernel takes: 4 .. block_points() points (fewer: the single-cloud path's lower-dimensional
 //     answer; more: the single-cloud path's grid, which a large cloud fills better)
-//   teams: a cloud of more than kLargeBlockPoints points on a block of kLargeThreads (its points' phases are
-//     the work), the rest on a block of kThreads (a small hull's phases have a few dozen items: the latency
-//     of its barriers, not the threads, sets its time), five blocks an SM, or four for clouds of more than
-//     kMidBlockPoints; the resident engine's iteration on each (resident::batch_hull(), the block's barrier)
+//   teams: a cloud of at most kWarpPoints points on a warp, a furthest point at a time (resident::
+//     small_hull(), QuickHull's own step: a short loop, which many warps run from the instruction cache at
+//     once); a cloud of more than kLargeBlockPoints points on a block of kLargeThreads (its points' phases
+//     are the work), the rest on a block of kThreads (a small hull's phases have a few dozen items: the
+//     latency of its barriers, not the threads, sets its time), five blocks an SM, or four for clouds of
+//     more than kMidBlockPoints; the resident engine's iteration on each block (resident::batch_hull())
 //   pass 1: a launch a kind of team, as many blocks as fit at once, each team with a slot of face room for
-//     the largest hull its launch expects (batch_vertices()); a team takes clouds one after another from a
-//     counter (a large one does not hold the others up).  Per point, the iteration's own arrays (six words)
-//     at the cloud's place in the packed points
+//     the largest hull its launch expects (batch_vertices(); a warp's: every point); a team takes clouds one
+//     after another from a counter (a large one does not hold the others up).  Per point, the iteration's own
+//     arrays (six words) at the cloud's place in the packed points
 //   pass 2: the clouds that asked for more room, with room for every point a vertex (up to
 //     kSecondPassPoints points; larger ones take the single-cloud path)
 //   read back: the results alone (status and sizes a cloud); the hulls stay on the device (BatchRun's
@@ -29,7 +31,7 @@
 #include "batch_cuda.hpp"
 #include "cuda_errors.hpp"
 #include "cudahull/detail/plane_impl.hpp"
-#include "cudahull/resident/batch.hpp"
+#include "cudahull/resident/small_hull.hpp"
 #include "device_memory.hpp"
 #include "teams.cuh"
 
@@ -56,6 +58,11 @@ constexpr std::size_t kLargeBlockPoints = 16384;
 // (TeamKind::kMidBlock; CUDAHULL_BATCH_MID_BLOCK_POINTS): from 300 points on they ran 4-13% faster than
 // at five, the same at 200 (docs/benchmarks.md, "Batched hulls").
 constexpr std::size_t kMidBlockPoints = 256;
+// The clouds of at most this many points take a warp each (TeamKind::kWarp; CUDAHULL_BATCH_WARP_POINTS,
+// 0: none).  small_hull() tests every face and point at each step: 100,000 balls of 100 ran 2.3 times
+// faster than on blocks, 50,000 of 200 1.4 times, 30,000 of 400 1.1 times slower, 10,000 of 1,000 2.6
+// times slower (docs/benchmarks.md, "Batched hulls").
+constexpr std::size_t kWarpPoints = 256;
 
 void check(cudaError_t e, const char* what) {
   if (e != cudaSuccess) throw_cuda_error(kWho, what, e);
@@ -166,8 +173,9 @@ __device__ BatchSlot slot_of(const PassArgs<Point>& a, u32 s) {
   return slot;
 }
 
-// Listed cloud k's hull on `team` in `slot`.
-template <class Team, class Point>
+// Listed cloud k's hull on `team` in `slot`: the resident iteration (batch_hull()), or a furthest point at
+// a time (kSmall: small_hull()).
+template <bool kSmall = false, class Team, class Point>
 __device__ void hull_listed(const Team& team, const BatchSlot& slot, const PassArgs<Point>& a, u32 k) {
   const u32 c = a.clouds[k], begin = a.offsets[c], n = a.offsets[c + 1] - begin;
   const std::size_t at = begin, total = a.points_total;
@@ -180,7 +188,10 @@ __device__ void hull_listed(const Team& team, const BatchSlot& slot, const PassA
                                 w + 3 * total + at,
                                 w + 4 * total + at,
                                 w + 5 * total + at};
-  resident::batch_hull(team, slot, cloud, a.out, a.results + k);
+  if constexpr (kSmall)
+    resident::small_hull(team, slot, cloud, a.out, a.results + k);
+  else
+    resident::batch_hull(team, slot, cloud, a.out, a.results + k);
 }
 
 // A pass's kernel: each block a team, taking clouds from the counter until none is left.  kMinBlocks: the
@@ -208,15 +219,40 @@ __global__ void __launch_bounds__(Block, kMinBlocks) batch_kernel(PassArgs<Point
   }
 }
 
+// The warps' kernel (WarpTeam): each warp a team with a slot of its own, taking clouds from the counter
+// until none is left; kWarps a block, kMinBlocks blocks an SM (the registers, as batch_kernel's).
+template <class Point, int kWarps, int kMinBlocks>
+__global__ void __launch_bounds__(32 * kWarps, kMinBlocks) batch_warp_kernel(PassArgs<Point> a) {
+  __shared__ resident::RoundsState states[kWarps];  // as batch_kernel's: the SM's own memory
+  const u32 warp = threadIdx.x / 32, lane = threadIdx.x % 32;
+  BatchSlot slot = slot_of(a, blockIdx.x * kWarps + warp);
+  slot.st = &states[warp];
+  const resident::WarpTeam team{slot.st};
+  while (true) {
+    u32 k = 0;
+    if (lane == 0) k = atomicAdd(a.next, 1u);
+    k = __shfl_sync(0xffffffffu, k, 0);
+    if (k >= a.count) return;
+    hull_listed<true>(team, slot, a, k);
+  }
+}
+
 // The kinds of team a pass runs its clouds on: a block of kThreads (five an SM, or four above
 // kMidBlockPoints), or of kLargeThreads.  The small blocks are held to the registers of five blocks an SM:
 // at the 168 a thread the iteration would take, three fit, and the SM waits on memory with nothing to
 // issue (ncu: 83% of cycles); with five the batch kernel runs some 25% faster (docs/benchmarks.md,
 // "Batched hulls").  Clouds of more than kMidBlockPoints take four an SM: 128 registers a thread spill
 // less, and their longer phases wait on memory more than on the barriers.
-enum class TeamKind { kBlock, kMidBlock, kLargeBlock };
+// The smallest clouds take a warp each (kWarp: kWarpsPerBlock warps a block, the registers of five blocks an
+// SM, small_hull()).  The resident iteration on a warp a cloud ran slower than on blocks (100,000 balls of
+// 100: 36.4 ms against 28.6): twenty warps an SM, each in a phase of its own, waited on instruction fetch
+// (ncu: 52% of the stall samples).
+enum class TeamKind { kWarp, kBlock, kMidBlock, kLargeBlock };
+constexpr int kWarpsPerBlock = kThreads / 32;
 template <TeamKind kKind>
 constexpr int kBlockThreads = kKind == TeamKind::kLargeBlock ? kLargeThreads : kThreads;
+template <TeamKind kKind>
+constexpr u32 kTeamsPerBlock = kKind == TeamKind::kWarp ? kWarpsPerBlock : 1;
 template <TeamKind kKind>
 constexpr int kMinBlocksOf = kKind == TeamKind::kLargeBlock ? 1
                              : kKind == TeamKind::kMidBlock ? 4
@@ -230,9 +266,14 @@ std::vector<BatchResult> run_pass(const Point* points, std::size_t count, const 
                                   std::size_t coordinate_room, BatchRun<Point>& run, std::size_t& held) {
   BatchMemory memory(held, run.device_bytes);
   constexpr int kBlock = kBlockThreads<kKind>;
-  auto* kernel = batch_kernel<Point, kBlock, kMinBlocksOf<kKind>>;
-  const u32 slots =
-      static_cast<u32>(std::min<std::size_t>(listed.size(), resident::blocks_that_fit(kernel, kBlock, kWho)));
+  constexpr u32 kTeams = kTeamsPerBlock<kKind>;
+  void (*kernel)(PassArgs<Point>) = kKind == TeamKind::kWarp
+                                        ? batch_warp_kernel<Point, kWarpsPerBlock, kMinBlocksOf<kKind>>
+                                        : batch_kernel<Point, kBlock, kMinBlocksOf<kKind>>;
+  // A slot a team, for every team of the blocks launched.
+  const u32 blocks = static_cast<u32>(std::min<std::size_t>((listed.size() + kTeams - 1) / kTeams,
+                                                            resident::blocks_that_fit(kernel, kBlock, kWho)));
+  const u32 slots = blocks * kTeams;
 
   // What the pass leaves for the describe: its hulls, its results and its cloud list.
   auto output = std::make_shared<typename BatchRun<Point>::PassOutput>();
@@ -288,7 +329,7 @@ std::vector<BatchResult> run_pass(const Point* points, std::size_t count, const 
         "uploading the cloud list");
   check(cudaMemsetAsync(a.next, 0, 3 * sizeof(u32), 0), "clearing the counters");
   const EventTimer timer;
-  kernel<<<slots, kBlock>>>(a);
+  kernel<<<blocks, kBlock>>>(a);
   check(cudaGetLastError(), "launching the batch");
   timer.stop();
   std::vector<BatchResult> results(listed.size());
@@ -388,15 +429,18 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
       coordinate_room += v;
     }
   };
-  Group groups[3];  // TeamKind's order
+  Group groups[4];  // TeamKind's order
   const std::size_t large_points = env_points("CUDAHULL_BATCH_LARGE_BLOCK_POINTS", kLargeBlockPoints);
   const std::size_t mid_points = env_points("CUDAHULL_BATCH_MID_BLOCK_POINTS", kMidBlockPoints);
+  const std::size_t warp_points = env_points("CUDAHULL_BATCH_WARP_POINTS", kWarpPoints);
   bool any = false;
   for (std::size_t c = 0; c < clouds; ++c) {
     const std::size_t n = offsets[c + 1] - offsets[c];
     if (n < 4 || n > largest || (skip && skip[c])) continue;
-    const int kind = n > large_points ? 2 : n > mid_points ? 1 : 0;
-    groups[kind].add(static_cast<u32>(c), resident::batch_vertices(static_cast<u32>(n), false));
+    const int kind = n <= warp_points ? 0 : n > large_points ? 3 : n > mid_points ? 2 : 1;
+    // A warp's cloud has room for every point a vertex at once: its room is hardly larger than a ball's,
+    // and a sphere's hull needs no second pass.
+    groups[kind].add(static_cast<u32>(c), resident::batch_vertices(static_cast<u32>(n), kind == 0));
     any = true;
   }
   if (!any) return run;
@@ -410,7 +454,7 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
     check(cudaMemcpy(device_offsets, narrow.data(), narrow.size() * sizeof(u32), cudaMemcpyHostToDevice),
           "uploading the offsets");
   }
-  Group again;
+  Group again, again_on_warps;  // the second pass's clouds, by the kind of team of their first
   const auto pass = [&](auto kind, const Group& group) {
     return run_pass<decltype(kind)::value>(device_points, count, device_offsets, group.listed, group.vertices,
                                            group.word_room, group.coordinate_room, run, held);
@@ -423,13 +467,20 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
       const u32 c = group.listed[k], n = static_cast<u32>(offsets[c + 1] - offsets[c]);
       // Room for every point a vertex costs a slot some 900 bytes a point: a larger cloud takes the
       // single-cloud path, which grows its room as it goes.
-      if (n <= kSecondPassPoints) again.add(c, n);
+      if (n > kSecondPassPoints) continue;
+      if (n <= warp_points)
+        again_on_warps.add(c, n);
+      else
+        again.add(c, n);
     }
   };
-  first_pass(std::integral_constant<TeamKind, TeamKind::kBlock>{}, groups[0]);
-  first_pass(std::integral_constant<TeamKind, TeamKind::kMidBlock>{}, groups[1]);
-  first_pass(std::integral_constant<TeamKind, TeamKind::kLargeBlock>{}, groups[2]);
-  run.clouds_in_second_pass = again.listed.size();
+  first_pass(std::integral_constant<TeamKind, TeamKind::kWarp>{}, groups[0]);
+  first_pass(std::integral_constant<TeamKind, TeamKind::kBlock>{}, groups[1]);
+  first_pass(std::integral_constant<TeamKind, TeamKind::kMidBlock>{}, groups[2]);
+  first_pass(std::integral_constant<TeamKind, TeamKind::kLargeBlock>{}, groups[3]);
+  run.clouds_in_second_pass = again.listed.size() + again_on_warps.listed.size();
+  if (!again_on_warps.listed.empty())
+    pass(std::integral_constant<TeamKind, TeamKind::kWarp>{}, again_on_warps);
   // Room for every point: the blocks of the largest of its clouds' kind (below kLargeBlockPoints).
   if (!again.listed.empty()) {
     if (again.vertices > mid_points)

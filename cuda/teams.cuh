@@ -191,6 +191,56 @@ struct BlockTeam {
   }
 };
 
+// One warp: __syncwarp() for a barrier (it orders the lanes' memory as __syncthreads() does a block's).  A
+// batch's smallest clouds take a warp each (small_hull.hpp): a block's other warps would mostly wait at
+// its barriers (ncu on 100-point clouds: half the stall samples), and an SM holds four times as many
+// clouds at once.  The compact code: many warps in different places share the SM's instruction cache.
+struct WarpTeam {
+  static constexpr bool kCompactCode = true;
+  RoundsState* st;
+  mutable u64 t0 = 0;
+  __device__ static u32 lane() { return threadIdx.x & 31; }
+  template <class F>
+  __device__ void for_range(u32 n, const F& f) const {
+    for (u32 i = lane(); i < n; i += 32)
+      f(i);
+  }
+  __device__ void barrier() const { __syncwarp(); }
+  __device__ bool leader() const { return lane() == 0; }
+  __device__ void start_timing() const {
+    if (leader()) t0 = now_ns();
+  }
+  __device__ void time(int phase) const {
+    if (leader()) lap_phase(st, t0, phase);
+  }
+  template <class Pred>
+  __device__ void list_if(u32 n, const Pred& pred, u32* list, u32* count, u32 capacity) const {
+    BlockTeam<32>::list_by_warps(lane(), 32, n, pred, list, count, capacity);
+  }
+  template <class Op>
+  __device__ void max_per_segment(u32 n, const Op& op) const {
+    BlockTeam<32>::max_by_warps(lane(), 32, n, op);
+  }
+  // 32 values at a time (CUB's WarpScan), each chunk after the ones before it.
+  template <class Value>
+  __device__ u32 exclusive_scan(u32 n, const Value& value, u32* out) const {
+    using WarpScan = cub::WarpScan<u32>;
+    typename WarpScan::TempStorage unused;  // the shuffle scan keeps nothing in memory
+    __syncwarp();                           // the values written by the warp before
+    u32 carry = 0;
+    for (u32 base = 0; base < n; base += 32) {
+      const u32 i = base + lane();
+      const u32 v = i < n ? value(i) : 0u;
+      u32 inclusive = 0, total = 0;
+      WarpScan(unused).InclusiveSum(v, inclusive, total);
+      if (i < n) out[i] = carry + inclusive - v;
+      carry += total;
+    }
+    __syncwarp();
+    return carry;
+  }
+};
+
 // Every thread of a cooperative launch: the grid's barrier.  A prefix sum takes a contiguous tile of the
 // values a block, then block 0 numbers the tiles (block_offset: one a block, and the total after them).
 template <int Block>

@@ -3,9 +3,11 @@
 // degenerate sets, in float and in double.  The gpu label runs the device executor against this one.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -14,7 +16,7 @@
 #include "cudahull/hull_checker.hpp"
 #include "cudahull/point_io.hpp"
 #include "cudahull/resident.hpp"
-#include "cudahull/resident/batch.hpp"
+#include "cudahull/resident/small_hull.hpp"
 #include "support/point_sets.hpp"
 #include "support/rng.hpp"
 #include "support/shared_models.hpp"
@@ -269,7 +271,8 @@ struct HostBatchSlot {
                                &st,
                                room};
   }
-  resident::BatchResult run(const std::vector<Point>& points) {
+  // The cloud's hull by batch_hull(), or by small_hull() (`small`).
+  resident::BatchResult run(const std::vector<Point>& points, bool small = false) {
     const std::size_t n = points.size();
     resident::u32* w = point_words.data();
     const resident::BatchCloud<Point> cloud{
@@ -279,14 +282,17 @@ struct HostBatchSlot {
                                            static_cast<resident::u32>(words.size()),
                                            static_cast<resident::u32>(coordinates.size())};
     resident::BatchResult result{};
-    resident::batch_hull(resident::HostTeam{}, slot, cloud, out, &result);
+    if (small)
+      resident::small_hull(resident::HostTeam{}, slot, cloud, out, &result);
+    else
+      resident::batch_hull(resident::HostTeam{}, slot, cloud, out, &result);
     return result;
   }
 };
 
 template <class Point>
 void expect_batch_exact(const std::vector<Point>& points, const std::string& what, int& room_asked,
-                        bool may_need_repair = false) {
+                        bool may_need_repair = false, bool small = false) {
   const BasicHullMesh<Point> oracle = exact_hull(points);
   const auto n = static_cast<resident::u32>(points.size());
   HostBatchSlot<Point> first(resident::batch_vertices(n, false), points.size());
@@ -296,20 +302,21 @@ void expect_batch_exact(const std::vector<Point>& points, const std::string& wha
   std::vector<Point> previous;
   for (const Point3& q : other)
     previous.push_back(Point{q.x, q.y, q.z});
-  first.run(previous);
-  resident::BatchResult result = first.run(points);
+  first.run(previous, small);
+  resident::BatchResult result = first.run(points, small);
   HostBatchSlot<Point>* used = &first;
   HostBatchSlot<Point> every(n, points.size());
   if (result.status == resident::kBatchRoom) {
     ++room_asked;
-    result = every.run(points);
+    result = every.run(points, small);
     used = &every;
     EXPECT_NE(result.status, resident::kBatchRoom) << what << ": short of room for every point a vertex";
   }
   if (result.status == resident::kBatchSingle) {
     // Flat clouds, and defects the rounds left (the single-cloud path repairs them), only.
     if (oracle.dimension == 3)
-      EXPECT_TRUE(may_need_repair && used->st.loop_exit == resident::kExitDone && used->st.defects > 0)
+      EXPECT_TRUE(!small && may_need_repair && used->st.loop_exit == resident::kExitDone &&
+                  used->st.defects > 0)
           << what << ": sent to the single-cloud path (exit " << used->st.loop_exit << ", defects "
           << used->st.defects << ")";
     return;
@@ -354,6 +361,45 @@ TEST(Resident, BatchHullOfOneCloudOnATeam) {
   expect_batch_exact(repeats, "sphere with repeats", room_asked);
   std::vector<Point3> inside = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 4}, {1, 1, 1}, {0.5f, 0.5f, 0.5f}};
   expect_batch_exact(inside, "a tetrahedron with points inside", room_asked);
+}
+
+// small_hull(), the batch's warps' hull: every cloud in space done on the team (coplanar facets, repeats and
+// points on the hull's faces included), the exact vertex set, a valid hull; flat ones to the single path.
+TEST(Resident, SmallHullOfOneCloudOnATeam) {
+  int room_asked = 0;
+  for (const char* name : {"ball", "sphere", "cube", "gauss", "grid", "cylinder"}) {
+    for (std::size_t n : {4, 5, 9, 60, 100, 256, 700, 3000}) {
+      const std::vector<Point3> points = generate_points(distribution_from_name(name), n, 29 + n);
+      const std::string what = std::string(name) + " " + std::to_string(n);
+      expect_batch_exact(points, what, room_asked, false, true);
+      expect_batch_exact(widened(points), what + " in double", room_asked, false, true);
+    }
+  }
+  EXPECT_GT(room_asked, 0);  // the spheres' hulls outgrow the first pass's room
+  expect_batch_exact(std::vector<Point3>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0.5f, 0.5f, 0}},
+                     "square", room_asked, false, true);
+  expect_batch_exact(std::vector<Point3>{{0, 0, 0}, {1, 1, 1}, {2, 2, 2}, {3, 3, 3}}, "collinear", room_asked,
+                     false, true);
+  expect_batch_exact(std::vector<Point3>(6, Point3{1, 2, 3}), "one point six times", room_asked, false, true);
+  std::vector<Point3> repeats = generate_points(Distribution::kSphere, 300, 5);
+  for (std::size_t i = 0; i < 300; i += 4)
+    repeats.insert(repeats.begin(), repeats[299 - i]);
+  expect_batch_exact(repeats, "sphere with repeats", room_asked, false, true);
+  // A cube's corners, its edges' and faces' midpoints and its centre, in every order the seeds give: the
+  // points on faces and edges taken first must leave the mesh when the corners come.
+  std::vector<Point3> lattice;
+  for (int x = 0; x < 3; ++x)
+    for (int y = 0; y < 3; ++y)
+      for (int z = 0; z < 3; ++z)
+        lattice.push_back(Point3{static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)});
+  for (unsigned seed = 0; seed < 40; ++seed) {
+    std::vector<Point3> shuffled = lattice;
+    std::mt19937 rng(seed);
+    std::shuffle(shuffled.begin(), shuffled.end(), rng);
+    expect_batch_exact(shuffled, "3x3x3 lattice, order " + std::to_string(seed), room_asked, false, true);
+  }
+  std::vector<Point3> inside = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 4}, {1, 1, 1}, {0.5f, 0.5f, 0.5f}};
+  expect_batch_exact(inside, "a tetrahedron with points inside", room_asked, false, true);
 }
 
 TEST(Resident, SharedModelsAtTheirKnownCounts) {

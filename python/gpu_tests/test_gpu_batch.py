@@ -1,7 +1,8 @@
 """convex_hull_batch (issue 27) from CuPy arrays and PyTorch CUDA tensors, against the same clouds given as
 NumPy on the CPU backend: cloud for cloud the same hulls, results of the input's kind on its device, the same
-errors.  The GPU runs the small clouds on its batch kernel (a block a cloud, from section 3.1's tetrahedron),
-the CPU each cloud alone: the same vertex sets, and the same faces in another order.  ctest label gpu:
+errors.  The GPU runs the small clouds on its batch kernels (a warp a cloud up to 256 points, a furthest point at a
+time; a block a cloud above, the resident iteration), the CPU each cloud alone: the same vertex sets, and the
+same faces in another order.  ctest label gpu:
 skipped (exit 77) where there is no GPU, CuPy or PyTorch."""
 
 import numpy as np

@@ -112,18 +112,20 @@ struct TetrahedronKeys {
   }
 };
 
-// One cloud's hull on `team` in `slot`: the status into *result (and, when done, the hull into `out`).
+// The cloud ends here (every thread together) with `status` and no hull in the output.
+template <class Team>
+CUDAHULL_HD void end_batch_cloud(const Team& team, BatchResult* result, u32 status) {
+  if (team.leader()) *result = BatchResult{status, 0, 0, 0, 0};
+  team.barrier();
+}
+
+// Section 3.1's tetrahedron (see the design note) as the first mesh in the slot: faces 0-3 live, outward,
+// linked, with no furthest point; its centroid into *centroid.  False (every thread) where it is flat or
+// rounding spoiled the picks: the cloud takes the single-cloud path.
 template <class Team, class Point>
-CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const BatchCloud<Point>& cloud,
-                            const BatchOutput<Point>& out, BatchResult* result) {
+CUDAHULL_HD bool batch_tetrahedron(const Team& team, const BatchSlot& slot, const BatchCloud<Point>& cloud,
+                                   Vec3d* centroid) {
   const u32 n = cloud.n;
-  RoundsState* st = slot.st;
-  // The cloud ends here (every thread together) with `status` and no hull in the output.
-  const auto end_with = [&](u32 status) {
-    if (team.leader()) *result = BatchResult{status, 0, 0, 0, 0};
-    team.barrier();
-  };
-  // Section 3.1's tetrahedron (see the design note).
   if (team.leader()) {
     for (int k = 0; k < 4; ++k)
       slot.extreme[k] = 0;
@@ -148,7 +150,7 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
   for (int k = 0; k < 4; ++k)
     p[k] = to_vec3d(cloud.points[corner[k]]);
   const int sign = orient3d(p[0], p[1], p[2], p[3]);
-  if (sign == 0) return end_with(kBatchSingle);
+  if (sign == 0) return false;
   if (sign > 0) {  // p3 above (p0, p1, p2): that face would point at it; (p0, p2, p1) points away
     const u32 t = corner[1];
     corner[1] = corner[2];
@@ -162,8 +164,9 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
   const Vec3d c{(p[0].x + p[1].x + p[2].x + p[3].x) / 4, (p[0].y + p[1].y + p[2].y + p[3].y) / 4,
                 (p[0].z + p[1].z + p[2].z + p[3].z) / 4};
   for (const auto& f : kFaces) {
-    if (orient3d(p[f[0]], p[f[1]], p[f[2]], c) >= 0) return end_with(kBatchSingle);
+    if (orient3d(p[f[0]], p[f[1]], p[f[2]], c) >= 0) return false;
   }
+  *centroid = c;
   team.barrier();  // every thread has read the maxima before the first mesh overwrites them
   if (team.leader()) {
     for (u32 f = 0; f < 4; ++f) {
@@ -181,8 +184,55 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
       slot.look[f] = 0;
       slot.extreme[f] = 0;
     }
-    *st = RoundsState{};
   }
+  return true;
+}
+
+// The finish's output: the hull of `faces` faces (`corners`, 3 a face, on the cloud's indices) and the
+// points `used` marks (1 a vertex) written where the batch's output has room, the vertices in index order
+// (a prefix sum into `rank`, listed in `list`) and the corners renumbered to them (one atomic a cloud; a
+// cloud past the room asks for the next pass).
+template <class Team, class Point>
+CUDAHULL_HD void write_batch_hull(const Team& team, const BatchCloud<Point>& cloud, const u32* corners,
+                                  u32 faces, const u32* used, u32* rank, u32* list,
+                                  const BatchOutput<Point>& out, BatchResult* result) {
+  const u32 n = cloud.n;
+  const u32 vertices = team.exclusive_scan(
+      n, [&](u32 i) { return used[i]; }, rank);
+  team.for_range(n, [&](u32 i) {
+    if (used[i]) list[rank[i]] = i;
+  });
+  if (team.leader()) {
+    const u32 words = 3 * faces + vertices;
+    const u32 word_at = atomic_add_u32(&out.used[0], words);
+    const u32 point_at = atomic_add_u32(&out.used[1], vertices);
+    const bool fits = word_at + words <= out.word_capacity && point_at + vertices <= out.coordinate_capacity;
+    // A closed triangulated sphere has F = 2 V - 4 (Euler): anything else goes to the single-cloud path.
+    const u32 status = faces + 4 != 2 * vertices ? kBatchSingle : fits ? kBatchDone : kBatchRoom;
+    *result = BatchResult{status, faces, vertices, word_at, point_at};
+  }
+  team.barrier();
+  if (result->status != kBatchDone) return;
+  const BatchResult at = *result;
+  const RenumberCorners renumber{corners, rank, out.words + at.word_at};
+  team.for_range(3 * faces, [&](u32 k) { renumber(k); });
+  team.for_range(vertices, [&](u32 k) {
+    out.words[at.word_at + 3 * faces + k] = list[k];
+    out.coordinates[at.point_at + k] = cloud.points[list[k]];
+  });
+  team.barrier();
+}
+
+// One cloud's hull on `team` in `slot`: the status into *result (and, when done, the hull into `out`).
+template <class Team, class Point>
+CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const BatchCloud<Point>& cloud,
+                            const BatchOutput<Point>& out, BatchResult* result) {
+  const u32 n = cloud.n;
+  RoundsState* st = slot.st;
+  const auto end_with = [&](u32 status) { end_batch_cloud(team, result, status); };
+  Vec3d c;
+  if (!batch_tetrahedron(team, slot, cloud, &c)) return end_with(kBatchSingle);
+  if (team.leader()) *st = RoundsState{};
   // No claim is left from the slot's last cloud (a claim is a round and a candidate: stale ones would win).
   team.for_range(slot.room.faces, [&](u32 f) { slot.claim[f] = 0; });
   team.barrier();
@@ -250,28 +300,7 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
   team.for_range(n, [&](u32 i) { thin(i); });
   team.barrier();
   if (st->defects != 0) return end_with(kBatchSingle);
-  const u32 vertices = team.exclusive_scan(
-      n, [&](u32 i) { return used[i]; }, rank);
-  team.for_range(n, [&](u32 i) {
-    if (used[i]) list[rank[i]] = i;
-  });
-  if (team.leader()) {
-    const u32 words = 3 * faces + vertices;
-    const u32 word_at = atomic_add_u32(&out.used[0], words);
-    const u32 point_at = atomic_add_u32(&out.used[1], vertices);
-    const bool fits = word_at + words <= out.word_capacity && point_at + vertices <= out.coordinate_capacity;
-    *result = BatchResult{fits ? kBatchDone : kBatchRoom, faces, vertices, word_at, point_at};
-  }
-  team.barrier();
-  if (result->status != kBatchDone) return;
-  const BatchResult at = *result;
-  const RenumberCorners corners{m.fv, rank, out.words + at.word_at};
-  team.for_range(3 * faces, [&](u32 k) { corners(k); });
-  team.for_range(vertices, [&](u32 k) {
-    out.words[at.word_at + 3 * faces + k] = list[k];
-    out.coordinates[at.point_at + k] = cloud.points[list[k]];
-  });
-  team.barrier();
+  write_batch_hull(team, cloud, m.fv, faces, used, rank, list, out, result);
 }
 
 }  // namespace cudahull::resident

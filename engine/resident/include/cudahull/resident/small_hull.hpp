@@ -1,0 +1,187 @@
+// A small cloud's hull on one team, a furthest point at a time: QuickHull's own step (Barber, Dobkin and
+// Huhdanpaa 1996), which CudaHull runs for every face at once (section 3).  The batch's smallest clouds take
+// it on a warp each (cuda/batch_cuda.cu): a 100-point hull is some 40 such steps, and its few phases are a
+// short loop that many warps run from the instruction cache at once, where the resident iteration
+// (batch_hull()) is a kernel of 19,000 instructions that a warp a cloud left waiting on instruction fetch
+// (ncu: half the stall samples; docs/benchmarks.md, "Batched hulls").  HostTeam runs it in the CPU tests.
+//
+// design:
+//   tetrahedron  batch_tetrahedron() (section 3.1); each point goes to the first face it is strictly above
+//                (exact), each face keeps its furthest point (rank_key: ranking only)
+//   repeat       p = the furthest point of all (the largest key over the live faces); none: done
+//                seen: the faces p is above or on (orient3d >= 0, exact).  A vertex that p makes
+//                non-extreme has every face around it seen, so it leaves the mesh with them, and one that
+//                stays extreme keeps a face p does not see: the vertices stay the strictly extreme points
+//                of the points taken so far
+//                the horizon: the seen faces' edges whose other face is not seen, numbered in slot order
+//                a new face on each horizon edge and p, in the seen faces' slots (slot order), then the free
+//                list's, then new ones; linked across the horizon, and along it by the vertex each horizon
+//                edge starts and ends at (a horizon that is not one cycle through distinct vertices sends
+//                the cloud to the single-cloud path); the seen faces not reused go on the free list
+//                the seen faces' points: to the first new face they are strictly above, else inside
+//   finish       the live faces in slot order; the vertices in index order (write_batch_hull())
+// Every count and slot is a prefix sum in index order, so every team builds the same mesh.
+#pragma once
+
+#include "cudahull/resident/batch.hpp"
+
+namespace cudahull::resident {
+
+inline constexpr u32 kNoFace = 0xffffffffu;
+
+// The slot's arrays as this hull uses them (a face: 3 corners, 3 links, a live flag, a seen flag and its
+// rank, its furthest key; an edge: its horizon rank; a horizon edge: its start, end and outer edge).
+struct SmallHullArrays {
+  u32 *fv, *fn, *live, *seen, *seen_rank, *seen_list, *edge_rank, *horizon, *free_list;
+  u64 *furthest, *best;
+  u32 faces, free_room;  // face slots; free-list entries
+};
+CUDAHULL_HD inline SmallHullArrays small_hull_arrays(const BatchSlot& s) {
+  return SmallHullArrays{s.fv,   s.fn,       s.killer,       s.flags,      s.face_rank,
+                         s.look, s.fv_spare, s.fn_spare,     s.list,       s.extreme,
+                         s.claim, s.room.faces, s.room.work};
+}
+
+// The largest furthest key over the live faces (max_per_segment's op, one segment).
+struct FurthestOfAll {
+  const u32* live;
+  const u64* furthest;
+  u64* extreme;
+  CUDAHULL_HD u32 segment(u32) const { return 0; }
+  CUDAHULL_HD u64 key(u32 f) const { return live[f] ? furthest[f] : 0; }
+};
+
+// One cloud's hull on `team` in `slot`, as batch_hull()'s: the status into *result (and, when done, the
+// hull into `out`).  Per point it uses the cloud's face (the face it is above), index and index_spare (the
+// horizon edge starting and ending there), keep and point_rank (the finish's marks and ranks), face_spare.
+template <class Team, class Point>
+CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const BatchCloud<Point>& cloud,
+                            const BatchOutput<Point>& out, BatchResult* result) {
+  const u32 n = cloud.n;
+  const SmallHullArrays h = small_hull_arrays(slot);
+  u32 *face_of = cloud.face, *starts = cloud.index, *ends = cloud.index_spare;
+  u32* failed = &slot.st->defects;
+  const auto end_with = [&](u32 status) { end_batch_cloud(team, result, status); };
+  Vec3d centroid;
+  if (!batch_tetrahedron(team, slot, cloud, &centroid)) return end_with(kBatchSingle);
+  const auto at = [&](u32 i) { return to_vec3d(cloud.points[i]); };
+  // Point i to the first of `count` faces (slot_of(k)) it is strictly above, its key kept; else inside.
+  const auto assign = [&](u32 i, u32 count, const auto& slot_of) {
+    const Vec3d q = at(i);
+    for (u32 k = 0; k < count; ++k) {
+      const u32 f = slot_of(k);
+      const Vec3d a = at(h.fv[3 * f]), b = at(h.fv[3 * f + 1]), c = at(h.fv[3 * f + 2]);
+      if (orient3d(a, b, c, q) > 0) {
+        face_of[i] = f;
+        atomic_max_u64(&h.furthest[f], rank_key(orient3d_fast(a, b, c, q), i));
+        return;
+      }
+    }
+    face_of[i] = kNoFace;
+  };
+  if (team.leader()) *failed = 0;
+  team.barrier();
+  team.for_range(n, [&](u32 i) { assign(i, 4, [](u32 k) { return k; }); });
+  u32 faces = 4, free_count = 0;  // the slots in use (live or free), the free list's length: every thread's
+  while (true) {
+    team.barrier();
+    if (team.leader()) *h.best = 0;
+    team.barrier();
+    team.max_per_segment(faces, FurthestOfAll{h.live, h.furthest, h.best});
+    team.barrier();
+    const u64 best = *h.best;
+    if (best == 0) break;
+    const u32 p = rank_key_index(best);
+    const Vec3d pp = at(p);
+    team.for_range(faces, [&](u32 f) {
+      h.seen[f] = h.live[f] &&
+                  orient3d(at(h.fv[3 * f]), at(h.fv[3 * f + 1]), at(h.fv[3 * f + 2]), pp) >= 0;
+    });
+    const u32 seen = team.exclusive_scan(
+        faces, [&](u32 f) { return h.seen[f]; }, h.seen_rank);
+    team.for_range(faces, [&](u32 f) {
+      if (h.seen[f]) h.seen_list[h.seen_rank[f]] = f;
+    });
+    team.barrier();
+    // The seen faces' edges (3 a seen face, in slot order) on the horizon.
+    const auto edge_of = [&](u32 x) { return 3 * h.seen_list[x / 3] + x % 3; };
+    const auto on_horizon = [&](u32 x) { return !h.seen[h.fn[edge_of(x)]]; };
+    const u32 edges = team.exclusive_scan(3 * seen, on_horizon, h.edge_rank);
+    const u32 fresh = edges > seen + free_count ? edges - seen - free_count : 0;
+    if (faces + fresh > h.faces || edges > h.faces ||
+        (seen > edges && free_count + seen - edges > h.free_room))
+      return end_with(kBatchRoom);
+    // Read before any face is rewritten: the horizon (start, end, outer edge).
+    team.for_range(3 * seen, [&](u32 x) {
+      if (!on_horizon(x)) return;
+      const u32 e = edge_of(x), k = h.edge_rank[x], f = e / 3, g = h.fn[e];
+      u32 outer = 3 * g;
+      while (outer < 3 * g + 2 && h.fn[outer] != f)
+        ++outer;
+      const u32 a = h.fv[e], b = h.fv[3 * f + (e % 3 + 1) % 3];
+      h.horizon[3 * k] = a;
+      h.horizon[3 * k + 1] = b;
+      h.horizon[3 * k + 2] = outer;
+      starts[a] = k;
+      ends[b] = k;
+    });
+    team.barrier();
+    const auto slot_of = [&](u32 k) {
+      if (k < seen) return h.seen_list[k];
+      k -= seen;
+      return k < free_count ? h.free_list[free_count - 1 - k] : faces + (k - free_count);
+    };
+    // The new faces (a, b, p), each in the seen face's orientation of its horizon edge.
+    team.for_range(edges, [&](u32 k) {
+      const u32 s = slot_of(k), a = h.horizon[3 * k], b = h.horizon[3 * k + 1], outer = h.horizon[3 * k + 2];
+      const u32 next = starts[b], before = ends[a];
+      if (starts[a] != k || ends[b] != k || next >= edges || h.horizon[3 * next] != b || before >= edges ||
+          h.horizon[3 * before + 1] != a)
+        *failed = 1;  // not one cycle through distinct vertices
+      h.fv[3 * s] = a;
+      h.fv[3 * s + 1] = b;
+      h.fv[3 * s + 2] = p;
+      h.fn[3 * s] = outer / 3;
+      h.fn[outer] = s;
+      h.fn[3 * s + 1] = next < edges ? slot_of(next) : s;
+      h.fn[3 * s + 2] = before < edges ? slot_of(before) : s;
+      h.live[s] = 1;
+      h.furthest[s] = 0;
+    });
+    team.for_range(seen > edges ? seen - edges : 0, [&](u32 d) {
+      const u32 s = h.seen_list[edges + d];
+      h.live[s] = 0;
+      h.free_list[free_count + d] = s;
+    });
+    team.barrier();
+    if (*failed) return end_with(kBatchSingle);
+    // The seen faces' points, to the new faces (slots as before this step's counts change).
+    team.for_range(n, [&](u32 i) {
+      const u32 f = face_of[i];
+      if (f == kNoFace || !h.seen[f]) return;
+      if (i == p) {
+        face_of[i] = kNoFace;
+        return;
+      }
+      assign(i, edges, slot_of);
+    });
+    faces += fresh;
+    free_count = seen > edges ? free_count + (seen - edges) : free_count - (edges - seen - fresh);
+  }
+  // The finish: the live faces in slot order, their corners marking the vertices.
+  u32 *used = cloud.keep, *rank = cloud.point_rank, *list = cloud.face_spare, *corners = h.edge_rank;
+  team.for_range(n, [&](u32 i) { used[i] = 0; });
+  const u32 live = team.exclusive_scan(
+      faces, [&](u32 f) { return h.live[f] ? 1u : 0u; }, h.seen_rank);  // the tetrahedron's: kAlive
+  team.for_range(faces, [&](u32 f) {
+    if (!h.live[f]) return;
+    for (int j = 0; j < 3; ++j) {
+      corners[3 * h.seen_rank[f] + j] = h.fv[3 * f + j];
+      used[h.fv[3 * f + j]] = 1;
+    }
+  });
+  team.barrier();
+  write_batch_hull(team, cloud, corners, live, used, rank, list, out, result);
+}
+
+}  // namespace cudahull::resident
