@@ -63,6 +63,10 @@ constexpr std::size_t kMidBlockPoints = 256;
 // faster than on blocks, 50,000 of 200 1.4 times, 30,000 of 400 1.1 times slower, 10,000 of 1,000 2.6
 // times slower (docs/benchmarks.md, "Batched hulls").
 constexpr std::size_t kWarpPoints = 256;
+// The clouds of at most this many points that a block sent to the single-cloud path take a warp first
+// (small_hull(), with room for every point): 300 integer grids of 1,000 points took 0.7 ms there against
+// 230 ms on the single-cloud path, one after another (docs/benchmarks.md, "Batched hulls").
+constexpr u32 kRetryOnWarpPoints = 4096;
 
 void check(cudaError_t e, const char* what) {
   if (e != cudaSuccess) throw_cuda_error(kWho, what, e);
@@ -296,7 +300,8 @@ std::vector<BatchResult> run_pass(const Point* points, std::size_t count, const 
   a.offsets = device_offsets;
   a.count = static_cast<u32>(listed.size());
   a.points_total = static_cast<u32>(count);
-  const BatchRoom room = resident::batch_room(vertices);
+  const BatchRoom room =
+      kKind == TeamKind::kWarp ? resident::small_hull_room(vertices) : resident::batch_room(vertices);
   BatchSlot& s = a.slot;
   s.room = room;
   const std::size_t f = std::size_t{slots} * room.faces, words = std::size_t{slots} * (room.faces / 32 + 1);
@@ -454,40 +459,42 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
     check(cudaMemcpy(device_offsets, narrow.data(), narrow.size() * sizeof(u32), cudaMemcpyHostToDevice),
           "uploading the offsets");
   }
-  Group again, again_on_warps;  // the second pass's clouds, by the kind of team of their first
+  Group again, on_warps;  // the later passes' clouds: on blocks, with room for every point; on warps
   const auto pass = [&](auto kind, const Group& group) {
     return run_pass<decltype(kind)::value>(device_points, count, device_offsets, group.listed, group.vertices,
                                            group.word_room, group.coordinate_room, run, held);
   };
-  const auto first_pass = [&](auto kind, const Group& group) {
+  // A pass, and where its clouds that did not end go next (from a first pass only, room on blocks).
+  const auto pass_and_route = [&](auto kind, const Group& group, bool first) {
     if (group.listed.empty()) return;
     const std::vector<BatchResult> results = pass(kind, group);
+    const bool warps = decltype(kind)::value == TeamKind::kWarp;
     for (std::size_t k = 0; k < group.listed.size(); ++k) {
-      if (results[k].status != resident::kBatchRoom) continue;
       const u32 c = group.listed[k], n = static_cast<u32>(offsets[c + 1] - offsets[c]);
-      // Room for every point a vertex costs a slot some 900 bytes a point: a larger cloud takes the
-      // single-cloud path, which grows its room as it goes.
-      if (n > kSecondPassPoints) continue;
-      if (n <= warp_points)
-        again_on_warps.add(c, n);
-      else
-        again.add(c, n);
+      if (results[k].status == resident::kBatchRoom && !warps) {
+        // Room for every point a vertex costs a slot some 900 bytes a point: a larger cloud takes the
+        // single-cloud path, which grows its room as it goes.
+        if (first && n <= kSecondPassPoints) again.add(c, n);
+      } else if (results[k].status == resident::kBatchRoom ||
+                 (results[k].status == resident::kBatchSingle && !warps && n <= kRetryOnWarpPoints)) {
+        // A block's stall or defect (coplanar facets the rounds cannot finish: integer grids, cylinders)
+        // is no obstacle to small_hull(): the warps take it before the single-cloud path would.
+        on_warps.add(c, n);
+      }
     }
   };
-  first_pass(std::integral_constant<TeamKind, TeamKind::kWarp>{}, groups[0]);
-  first_pass(std::integral_constant<TeamKind, TeamKind::kBlock>{}, groups[1]);
-  first_pass(std::integral_constant<TeamKind, TeamKind::kMidBlock>{}, groups[2]);
-  first_pass(std::integral_constant<TeamKind, TeamKind::kLargeBlock>{}, groups[3]);
-  run.clouds_in_second_pass = again.listed.size() + again_on_warps.listed.size();
-  if (!again_on_warps.listed.empty())
-    pass(std::integral_constant<TeamKind, TeamKind::kWarp>{}, again_on_warps);
+  pass_and_route(std::integral_constant<TeamKind, TeamKind::kWarp>{}, groups[0], true);
+  pass_and_route(std::integral_constant<TeamKind, TeamKind::kBlock>{}, groups[1], true);
+  pass_and_route(std::integral_constant<TeamKind, TeamKind::kMidBlock>{}, groups[2], true);
+  pass_and_route(std::integral_constant<TeamKind, TeamKind::kLargeBlock>{}, groups[3], true);
+  run.clouds_in_second_pass = again.listed.size();
   // Room for every point: the blocks of the largest of its clouds' kind (below kLargeBlockPoints).
-  if (!again.listed.empty()) {
-    if (again.vertices > mid_points)
-      pass(std::integral_constant<TeamKind, TeamKind::kMidBlock>{}, again);
-    else
-      pass(std::integral_constant<TeamKind, TeamKind::kBlock>{}, again);
-  }
+  if (again.vertices > mid_points)
+    pass_and_route(std::integral_constant<TeamKind, TeamKind::kMidBlock>{}, again, false);
+  else
+    pass_and_route(std::integral_constant<TeamKind, TeamKind::kBlock>{}, again, false);
+  run.clouds_in_second_pass += on_warps.listed.size();
+  if (!on_warps.listed.empty()) pass(std::integral_constant<TeamKind, TeamKind::kWarp>{}, on_warps);
   return run;
 }
 

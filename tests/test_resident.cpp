@@ -237,8 +237,10 @@ struct HostBatchSlot {
   resident::RoundsState st{};
   std::vector<Point> coordinates;
   resident::BatchSlot slot{};
-  explicit HostBatchSlot(resident::u32 vertices, std::size_t points) {
-    const resident::BatchRoom room = resident::batch_room(vertices);
+  // Room for a hull of `vertices` vertices, as batch_hull()'s slots have it, or small_hull()'s (`small`).
+  HostBatchSlot(resident::u32 vertices, std::size_t points, bool small = false) {
+    const resident::BatchRoom room =
+        small ? resident::small_hull_room(vertices) : resident::batch_room(vertices);
     for (auto* b : {&fv, &fn, &fv_spare, &fn_spare})
       b->assign(3 * room.faces, 0xdeadbeefu);  // stale data, as a slot reused on the device holds
     for (auto* b : {&killer, &look, &flags, &face_rank})
@@ -295,7 +297,7 @@ void expect_batch_exact(const std::vector<Point>& points, const std::string& wha
                         bool may_need_repair = false, bool small = false) {
   const BasicHullMesh<Point> oracle = exact_hull(points);
   const auto n = static_cast<resident::u32>(points.size());
-  HostBatchSlot<Point> first(resident::batch_vertices(n, false), points.size());
+  HostBatchSlot<Point> first(resident::batch_vertices(n, false), points.size(), small);
   // The slot served another cloud first (its claims, stamps and state must not leak into this one).
   const std::vector<Point3> other =
       generate_points(Distribution::kBall, std::min<std::size_t>(n, 200), 1 + n);
@@ -305,7 +307,7 @@ void expect_batch_exact(const std::vector<Point>& points, const std::string& wha
   first.run(previous, small);
   resident::BatchResult result = first.run(points, small);
   HostBatchSlot<Point>* used = &first;
-  HostBatchSlot<Point> every(n, points.size());
+  HostBatchSlot<Point> every(n, points.size(), small);
   if (result.status == resident::kBatchRoom) {
     ++room_asked;
     result = every.run(points, small);

@@ -37,9 +37,14 @@ struct SmallHullArrays {
   u32 faces, free_room;  // face slots; free-list entries
 };
 CUDAHULL_HD inline SmallHullArrays small_hull_arrays(const BatchSlot& s) {
-  return SmallHullArrays{s.fv,   s.fn,       s.killer,       s.flags,      s.face_rank,
-                         s.look, s.fv_spare, s.fn_spare,     s.list,       s.extreme,
-                         s.claim, s.room.faces, s.room.work};
+  return SmallHullArrays{s.fv,       s.fn,   s.killer,  s.flags, s.face_rank,  s.look,     s.fv_spare,
+                         s.fn_spare, s.list, s.extreme, s.claim, s.room.faces, s.room.work};
+}
+
+// A team's room for a hull of up to v vertices: a mesh of at most 2 v - 4 live faces, and no more slots in
+// use than it ever had live (the free ones are taken first); the free list in `list`.
+CUDAHULL_HD inline BatchRoom small_hull_room(u32 v) {
+  return BatchRoom{2 * v + 64, 1, 2 * v + 64};
 }
 
 // The largest furthest key over the live faces (max_per_segment's op, one segment).
@@ -94,8 +99,7 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
     const u32 p = rank_key_index(best);
     const Vec3d pp = at(p);
     team.for_range(faces, [&](u32 f) {
-      h.seen[f] = h.live[f] &&
-                  orient3d(at(h.fv[3 * f]), at(h.fv[3 * f + 1]), at(h.fv[3 * f + 2]), pp) >= 0;
+      h.seen[f] = h.live[f] && orient3d(at(h.fv[3 * f]), at(h.fv[3 * f + 1]), at(h.fv[3 * f + 2]), pp) >= 0;
     });
     const u32 seen = team.exclusive_scan(
         faces, [&](u32 f) { return h.seen[f]; }, h.seen_rank);
