@@ -178,13 +178,22 @@ __device__ BatchSlot slot_of(const PassArgs<Point>& a, u32 s) {
 }
 
 // Listed cloud k's hull on `team` in `slot`: the resident iteration (batch_hull()), or a furthest point at
-// a time (kSmall: small_hull()).
-template <bool kSmall = false, class Team, class Point>
-__device__ void hull_listed(const Team& team, const BatchSlot& slot, const PassArgs<Point>& a, u32 k) {
+// a time (kSmall: small_hull(); its points copied to `staged` first where they fit, kStagedPoints).
+template <bool kSmall = false, u32 kStagedPoints = 0, class Team, class Point>
+__device__ void hull_listed(const Team& team, const BatchSlot& slot, const PassArgs<Point>& a, u32 k,
+                            Point* staged = nullptr) {
   const u32 c = a.clouds[k], begin = a.offsets[c], n = a.offsets[c + 1] - begin;
   const std::size_t at = begin, total = a.points_total;
   u32* w = a.point_words;
-  const BatchCloud<Point> cloud{a.points + at,
+  const Point* points = a.points + at;
+  if constexpr (kStagedPoints > 0) {
+    if (n <= kStagedPoints) {
+      team.for_range(n, [&](u32 i) { staged[i] = points[i]; });
+      team.barrier();
+      points = staged;
+    }
+  }
+  const BatchCloud<Point> cloud{points,
                                 n,
                                 w + at,
                                 w + total + at,
@@ -228,6 +237,9 @@ __global__ void __launch_bounds__(Block, kMinBlocks) batch_kernel(PassArgs<Point
 template <class Point, int kWarps, int kMinBlocks>
 __global__ void __launch_bounds__(32 * kWarps, kMinBlocks) batch_warp_kernel(PassArgs<Point> a) {
   __shared__ resident::RoundsState states[kWarps];  // as batch_kernel's: the SM's own memory
+  // Each warp's cloud in the SM's own memory: every step reads the corners of every face (ncu: the loads'
+  // latency, a third of the stall samples from global memory).
+  __shared__ Point staged[kWarps][kWarpPoints];
   const u32 warp = threadIdx.x / 32, lane = threadIdx.x % 32;
   BatchSlot slot = slot_of(a, blockIdx.x * kWarps + warp);
   slot.st = &states[warp];
@@ -237,7 +249,7 @@ __global__ void __launch_bounds__(32 * kWarps, kMinBlocks) batch_warp_kernel(Pas
     if (lane == 0) k = atomicAdd(a.next, 1u);
     k = __shfl_sync(0xffffffffu, k, 0);
     if (k >= a.count) return;
-    hull_listed<true>(team, slot, a, k);
+    hull_listed<true, kWarpPoints>(team, slot, a, k, staged[warp]);
   }
 }
 

@@ -221,6 +221,44 @@ struct WarpTeam {
   __device__ void max_per_segment(u32 n, const Op& op) const {
     BlockTeam<32>::max_by_warps(lane(), 32, n, op);
   }
+  // The largest key(i) over i < n (0 where there is none), to every lane: a lane's own, then the warp's in
+  // two reductions (the high words, then the low words that share the largest).
+  template <class Key>
+  __device__ u64 max_of(u32 n, const Key& key) const {
+    u64 best = 0;
+    for (u32 i = lane(); i < n; i += 32) {
+      const u64 k = key(i);
+      best = k > best ? k : best;
+    }
+#if __CUDA_ARCH__ >= 800
+    const u32 high = __reduce_max_sync(0xffffffffu, static_cast<u32>(best >> 32));
+    const u32 low =
+        __reduce_max_sync(0xffffffffu, static_cast<u32>(best >> 32) == high ? static_cast<u32>(best) : 0u);
+    return (static_cast<u64>(high) << 32) | low;
+#else
+    for (int offset = 16; offset > 0; offset /= 2) {
+      const u64 other = __shfl_xor_sync(0xffffffffu, best, offset);
+      best = other > best ? other : best;
+    }
+    return best;
+#endif
+  }
+  // An exclusive count of the indices below n that pass (pred(i), once each), in index order, into `out`;
+  // the total to every lane.  A ballot a 32: the flags' prefix sum without a scan.
+  template <class Pred>
+  __device__ u32 count_scan(u32 n, const Pred& pred, u32* out) const {
+    __syncwarp();  // what pred reads, written by the warp before
+    const unsigned below = (1u << lane()) - 1;
+    u32 carry = 0;
+    for (u32 base = 0; base < n; base += 32) {
+      const u32 i = base + lane();
+      const unsigned passed = __ballot_sync(0xffffffffu, i < n && pred(i));
+      if (i < n) out[i] = carry + __popc(passed & below);
+      carry += __popc(passed);
+    }
+    __syncwarp();
+    return carry;
+  }
   // 32 values at a time (CUB's WarpScan), each chunk after the ones before it.
   template <class Value>
   __device__ u32 exclusive_scan(u32 n, const Value& value, u32* out) const {

@@ -189,6 +189,22 @@ struct HostTeam {
     }
     return sum;
   }
+  // small_hull()'s two (and WarpTeam's): the largest key(i) over i < n (0 where there is none), and the
+  // exclusive count of the indices below n that pass.
+  template <class Key>
+  CUDAHULL_HD u64 max_of(u32 n, const Key& key) const {
+    u64 best = 0;
+    for (u32 i = 0; i < n; ++i) {
+      const u64 k = key(i);
+      best = k > best ? k : best;
+    }
+    return best;
+  }
+  template <class Pred>
+  CUDAHULL_HD u32 count_scan(u32 n, const Pred& pred, u32* out) const {
+    return exclusive_scan(
+        n, [&](u32 i) { return pred(i) ? 1u : 0u; }, out);
+  }
 };
 
 }  // namespace cudahull::resident

@@ -33,12 +33,12 @@ inline constexpr u32 kNoFace = 0xffffffffu;
 // rank, its furthest key; an edge: its horizon rank; a horizon edge: its start, end and outer edge).
 struct SmallHullArrays {
   u32 *fv, *fn, *live, *seen, *seen_rank, *seen_list, *edge_rank, *horizon, *free_list;
-  u64 *furthest, *best;
+  u64* furthest;
   u32 faces, free_room;  // face slots; free-list entries
 };
 CUDAHULL_HD inline SmallHullArrays small_hull_arrays(const BatchSlot& s) {
-  return SmallHullArrays{s.fv,       s.fn,   s.killer,  s.flags, s.face_rank,  s.look,     s.fv_spare,
-                         s.fn_spare, s.list, s.extreme, s.claim, s.room.faces, s.room.work};
+  return SmallHullArrays{s.fv,       s.fn,       s.killer, s.flags,   s.face_rank,  s.look,
+                         s.fv_spare, s.fn_spare, s.list,   s.extreme, s.room.faces, s.room.work};
 }
 
 // A team's room for a hull of up to v vertices: a mesh of at most 2 v - 4 live faces, and no more slots in
@@ -46,15 +46,6 @@ CUDAHULL_HD inline SmallHullArrays small_hull_arrays(const BatchSlot& s) {
 CUDAHULL_HD inline BatchRoom small_hull_room(u32 v) {
   return BatchRoom{2 * v + 64, 1, 2 * v + 64};
 }
-
-// The largest furthest key over the live faces (max_per_segment's op, one segment).
-struct FurthestOfAll {
-  const u32* live;
-  const u64* furthest;
-  u64* extreme;
-  CUDAHULL_HD u32 segment(u32) const { return 0; }
-  CUDAHULL_HD u64 key(u32 f) const { return live[f] ? furthest[f] : 0; }
-};
 
 // One cloud's hull on `team` in `slot`, as batch_hull()'s: the status into *result (and, when done, the
 // hull into `out`).  Per point it uses the cloud's face (the face it is above), index and index_spare (the
@@ -90,19 +81,18 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
   u32 faces = 4, free_count = 0;  // the slots in use (live or free), the free list's length: every thread's
   while (true) {
     team.barrier();
-    if (team.leader()) *h.best = 0;
-    team.barrier();
-    team.max_per_segment(faces, FurthestOfAll{h.live, h.furthest, h.best});
-    team.barrier();
-    const u64 best = *h.best;
+    const u64 best = team.max_of(faces, [&](u32 f) { return h.live[f] ? h.furthest[f] : 0; });
     if (best == 0) break;
     const u32 p = rank_key_index(best);
     const Vec3d pp = at(p);
-    team.for_range(faces, [&](u32 f) {
-      h.seen[f] = h.live[f] && orient3d(at(h.fv[3 * f]), at(h.fv[3 * f + 1]), at(h.fv[3 * f + 2]), pp) >= 0;
-    });
-    const u32 seen = team.exclusive_scan(
-        faces, [&](u32 f) { return h.seen[f]; }, h.seen_rank);
+    const u32 seen = team.count_scan(
+        faces,
+        [&](u32 f) {
+          h.seen[f] =
+              h.live[f] && orient3d(at(h.fv[3 * f]), at(h.fv[3 * f + 1]), at(h.fv[3 * f + 2]), pp) >= 0;
+          return h.seen[f] != 0;
+        },
+        h.seen_rank);
     team.for_range(faces, [&](u32 f) {
       if (h.seen[f]) h.seen_list[h.seen_rank[f]] = f;
     });
@@ -110,7 +100,7 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
     // The seen faces' edges (3 a seen face, in slot order) on the horizon.
     const auto edge_of = [&](u32 x) { return 3 * h.seen_list[x / 3] + x % 3; };
     const auto on_horizon = [&](u32 x) { return !h.seen[h.fn[edge_of(x)]]; };
-    const u32 edges = team.exclusive_scan(3 * seen, on_horizon, h.edge_rank);
+    const u32 edges = team.count_scan(3 * seen, on_horizon, h.edge_rank);
     const u32 fresh = edges > seen + free_count ? edges - seen - free_count : 0;
     if (faces + fresh > h.faces || edges > h.faces ||
         (seen > edges && free_count + seen - edges > h.free_room))
@@ -175,8 +165,8 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
   // The finish: the live faces in slot order, their corners marking the vertices.
   u32 *used = cloud.keep, *rank = cloud.point_rank, *list = cloud.face_spare, *corners = h.edge_rank;
   team.for_range(n, [&](u32 i) { used[i] = 0; });
-  const u32 live = team.exclusive_scan(
-      faces, [&](u32 f) { return h.live[f] ? 1u : 0u; }, h.seen_rank);  // the tetrahedron's: kAlive
+  const u32 live = team.count_scan(
+      faces, [&](u32 f) { return h.live[f] != 0; }, h.seen_rank);  // the tetrahedron's: kAlive
   team.for_range(faces, [&](u32 f) {
     if (!h.live[f]) return;
     for (int j = 0; j < 3; ++j) {
