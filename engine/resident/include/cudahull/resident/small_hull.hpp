@@ -18,7 +18,8 @@
 //                list's, then new ones; linked across the horizon, and along it by the vertex each horizon
 //                edge starts and ends at (a horizon that is not one cycle through distinct vertices sends
 //                the cloud to the single-cloud path); the seen faces not reused go on the free list
-//                the seen faces' points: to the first new face they are strictly above, else inside
+//                the seen faces' points: to the first new face they are strictly above (a test a pair of
+//                point and new face), else inside
 //   finish       the live faces in slot order; the vertices in index order (write_batch_hull())
 // Every count and slot is a prefix sum in index order, so every team builds the same mesh.
 #pragma once
@@ -49,13 +50,16 @@ CUDAHULL_HD inline BatchRoom small_hull_room(u32 v) {
 
 // One cloud's hull on `team` in `slot`, as batch_hull()'s: the status into *result (and, when done, the
 // hull into `out`).  Per point it uses the cloud's face (the face it is above), index and index_spare (the
-// horizon edge starting and ending there), keep and point_rank (the finish's marks and ranks), face_spare.
+// horizon edge starting and ending there), keep, point_rank and face_spare (a step's points to place; the
+// finish's marks, ranks and list).
 template <class Team, class Point>
 CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const BatchCloud<Point>& cloud,
                             const BatchOutput<Point>& out, BatchResult* result) {
   const u32 n = cloud.n;
   const SmallHullArrays h = small_hull_arrays(slot);
   u32 *face_of = cloud.face, *starts = cloud.index, *ends = cloud.index_spare;
+  // A step's points to place: their ranks, list and first new face above (the finish's arrays until then).
+  u32 *mover_rank = cloud.keep, *mover = cloud.point_rank, *first_above = cloud.face_spare;
   u32* failed = &slot.st->defects;
   const auto end_with = [&](u32 status) { end_batch_cloud(team, result, status); };
   Vec3d centroid;
@@ -149,15 +153,42 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
     });
     team.barrier();
     if (*failed) return end_with(kBatchSingle);
-    // The seen faces' points, to the new faces (slots as before this step's counts change).
+    // The seen faces' points (but p), listed, each to the first new face it is strictly above: a test a
+    // (point, new face) pair, the least new face kept, so that no lane waits on another's long search
+    // (slots as before this step's counts change).
+    const u32 movers = team.count_scan(
+        n,
+        [&](u32 i) {
+          const u32 f = face_of[i];
+          return f != kNoFace && h.seen[f] && i != p;
+        },
+        mover_rank);
     team.for_range(n, [&](u32 i) {
       const u32 f = face_of[i];
-      if (f == kNoFace || !h.seen[f]) return;
-      if (i == p) {
-        face_of[i] = kNoFace;
+      if (f != kNoFace && h.seen[f] && i != p) {
+        mover[mover_rank[i]] = i;
+        first_above[mover_rank[i]] = edges;
+      }
+    });
+    if (team.leader()) face_of[p] = kNoFace;
+    team.barrier();
+    team.for_range(movers * edges, [&](u32 t) {
+      const u32 x = t / edges, k = t % edges, f = slot_of(k);
+      if (orient3d(at(h.fv[3 * f]), at(h.fv[3 * f + 1]), at(h.fv[3 * f + 2]), at(mover[x])) > 0)
+        atomic_min_u32(&first_above[x], k);
+    });
+    team.barrier();
+    team.for_range(movers, [&](u32 x) {
+      const u32 i = mover[x], k = first_above[x];
+      if (k == edges) {
+        face_of[i] = kNoFace;  // inside
         return;
       }
-      assign(i, edges, slot_of);
+      const u32 f = slot_of(k);
+      face_of[i] = f;
+      atomic_max_u64(
+          &h.furthest[f],
+          rank_key(orient3d_fast(at(h.fv[3 * f]), at(h.fv[3 * f + 1]), at(h.fv[3 * f + 2]), at(i)), i));
     });
     faces += fresh;
     free_count = seen > edges ? free_count + (seen - edges) : free_count - (edges - seen - fresh);

@@ -70,6 +70,14 @@ CUDAHULL_HD inline void atomic_max_u64(u64* at, u64 value) {
 #endif
 }
 
+CUDAHULL_HD inline void atomic_min_u32(u32* at, u32 value) {
+#if defined(__CUDA_ARCH__)
+  atomicMin(at, value);
+#else
+  if (value < *at) *at = value;
+#endif
+}
+
 CUDAHULL_HD inline u32 atomic_add_u32(u32* at, u32 value) {
 #if defined(__CUDA_ARCH__)
   return atomicAdd(at, value);
