@@ -13,8 +13,10 @@
 //     the largest hull its launch expects (batch_vertices(); a warp's: every point); a team takes clouds one
 //     after another from a counter (a large one does not hold the others up).  Per point, the iteration's own
 //     arrays (six words) at the cloud's place in the packed points
-//   pass 2: the clouds that asked for more room, with room for every point a vertex (up to
+//   pass 2: the clouds a block had no room for, on blocks with room for every point a vertex (up to
 //     kSecondPassPoints points; larger ones take the single-cloud path)
+//   pass 3: the clouds a block sent to the single-cloud path (a stall, or a defect the rounds left on
+//     coplanar facets), up to kRetryOnWarpPoints points, on warps
 //   read back: the results alone (status and sizes a cloud); the hulls stay on the device (BatchRun's
 //     outputs)
 //   describe (describe_batch_cuda()): a warp a done cloud, into the packed result's columns at the offsets
@@ -58,10 +60,10 @@ constexpr std::size_t kLargeBlockPoints = 16384;
 // (TeamKind::kMidBlock; CUDAHULL_BATCH_MID_BLOCK_POINTS): from 300 points on they ran 4-13% faster than
 // at five, the same at 200 (docs/benchmarks.md, "Batched hulls").
 constexpr std::size_t kMidBlockPoints = 256;
-// The clouds of at most this many points take a warp each (TeamKind::kWarp; CUDAHULL_BATCH_WARP_POINTS,
-// 0: none).  small_hull() tests every face and point at each step: 100,000 balls of 100 ran 2.3 times
-// faster than on blocks, 50,000 of 200 1.4 times, 30,000 of 400 1.1 times slower, 10,000 of 1,000 2.6
-// times slower (docs/benchmarks.md, "Batched hulls").
+// The clouds of at most this many points take a warp each (TeamKind::kWarp; CUDAHULL_BATCH_WARP_POINTS, up
+// to kRetryOnWarpPoints; 0: no cloud on a warp, no retry either).  small_hull() tests every face and point at
+// each step: 100,000 balls of 100 ran 2.3 times faster than on blocks, 50,000 of 200 1.4 times, 30,000 of
+// 400 1.1 times slower, 10,000 of 1,000 2.6 times slower (docs/benchmarks.md, "Batched hulls").
 constexpr std::size_t kWarpPoints = 256;
 // The clouds of at most this many points that a block sent to the single-cloud path take a warp first
 // (small_hull(), with room for every point): 300 integer grids of 1,000 points took 0.7 ms there against
@@ -138,8 +140,8 @@ class BatchMemory {
   std::size_t &held_, &peak_;
 };
 
-// Everything a pass's blocks share: the points and offsets, the clouds listed for the pass, the slots (one
-// a block) and the per-point arrays, the output and the results.
+// Everything a pass's teams share: the points and offsets, the clouds listed for the pass, the slots (one
+// a team) and the per-point arrays, the output and the results.
 template <class Point>
 struct PassArgs {
   const Point* points;
@@ -243,7 +245,7 @@ __global__ void __launch_bounds__(32 * kWarps, kMinBlocks) batch_warp_kernel(Pas
   const u32 warp = threadIdx.x / 32, lane = threadIdx.x % 32;
   BatchSlot slot = slot_of(a, blockIdx.x * kWarps + warp);
   slot.st = &states[warp];
-  const resident::WarpTeam team{slot.st};
+  const resident::WarpTeam team{};
   while (true) {
     u32 k = 0;
     if (lane == 0) k = atomicAdd(a.next, 1u);
@@ -449,14 +451,17 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   Group groups[4];  // TeamKind's order
   const std::size_t large_points = env_points("CUDAHULL_BATCH_LARGE_BLOCK_POINTS", kLargeBlockPoints);
   const std::size_t mid_points = env_points("CUDAHULL_BATCH_MID_BLOCK_POINTS", kMidBlockPoints);
-  const std::size_t warp_points = env_points("CUDAHULL_BATCH_WARP_POINTS", kWarpPoints);
+  // Above kRetryOnWarpPoints a warp's steps are too long (and its pairs of points and faces past 32 bits).
+  const std::size_t warp_points =
+      std::min<std::size_t>(env_points("CUDAHULL_BATCH_WARP_POINTS", kWarpPoints), kRetryOnWarpPoints);
   bool any = false;
   for (std::size_t c = 0; c < clouds; ++c) {
     const std::size_t n = offsets[c + 1] - offsets[c];
     if (n < 4 || n > largest || (skip && skip[c])) continue;
     const int kind = n <= warp_points ? 0 : n > large_points ? 3 : n > mid_points ? 2 : 1;
-    // A warp's cloud has room for every point a vertex at once: its room is hardly larger than a ball's,
-    // and a sphere's hull needs no second pass.
+    // A warp's cloud has room for every point a vertex at once (7 n words of output, where a block's
+    // clouds have 7 batch_vertices(n): 0.96 of that at 100 points, 0.56 at 256; and small_hull_room(n), a
+    // third of a block's slot): a sphere's hull needs no second pass.
     groups[kind].add(static_cast<u32>(c), resident::batch_vertices(static_cast<u32>(n), kind == 0));
     any = true;
   }
@@ -487,8 +492,8 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
         // Room for every point a vertex costs a slot some 900 bytes a point: a larger cloud takes the
         // single-cloud path, which grows its room as it goes.
         if (first && n <= kSecondPassPoints) again.add(c, n);
-      } else if (results[k].status == resident::kBatchRoom ||
-                 (results[k].status == resident::kBatchSingle && !warps && n <= kRetryOnWarpPoints)) {
+      } else if (results[k].status == resident::kBatchSingle && !warps && warp_points != 0 &&
+                 n <= kRetryOnWarpPoints) {
         // A block's stall or defect (coplanar facets the rounds cannot finish: integer grids, cylinders)
         // is no obstacle to small_hull(): the warps take it before the single-cloud path would.
         on_warps.add(c, n);
@@ -505,7 +510,6 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
     pass_and_route(std::integral_constant<TeamKind, TeamKind::kMidBlock>{}, again, false);
   else
     pass_and_route(std::integral_constant<TeamKind, TeamKind::kBlock>{}, again, false);
-  run.clouds_in_second_pass += on_warps.listed.size();
   if (!on_warps.listed.empty()) pass(std::integral_constant<TeamKind, TeamKind::kWarp>{}, on_warps);
   return run;
 }

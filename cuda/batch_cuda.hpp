@@ -1,7 +1,8 @@
-// Batched hulls on the device (issue 27): every small cloud of a batch on one block, each running the
-// resident engine's own iteration (cudahull/resident/batch.hpp), in one launch (two where some clouds are
-// large enough for a block of 512 threads), and one more for the clouds that asked for more room than the
-// first pass gave them; then the hulls described on the device, into the packed result, where they stay.
+// Batched hulls on the device (issue 27): every small cloud of a batch on one team, in a launch a kind of
+// team: a warp a cloud of up to 256 points, a furthest point at a time (cudahull/resident/small_hull.hpp), a
+// block a larger cloud, running the resident engine's own iteration (cudahull/resident/batch.hpp); one more
+// launch for the clouds a block had no room for, and one on warps for those a block sent to the single-cloud
+// path; then the hulls described on the device, into the packed result, where they stay.
 #pragma once
 
 #include <cstddef>
@@ -24,8 +25,8 @@ struct BatchRun {
   // single-cloud path's local repair mends).
   std::vector<std::uint8_t> done;
   std::vector<std::uint32_t> faces, vertices;  // per done cloud, its hull's
-  unsigned passes = 0;                         // launches (one more for the clouds short of room)
-  std::size_t clouds_in_second_pass = 0;
+  unsigned passes = 0;                         // launches (a kind of team each, and the later passes')
+  std::size_t clouds_in_second_pass = 0;       // on blocks, with room for every point
   std::size_t device_bytes = 0;  // the most device memory the run held at once (the points not included)
   std::size_t kept_bytes = 0;    // what the passes' outputs hold until they are described
   double kernel_ms = 0;          // the launches alone (CUDA events)
@@ -34,7 +35,7 @@ struct BatchRun {
 };
 
 // The clouds of `count` points at `device_points` (the current device's memory), bounded by `offsets`
-// (B + 1 of them, in host memory), each on one block, but those `skip` marks (when given: B flags).
+// (B + 1 of them, in host memory), each on one team, but those `skip` marks (when given: B flags).
 // Throws DeviceError (OutOfDeviceMemory where the device has no room for the batch).
 template <class Point>
 BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, const std::size_t* offsets,

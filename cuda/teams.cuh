@@ -195,10 +195,9 @@ struct BlockTeam {
 // batch's smallest clouds take a warp each (small_hull.hpp): a block's other warps would mostly wait at
 // its barriers (ncu on 100-point clouds: half the stall samples), and an SM holds four times as many
 // clouds at once.  The compact code: many warps in different places share the SM's instruction cache.
+// What small_hull() asks of a team (and batch_tetrahedron(), write_batch_hull()): no rounds, so no list_if
+// and no phase timing.
 struct WarpTeam {
-  static constexpr bool kCompactCode = true;
-  RoundsState* st;
-  mutable u64 t0 = 0;
   __device__ static u32 lane() { return threadIdx.x & 31; }
   template <class F>
   __device__ void for_range(u32 n, const F& f) const {
@@ -207,16 +206,6 @@ struct WarpTeam {
   }
   __device__ void barrier() const { __syncwarp(); }
   __device__ bool leader() const { return lane() == 0; }
-  __device__ void start_timing() const {
-    if (leader()) t0 = now_ns();
-  }
-  __device__ void time(int phase) const {
-    if (leader()) lap_phase(st, t0, phase);
-  }
-  template <class Pred>
-  __device__ void list_if(u32 n, const Pred& pred, u32* list, u32* count, u32 capacity) const {
-    BlockTeam<32>::list_by_warps(lane(), 32, n, pred, list, count, capacity);
-  }
   template <class Op>
   __device__ void max_per_segment(u32 n, const Op& op) const {
     BlockTeam<32>::max_by_warps(lane(), 32, n, op);

@@ -275,11 +275,11 @@ DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls
   return batch;
 }
 
-// The one place the CUDA backend runs a batch of checked points in device memory: the clouds a block takes,
-// in a launch a kind of block (batch_run_cuda(), and one more for those that outgrew their room); the rest
-// (too small or too large for a block, flat, or with a defect the single-cloud path repairs) and those
-// `single` marks through `hull_of(c)`, in cloud order; the result assembled on the device
-// (assemble_on_device()).
+// The one place the CUDA backend runs a batch of checked points in device memory: the clouds a warp or a
+// block takes, in a launch a kind of team (batch_run_cuda(), and the later passes: room on blocks, a
+// block's leftovers on warps); the rest (too small or too large for a team, flat, or with a defect the
+// single-cloud path repairs) and those `single` marks through `hull_of(c)`, in cloud order; the result
+// assembled on the device (assemble_on_device()).
 template <class Point, class HullOf>
 DeviceConvexHullBatch run_batch_on_device(const Point* device_points, std::size_t count,
                                           const std::size_t* offsets, std::size_t clouds, HullOf hull_of,

@@ -1,8 +1,8 @@
 """convex_hull_batch (issue 27) from CuPy arrays and PyTorch CUDA tensors, against the same clouds given as
 NumPy on the CPU backend: cloud for cloud the same hulls, results of the input's kind on its device, the same
 errors.  The GPU runs the small clouds on its batch kernels (a warp a cloud up to 256 points, a furthest point at a
-time; a block a cloud above, the resident iteration), the CPU each cloud alone: the same vertex sets, and the
-same faces in another order.  ctest label gpu:
+time; a block a cloud above, the resident iteration; a block's flat-faced leftovers on warps again), the
+CPU each cloud alone: the same vertex sets, and the same faces in another order.  ctest label gpu:
 skipped (exit 77) where there is no GPU, CuPy or PyTorch."""
 
 import numpy as np
@@ -41,10 +41,10 @@ def canonical(faces, planes):
 
 
 def assert_as_on_the_cpu(got, points, offsets, library):
-    """Against the CPU's batch with the engine the GPU runs (the resident one): the same vertex sets, measures
-    and flat answers, as arrays of `library`; the same faces with the same planes, in any order, for every
-    cloud in general position (a coplanar facet may be cut along either diagonal); and against the CPU's
-    default engine (stepping): the same vertex sets."""
+    """Against the CPU's batch with the resident engine (the GPU's blocks run its iteration, its warps
+    QuickHull's step): the same vertex sets, measures and flat answers, as arrays of `library`; the same faces
+    with the same planes, in any order, for every cloud in general position (a coplanar facet may be cut
+    along either diagonal); and against the CPU's default engine (stepping): the same vertex sets."""
     want = cudahull.convex_hull_batch(points, offsets, backend="cpu", engine="resident")
     assert len(got) == len(want)
     for key in ("vertex_offsets", "face_offsets", "vertices", "faces", "planes", "dimensions", "polygon_offsets",

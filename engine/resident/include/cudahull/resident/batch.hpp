@@ -1,6 +1,7 @@
 // Batched hulls (issue 27): one small cloud's whole hull on one team, the same iteration as every other run
 // of the resident engine (iteration.hpp), so that a batch is many device loops at once.  The team is a block
-// on the device (cuda/batch_cuda.cu: a block takes cloud after cloud) and HostTeam in the CPU tests.
+// on the device (cuda/batch_cuda.cu: a block takes cloud after cloud) and HostTeam in the CPU tests; the
+// smallest clouds take small_hull.hpp's hull on a warp, which shares the tetrahedron and the output here.
 //
 // design:
 //   room         a team owns a slot of face room (batch_room()), sized for the largest hull the pass
@@ -16,7 +17,7 @@
 //                with none, the vertices listed in index order (a flag per point and a prefix sum) and the
 //                corners renumbered to them, written where the batch's output has room (one atomic a
 //                cloud; a cloud past it goes to the next pass, which has room for all); with some, the
-//                single-cloud path (its local repair)
+//                single-cloud path (its local repair); a mesh off Euler's F = 2V - 4 too (write_batch_hull())
 #pragma once
 
 #include "cudahull/resident/finish.hpp"
@@ -24,8 +25,8 @@
 
 namespace cudahull::resident {
 
-// How a cloud's team ended: its hull is in the output (done), it needs more room (the next pass), or the
-// single-cloud path takes it (flat, stalled, a defect, or no room left in the output).
+// How a cloud's team ended: its hull is in the output (done), it needs more room (in its slot or in the
+// output: the next pass), or the single-cloud path takes it (flat, stalled, a defect).
 enum BatchStatus : u32 { kBatchDone = 0, kBatchRoom = 1, kBatchSingle = 2 };
 
 // Per cloud: how it ended, its hull's size, and where its words (3 corners a face, then the vertex list) and
@@ -35,8 +36,8 @@ struct BatchResult {
 };
 
 // The hull vertices a pass makes room for, for a cloud of n points: a uniform ball's hull has about
-// 4.5 sqrt(n) (scipy, n = 16 .. 100,000); the first pass allows some 1.5 to 2 times that, the second every
-// point.
+// 4.5 sqrt(n) (scipy, n = 16 .. 100,000); a block's first pass allows some 1.5 to 2 times that, the second
+// every point (as a warp's first, cuda/batch_cuda.cu).
 CUDAHULL_HD inline u32 batch_vertices(u32 n, bool every_point) {
   if (every_point) return n;
   u32 root = 0;
@@ -203,13 +204,18 @@ CUDAHULL_HD void write_batch_hull(const Team& team, const BatchCloud<Point>& clo
     if (used[i]) list[rank[i]] = i;
   });
   if (team.leader()) {
-    const u32 words = 3 * faces + vertices;
-    const u32 word_at = atomic_add_u32(&out.used[0], words);
-    const u32 point_at = atomic_add_u32(&out.used[1], vertices);
-    const bool fits = word_at + words <= out.word_capacity && point_at + vertices <= out.coordinate_capacity;
-    // A closed triangulated sphere has F = 2 V - 4 (Euler): anything else goes to the single-cloud path.
-    const u32 status = faces + 4 != 2 * vertices ? kBatchSingle : fits ? kBatchDone : kBatchRoom;
-    *result = BatchResult{status, faces, vertices, word_at, point_at};
+    // A closed triangulated sphere has F = 2 V - 4 (Euler): anything else goes to the single-cloud path,
+    // taking no output.
+    if (faces + 4 != 2 * vertices) {
+      *result = BatchResult{kBatchSingle, 0, 0, 0, 0};
+    } else {
+      const u32 words = 3 * faces + vertices;
+      const u32 word_at = atomic_add_u32(&out.used[0], words);
+      const u32 point_at = atomic_add_u32(&out.used[1], vertices);
+      const bool fits =
+          word_at + words <= out.word_capacity && point_at + vertices <= out.coordinate_capacity;
+      *result = BatchResult{fits ? kBatchDone : kBatchRoom, faces, vertices, word_at, point_at};
+    }
   }
   team.barrier();
   if (result->status != kBatchDone) return;

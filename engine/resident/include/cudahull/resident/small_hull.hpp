@@ -16,8 +16,10 @@
 //                the horizon: the seen faces' edges whose other face is not seen, numbered in slot order
 //                a new face on each horizon edge and p, in the seen faces' slots (slot order), then the free
 //                list's, then new ones; linked across the horizon, and along it by the vertex each horizon
-//                edge starts and ends at (a horizon that is not one cycle through distinct vertices sends
-//                the cloud to the single-cloud path); the seen faces not reused go on the free list
+//                edge starts and ends at (a horizon vertex that does not start exactly one edge and end
+//                exactly one sends the cloud to the single-cloud path; two disjoint cycles cannot arise:
+//                the seen faces and the others are each connected); the seen faces not reused go on the
+//                free list
 //                the seen faces' points: to the first new face they are strictly above (a test a pair of
 //                point and new face), else inside
 //   finish       the live faces in slot order; the vertices in index order (write_batch_hull())
@@ -135,7 +137,7 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
       const u32 next = starts[b], before = ends[a];
       if (starts[a] != k || ends[b] != k || next >= edges || h.horizon[3 * next] != b || before >= edges ||
           h.horizon[3 * before + 1] != a)
-        *failed = 1;  // not one cycle through distinct vertices
+        *failed = 1;  // a vertex that starts or ends more than one horizon edge, or none
       h.fv[3 * s] = a;
       h.fv[3 * s + 1] = b;
       h.fv[3 * s + 2] = p;
