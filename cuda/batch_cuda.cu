@@ -401,15 +401,35 @@ __global__ void __launch_bounds__(kDescribeThreads) describe_kernel(DescribeArgs
       detail::facet_plane_in_range(to_vec3d(xyz[w[0]]), to_vec3d(xyz[w[1]]), to_vec3d(xyz[w[2]]),
                                    a.columns.planes + 4 * (face_at + f));
     }
+    // As convex_hull() measures a mesh (convex_hull.cpp, measure_solid, centroid_of()): the centroid of the
+    // vertices added in the list's order, then the faces' terms added in the mesh's order, one after
+    // another: the same bits.  Each lane loads (and computes the terms of) its own, and every lane adds
+    // them all in order from the shuffles (lane 0 alone, face after face, was 2.9 ms of 100,000 clouds of
+    // 100 points on the H100).
+    Vec3d sum{0, 0, 0};
+    for (u32 base = 0; base < r.vertices; base += 32) {
+      const Vec3d mine = base + lane < r.vertices ? to_vec3d(xyz[base + lane]) : Vec3d{0, 0, 0};
+      for (u32 j = 0; j < 32 && base + j < r.vertices; ++j)
+        sum = {detail::add_rn(sum.x, __shfl_sync(0xffffffffu, mine.x, j)),
+               detail::add_rn(sum.y, __shfl_sync(0xffffffffu, mine.y, j)),
+               detail::add_rn(sum.z, __shfl_sync(0xffffffffu, mine.z, j))};
+    }
+    const double count = static_cast<double>(r.vertices);
+    const Vec3d centroid{detail::div_rn(sum.x, count), detail::div_rn(sum.y, count),
+                         detail::div_rn(sum.z, count)};
+    detail::SolidMeasures measures;
+    for (u32 base = 0; base < r.faces; base += 32) {
+      const u32 f = base + lane;
+      detail::SolidMeasures::FaceTerms mine{0, 0};
+      if (f < r.faces)
+        mine = detail::SolidMeasures::face_terms(to_vec3d(xyz[corners[3 * f]]),
+                                                 to_vec3d(xyz[corners[3 * f + 1]]),
+                                                 to_vec3d(xyz[corners[3 * f + 2]]), centroid);
+      for (u32 j = 0; j < 32 && base + j < r.faces; ++j)
+        measures.add_terms(
+            {__shfl_sync(0xffffffffu, mine.twice_area, j), __shfl_sync(0xffffffffu, mine.six_volume, j)});
+    }
     if (lane == 0) {
-      // As convex_hull() measures a mesh (convex_hull.cpp, measure_solid): the centroid of the vertices in
-      // the list's order, then the faces in the mesh's order, one after another: the same bits.
-      const Vec3d centroid =
-          detail::centroid_of(r.vertices, [&](unsigned long long v) { return to_vec3d(xyz[v]); });
-      detail::SolidMeasures measures;
-      for (u32 f = 0; f < r.faces; ++f)
-        measures.add_face(to_vec3d(xyz[corners[3 * f]]), to_vec3d(xyz[corners[3 * f + 1]]),
-                          to_vec3d(xyz[corners[3 * f + 2]]), centroid);
       a.columns.volumes[c] = measures.volume();
       a.columns.areas[c] = measures.area();
       a.columns.dimensions[c] = 3;

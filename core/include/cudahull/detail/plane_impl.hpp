@@ -198,7 +198,13 @@ CUDAHULL_HD inline void facet_plane_in_range(const Vec3d& a, const Vec3d& b, con
 // its vertices, centroid_of()).
 struct SolidMeasures {
   double six_volume = 0, twice_area = 0;
-  CUDAHULL_HD void add_face(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& centroid) {
+  // A face's own terms (twice its area, six times its tetrahedron's volume from the centroid): independent
+  // of the other faces, so a warp may compute them at once and add them in order (add_terms()).
+  struct FaceTerms {
+    double twice_area, six_volume;
+  };
+  CUDAHULL_HD static FaceTerms face_terms(const Vec3d& a, const Vec3d& b, const Vec3d& c,
+                                          const Vec3d& centroid) {
     const auto sub = [](const Vec3d& p, const Vec3d& q) {
       return Vec3d{sub_rn(p.x, q.x), sub_rn(p.y, q.y), sub_rn(p.z, q.z)};
     };
@@ -210,8 +216,14 @@ struct SolidMeasures {
       return add_rn(add_rn(mul_rn(p.x, q.x), mul_rn(p.y, q.y)), mul_rn(p.z, q.z));
     };
     const Vec3d n = cross(sub(b, a), sub(c, a));
-    twice_area = add_rn(twice_area, sqrt_rn(dot(n, n)));
-    six_volume = add_rn(six_volume, dot(cross(sub(b, centroid), sub(c, centroid)), sub(a, centroid)));
+    return FaceTerms{sqrt_rn(dot(n, n)), dot(cross(sub(b, centroid), sub(c, centroid)), sub(a, centroid))};
+  }
+  CUDAHULL_HD void add_terms(const FaceTerms& t) {
+    twice_area = add_rn(twice_area, t.twice_area);
+    six_volume = add_rn(six_volume, t.six_volume);
+  }
+  CUDAHULL_HD void add_face(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& centroid) {
+    add_terms(face_terms(a, b, c, centroid));
   }
   CUDAHULL_HD double volume() const { return div_rn(six_volume, 6.0); }
   CUDAHULL_HD double area() const { return div_rn(twice_area, 2.0); }
