@@ -21,7 +21,8 @@
 //     outputs)
 //   describe (describe_batch_cuda()): a warp a done cloud, into the packed result's columns at the offsets
 //     the caller laid out: vertex ids, faces on the cloud's indices, planes (a lane a face), the volume and
-//     area (lane 0, face after face in the mesh's order, as convex_hull() sums them on the host)
+//     area (a lane a face's terms, added face after face in the mesh's order, as convex_hull() sums them
+//     on the host)
 #include <cuda_runtime.h>
 
 #include <algorithm>
@@ -404,8 +405,8 @@ __global__ void __launch_bounds__(kDescribeThreads) describe_kernel(DescribeArgs
     // As convex_hull() measures a mesh (convex_hull.cpp, measure_solid, centroid_of()): the centroid of the
     // vertices added in the list's order, then the faces' terms added in the mesh's order, one after
     // another: the same bits.  Each lane loads (and computes the terms of) its own, and every lane adds
-    // them all in order from the shuffles (lane 0 alone, face after face, was 2.9 ms of 100,000 clouds of
-    // 100 points on the H100).
+    // them all in order from the shuffles (with lane 0 alone, face after face, the describe took 3.7-4.1 ms
+    // on 100,000 clouds of 100 points on the H100, against 1.9-2.7: docs/benchmarks.md, "Batched hulls").
     Vec3d sum{0, 0, 0};
     for (u32 base = 0; base < r.vertices; base += 32) {
       const Vec3d mine = base + lane < r.vertices ? to_vec3d(xyz[base + lane]) : Vec3d{0, 0, 0};
