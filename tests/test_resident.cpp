@@ -17,12 +17,15 @@
 #include "cudahull/point_io.hpp"
 #include "cudahull/resident.hpp"
 #include "cudahull/resident/small_hull.hpp"
+#include "support/host_batch_slot.hpp"
 #include "support/point_sets.hpp"
 #include "support/rng.hpp"
 #include "support/shared_models.hpp"
 
 namespace cudahull {
 namespace {
+
+using testing::HostBatchSlot;
 
 template <class Point>
 void expect_exact(const std::vector<Point>& points, const std::string& what,
@@ -227,71 +230,6 @@ TEST(Resident, SmallFinishAfterTheDeviceLoop) {
 // kernel runs it, here on the host twin, in a slot used before by other clouds: the tetrahedron, the
 // iterations and the finish give exact_hull's vertices and a hull the checker passes; a cloud short of room
 // says so and is done with room for every point; only flat clouds (or defects) go to the single-cloud path.
-template <class Point>
-struct HostBatchSlot {
-  std::vector<resident::u32> fv, fn, fv_spare, fn_spare, killer, look, flags, face_rank, win_mask, word_rank,
-      list, point_words, words, used{0, 0};
-  std::vector<resident::u64> extreme, claim;
-  std::vector<resident::Entry> entries;
-  std::vector<resident::Candidate> cands;
-  resident::RoundsState st{};
-  std::vector<Point> coordinates;
-  resident::BatchSlot slot{};
-  // Room for a hull of `vertices` vertices, as batch_hull()'s slots have it, or small_hull()'s (`small`).
-  HostBatchSlot(resident::u32 vertices, std::size_t points, bool small = false) {
-    const resident::BatchRoom room =
-        small ? resident::small_hull_room(vertices) : resident::batch_room(vertices);
-    for (auto* b : {&fv, &fn, &fv_spare, &fn_spare})
-      b->assign(3 * room.faces, 0xdeadbeefu);  // stale data, as a slot reused on the device holds
-    for (auto* b : {&killer, &look, &flags, &face_rank})
-      b->assign(room.faces + 1, 0xdeadbeefu);
-    win_mask.assign(room.faces / 32 + 1, 0);
-    word_rank.assign(room.faces / 32 + 1, 0);
-    extreme.assign(room.faces, ~0ull);
-    claim.assign(room.faces, ~0ull);
-    entries.resize(room.entries);
-    list.resize(room.work);
-    cands.resize(room.work);
-    point_words.assign(6 * points, 0xdeadbeefu);
-    words.resize(7 * std::size_t{vertices} + 16);
-    coordinates.resize(vertices);
-    slot = resident::BatchSlot{fv.data(),
-                               fn.data(),
-                               fv_spare.data(),
-                               fn_spare.data(),
-                               killer.data(),
-                               look.data(),
-                               flags.data(),
-                               face_rank.data(),
-                               win_mask.data(),
-                               word_rank.data(),
-                               extreme.data(),
-                               claim.data(),
-                               entries.data(),
-                               list.data(),
-                               cands.data(),
-                               &st,
-                               room};
-  }
-  // The cloud's hull by batch_hull(), or by small_hull() (`small`).
-  resident::BatchResult run(const std::vector<Point>& points, bool small = false) {
-    const std::size_t n = points.size();
-    resident::u32* w = point_words.data();
-    const resident::BatchCloud<Point> cloud{
-        points.data(), static_cast<resident::u32>(n), w, w + n, w + 2 * n, w + 3 * n, w + 4 * n, w + 5 * n};
-    used = {0, 0};
-    const resident::BatchOutput<Point> out{words.data(), coordinates.data(), used.data(),
-                                           static_cast<resident::u32>(words.size()),
-                                           static_cast<resident::u32>(coordinates.size())};
-    resident::BatchResult result{};
-    if (small)
-      resident::small_hull(resident::HostTeam{}, slot, cloud, out, &result);
-    else
-      resident::batch_hull(resident::HostTeam{}, slot, cloud, out, &result);
-    return result;
-  }
-};
-
 template <class Point>
 void expect_batch_exact(const std::vector<Point>& points, const std::string& what, int& room_asked,
                         bool may_need_repair = false, bool small = false) {

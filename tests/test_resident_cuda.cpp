@@ -6,9 +6,11 @@
 #include <cuda_runtime.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "cudahull/convex_hull_batch.hpp"
@@ -23,6 +25,7 @@
 #include "cudahull/trace.hpp"
 #include "device_info.hpp"
 #include "resident_cuda.hpp"
+#include "support/host_batch_slot.hpp"
 #include "support/point_sets.hpp"
 #include "support/property_cases.hpp"
 #include "support/rng.hpp"
@@ -167,6 +170,33 @@ TEST_F(ResidentCuda, BatchEqualsTheCpuCloudForCloud) {
       EXPECT_EQ(got->vertices, want.vertices) << what;
       EXPECT_EQ(got->face_offsets, want.face_offsets) << what;
       EXPECT_EQ(got->dimensions, want.dimensions) << what;
+      std::size_t on_warps = 0;
+      for (std::size_t c = 0; c + 1 < offsets.size(); ++c) {
+        const std::size_t n = offsets[c + 1] - offsets[c];
+        if (n < 4 || n > 256 || got->dimensions[c] != 3) continue;
+        // A warp's cloud (small_hull() on WarpTeam): the same faces in the same order as on HostTeam, the
+        // team kind changes nothing.
+        std::vector<Point3d> cloud;
+        for (std::size_t i = offsets[c]; i < offsets[c + 1]; ++i)
+          cloud.push_back(Point3d{points[i].x, points[i].y, points[i].z});
+        const auto same_on_host = [&](const auto& typed) {
+          testing::HostBatchSlot<typename std::decay_t<decltype(typed)>::value_type> slot(
+              static_cast<resident::u32>(n), n, true);
+          const resident::BatchResult result = slot.run(typed, true);
+          return result.status == resident::kBatchDone &&
+                 testing::host_batch_faces(slot, result) ==
+                     std::vector<std::array<PointIndex, 3>>(got->faces.begin() + got->face_offsets[c],
+                                                            got->faces.begin() + got->face_offsets[c + 1]);
+        };
+        const bool same = precision == Precision::kDouble
+                              ? same_on_host(cloud)
+                              : same_on_host(std::vector<Point3>(points.begin() + offsets[c],
+                                                                 points.begin() + offsets[c + 1]));
+        EXPECT_TRUE(same) << what << ": cloud " << c << " (" << n
+                          << " points) not as small_hull() on the host";
+        ++on_warps;
+      }
+      EXPECT_GT(on_warps, 1000u) << what;
       for (std::size_t c = 0; c + 1 < offsets.size(); ++c) {
         EXPECT_NEAR(got->volumes[c], want.volumes[c], 1e-9 * std::abs(want.volumes[c]) + 1e-30) << what << c;
         EXPECT_NEAR(got->areas[c], want.areas[c], 1e-9 * std::abs(want.areas[c]) + 1e-30) << what << c;
