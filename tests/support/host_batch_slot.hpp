@@ -76,7 +76,6 @@ struct HostBatchSlot {
   }
 };
 
-
 // A cloud's faces on its own indices, from a done run's output (`slot.words`: corners into the vertex list,
 // then the list).
 template <class Point>
@@ -86,7 +85,8 @@ std::vector<std::array<PointIndex, 3>> host_batch_faces(const HostBatchSlot<Poin
   const resident::u32* ids = words + 3 * result.faces;
   std::vector<std::array<PointIndex, 3>> faces;
   for (resident::u32 f = 0; f < result.faces; ++f)
-    faces.push_back({static_cast<PointIndex>(ids[words[3 * f]]), static_cast<PointIndex>(ids[words[3 * f + 1]]),
+    faces.push_back({static_cast<PointIndex>(ids[words[3 * f]]),
+                     static_cast<PointIndex>(ids[words[3 * f + 1]]),
                      static_cast<PointIndex>(ids[words[3 * f + 2]])});
   return faces;
 }
