@@ -502,22 +502,24 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
     return run_pass<decltype(kind)::value>(device_points, count, device_offsets, group.listed, group.vertices,
                                            group.word_room, group.coordinate_room, run, held);
   };
-  // A pass, and where its clouds that did not end go next (from a first pass only, room on blocks).
+  // A pass, and where a block's clouds that did not end go next (room: from a first pass only).  A warp's
+  // cloud goes nowhere else: it had room for every point, and its other endings are the single path's.
   const auto pass_and_route = [&](auto kind, const Group& group, bool first) {
     if (group.listed.empty()) return;
     const std::vector<BatchResult> results = pass(kind, group);
-    const bool warps = decltype(kind)::value == TeamKind::kWarp;
-    for (std::size_t k = 0; k < group.listed.size(); ++k) {
-      const u32 c = group.listed[k], n = static_cast<u32>(offsets[c + 1] - offsets[c]);
-      if (results[k].status == resident::kBatchRoom && !warps) {
-        // Room for every point a vertex costs a slot some 900 bytes a point: a larger cloud takes the
-        // single-cloud path, which grows its room as it goes.
-        if (first && n <= kSecondPassPoints) again.add(c, n);
-      } else if (results[k].status == resident::kBatchSingle && !warps && warp_points != 0 &&
-                 n <= kRetryOnWarpPoints) {
-        // A block's stall or defect (coplanar facets the rounds cannot finish: integer grids, cylinders)
-        // is no obstacle to small_hull(): the warps take it before the single-cloud path would.
-        on_warps.add(c, n);
+    if constexpr (decltype(kind)::value != TeamKind::kWarp) {
+      for (std::size_t k = 0; k < group.listed.size(); ++k) {
+        const u32 c = group.listed[k], n = static_cast<u32>(offsets[c + 1] - offsets[c]);
+        if (results[k].status == resident::kBatchRoom) {
+          // Room for every point a vertex costs a slot some 900 bytes a point: a larger cloud takes the
+          // single-cloud path, which grows its room as it goes.
+          if (first && n <= kSecondPassPoints) again.add(c, n);
+        } else if (results[k].status == resident::kBatchSingle && warp_points != 0 &&
+                   n <= kRetryOnWarpPoints) {
+          // A block's stall or defect (coplanar facets the rounds cannot finish: integer grids, cylinders)
+          // is no obstacle to small_hull(): the warps take it before the single-cloud path would.
+          on_warps.add(c, n);
+        }
       }
     }
   };
@@ -531,7 +533,7 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
     pass_and_route(std::integral_constant<TeamKind, TeamKind::kMidBlock>{}, again, false);
   else
     pass_and_route(std::integral_constant<TeamKind, TeamKind::kBlock>{}, again, false);
-  if (!on_warps.listed.empty()) pass(std::integral_constant<TeamKind, TeamKind::kWarp>{}, on_warps);
+  pass_and_route(std::integral_constant<TeamKind, TeamKind::kWarp>{}, on_warps, false);
   return run;
 }
 

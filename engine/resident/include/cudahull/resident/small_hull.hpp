@@ -67,23 +67,29 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
   Vec3d centroid;
   if (!batch_tetrahedron(team, slot, cloud, &centroid)) return end_with(kBatchSingle);
   const auto at = [&](u32 i) { return to_vec3d(cloud.points[i]); };
-  // Point i to the first of `count` faces (slot_of(k)) it is strictly above, its key kept; else inside.
-  const auto assign = [&](u32 i, u32 count, const auto& slot_of) {
-    const Vec3d q = at(i);
-    for (u32 k = 0; k < count; ++k) {
-      const u32 f = slot_of(k);
-      const Vec3d a = at(h.fv[3 * f]), b = at(h.fv[3 * f + 1]), c = at(h.fv[3 * f + 2]);
-      if (orient3d(a, b, c, q) > 0) {
-        face_of[i] = f;
-        atomic_max_u64(&h.furthest[f], rank_key(orient3d_fast(a, b, c, q), i));
-        return;
-      }
-    }
-    face_of[i] = kNoFace;
+  // Where q is against face f's plane: the exact sign (every decision), or the rounded height (ranking).
+  const auto side = [&](u32 f, const Vec3d& q) {
+    return orient3d(at(h.fv[3 * f]), at(h.fv[3 * f + 1]), at(h.fv[3 * f + 2]), q);
+  };
+  const auto height = [&](u32 f, const Vec3d& q) {
+    return orient3d_fast(at(h.fv[3 * f]), at(h.fv[3 * f + 1]), at(h.fv[3 * f + 2]), q);
+  };
+  // Point i to face f, which it is strictly above: the face's furthest point kept.
+  const auto place = [&](u32 i, u32 f) {
+    face_of[i] = f;
+    atomic_max_u64(&h.furthest[f], rank_key(height(f, at(i)), i));
   };
   if (team.leader()) *failed = 0;
   team.barrier();
-  team.for_range(n, [&](u32 i) { assign(i, 4, [](u32 k) { return k; }); });
+  team.for_range(n, [&](u32 i) {
+    u32 f = 0;
+    while (f < 4 && side(f, at(i)) <= 0)
+      ++f;
+    if (f < 4)
+      place(i, f);
+    else
+      face_of[i] = kNoFace;  // inside the tetrahedron, or on it
+  });
   u32 faces = 4, free_count = 0;  // the slots in use (live or free), the free list's length: every thread's
   while (true) {
     team.barrier();
@@ -94,8 +100,7 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
     const u32 seen = team.count_scan(
         faces,
         [&](u32 f) {
-          h.seen[f] =
-              h.live[f] && orient3d(at(h.fv[3 * f]), at(h.fv[3 * f + 1]), at(h.fv[3 * f + 2]), pp) >= 0;
+          h.seen[f] = h.live[f] && side(f, pp) >= 0;
           return h.seen[f] != 0;
         },
         h.seen_rank);
@@ -158,26 +163,18 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
     // The seen faces' points (but p), listed, each to the first new face it is strictly above: a test a
     // (point, new face) pair, the least new face kept, so that no lane waits on another's long search
     // (slots as before this step's counts change).
-    const u32 movers = team.count_scan(
-        n,
-        [&](u32 i) {
-          const u32 f = face_of[i];
-          return f != kNoFace && h.seen[f] && i != p;
-        },
-        mover_rank);
+    const auto moves = [&](u32 i) { return face_of[i] != kNoFace && h.seen[face_of[i]] && i != p; };
+    const u32 movers = team.count_scan(n, moves, mover_rank);
     team.for_range(n, [&](u32 i) {
-      const u32 f = face_of[i];
-      if (f != kNoFace && h.seen[f] && i != p) {
-        mover[mover_rank[i]] = i;
-        first_above[mover_rank[i]] = edges;
-      }
+      if (!moves(i)) return;
+      mover[mover_rank[i]] = i;
+      first_above[mover_rank[i]] = edges;
     });
     if (team.leader()) face_of[p] = kNoFace;
     team.barrier();
     team.for_range(movers * edges, [&](u32 t) {
-      const u32 x = t / edges, k = t % edges, f = slot_of(k);
-      if (orient3d(at(h.fv[3 * f]), at(h.fv[3 * f + 1]), at(h.fv[3 * f + 2]), at(mover[x])) > 0)
-        atomic_min_u32(&first_above[x], k);
+      const u32 x = t / edges, k = t % edges;
+      if (side(slot_of(k), at(mover[x])) > 0) atomic_min_u32(&first_above[x], k);
     });
     team.barrier();
     team.for_range(movers, [&](u32 x) {
@@ -186,11 +183,7 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
         face_of[i] = kNoFace;  // inside
         return;
       }
-      const u32 f = slot_of(k);
-      face_of[i] = f;
-      atomic_max_u64(
-          &h.furthest[f],
-          rank_key(orient3d_fast(at(h.fv[3 * f]), at(h.fv[3 * f + 1]), at(h.fv[3 * f + 2]), at(i)), i));
+      place(i, slot_of(k));
     });
     faces += fresh;
     free_count = seen > edges ? free_count + (seen - edges) : free_count - (edges - seen - fresh);
