@@ -34,6 +34,7 @@
 #include "batch_cuda.hpp"
 #include "cuda_errors.hpp"
 #include "cudahull/detail/plane_impl.hpp"
+#include "cudahull/phase_times.hpp"
 #include "cudahull/resident/small_hull.hpp"
 #include "device_memory.hpp"
 #include "teams.cuh"
@@ -283,6 +284,7 @@ template <TeamKind kKind, class Point>
 std::vector<BatchResult> run_pass(const Point* points, std::size_t count, const u32* device_offsets,
                                   const std::vector<u32>& listed, u32 vertices, std::size_t word_room,
                                   std::size_t coordinate_room, BatchRun<Point>& run, std::size_t& held) {
+  PhaseLaps laps(kKind == TeamKind::kWarp ? "batch pass on warps" : "batch pass on blocks");
   BatchMemory memory(held, run.device_bytes);
   constexpr int kBlock = kBlockThreads<kKind>;
   constexpr u32 kTeams = kTeamsPerBlock<kKind>;
@@ -348,6 +350,8 @@ std::vector<BatchResult> run_pass(const Point* points, std::size_t count, const 
                         cudaMemcpyHostToDevice, 0),
         "uploading the cloud list");
   check(cudaMemsetAsync(a.next, 0, 3 * sizeof(u32), 0), "clearing the counters");
+  if (laps.wanted()) cudaDeviceSynchronize();
+  laps.lap("arrays");
   const EventTimer timer;
   kernel<<<blocks, kBlock>>>(a);
   check(cudaGetLastError(), "launching the batch");
@@ -355,6 +359,7 @@ std::vector<BatchResult> run_pass(const Point* points, std::size_t count, const 
   std::vector<BatchResult> results(listed.size());
   check(cudaMemcpy(results.data(), a.results, result_words * sizeof(u32), cudaMemcpyDeviceToHost),
         "reading the results (kernel fault)");
+  laps.lap("kernel and results");
   run.kernel_ms += timer.ms();
   for (std::size_t k = 0; k < listed.size(); ++k) {
     if (results[k].status != resident::kBatchDone) continue;
@@ -365,6 +370,7 @@ std::vector<BatchResult> run_pass(const Point* points, std::size_t count, const 
   }
   run.outputs.push_back(std::move(output));
   ++run.passes;
+  laps.lap("results kept");
   return results;
 }
 
@@ -452,6 +458,7 @@ struct BatchRun<Point>::PassOutput {
 template <class Point>
 BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, const std::size_t* offsets,
                                std::size_t clouds, const std::uint8_t* skip) {
+  PhaseLaps laps("batch run");
   BatchRun<Point> run(clouds);
   // Indices are 32 bits on the device: a larger batch takes the single-cloud path cloud by cloud.
   if (count >= 0xffffffffu / 8 || clouds >= 0xffffffffu / 8) return run;
@@ -487,6 +494,7 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
     any = true;
   }
   if (!any) return run;
+  laps.lap("groups");
 
   const TrimPoolAtEnd trim;  // after the arrays below: what the batch freed beyond the pool's keep, back
   std::size_t held = 0;
@@ -497,6 +505,7 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
     check(cudaMemcpy(device_offsets, narrow.data(), narrow.size() * sizeof(u32), cudaMemcpyHostToDevice),
           "uploading the offsets");
   }
+  laps.lap("offsets up");
   Group again, on_warps;  // the later passes' clouds: on blocks, with room for every point; on warps
   const auto pass = [&](auto kind, const Group& group) {
     return run_pass<decltype(kind)::value>(device_points, count, device_offsets, group.listed, group.vertices,
@@ -534,6 +543,7 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   else
     pass_and_route(std::integral_constant<TeamKind, TeamKind::kBlock>{}, again, false);
   pass_and_route(std::integral_constant<TeamKind, TeamKind::kWarp>{}, on_warps, false);
+  laps.lap("passes");
   return run;
 }
 

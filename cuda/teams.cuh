@@ -196,7 +196,7 @@ struct BlockTeam {
 // its barriers (ncu on 100-point clouds: half the stall samples), and an SM holds four times as many
 // clouds at once.  The compact code: many warps in different places share the SM's instruction cache.
 // What small_hull() asks of a team (and batch_tetrahedron(), write_batch_hull()): no rounds, so no list_if
-// and no phase timing.
+// (its lists: list(), list_two()) and no phase timing.
 struct WarpTeam {
   __device__ static u32 lane() { return threadIdx.x & 31; }
   template <class F>
@@ -244,6 +244,42 @@ struct WarpTeam {
       const unsigned passed = __ballot_sync(0xffffffffu, i < n && pred(i));
       if (i < n) out[i] = carry + __popc(passed & below);
       carry += __popc(passed);
+    }
+    __syncwarp();
+    return carry;
+  }
+  // The indices below n that pass (pred(i), once each), in index order, each told its rank among them
+  // (emit(i, rank), on its lane); the count to every lane.  A ballot a 32, as count_scan().
+  template <class Pred, class Emit>
+  __device__ u32 list(u32 n, const Pred& pred, const Emit& emit) const {
+    __syncwarp();
+    const unsigned below = (1u << lane()) - 1;
+    u32 carry = 0;
+    for (u32 base = 0; base < n; base += 32) {
+      const u32 i = base + lane();
+      const bool passed = i < n && pred(i);
+      const unsigned passing = __ballot_sync(0xffffffffu, passed);
+      if (passed) emit(i, carry + __popc(passing & below));
+      carry += __popc(passing);
+    }
+    __syncwarp();
+    return carry;
+  }
+  // Two such lists in one pass (kind(i): bit 0 the first, bit 1 the second), as HostTeam's.
+  template <class Kind, class First, class Second>
+  __device__ TwoCounts list_two(u32 n, const Kind& kind, const First& first, const Second& second) const {
+    __syncwarp();
+    const unsigned below = (1u << lane()) - 1;
+    TwoCounts carry{0, 0};
+    for (u32 base = 0; base < n; base += 32) {
+      const u32 i = base + lane();
+      const u32 k = i < n ? kind(i) : 0u;
+      const unsigned in_first = __ballot_sync(0xffffffffu, k & 1u),
+                     in_second = __ballot_sync(0xffffffffu, k & 2u);
+      if (k & 1u) first(i, carry.first + __popc(in_first & below));
+      if (k & 2u) second(i, carry.second + __popc(in_second & below));
+      carry.first += __popc(in_first);
+      carry.second += __popc(in_second);
     }
     __syncwarp();
     return carry;

@@ -182,6 +182,7 @@ std::vector<std::int64_t> as_int64(const std::vector<std::size_t>& values) {
 template <class Point>
 DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls&& hosted,
                                          std::size_t clouds) {
+  PhaseLaps laps("batch assembly");
   DeviceConvexHullBatch batch;
   batch.device = current_cuda_device();
   batch.vertex_offsets.assign(clouds + 1, 0);
@@ -208,6 +209,7 @@ DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls
   }
   const std::size_t vertices = batch.vertex_offsets[clouds], faces = batch.face_offsets[clouds],
                     polygons = batch.polygon_offsets[clouds];
+  laps.lap("offsets");
   batch.device_vertex_offsets = device_column<std::int64_t>(clouds + 1, "the vertex offsets");
   batch.device_face_offsets = device_column<std::int64_t>(clouds + 1, "the face offsets");
   batch.device_polygon_offsets = device_column<std::int64_t>(clouds + 1, "the polygon offsets");
@@ -224,6 +226,8 @@ DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls
   up(batch.device_vertex_offsets, as_int64(batch.vertex_offsets));
   up(batch.device_face_offsets, as_int64(batch.face_offsets));
   up(batch.device_polygon_offsets, as_int64(batch.polygon_offsets));
+  if (laps.wanted()) finish_device_work();
+  laps.lap("columns and offsets up");
   if (batch.clouds_batched != 0) {
     const BatchColumns columns{batch.device_vertex_offsets.data.get(),
                                batch.device_face_offsets.data.get(),
@@ -234,6 +238,8 @@ DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls
                                batch.volumes.data.get(),
                                batch.areas.data.get()};
     describe_batch_cuda(run, columns);
+    if (laps.wanted()) finish_device_work();
+    laps.lap("describe");
   }
   // The hosted clouds, a run of consecutive ones at a time.
   for (std::size_t first = 0; first < hosted.size();) {
@@ -272,6 +278,7 @@ DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls
     result_bytes += bytes;
   batch.device_bytes_peak = std::max(run.device_bytes, run.kept_bytes + result_bytes);
   finish_device_work();  // the last copies landed before a library on another stream reads the columns
+  laps.lap("hosted up");
   return batch;
 }
 
@@ -285,6 +292,7 @@ DeviceConvexHullBatch run_batch_on_device(const Point* device_points, std::size_
                                           const std::size_t* offsets, std::size_t clouds, HullOf hull_of,
                                           const std::vector<std::uint8_t>& single = {}) {
   const Clock::time_point start = Clock::now();
+  PhaseLaps laps("batch on the device");
   BatchRun<Point> run;
   try {
     run = batch_run_cuda(device_points, count, offsets, clouds, single.empty() ? nullptr : single.data());
@@ -292,10 +300,13 @@ DeviceConvexHullBatch run_batch_on_device(const Point* device_points, std::size_
     // No room for the batch: every cloud through the single-cloud path, which grows its room as it goes.
     run = BatchRun<Point>(clouds);
   }
+  laps.lap("batch run and trim");
   HostedHulls hosted = hosted_hulls(offsets, clouds, hull_of, &run.done);
+  laps.lap("hosted");
   const Clock::time_point describe_start = Clock::now();
   DeviceConvexHullBatch batch = assemble_on_device(run, std::move(hosted), clouds);
   batch.describe_ms = ms_since(describe_start);
+  laps.lap("assembly");
   batch.device_ms = ms_since(start);
   batch.kernel_ms = run.kernel_ms;
   batch.batch_launches = run.passes;
@@ -335,9 +346,12 @@ template <class Point, class Scalar, class HullOf>
 DeviceConvexHullBatch checked_batch_on_device(const Scalar* device_xyz, std::size_t count,
                                               const std::size_t* offsets, std::size_t clouds, HullOf hull_of,
                                               std::shared_ptr<void> upload = nullptr) {
+  PhaseLaps laps("batch check");
   const CheckedDevicePoints<Point> checked = check_device_points<Point>(device_xyz, count);
+  laps.lap("points");
   const std::vector<std::uint8_t> single =
       clouds_with_bad_points<Point>(device_xyz, count, offsets, clouds, checked.first_bad);
+  laps.lap("clouds");
   if (checked.converted) upload.reset();
   return run_batch_on_device(checked.points, count, offsets, clouds, hull_of, single);
 }

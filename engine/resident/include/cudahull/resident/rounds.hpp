@@ -153,6 +153,11 @@ CUDAHULL_HD void swap_and_removal_rounds(const Team& team, const RoundsBuffers<P
 }
 
 // The host's team: one thread, in index order.
+// The lengths of list_two()'s lists (HostTeam, WarpTeam).
+struct TwoCounts {
+  u32 first, second;
+};
+
 struct HostTeam {
   static constexpr bool kCompactCode = false;
   template <class F>
@@ -189,8 +194,8 @@ struct HostTeam {
     }
     return sum;
   }
-  // small_hull()'s two (and WarpTeam's): the largest key(i) over i < n (0 where there is none), and the
-  // exclusive count of the indices below n that pass.
+  // small_hull()'s (and WarpTeam's): the largest key(i) over i < n (0 where there is none), the exclusive
+  // count of the indices below n that pass, and the lists of them.
   template <class Key>
   CUDAHULL_HD u64 max_of(u32 n, const Key& key) const {
     u64 best = 0;
@@ -204,6 +209,27 @@ struct HostTeam {
   CUDAHULL_HD u32 count_scan(u32 n, const Pred& pred, u32* out) const {
     return exclusive_scan(
         n, [&](u32 i) { return pred(i) ? 1u : 0u; }, out);
+  }
+  // The indices below n that pass (pred(i), once each), in index order, each told its rank among them
+  // (emit(i, rank)); their count.
+  template <class Pred, class Emit>
+  CUDAHULL_HD u32 list(u32 n, const Pred& pred, const Emit& emit) const {
+    u32 count = 0;
+    for (u32 i = 0; i < n; ++i)
+      if (pred(i)) emit(i, count++);
+    return count;
+  }
+  // Two such lists in one pass: kind(i) (once each) puts i in the first (bit 0), the second (bit 1), both
+  // or neither; first(i, rank) and second(i, rank) as emit().
+  template <class Kind, class First, class Second>
+  CUDAHULL_HD TwoCounts list_two(u32 n, const Kind& kind, const First& first, const Second& second) const {
+    TwoCounts counts{0, 0};
+    for (u32 i = 0; i < n; ++i) {
+      const u32 k = kind(i);
+      if (k & 1u) first(i, counts.first++);
+      if (k & 2u) second(i, counts.second++);
+    }
+    return counts;
   }
 };
 

@@ -7,7 +7,8 @@
 //
 // design:
 //   tetrahedron  batch_tetrahedron() (section 3.1); each point goes to the first face it is strictly above
-//                (exact), each face keeps its furthest point (rank_key: ranking only)
+//                (exact), each face keeps its furthest point (rank_key: ranking only); the points above a
+//                face listed (the outside list: a step's loops over points run over it, not the cloud)
 //   repeat       p = the furthest point of all (the largest key over the live faces); none: done
 //                seen: the faces p is above or on (orient3d >= 0, exact).  A vertex that p makes
 //                non-extreme has every face around it seen, so it leaves the mesh with them, and one that
@@ -20,10 +21,11 @@
 //                exactly one sends the cloud to the single-cloud path; two disjoint cycles cannot arise:
 //                the seen faces and the others are each connected); the seen faces not reused go on the
 //                free list
-//                the seen faces' points: to the first new face they are strictly above (a test a pair of
-//                point and new face), else inside
+//                the outside list again, in order, without the points found inside and p; the seen faces'
+//                points among it to the first new face they are strictly above (a test a pair of point and
+//                new face), else inside
 //   finish       the live faces in slot order; the vertices in index order (write_batch_hull())
-// Every count and slot is a prefix sum in index order, so every team builds the same mesh.
+// Every count, slot and list is a prefix sum in index order, so every team builds the same mesh.
 #pragma once
 
 #include "cudahull/resident/batch.hpp"
@@ -52,18 +54,24 @@ CUDAHULL_HD inline BatchRoom small_hull_room(u32 v) {
 
 // One cloud's hull on `team` in `slot`, as batch_hull()'s: the status into *result (and, when done, the
 // hull into `out`).  Per point it uses the cloud's face (the face it is above), index and index_spare (the
-// horizon edge starting and ending there), keep, point_rank and face_spare (a step's points to place; the
-// finish's marks, ranks and list).
+// horizon edge starting and ending there), keep and point_rank (the points still outside a face, listed:
+// this step's list and the next's) and face_spare (a step's points to place; the finish's marks, ranks and
+// list after the steps).
 template <class Team, class Point>
 CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const BatchCloud<Point>& cloud,
                             const BatchOutput<Point>& out, BatchResult* result) {
   const u32 n = cloud.n;
   const SmallHullArrays h = small_hull_arrays(slot);
   u32 *face_of = cloud.face, *starts = cloud.index, *ends = cloud.index_spare;
-  // A step's points to place: their ranks, list and first new face above (the finish's arrays until then).
-  u32 *mover_rank = cloud.keep, *mover = cloud.point_rank, *first_above = cloud.face_spare;
+  // The points above a face, listed (a step reads one list and writes the other: each step's loops over
+  // points are as long as the points still outside, not the cloud); a step's points to place and the first
+  // new face each is above (the horizon's edge ranks are a list's emits now: their array is free).
+  u32 *outside = cloud.keep, *outside_next = cloud.point_rank, *mover = cloud.face_spare,
+      *first_above = h.edge_rank;
   u32* failed = &slot.st->defects;
   const auto end_with = [&](u32 status) { end_batch_cloud(team, result, status); };
+  // A step's points to place are at most the cloud's: first_above's room (3 words a face slot) holds them.
+  if (n > 3 * h.faces) return end_with(kBatchRoom);
   Vec3d centroid;
   if (!batch_tetrahedron(team, slot, cloud, &centroid)) return end_with(kBatchSingle);
   const auto at = [&](u32 i) { return to_vec3d(cloud.points[i]); };
@@ -81,15 +89,17 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
   };
   if (team.leader()) *failed = 0;
   team.barrier();
-  team.for_range(n, [&](u32 i) {
-    u32 f = 0;
-    while (f < 4 && side(f, at(i)) <= 0)
-      ++f;
-    if (f < 4)
-      place(i, f);
-    else
-      face_of[i] = kNoFace;  // inside the tetrahedron, or on it
-  });
+  u32 outside_count = team.list(
+      n,
+      [&](u32 i) {
+        u32 f = 0;
+        while (f < 4 && side(f, at(i)) <= 0)
+          ++f;
+        if (f == 4) return false;  // inside the tetrahedron, or on it
+        place(i, f);
+        return true;
+      },
+      [&](u32 i, u32 rank) { outside[rank] = i; });
   u32 faces = 4, free_count = 0;  // the slots in use (live or free), the free list's length: every thread's
   while (true) {
     team.barrier();
@@ -97,40 +107,34 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
     if (best == 0) break;
     const u32 p = rank_key_index(best);
     const Vec3d pp = at(p);
-    const u32 seen = team.count_scan(
+    const u32 seen = team.list(
         faces,
         [&](u32 f) {
           h.seen[f] = h.live[f] && side(f, pp) >= 0;
           return h.seen[f] != 0;
         },
-        h.seen_rank);
-    team.for_range(faces, [&](u32 f) {
-      if (h.seen[f]) h.seen_list[h.seen_rank[f]] = f;
-    });
-    team.barrier();
-    // The seen faces' edges (3 a seen face, in slot order) on the horizon.
+        [&](u32 f, u32 rank) { h.seen_list[rank] = f; });
+    // The seen faces' edges (3 a seen face, in slot order) on the horizon, read before any face is
+    // rewritten: each one's start, end and outer edge, and the horizon edge each vertex starts and ends.
     const auto edge_of = [&](u32 x) { return 3 * h.seen_list[x / 3] + x % 3; };
-    const auto on_horizon = [&](u32 x) { return !h.seen[h.fn[edge_of(x)]]; };
-    const u32 edges = team.count_scan(3 * seen, on_horizon, h.edge_rank);
+    const u32 edges = team.list(
+        3 * seen, [&](u32 x) { return !h.seen[h.fn[edge_of(x)]]; },
+        [&](u32 x, u32 k) {
+          const u32 e = edge_of(x), f = e / 3, g = h.fn[e];
+          u32 outer = 3 * g;
+          while (outer < 3 * g + 2 && h.fn[outer] != f)
+            ++outer;
+          const u32 a = h.fv[e], b = h.fv[3 * f + (e % 3 + 1) % 3];
+          h.horizon[3 * k] = a;
+          h.horizon[3 * k + 1] = b;
+          h.horizon[3 * k + 2] = outer;
+          starts[a] = k;
+          ends[b] = k;
+        });
     const u32 fresh = edges > seen + free_count ? edges - seen - free_count : 0;
     if (faces + fresh > h.faces || edges > h.faces ||
         (seen > edges && free_count + seen - edges > h.free_room))
       return end_with(kBatchRoom);
-    // Read before any face is rewritten: the horizon (start, end, outer edge).
-    team.for_range(3 * seen, [&](u32 x) {
-      if (!on_horizon(x)) return;
-      const u32 e = edge_of(x), k = h.edge_rank[x], f = e / 3, g = h.fn[e];
-      u32 outer = 3 * g;
-      while (outer < 3 * g + 2 && h.fn[outer] != f)
-        ++outer;
-      const u32 a = h.fv[e], b = h.fv[3 * f + (e % 3 + 1) % 3];
-      h.horizon[3 * k] = a;
-      h.horizon[3 * k + 1] = b;
-      h.horizon[3 * k + 2] = outer;
-      starts[a] = k;
-      ends[b] = k;
-    });
-    team.barrier();
     const auto slot_of = [&](u32 k) {
       if (k < seen) return h.seen_list[k];
       k -= seen;
@@ -160,18 +164,27 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
     });
     team.barrier();
     if (*failed) return end_with(kBatchSingle);
-    // The seen faces' points (but p), listed, each to the first new face it is strictly above: a test a
-    // (point, new face) pair, the least new face kept, so that no lane waits on another's long search
-    // (slots as before this step's counts change).
-    const auto moves = [&](u32 i) { return face_of[i] != kNoFace && h.seen[face_of[i]] && i != p; };
-    const u32 movers = team.count_scan(n, moves, mover_rank);
-    team.for_range(n, [&](u32 i) {
-      if (!moves(i)) return;
-      mover[mover_rank[i]] = i;
-      first_above[mover_rank[i]] = edges;
-    });
-    if (team.leader()) face_of[p] = kNoFace;
-    team.barrier();
+    // The points still outside (the last step's placed inside leave the list, and p), and among them the
+    // seen faces' (seen flags as before this step: a seen face's slot may hold a new face now).
+    const TwoCounts listed = team.list_two(
+        outside_count,
+        [&](u32 x) {
+          const u32 i = outside[x], f = face_of[i];
+          if (f == kNoFace || i == p) return 0u;
+          return h.seen[f] ? 3u : 1u;
+        },
+        [&](u32 x, u32 rank) { outside_next[rank] = outside[x]; },
+        [&](u32 x, u32 rank) {
+          mover[rank] = outside[x];
+          first_above[rank] = edges;
+        });
+    const u32 movers = listed.second;
+    outside_count = listed.first;
+    u32* const swap = outside;
+    outside = outside_next;
+    outside_next = swap;
+    // Each to the first new face it is strictly above: a test a (point, new face) pair, the least new face
+    // kept, so that no lane waits on another's long search (slots as before this step's counts change).
     team.for_range(movers * edges, [&](u32 t) {
       const u32 x = t / edges, k = t % edges;
       if (side(slot_of(k), at(mover[x])) > 0) atomic_min_u32(&first_above[x], k);
@@ -180,7 +193,7 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
     team.for_range(movers, [&](u32 x) {
       const u32 i = mover[x], k = first_above[x];
       if (k == edges) {
-        face_of[i] = kNoFace;  // inside
+        face_of[i] = kNoFace;  // inside: it leaves the list at the next step
         return;
       }
       place(i, slot_of(k));
