@@ -102,6 +102,12 @@ class EventTimer {
   cudaEvent_t events_[2];
 };
 
+// A batch leaves the memory it used in the device's pool, up to this share of the device's (1/16: 5 GB of an
+// H100's 80), for the next batch of its size: mapping it again and handing it back cost 100,000 clouds of 100
+// points 1.2 ms of their 16 from PyTorch, 100 of 100,000 1.4 ms of 8 (docs/benchmarks.md, "Batched hulls").
+// cudahull::release_device_memory() hands it back at once.
+constexpr std::size_t kBatchKeepShare = 16;
+
 // The clouds with more points than this take the single-cloud path (or CUDAHULL_BATCH_BLOCK_POINTS, up to
 // 2^20: a block's room, batch_room(), counts its face slots in 32 bits).
 // A size from the environment variable `name`, or `fallback`.
@@ -263,10 +269,12 @@ __global__ void __launch_bounds__(32 * kWarps, kMinBlocks) batch_warp_kernel(Pas
 // issue (ncu: 83% of cycles); with five the batch kernel runs some 25% faster (docs/benchmarks.md,
 // "Batched hulls").  Clouds of more than kMidBlockPoints take four an SM: 128 registers a thread spill
 // less, and their longer phases wait on memory more than on the barriers.
-// The smallest clouds take a warp each (kWarp: kWarpsPerBlock warps a block, the registers of five blocks an
-// SM, small_hull()).  The resident iteration on a warp a cloud ran slower than on blocks (100,000 balls of
-// 100: 36.4 ms against 28.6): twenty warps an SM, each in a phase of its own, waited on instruction fetch
-// (ncu: 52% of the stall samples).
+// The smallest clouds take a warp each (kWarp: kWarpsPerBlock warps a block, small_hull()), four blocks an
+// SM: small_hull() at 128 registers a thread spills less than at five's 96 and ran 9-17% faster (100,000
+// balls of 100 points 8.3 ms against 9.2, 20,000 spheres of 128 8.0 against 9.7); at three (168) and two,
+// slower (docs/benchmarks.md, "Batched hulls").  The resident iteration on a warp a cloud ran slower than on
+// blocks (100,000 balls of 100: 36.4 ms against 28.6): twenty warps an SM, each in a phase of its own, waited
+// on instruction fetch (ncu: 52% of the stall samples).
 enum class TeamKind { kWarp, kBlock, kMidBlock, kLargeBlock };
 constexpr int kWarpsPerBlock = kThreads / 32;
 template <TeamKind kKind>
@@ -274,9 +282,9 @@ constexpr int kBlockThreads = kKind == TeamKind::kLargeBlock ? kLargeThreads : k
 template <TeamKind kKind>
 constexpr u32 kTeamsPerBlock = kKind == TeamKind::kWarp ? kWarpsPerBlock : 1;
 template <TeamKind kKind>
-constexpr int kMinBlocksOf = kKind == TeamKind::kLargeBlock ? 1
-                             : kKind == TeamKind::kMidBlock ? 4
-                                                            : 5;
+constexpr int kMinBlocksOf = kKind == TeamKind::kLargeBlock                             ? 1
+                             : kKind == TeamKind::kMidBlock || kKind == TeamKind::kWarp ? 4
+                                                                                        : 5;
 
 // One pass over the listed clouds (ids into `offsets`), each with room for a hull of `vertices` vertices;
 // the results per listed cloud read back, the hulls kept on the device in `run.outputs`.
@@ -496,7 +504,9 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   if (!any) return run;
   laps.lap("groups");
 
-  const TrimPoolAtEnd trim;  // after the arrays below: what the batch freed beyond the pool's keep, back
+  // After the arrays below: what the batch freed beyond what it used (up to a kBatchKeepShare of the
+  // device's memory), back to the driver.
+  TrimPoolAtEnd trim;
   std::size_t held = 0;
   BatchMemory memory(held, run.device_bytes);
   u32* device_offsets = memory.take<u32>(clouds + 1, "the offsets");
@@ -544,6 +554,10 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
     pass_and_route(std::integral_constant<TeamKind, TeamKind::kBlock>{}, again, false);
   pass_and_route(std::integral_constant<TeamKind, TeamKind::kWarp>{}, on_warps, false);
   laps.lap("passes");
+  std::size_t free_bytes = 0, total_bytes = 0;
+  if (cudaMemGetInfo(&free_bytes, &total_bytes) == cudaSuccess)
+    trim.keep_at_least(std::min(run.device_bytes, total_bytes / kBatchKeepShare));
+  cudaGetLastError();
   return run;
 }
 

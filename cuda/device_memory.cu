@@ -57,6 +57,9 @@ class BlockCache {
     return block;
   }
 
+  // The cache's blocks of `device` (the current one) back to the pool.
+  void release_cached(int device) { release(device); }
+
   void give(const DeviceBlock& block, cudaStream_t stream) noexcept {
     // Another stream's block enters the cache idle (its stream waited for here, as cudaFree waited for the
     // whole device before); the default stream's in its order, with no wait.
@@ -149,6 +152,16 @@ DeviceBlock take_device_block(std::size_t bytes, cudaStream_t stream, const char
 
 void give_device_block(const DeviceBlock& block, cudaStream_t stream) noexcept {
   block_cache().give(block, stream);
+}
+
+void release_device_memory_now() {
+  int device = 0;
+  if (cudaGetDevice(&device) != cudaSuccess) {
+    cudaGetLastError();
+    return;
+  }
+  block_cache().release_cached(device);
+  trim_device_pool(0);
 }
 
 void trim_device_pool(std::size_t keep) {

@@ -56,11 +56,18 @@ constexpr std::size_t kPoolKeep = std::size_t{256} << 20;
 // stream's work, whose frees it waits for); the cache's blocks stay.
 void trim_device_pool(std::size_t keep = kPoolKeep);
 
+// Everything the allocator holds on the current device and no array uses (the cache's blocks and the pool's
+// free memory), back to the driver, after the default stream's work: for a caller that wants the memory
+// for another library (cudahull::release_device_memory()).  Never throws; no device: nothing.
+void release_device_memory_now();
+
 // trim_device_pool(keep) when it dies: declared before device arrays (in a function or a class), it hands
 // what they free back to the driver after them.
 class TrimPoolAtEnd {
  public:
   explicit TrimPoolAtEnd(std::size_t keep = kPoolKeep) : keep_(keep) {}
+  // Keep at least `bytes` (what a batch used: the next one of its size maps nothing again).
+  void keep_at_least(std::size_t bytes) { keep_ = std::max(keep_, bytes); }
   TrimPoolAtEnd(const TrimPoolAtEnd&) = delete;
   TrimPoolAtEnd& operator=(const TrimPoolAtEnd&) = delete;
   ~TrimPoolAtEnd() { trim_device_pool(keep_); }

@@ -23,6 +23,7 @@
 #include "cudahull/plane.hpp"
 #include "cudahull/resident.hpp"
 #include "device_info.hpp"
+#include "device_memory.hpp"
 #include "device_points.hpp"
 #include "facet_merge.hpp"
 #include "planar_filter.hpp"
@@ -878,6 +879,10 @@ ConvexHull convex_hull_2d_device(const double* device_xy, std::size_t count,
 CudaStatus cuda_status() {
   const CudaDeviceInfo device = query_cuda_device();
   return {device.usable, device.name, device.reason};
+}
+
+void release_device_memory() {
+  if (query_cuda_device().usable) release_device_memory_now();
 }
 
 BackendChoice backend_from_name(const std::string& name) {

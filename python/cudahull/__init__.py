@@ -20,7 +20,7 @@ from . import _cudahull, qhull_options as _qhull_options
 from ._cudahull import SWAP_KINDS, DeviceError, InputError
 
 __all__ = ["ConvexHull", "Engine", "convex_hull", "convex_hull_batch", "BatchHulls", "InputError", "DeviceError",
-           "QhullError", "SWAP_KINDS"]
+           "QhullError", "SWAP_KINDS", "release_device_memory"]
 
 try:  # scipy's own, where scipy is importable, so that code catching it catches ours
     from scipy.spatial import QhullError as _QhullErrorBase
@@ -785,6 +785,17 @@ def _batch_call(padded, function, *arguments):
         if not padded:
             raise
         raise type(error)(re.sub(r" \(row \d+ of the packed points\)", "", str(error))) from None
+
+
+def release_device_memory():
+    """Hands the GPU memory cudahull keeps between calls back to the driver, as ``torch.cuda.empty_cache()``
+    does PyTorch's.
+
+    A batch keeps the memory it used (up to a sixteenth of the device's) for the next batch of its size, which
+    then maps none again; call this when PyTorch or CuPy needs that memory.  Results stay valid.  Without a
+    usable GPU it does nothing.
+    """
+    _cudahull.release_device_memory()
 
 
 def convex_hull_batch(points, offsets=None, lengths=None, *, backend="auto", precision="auto", engine="auto",

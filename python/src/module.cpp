@@ -609,6 +609,10 @@ NB_MODULE(_cudahull, m) {
   m.def("convex_hull_batch_cuda_pointer", &convex_hull_batch_cuda_pointer, nb::arg("pointer"),
         nb::arg("count"), nb::arg("is_double"), nb::arg("offsets"), nb::arg("backend"), nb::arg("precision"),
         nb::arg("library"));
+  m.def("release_device_memory", []() {
+    nb::gil_scoped_release unlocked;
+    release_device_memory();
+  });
   // Whether a CUDA array can be taken here at all: (usable, why not), before its data is touched.
   m.def("cuda_device", []() {
     const CudaStatus cuda = cuda_status();

@@ -158,6 +158,11 @@ struct CudaStatus {
 };
 CudaStatus cuda_status();
 
+// The device memory cudahull keeps between calls and no result uses (a batch keeps what it used, up to a
+// sixteenth of the device's memory, for the next batch of its size), back to the driver now: for memory
+// another library (PyTorch, CuPy) needs.  The next call maps what it needs again.  No device: nothing.
+void release_device_memory();
+
 // "auto", "cpu", "cuda" and back; throws std::invalid_argument for another name.
 BackendChoice backend_from_name(const std::string& name);
 EngineChoice engine_from_name(const std::string& name);  // "auto", "stepping" or "resident"

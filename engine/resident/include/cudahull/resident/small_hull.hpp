@@ -103,7 +103,7 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
   u32 faces = 4, free_count = 0;  // the slots in use (live or free), the free list's length: every thread's
   while (true) {
     team.barrier();
-    const u64 best = team.max_of(faces, [&](u32 f) { return h.live[f] ? h.furthest[f] : 0; });
+    const u64 best = team.max_of(faces, [&](u32 f) { return h.furthest[f]; });  // a free slot's: 0
     if (best == 0) break;
     const u32 p = rank_key_index(best);
     const Vec3d pp = at(p);
@@ -160,6 +160,7 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
     team.for_range(seen > edges ? seen - edges : 0, [&](u32 d) {
       const u32 s = h.seen_list[edges + d];
       h.live[s] = 0;
+      h.furthest[s] = 0;
       h.free_list[free_count + d] = s;
     });
     team.barrier();
