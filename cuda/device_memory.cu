@@ -57,8 +57,16 @@ class BlockCache {
     return block;
   }
 
-  // The cache's blocks of `device` (the current one) back to the pool.
-  void release_cached(int device) { release(device); }
+  // The cache's blocks of `device` (the current one) back to the pool; whether this allocator ever took a
+  // block there (if not, nothing of cudahull's is in its pool).
+  bool release_cached(int device) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (pools_kept_.count(device) == 0) return false;
+    }
+    release(device);
+    return true;
+  }
 
   void give(const DeviceBlock& block, cudaStream_t stream) noexcept {
     // Another stream's block enters the cache idle (its stream waited for here, as cudaFree waited for the
@@ -160,8 +168,9 @@ void release_device_memory_now() {
     cudaGetLastError();
     return;
   }
-  block_cache().release_cached(device);
-  trim_device_pool(0);
+  // A process that never allocated here has nothing to give back (and a trim's synchronisation would
+  // create the device's context).
+  if (block_cache().release_cached(device)) trim_device_pool(0);
 }
 
 void trim_device_pool(std::size_t keep) {

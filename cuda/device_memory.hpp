@@ -58,7 +58,8 @@ void trim_device_pool(std::size_t keep = kPoolKeep);
 
 // Everything the allocator holds on the current device and no array uses (the cache's blocks and the pool's
 // free memory), back to the driver, after the default stream's work: for a caller that wants the memory
-// for another library (cudahull::release_device_memory()).  Never throws; no device: nothing.
+// for another library (cudahull::release_device_memory()).  Never throws; no device, or one this process's
+// cudahull never allocated on: nothing.
 void release_device_memory_now();
 
 // trim_device_pool(keep) when it dies: declared before device arrays (in a function or a class), it hands

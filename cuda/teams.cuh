@@ -14,6 +14,7 @@
 #include <cub/warp/warp_scan.cuh>
 
 #include "cuda_errors.hpp"
+#include "cudahull/resident/rounds.hpp"
 #include "cudahull/resident/swaps.hpp"
 
 namespace cudahull::resident {
@@ -193,10 +194,10 @@ struct BlockTeam {
 
 // One warp: __syncwarp() for a barrier (it orders the lanes' memory as __syncthreads() does a block's).  A
 // batch's smallest clouds take a warp each (small_hull.hpp): a block's other warps would mostly wait at
-// its barriers (ncu on 100-point clouds: half the stall samples), and an SM holds four times as many
-// clouds at once.  The compact code: many warps in different places share the SM's instruction cache.
-// What small_hull() asks of a team (and batch_tetrahedron(), write_batch_hull()): no rounds, so no list_if
-// (its lists: list(), list_two()) and no phase timing.
+// its barriers (ncu on 100-point clouds: half the stall samples), and an SM holds three times as many
+// clouds at once (16 warps against 5 blocks).  The compact code: many warps in different places share the
+// SM's instruction cache. What small_hull() asks of a team (and batch_tetrahedron(), write_batch_hull()): no
+// rounds, so no list_if (its lists: list(), list_two()) and no phase timing.
 struct WarpTeam {
   __device__ static u32 lane() { return threadIdx.x & 31; }
   template <class F>

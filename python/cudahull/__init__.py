@@ -788,12 +788,12 @@ def _batch_call(padded, function, *arguments):
 
 
 def release_device_memory():
-    """Hands the GPU memory cudahull keeps between calls back to the driver, as ``torch.cuda.empty_cache()``
-    does PyTorch's.
+    """Hands the GPU memory cudahull keeps between calls on the current CUDA device back to the driver, as
+    ``torch.cuda.empty_cache()`` does PyTorch's.
 
-    A batch keeps the memory it used (up to a sixteenth of the device's) for the next batch of its size, which
-    then maps none again; call this when PyTorch or CuPy needs that memory.  Results stay valid.  Without a
-    usable GPU it does nothing.
+    cudahull keeps at least 256 MiB, and a batch the memory it used (up to a sixteenth of the device's) for
+    the next batch of its size, which then maps none again; call this when PyTorch or CuPy needs that memory.
+    Results stay valid.  Without a usable GPU, or before cudahull used it, it does nothing.
     """
     _cudahull.release_device_memory()
 

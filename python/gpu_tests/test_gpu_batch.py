@@ -209,20 +209,29 @@ def assert_many_wide_clouds_stay_apart(place):
 
 def test_release_device_memory_hands_the_batchs_memory_back(lib):
     """A batch keeps the memory it used for the next one of its size; release_device_memory() hands it back to
-    the driver (the device's free memory grows by most of the batch's peak), and the result stays valid."""
+    the driver (with no result alive, the device's free memory grows by most of the batch's peak), and a
+    result alive through it stays valid."""
+    import gc
+
     def free_bytes():
         return lib.cuda.mem_get_info()[0] if lib.__name__ == "torch" else lib.cuda.runtime.memGetInfo()[0]
 
     rng = np.random.default_rng(11)
     points = rng.normal(size=(20000 * 100, 3)).astype(np.float32)
     offsets = np.arange(0, len(points) + 1, 100)
-    got = cudahull.convex_hull_batch(on_device(lib, points), offsets)
-    peak = got.report["device_bytes_peak"] - points.nbytes
+    device_points = on_device(lib, points)
+    got = cudahull.convex_hull_batch(device_points, offsets)
+    cudahull.release_device_memory()
+    first = slice(0, int(to_numpy(got.vertex_offsets)[50]))
+    want = cudahull.convex_hull_batch(points[:5000], offsets[:51], backend="cpu")
+    assert np.array_equal(to_numpy(got.vertices)[first], want.vertices)
+    del got
+    again = cudahull.convex_hull_batch(device_points, offsets)
+    peak = again.report["device_bytes_peak"] - points.nbytes
+    del again
+    gc.collect()
     before = free_bytes()
     cudahull.release_device_memory()
     released = free_bytes() - before
     assert released >= 0.5 * peak, (released, peak)
-    first = slice(0, int(to_numpy(got.vertex_offsets)[50]))
-    want = cudahull.convex_hull_batch(points[:5000], offsets[:51], backend="cpu")
-    assert np.array_equal(to_numpy(got.vertices)[first], want.vertices)
     cudahull.release_device_memory()  # nothing held: nothing to do

@@ -172,6 +172,14 @@ def test_padded_and_packed_agree(batch):
                                                                                   h.dimensions[c])
 
 
+def test_release_device_memory_without_gpu_work(batch):
+    """release_device_memory() where cudahull has used no GPU (here, or on a machine without one) hands
+    nothing back and raises nothing; the CPU batch after it is the same."""
+    cudahull.release_device_memory()
+    again = cudahull.convex_hull_batch(batch.clouds[0], [0, len(batch.clouds[0])], backend="cpu")
+    assert np.array_equal(again.vertices, batch.vertices(0))
+
+
 def assert_same_batch(a, b):
     for key in cudahull.BatchHulls.__slots__:
         if key != "backend":

@@ -152,12 +152,12 @@ CUDAHULL_HD void swap_and_removal_rounds(const Team& team, const RoundsBuffers<P
   }
 }
 
-// The host's team: one thread, in index order.
 // The lengths of list_two()'s lists (HostTeam, WarpTeam).
 struct TwoCounts {
   u32 first, second;
 };
 
+// The host's team: one thread, in index order.
 struct HostTeam {
   static constexpr bool kCompactCode = false;
   template <class F>

@@ -34,8 +34,9 @@ namespace cudahull::resident {
 
 inline constexpr u32 kNoFace = 0xffffffffu;
 
-// The slot's arrays as this hull uses them (a face: 3 corners, 3 links, a live flag, a seen flag and its
-// rank, its furthest key; an edge: its horizon rank; a horizon edge: its start, end and outer edge).
+// The slot's arrays as this hull uses them (a face: 3 corners, 3 links, a live flag, a seen flag, its
+// furthest key; a horizon edge: its start, end and outer edge; the seen faces and the free slots listed;
+// seen_rank and edge_rank: the finish's ranks and corners, edge_rank a step's first new faces until then).
 struct SmallHullArrays {
   u32 *fv, *fn, *live, *seen, *seen_rank, *seen_list, *edge_rank, *horizon, *free_list;
   u64* furthest;
@@ -55,8 +56,8 @@ CUDAHULL_HD inline BatchRoom small_hull_room(u32 v) {
 // One cloud's hull on `team` in `slot`, as batch_hull()'s: the status into *result (and, when done, the
 // hull into `out`).  Per point it uses the cloud's face (the face it is above), index and index_spare (the
 // horizon edge starting and ending there), keep and point_rank (the points still outside a face, listed:
-// this step's list and the next's) and face_spare (a step's points to place; the finish's marks, ranks and
-// list after the steps).
+// this step's list and the next's; the finish's marks and ranks) and face_spare (a step's points to place;
+// the finish's list).
 template <class Team, class Point>
 CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const BatchCloud<Point>& cloud,
                             const BatchOutput<Point>& out, BatchResult* result) {
@@ -120,6 +121,7 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
     const u32 edges = team.list(
         3 * seen, [&](u32 x) { return !h.seen[h.fn[edge_of(x)]]; },
         [&](u32 x, u32 k) {
+          if (k >= h.faces) return;  // beyond the horizon's room: the check below ends the cloud
           const u32 e = edge_of(x), f = e / 3, g = h.fn[e];
           u32 outer = 3 * g;
           while (outer < 3 * g + 2 && h.fn[outer] != f)
