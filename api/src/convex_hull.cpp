@@ -882,7 +882,7 @@ CudaStatus cuda_status() {
 }
 
 void release_device_memory() {
-  if (query_cuda_device().usable) release_device_memory_now();
+  release_device_memory_now();  // no device, or none cudahull allocated on: nothing
 }
 
 BackendChoice backend_from_name(const std::string& name) {

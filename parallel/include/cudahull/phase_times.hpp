@@ -26,8 +26,10 @@ inline bool phase_times_wanted() {
 // device work: the caller finishes that work before the lap (only when wanted(): it costs a wait).
 class PhaseLaps {
  public:
-  explicit PhaseLaps(const char* who) : wanted_(phase_times_wanted()), line_(std::string(who) + ":") {
-    if (wanted_) t0_ = Clock::now();
+  explicit PhaseLaps(const char* who) : wanted_(phase_times_wanted()) {
+    if (!wanted_) return;
+    line_ = std::string(who) + ":";
+    t0_ = Clock::now();
   }
   PhaseLaps(const PhaseLaps&) = delete;
   PhaseLaps& operator=(const PhaseLaps&) = delete;

@@ -211,13 +211,12 @@ struct HostTeam {
         n, [&](u32 i) { return pred(i) ? 1u : 0u; }, out);
   }
   // The indices below n that pass (pred(i), once each), in index order, each told its rank among them
-  // (emit(i, rank)); their count.
+  // (emit(i, rank)); their count: list_two()'s first list alone.
   template <class Pred, class Emit>
   CUDAHULL_HD u32 list(u32 n, const Pred& pred, const Emit& emit) const {
-    u32 count = 0;
-    for (u32 i = 0; i < n; ++i)
-      if (pred(i)) emit(i, count++);
-    return count;
+    return list_two(
+               n, [&](u32 i) { return pred(i) ? 1u : 0u; }, emit, [](u32, u32) {})
+        .first;
   }
   // Two such lists in one pass: kind(i) (once each) puts i in the first (bit 0), the second (bit 1), both
   // or neither; first(i, rank) and second(i, rank) as emit().
