@@ -14,23 +14,23 @@
 
 namespace cudahull {
 
-// The batch kernel's run: which clouds it hulled, their sizes, and their hulls kept on the device (each
-// pass's output) for describe_batch_cuda().
+// The batch kernel's run: which clouds it hulled, and their hulls kept on the device (each pass's output,
+// with its results: the sizes stay there) for lay_out_batch_offsets() and describe_batch_cuda().
 template <class Point>
 struct BatchRun {
   // A run of `clouds` clouds in which none is done yet (or none will be: the single-cloud path takes all).
-  explicit BatchRun(std::size_t clouds = 0) : done(clouds, 0), faces(clouds, 0), vertices(clouds, 0) {}
+  explicit BatchRun(std::size_t clouds = 0) : done(clouds, 0) {}
   // Per cloud: 1 when its exact hull (dimension 3) is on the device; 0 when the single-cloud path must take
   // it (fewer than 4 points or more than a block takes, a flat cloud, a stall, or a defect that the
   // single-cloud path's local repair mends).
   std::vector<std::uint8_t> done;
-  std::vector<std::uint32_t> faces, vertices;  // per done cloud, its hull's
-  unsigned passes = 0;                         // launches (a kind of team each, and the later passes')
-  std::size_t clouds_in_second_pass = 0;       // on blocks, with room for every point
+  std::size_t clouds_done = 0;
+  unsigned passes = 0;                    // launches (a kind of team each, and the later passes')
+  std::size_t clouds_in_second_pass = 0;  // on blocks, with room for every point
   std::size_t device_bytes = 0;  // the most device memory the run held at once (the points not included)
   std::size_t kept_bytes = 0;    // what the passes' outputs hold until they are described
   double kernel_ms = 0;          // the launches alone (CUDA events)
-  struct PassOutput;             // a pass's hulls on the device (batch_cuda.cu)
+  struct PassOutput;             // a pass's hulls and results on the device (batch_cuda.cu)
   std::vector<std::shared_ptr<PassOutput>> outputs;
 };
 
@@ -48,6 +48,25 @@ struct BatchColumns {
   std::int32_t *vertices, *faces, *dimensions;        // faces: 3 corners a face
   double *planes, *volumes, *areas;                   // planes: 4 a face
 };
+
+// A cloud's hull from the single-cloud path, its sizes: what lay_out_batch_offsets() places.
+struct HostedSizes {
+  std::size_t cloud, vertices, faces, polygon;
+};
+struct BatchTotals {
+  std::size_t vertices = 0, faces = 0, polygons = 0;
+};
+
+// The packed result's offsets (B + 1 each, in the current device's memory) laid out there: each done
+// cloud's sizes from its pass's results (which never cross to the host), each hosted cloud's as given, then
+// a prefix sum of each column.  Returns the totals (the last offsets, read back).
+template <class Point>
+BatchTotals lay_out_batch_offsets(const BatchRun<Point>& run, const std::vector<HostedSizes>& hosted,
+                                  std::size_t clouds, std::int64_t* vertex_offsets,
+                                  std::int64_t* face_offsets, std::int64_t* polygon_offsets);
+
+// `column`'s values (int64, the current device's memory) at the indices `at`, read back in one copy.
+std::vector<std::int64_t> read_device_values(const std::int64_t* column, const std::vector<std::size_t>& at);
 
 // The done clouds of `run` described into `columns`, as convex_hull() describes an exact mesh: the vertex
 // ids, the faces on them, each face's plane (detail::facet_plane_in_range), the volume and area (summed

@@ -10,10 +10,11 @@
 //   batch_run_cuda(): the exact meshes of the clouds a block takes, left on the device; the results alone
 //     (sizes) read back
 //   the other clouds through convex_hull() or convex_hull_device(), in cloud order
-//   the result assembled on the device (assemble_on_device()): offsets laid out on the host from the sizes,
-//     the kernel's meshes described there (describe_batch_cuda(): the planes, volumes and areas as
-//     convex_hull() computes them, the same code), the other clouds' hulls copied up; read back in one copy
-//     a column for a host result (DeviceConvexHullBatch::to_host())
+//   the result assembled on the device (assemble_on_device()): offsets laid out there from the sizes (the
+//     kernel's hulls' never cross to the host; lay_out_batch_offsets()), the kernel's meshes described there
+//     (describe_batch_cuda(): the planes, volumes and areas as convex_hull() computes them, the same code),
+//     the other clouds' hulls copied up; read back in one copy a column for a host result
+//     (DeviceConvexHullBatch::to_host())
 #include "cudahull/convex_hull_batch.hpp"
 
 #include <algorithm>
@@ -172,47 +173,39 @@ DeviceColumn<T> device_column(std::size_t size, const char* what) {
   return {std::static_pointer_cast<T>(batch_column(size * sizeof(T), what)), size};
 }
 
-std::vector<std::int64_t> as_int64(const std::vector<std::size_t>& values) {
-  return std::vector<std::int64_t>(values.begin(), values.end());
-}
-
-// The packed result on the device: the offsets laid out from every cloud's sizes (the kernel's hulls' and
-// the hosted ones'), the kernel's hulls described into place (describe_batch_cuda()), the hosted hulls
-// copied up, a run of consecutive hosted clouds at a time (their places are consecutive in both).
+// The packed result on the device: the offsets laid out there from every cloud's sizes (the kernel's hulls'
+// from their results, which stay there; the hosted ones' from the host: lay_out_batch_offsets()), the
+// kernel's hulls described into place (describe_batch_cuda()), the hosted hulls copied up, a run of
+// consecutive hosted clouds at a time (their places are consecutive in both).
 template <class Point>
 DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls&& hosted,
                                          std::size_t clouds) {
   PhaseLaps laps("batch assembly");
   DeviceConvexHullBatch batch;
   batch.device = current_cuda_device();
-  batch.vertex_offsets.assign(clouds + 1, 0);
-  batch.face_offsets.assign(clouds + 1, 0);
-  batch.polygon_offsets.assign(clouds + 1, 0);
-  std::size_t h = 0;
-  for (std::size_t c = 0; c < clouds; ++c) {
-    std::size_t vertices = 0, faces = 0, polygon = 0;
-    if (run.done[c]) {
-      vertices = run.vertices[c];
-      faces = run.faces[c];
-      ++batch.clouds_batched;
-      if (batch.clouds_batched == 1) add_backend(batch, "cuda-resident");  // once: 100,000 clouds come here
-    } else {
-      const ConvexHull& hull = hosted[h++].second;
-      vertices = hull.vertices.size();
-      faces = hull.faces.size();
-      polygon = hull.polygon.size();
-      add_backend(batch, hull.backend);
-    }
-    batch.vertex_offsets[c + 1] = batch.vertex_offsets[c] + vertices;
-    batch.face_offsets[c + 1] = batch.face_offsets[c] + faces;
-    batch.polygon_offsets[c + 1] = batch.polygon_offsets[c] + polygon;
+  batch.clouds_batched = run.clouds_done;
+  // The backends in the order first met, cloud by cloud: the kernel's before the first hosted cloud after
+  // its first done one.
+  const std::size_t first_done =
+      run.clouds_done == 0
+          ? clouds
+          : static_cast<std::size_t>(std::find(run.done.begin(), run.done.end(), 1) - run.done.begin());
+  std::vector<HostedSizes> sizes;
+  sizes.reserve(hosted.size());
+  for (const auto& [c, hull] : hosted) {
+    if (c > first_done) add_backend(batch, "cuda-resident");
+    add_backend(batch, hull.backend);
+    sizes.push_back({c, hull.vertices.size(), hull.faces.size(), hull.polygon.size()});
   }
-  const std::size_t vertices = batch.vertex_offsets[clouds], faces = batch.face_offsets[clouds],
-                    polygons = batch.polygon_offsets[clouds];
-  laps.lap("offsets");
+  if (first_done < clouds) add_backend(batch, "cuda-resident");
   batch.device_vertex_offsets = device_column<std::int64_t>(clouds + 1, "the vertex offsets");
   batch.device_face_offsets = device_column<std::int64_t>(clouds + 1, "the face offsets");
   batch.device_polygon_offsets = device_column<std::int64_t>(clouds + 1, "the polygon offsets");
+  const BatchTotals totals =
+      lay_out_batch_offsets(run, sizes, clouds, batch.device_vertex_offsets.data.get(),
+                            batch.device_face_offsets.data.get(), batch.device_polygon_offsets.data.get());
+  const std::size_t vertices = totals.vertices, faces = totals.faces, polygons = totals.polygons;
+  laps.lap("offsets");
   batch.vertices = device_column<std::int32_t>(vertices, "the vertices");
   batch.faces = device_column<std::int32_t>(3 * faces, "the faces");
   batch.polygons = device_column<std::int32_t>(polygons, "the polygons");
@@ -220,14 +213,7 @@ DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls
   batch.planes = device_column<double>(4 * faces, "the planes");
   batch.volumes = device_column<double>(clouds, "the volumes");
   batch.areas = device_column<double>(clouds, "the areas");
-  const auto up = [](auto& column, const auto& values, std::size_t at = 0) {
-    copy_to_device(column.data.get() + at, values.data(), values.size() * sizeof(values[0]));
-  };
-  up(batch.device_vertex_offsets, as_int64(batch.vertex_offsets));
-  up(batch.device_face_offsets, as_int64(batch.face_offsets));
-  up(batch.device_polygon_offsets, as_int64(batch.polygon_offsets));
-  if (laps.wanted()) finish_device_work();
-  laps.lap("columns and offsets up");
+  laps.lap("columns");
   if (batch.clouds_batched != 0) {
     const BatchColumns columns{batch.device_vertex_offsets.data.get(),
                                batch.device_face_offsets.data.get(),
@@ -238,11 +224,23 @@ DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls
                                batch.volumes.data.get(),
                                batch.areas.data.get()};
     describe_batch_cuda(run, columns);
-    if (laps.wanted()) finish_device_work();
     laps.lap("describe");
   }
-  // The hosted clouds, a run of consecutive ones at a time.
-  for (std::size_t first = 0; first < hosted.size();) {
+  // The hosted clouds, a run of consecutive ones at a time, at the offsets of each run's first cloud (read
+  // back for these alone).
+  std::vector<std::size_t> run_starts;
+  for (std::size_t k = 0; k < hosted.size(); ++k)
+    if (k == 0 || hosted[k].first != hosted[k - 1].first + 1) run_starts.push_back(hosted[k].first);
+  const std::vector<std::int64_t> vertex_at =
+                                      read_device_values(batch.device_vertex_offsets.data.get(), run_starts),
+                                  face_at =
+                                      read_device_values(batch.device_face_offsets.data.get(), run_starts),
+                                  polygon_at =
+                                      read_device_values(batch.device_polygon_offsets.data.get(), run_starts);
+  const auto up = [](auto& column, const auto& values, std::size_t at = 0) {
+    copy_to_device(column.data.get() + at, values.data(), values.size() * sizeof(values[0]));
+  };
+  for (std::size_t first = 0, r = 0; first < hosted.size(); ++r) {
     std::size_t end = first + 1;
     while (end < hosted.size() && hosted[end].first == hosted[end - 1].first + 1)
       ++end;
@@ -262,10 +260,10 @@ DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls
       dimensions.push_back(hull.dimension);
       hull = ConvexHull{};  // its memory back now
     }
-    up(batch.vertices, ids, batch.vertex_offsets[c0]);
-    up(batch.faces, corners, 3 * batch.face_offsets[c0]);
-    up(batch.planes, planes, 4 * batch.face_offsets[c0]);
-    up(batch.polygons, polygon, batch.polygon_offsets[c0]);
+    up(batch.vertices, ids, static_cast<std::size_t>(vertex_at[r]));
+    up(batch.faces, corners, 3 * static_cast<std::size_t>(face_at[r]));
+    up(batch.planes, planes, 4 * static_cast<std::size_t>(face_at[r]));
+    up(batch.polygons, polygon, static_cast<std::size_t>(polygon_at[r]));
     up(batch.volumes, volumes, c0);
     up(batch.areas, areas, c0);
     up(batch.dimensions, dimensions, c0);
@@ -570,10 +568,14 @@ DeviceConvexHullBatch convex_hull_batch_device_results(const double* device_xyz,
 ConvexHullBatch DeviceConvexHullBatch::to_host() const {
   ConvexHullBatch batch;
   static_cast<ConvexHullBatchReport&>(batch) = *this;
-  batch.vertex_offsets = vertex_offsets;
-  batch.face_offsets = face_offsets;
-  batch.polygon_offsets = polygon_offsets;
   const std::size_t clouds = size();
+  for (auto [to, from] : {std::pair{&batch.vertex_offsets, &device_vertex_offsets},
+                          std::pair{&batch.face_offsets, &device_face_offsets},
+                          std::pair{&batch.polygon_offsets, &device_polygon_offsets}}) {
+    std::vector<std::int64_t> offsets(clouds + 1);
+    copy_to_host(offsets.data(), from->data.get(), offsets.size() * sizeof(std::int64_t));
+    to->assign(offsets.begin(), offsets.end());
+  }
   batch.vertices.resize(vertices.size);
   batch.faces.resize(faces.size / 3);
   batch.planes.resize(planes.size / 4);

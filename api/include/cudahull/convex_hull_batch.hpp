@@ -103,14 +103,14 @@ struct DeviceColumn {
 
 // ConvexHullBatch's arrays left in device memory, where the points were (convex_hull_batch_device_results):
 // the same values, the indices as int32 (a cloud of 2^31 points or more is refused), the offsets as int64
-// (and as std::size_t on the host).  Faces are 3 corners a row, planes 4 values a row, packed.  The
-// default stream's work is done when it is returned; a column's memory goes back to the cache (in the
-// default stream's order) with the last copy of its `data`: work of the caller's on other streams must be
-// done by then.
+// (laid out on the device: to_host() reads them back).  Faces are 3 corners a row, planes 4 values a row,
+// packed.  The default stream's work is done when it is returned; a column's memory goes back to the cache
+// (in the default stream's order) with the last copy of its `data`: work of the caller's on other streams
+// must be done by then.
 struct DeviceConvexHullBatch : ConvexHullBatchReport {
   int device = 0;  // the CUDA device that holds the columns
-  std::vector<std::size_t> vertex_offsets{0}, face_offsets{0}, polygon_offsets{0};  // B + 1 each, host
-  DeviceColumn<std::int64_t> device_vertex_offsets, device_face_offsets, device_polygon_offsets;
+  DeviceColumn<std::int64_t> device_vertex_offsets, device_face_offsets,
+      device_polygon_offsets;  // B + 1 each
   DeviceColumn<std::int32_t> vertices, faces, polygons, dimensions;
   DeviceColumn<double> planes, volumes, areas;
 
