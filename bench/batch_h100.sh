@@ -7,6 +7,7 @@
 # here for sm_90, unpacked into .carry/bin), .carry/lib (Qhull's and GMP's shared libraries), .carry/models, and .carry-py as
 # python/gpu_tests/run_on_gpu_machine.sh says.
 #   PART=tests|bench|python|all bash bench/batch_h100.sh
+#   PART=ab bash bench/batch_h100.sh  (this build against cudahull_base; AB_INPUTS="B N DIST|...", ROUNDS)
 set -uo pipefail
 O=${OUT:-/tmp/out}
 PART=${PART:-all}
@@ -68,6 +69,28 @@ for name, ns in t.most_common(8): print('   ', name, n[name], round(ns / 1000, 1
 PY
     done
   done
+fi
+
+if [ "$PART" = ab ]; then  # this build against .carry/bin/cudahull_base (built from another commit), ROUNDS rounds
+  : >$O/batch_ab.jsonl
+  IFS='|' read -ra ab_inputs <<< "${AB_INPUTS:-10000 1000 ball|100000 100 ball|100 100000 ball|20000 128 sphere}"
+  for round in $(seq ${ROUNDS:-2}); do
+    for bin in cudahull_base cudahull; do
+      for args in "${ab_inputs[@]}"; do
+        set -- $args
+        result=$(timeout 120 $B/$bin bench --batch $1 --n $2 --dist $3 --backend cuda --repeat 5 --json) ||
+          result=null
+        echo "{\"bin\": \"$bin\", \"round\": $round, \"input\": \"$args\", \"result\": $result}" >>$O/batch_ab.jsonl
+      done
+    done
+  done
+  python3 - $O/batch_ab.jsonl <<'PY'
+import json, sys
+for l in open(sys.argv[1]):
+    j = json.loads(l); r = j['result'] or {}
+    print(f"{j['input']:20s} {j['bin']:14s} round {j['round']}: total {r.get('total_ms', 0):7.2f} device "
+          f"{r.get('device_ms', 0):7.2f} kernel {r.get('kernel_ms', 0):7.2f} describe {r.get('describe_ms', 0):5.2f} ms")
+PY
 fi
 
 if [ "$PART" = all ] || [ "$PART" = python ]; then

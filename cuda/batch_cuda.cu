@@ -398,8 +398,9 @@ std::vector<Unfinished> run_pass(const Point* points, std::size_t count, const u
   check(cudaMemcpy(&unfinished_clouds, unfinished_count, sizeof(u32), cudaMemcpyDeviceToHost),
         "reading the results (kernel fault)");
   std::vector<Unfinished> left(unfinished_clouds);
-  check(cudaMemcpy(left.data(), unfinished, left.size() * sizeof(Unfinished), cudaMemcpyDeviceToHost),
-        "reading the unfinished clouds");
+  if (!left.empty())
+    check(cudaMemcpy(left.data(), unfinished, left.size() * sizeof(Unfinished), cudaMemcpyDeviceToHost),
+          "reading the unfinished clouds");
   // In list order, whatever order the device listed them in: the later passes' lists are the same each run.
   std::sort(left.begin(), left.end(), [](const Unfinished& x, const Unfinished& y) { return x.k < y.k; });
   laps.lap("kernel and results");
@@ -625,15 +626,12 @@ __global__ void gather_kernel(const std::int64_t* column, const std::size_t* at,
     out[i] = column[at[i]];
 }
 
-// `values` (`count` of them, the current device's memory) replaced by their running sums (cub::DeviceScan).
-void prefix_sum_in_place(std::int64_t* values, std::size_t count) {
-  if (count == 0) return;
-  std::size_t bytes = 0;
-  check(cub::DeviceScan::InclusiveSum(nullptr, bytes, values, static_cast<std::int64_t>(count)),
-        "sizing the offsets' sum");
-  const DeviceArray<char> scratch(bytes, kWho, "the offsets' sum");
-  check(cub::DeviceScan::InclusiveSum(scratch.get(), bytes, values, static_cast<std::int64_t>(count)),
-        "summing the offsets");
+// The last offset of each of the three columns, side by side: the totals, read back in one copy.
+__global__ void totals_kernel(const std::int64_t* vertex_offsets, const std::int64_t* face_offsets,
+                              const std::int64_t* polygon_offsets, std::size_t clouds, std::int64_t* totals) {
+  totals[0] = vertex_offsets[clouds];
+  totals[1] = face_offsets[clouds];
+  totals[2] = polygon_offsets[clouds];
 }
 
 }  // namespace
@@ -661,13 +659,23 @@ BatchTotals lay_out_batch_offsets(const BatchRun<Point>& run, const std::vector<
         hosted_on_device.get(), hosted.size(), vertex_offsets, face_offsets, polygon_offsets);
     check(cudaGetLastError(), "placing the hosted hulls' sizes");
   }
-  std::int64_t totals[3] = {0, 0, 0};
-  for (int i = 0; i < 3; ++i) {
-    prefix_sum_in_place(columns[i] + 1, clouds);
-    check(cudaMemcpyAsync(&totals[i], columns[i] + clouds, sizeof(std::int64_t), cudaMemcpyDeviceToHost, 0),
-          "reading the totals");
+  // Each column's running sums (cub::DeviceScan, in place: the three the same size, one scratch), then the
+  // totals in one copy: the host waits on the device once.
+  if (clouds != 0) {
+    const auto items = static_cast<std::int64_t>(clouds);
+    std::size_t bytes = 0;
+    check(cub::DeviceScan::InclusiveSum(nullptr, bytes, vertex_offsets + 1, items),
+          "sizing the offsets' sums");
+    const DeviceArray<char> scratch(bytes, kWho, "the offsets' sums");
+    for (std::int64_t* column : columns)
+      check(cub::DeviceScan::InclusiveSum(scratch.get(), bytes, column + 1, items), "summing the offsets");
   }
-  check(cudaStreamSynchronize(0), "laying out the offsets");
+  const DeviceArray<std::int64_t> on_device(3, kWho, "the totals");
+  totals_kernel<<<1, 1>>>(vertex_offsets, face_offsets, polygon_offsets, clouds, on_device.get());
+  check(cudaGetLastError(), "reading the totals");
+  std::int64_t totals[3] = {0, 0, 0};
+  check(cudaMemcpy(totals, on_device.get(), sizeof(totals), cudaMemcpyDeviceToHost),
+        "laying out the offsets");
   return {static_cast<std::size_t>(totals[0]), static_cast<std::size_t>(totals[1]),
           static_cast<std::size_t>(totals[2])};
 }

@@ -187,10 +187,12 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
     outside = outside_next;
     outside_next = swap;
     // Each to the first new face it is strictly above: a test a (point, new face) pair, the least new face
-    // kept, so that no lane waits on another's long search (slots as before this step's counts change).
+    // kept, so that no lane waits on another's long search.  New face k is (a, b, p) of horizon edge k: its
+    // corners read from the horizon, not through its slot.
     team.for_range(movers * edges, [&](u32 t) {
       const u32 x = t / edges, k = t % edges;
-      if (side(slot_of(k), at(mover[x])) > 0) atomic_min_u32(&first_above[x], k);
+      if (orient3d(at(h.horizon[3 * k]), at(h.horizon[3 * k + 1]), pp, at(mover[x])) > 0)
+        atomic_min_u32(&first_above[x], k);
     });
     team.barrier();
     team.for_range(movers, [&](u32 x) {
