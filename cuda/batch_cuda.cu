@@ -106,9 +106,11 @@ class EventTimer {
   cudaEvent_t events_[2];
 };
 
-// A batch leaves the memory it used in the device's pool, up to this share of the device's (1/16: 5 GB of an
-// H100's 80), for the next batch of its size: mapping it again and handing it back cost 100,000 clouds of 100
-// points 1.2 ms of their 16 from PyTorch, 100 of 100,000 1.4 ms of 8 (docs/benchmarks.md, "Batched hulls").
+// A batch leaves the memory the pool holds at its end in the pool (what the batch used, and what the last
+// batch's result, often alive while the next one runs, holds), up to this share of the device's (1/16: 5 GB
+// of an H100's 80), for the next batch of its size: mapping it again and handing it back cost 100,000 clouds
+// of 100 points 1.2 ms of their 16 from PyTorch, 100 of 100,000 1.4 ms of 8; keeping what the batch used
+// alone left the next result's columns to map again, 1.3 ms more (docs/benchmarks.md, "Batched hulls").
 // cudahull::release_device_memory() hands it back at once.
 constexpr std::size_t kBatchKeepShare = 16;
 
@@ -525,7 +527,12 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   const std::size_t warp_points =
       std::min<std::size_t>(env_points("CUDAHULL_BATCH_WARP_POINTS", kWarpPoints), kRetryOnWarpPoints);
   bool any = false;
+  for (Group& group : groups)
+    group.listed.reserve(clouds);  // address space: only the pages written are the process's
+  // The offsets as the device reads them (32 bits), made in the same loop.
+  std::vector<u32> narrow(clouds + 1);
   for (std::size_t c = 0; c < clouds; ++c) {
+    narrow[c] = static_cast<u32>(offsets[c]);
     const std::size_t n = offsets[c + 1] - offsets[c];
     if (n < 4 || n > largest || (skip && skip[c])) continue;
     const int kind = n <= warp_points ? 0 : n > large_points ? 3 : n > mid_points ? 2 : 1;
@@ -544,11 +551,9 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   std::size_t held = 0;
   BatchMemory memory(held, run.device_bytes);
   u32* device_offsets = memory.take<u32>(clouds + 1, "the offsets");
-  {
-    const std::vector<u32> narrow(offsets, offsets + clouds + 1);
-    check(cudaMemcpy(device_offsets, narrow.data(), narrow.size() * sizeof(u32), cudaMemcpyHostToDevice),
-          "uploading the offsets");
-  }
+  narrow[clouds] = static_cast<u32>(offsets[clouds]);
+  check(cudaMemcpy(device_offsets, narrow.data(), narrow.size() * sizeof(u32), cudaMemcpyHostToDevice),
+        "uploading the offsets");
   laps.lap("offsets up");
   Group again, on_warps;  // the later passes' clouds: on blocks, with room for every point; on warps
   const auto pass = [&](auto kind, const Group& group) {
@@ -589,7 +594,8 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   laps.lap("passes");
   std::size_t free_bytes = 0, total_bytes = 0;
   if (cudaMemGetInfo(&free_bytes, &total_bytes) == cudaSuccess)
-    trim.keep_at_least(std::min(run.device_bytes, total_bytes / kBatchKeepShare));
+    trim.keep_at_least(
+        std::min(std::max(run.device_bytes, device_pool_reserved()), total_bytes / kBatchKeepShare));
   cudaGetLastError();
   return run;
 }
