@@ -361,7 +361,10 @@ template <class Point, class Scalar, class HullOf>
 DeviceConvexHullBatch run_host_batch_on_device(const Scalar* xyz, std::size_t count,
                                                const std::size_t* offsets, std::size_t clouds,
                                                HullOf hull_of) {
-  std::shared_ptr<void> upload = upload_to_device(xyz, 3 * count * sizeof(Scalar));
+  // A column of the batch's (no trim of the pool when it goes: the batch's own keeps what the next batch of
+  // its size needs, where upload_to_device()'s handed it all back and the next batch mapped it again).
+  std::shared_ptr<void> upload = batch_column(3 * count * sizeof(Scalar), "the points");
+  copy_to_device(upload.get(), xyz, 3 * count * sizeof(Scalar));
   const auto* device_xyz = static_cast<const Scalar*>(upload.get());
   return checked_batch_on_device<Point>(device_xyz, count, offsets, clouds, hull_of, std::move(upload));
 }
