@@ -159,12 +159,12 @@ class BatchMemory {
 template <class Point>
 struct PassArgs {
   const Point* points;
-  const u32* offsets;  // B + 1
-  const u32* clouds;   // the pass's clouds
-  u32 count;           // how many
-  u32* next;           // the next of them to take
-  BatchSlot slot;      // slot 0's pointers; slot s is `s` rooms further on (the state: the kernel's own)
-  u32* point_words;    // six arrays of the batch's point count, one after another
+  const std::size_t* offsets;  // B + 1, as the caller gave them
+  const u32* clouds;           // the pass's clouds
+  u32 count;                   // how many
+  u32* next;                   // the next of them to take
+  BatchSlot slot;    // slot 0's pointers; slot s is `s` rooms further on (the state: the kernel's own)
+  u32* point_words;  // six arrays of the batch's point count, one after another
   u32 points_total;
   BatchOutput<Point> out;
   BatchResult* results;  // per listed cloud
@@ -198,7 +198,8 @@ __device__ BatchSlot slot_of(const PassArgs<Point>& a, u32 s) {
 template <bool kSmall = false, u32 kStagedPoints = 0, class Team, class Point>
 __device__ void hull_listed(const Team& team, const BatchSlot& slot, const PassArgs<Point>& a, u32 k,
                             Point* staged = nullptr) {
-  const u32 c = a.clouds[k], begin = a.offsets[c], n = a.offsets[c + 1] - begin;
+  const u32 c = a.clouds[k], begin = static_cast<u32>(a.offsets[c]),
+            n = static_cast<u32>(a.offsets[c + 1] - a.offsets[c]);
   const std::size_t at = begin, total = a.points_total;
   u32* w = a.point_words;
   const Point* points = a.points + at;
@@ -292,6 +293,21 @@ constexpr int kMinBlocksOf = kKind == TeamKind::kLargeBlock                     
                              : kKind == TeamKind::kMidBlock || kKind == TeamKind::kWarp ? 4
                                                                                         : 5;
 
+// A pass's clouds, in cloud order: listed, or (`every`) all the batch's clouds 0 .. count - 1, which the
+// host never lists (a list of 100,000 clouds, written to fresh pages and uploaded, cost 0.5 ms).
+struct CloudList {
+  std::vector<u32> listed;
+  bool every = false;
+  std::size_t count = 0;
+  u32 operator[](std::size_t k) const { return every ? static_cast<u32>(k) : listed[k]; }
+  std::size_t size() const { return every ? count : listed.size(); }
+};
+
+__global__ void every_cloud_kernel(u32* clouds, u32 count) {
+  for (u32 k = blockIdx.x * blockDim.x + threadIdx.x; k < count; k += gridDim.x * blockDim.x)
+    clouds[k] = k;
+}
+
 // A listed cloud of a pass that did not end (its index in the list, its status: kBatchRoom, kBatchSingle).
 struct Unfinished {
   u32 k, status;
@@ -316,8 +332,8 @@ u32 list_blocks(std::size_t items) {
 // the hulls and results kept on the device in `run.outputs`.  Returns the clouds that did not end, by
 // their index in the list.
 template <TeamKind kKind, class Point>
-std::vector<Unfinished> run_pass(const Point* points, std::size_t count, const u32* device_offsets,
-                                 const std::vector<u32>& listed, u32 vertices, std::size_t word_room,
+std::vector<Unfinished> run_pass(const Point* points, std::size_t count, const std::size_t* device_offsets,
+                                 const CloudList& listed, u32 vertices, std::size_t word_room,
                                  std::size_t coordinate_room, BatchRun<Point>& run, std::size_t& held) {
   PhaseLaps laps(kKind == TeamKind::kWarp ? "batch pass on warps" : "batch pass on blocks");
   BatchMemory memory(held, run.device_bytes);
@@ -381,9 +397,14 @@ std::vector<Unfinished> run_pass(const Point* points, std::size_t count, const u
   a.next = output->results.get() + result_words;
   a.out.used = a.next + 1;
   a.clouds = output->clouds.get();
-  check(cudaMemcpyAsync(output->clouds.get(), listed.data(), listed.size() * sizeof(u32),
-                        cudaMemcpyHostToDevice, 0),
-        "uploading the cloud list");
+  if (listed.every) {
+    every_cloud_kernel<<<list_blocks(listed.size()), kListThreads>>>(output->clouds.get(), a.count);
+    check(cudaGetLastError(), "listing the clouds");
+  } else {
+    check(cudaMemcpyAsync(output->clouds.get(), listed.listed.data(), listed.size() * sizeof(u32),
+                          cudaMemcpyHostToDevice, 0),
+          "uploading the cloud list");
+  }
   u32* unfinished_count = a.next + 3;
   Unfinished* unfinished = memory.take<Unfinished>(listed.size(), "the unfinished clouds");
   check(cudaMemsetAsync(a.next, 0, 4 * sizeof(u32), 0), "clearing the counters");
@@ -407,8 +428,8 @@ std::vector<Unfinished> run_pass(const Point* points, std::size_t count, const u
   std::sort(left.begin(), left.end(), [](const Unfinished& x, const Unfinished& y) { return x.k < y.k; });
   laps.lap("kernel and results");
   run.kernel_ms += timer.ms();
-  for (const u32 c : listed)
-    run.done[c] = 1;
+  for (std::size_t k = 0; k < listed.size(); ++k)
+    run.done[listed[k]] = 1;
   for (const Unfinished& u : left)
     run.done[listed[u.k]] = 0;
   run.clouds_done += listed.size() - left.size();
@@ -510,14 +531,18 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   // Pass 1's clouds by the kind of block that takes them (TeamKind), each group with room for its
   // largest hull.
   struct Group {
-    std::vector<u32> listed;
+    CloudList clouds;
     u32 vertices = 0;
     std::size_t word_room = 0, coordinate_room = 0;
-    void add(u32 c, u32 v) {
-      listed.push_back(c);
+    void count(u32 v) {
+      ++clouds.count;
       vertices = std::max(vertices, v);
       word_room += 7 * std::size_t{v};  // 2 v faces of 3 corners, and v vertices
       coordinate_room += v;
+    }
+    void add(u32 c, u32 v) {
+      clouds.listed.push_back(c);
+      count(v);
     }
   };
   Group groups[4];  // TeamKind's order
@@ -526,23 +551,36 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   // Above kRetryOnWarpPoints a warp's steps are too long (and its pairs of points and faces past 32 bits).
   const std::size_t warp_points =
       std::min<std::size_t>(env_points("CUDAHULL_BATCH_WARP_POINTS", kWarpPoints), kRetryOnWarpPoints);
-  bool any = false;
-  for (Group& group : groups)
-    group.listed.reserve(clouds);  // address space: only the pages written are the process's
-  // The offsets as the device reads them (32 bits), made in the same loop.
-  std::vector<u32> narrow(clouds + 1);
-  for (std::size_t c = 0; c < clouds; ++c) {
-    narrow[c] = static_cast<u32>(offsets[c]);
+  // Cloud c's kind of team (-1: none, the single-cloud path's).
+  const auto kind_of = [&](std::size_t c) {
     const std::size_t n = offsets[c + 1] - offsets[c];
-    if (n < 4 || n > largest || (skip && skip[c])) continue;
-    const int kind = n <= warp_points ? 0 : n > large_points ? 3 : n > mid_points ? 2 : 1;
-    // A warp's cloud has room for every point a vertex at once (7 n words of output, where a block's
-    // clouds have 7 batch_vertices(n): 0.96 of that at 100 points, 0.56 at 256; and small_hull_room(n), a
-    // third of a block's slot): a sphere's hull needs no second pass.
-    groups[kind].add(static_cast<u32>(c), resident::batch_vertices(static_cast<u32>(n), kind == 0));
-    any = true;
+    if (n < 4 || n > largest || (skip && skip[c])) return -1;
+    return n <= warp_points ? 0 : n > large_points ? 3 : n > mid_points ? 2 : 1;
+  };
+  // A warp's cloud has room for every point a vertex at once (7 n words of output, where a block's clouds
+  // have 7 batch_vertices(n): 0.96 of that at 100 points, 0.56 at 256; and small_hull_room(n), a third of a
+  // block's slot): a sphere's hull needs no second pass.
+  const auto room_of = [&](std::size_t c, int kind) {
+    return resident::batch_vertices(static_cast<u32>(offsets[c + 1] - offsets[c]), kind == 0);
+  };
+  // The groups counted first: where one kind takes every cloud (a batch of one size), none is listed.
+  for (std::size_t c = 0; c < clouds; ++c)
+    if (const int kind = kind_of(c); kind >= 0) groups[kind].count(room_of(c, kind));
+  bool any = false;
+  for (Group& group : groups) {
+    group.clouds.every = group.clouds.count == clouds;
+    any = any || group.clouds.count != 0;
   }
   if (!any) return run;
+  if (std::none_of(std::begin(groups), std::end(groups), [](const Group& g) { return g.clouds.every; })) {
+    for (Group& group : groups) {
+      const std::size_t listed = group.clouds.count;
+      group = Group{};
+      group.clouds.listed.reserve(listed);
+    }
+    for (std::size_t c = 0; c < clouds; ++c)
+      if (const int kind = kind_of(c); kind >= 0) groups[kind].add(static_cast<u32>(c), room_of(c, kind));
+  }
   laps.lap("groups");
 
   // After the arrays below: what the batch freed beyond what it used (up to a kBatchKeepShare of the
@@ -550,24 +588,24 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   TrimPoolAtEnd trim;
   std::size_t held = 0;
   BatchMemory memory(held, run.device_bytes);
-  u32* device_offsets = memory.take<u32>(clouds + 1, "the offsets");
-  narrow[clouds] = static_cast<u32>(offsets[clouds]);
-  check(cudaMemcpy(device_offsets, narrow.data(), narrow.size() * sizeof(u32), cudaMemcpyHostToDevice),
+  // The offsets as the caller gave them (the kernels read them as 32 bits: the count is below 2^32).
+  auto* device_offsets = memory.take<std::size_t>(clouds + 1, "the offsets");
+  check(cudaMemcpy(device_offsets, offsets, (clouds + 1) * sizeof(std::size_t), cudaMemcpyHostToDevice),
         "uploading the offsets");
   laps.lap("offsets up");
   Group again, on_warps;  // the later passes' clouds: on blocks, with room for every point; on warps
   const auto pass = [&](auto kind, const Group& group) {
-    return run_pass<decltype(kind)::value>(device_points, count, device_offsets, group.listed, group.vertices,
+    return run_pass<decltype(kind)::value>(device_points, count, device_offsets, group.clouds, group.vertices,
                                            group.word_room, group.coordinate_room, run, held);
   };
   // A pass, and where a block's clouds that did not end go next (room: from a first pass only).  A warp's
   // cloud goes nowhere else: it had room for every point, and its other endings are the single path's.
   const auto pass_and_route = [&](auto kind, const Group& group, bool first) {
-    if (group.listed.empty()) return;
+    if (group.clouds.size() == 0) return;
     const std::vector<Unfinished> left = pass(kind, group);
     if constexpr (decltype(kind)::value != TeamKind::kWarp) {
       for (const Unfinished& u : left) {
-        const u32 c = group.listed[u.k], n = static_cast<u32>(offsets[c + 1] - offsets[c]);
+        const u32 c = group.clouds[u.k], n = static_cast<u32>(offsets[c + 1] - offsets[c]);
         if (u.status == resident::kBatchRoom) {
           // Room for every point a vertex costs a slot some 900 bytes a point: a larger cloud takes the
           // single-cloud path, which grows its room as it goes.
@@ -584,7 +622,7 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   pass_and_route(std::integral_constant<TeamKind, TeamKind::kBlock>{}, groups[1], true);
   pass_and_route(std::integral_constant<TeamKind, TeamKind::kMidBlock>{}, groups[2], true);
   pass_and_route(std::integral_constant<TeamKind, TeamKind::kLargeBlock>{}, groups[3], true);
-  run.clouds_in_second_pass = again.listed.size();
+  run.clouds_in_second_pass = again.clouds.size();
   // Room for every point: the blocks of the largest of its clouds' kind (below kLargeBlockPoints).
   if (again.vertices > mid_points)
     pass_and_route(std::integral_constant<TeamKind, TeamKind::kMidBlock>{}, again, false);
