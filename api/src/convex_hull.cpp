@@ -118,14 +118,6 @@ std::vector<Point> copy_checked(std::size_t count, Coordinate coordinate) {
   return points;
 }
 
-// This process's CUDA device as convex_hull()'s plans ask for it: cheaply (cuda_device_present()), since
-// reading the device's properties would cost more than a small hull.
-CudaStatus device_presence() {
-  CudaStatus status;
-  status.usable = cuda_device_present(&status.reason);
-  return status;
-}
-
 struct Vec {
   double x, y, z;
 };
@@ -381,12 +373,11 @@ ConvexHull checked_hull(std::size_t count, Coordinate coordinate, Precision own,
   if (plan_precision(options.precision, own).precision == Precision::kDouble) {
     const std::vector<Point3d> points = copy_checked<Point3d>(count, coordinate);
     input.outside_exact_range = !in_fast_exact_range(points);
-    const HullPlan plan = plan_hull(options, input, device_presence);
+    const HullPlan plan = plan_hull(options, input, cuda_presence);
     if (plan.wide_range) return wide_hull(points, options);
     return hull_in(points, plan, options);
   }
-  return hull_in(copy_checked<Point3>(count, coordinate), plan_hull(options, input, device_presence),
-                 options);
+  return hull_in(copy_checked<Point3>(count, coordinate), plan_hull(options, input, cuda_presence), options);
 }
 
 // The hull of points that only the current device holds, in Point: checked (and converted) there, then
@@ -430,7 +421,7 @@ HullPlan device_plan(std::size_t count, int dimension, Precision own, const Conv
   input.dimension = dimension;
   input.count = count;
   input.on_device = true;
-  return plan_hull(options, input, device_presence);
+  return plan_hull(options, input, cuda_presence);
 }
 
 // What points in GPU memory need before they are read: a CUDA backend, a device (plan_hull() says which is
@@ -460,7 +451,7 @@ ConvexHull array_hull(const Scalar* xyz, std::size_t count, Precision own, const
   HullInput input;
   input.precision = own;
   input.count = count;
-  if (plan_hull(options, input, device_presence).upload_first) {
+  if (plan_hull(options, input, cuda_presence).upload_first) {
     check_count(count);
     const std::shared_ptr<void> copy = upload_to_device(xyz, count * 3 * sizeof(Scalar));
     return device_hull(static_cast<const Scalar*>(copy.get()), count, own, options);
@@ -740,7 +731,7 @@ ConvexHull planar_hull_of(const Input* xy, std::size_t count, Precision own,
   input.precision = own;
   input.dimension = 2;
   input.count = count;
-  const HullPlan plan = plan_hull(options, input, device_presence);
+  const HullPlan plan = plan_hull(options, input, cuda_presence);
   if (!plan.unavailable.empty()) throw DeviceError(plan.unavailable);
   if constexpr (std::is_same_v<Input, double>) {
     if (plan.precision == Precision::kFloat) {
@@ -752,7 +743,7 @@ ConvexHull planar_hull_of(const Input* xy, std::size_t count, Precision own,
   // In place: float input in double is the same points (widening is exact), and so the same hull.
   input.outside_exact_range = check_planar(xy, count);
   if constexpr (std::is_same_v<Input, double>) {
-    if (plan_hull(options, input, device_presence).wide_range) {
+    if (plan_hull(options, input, cuda_presence).wide_range) {
       ConvexHullOptions exact = options;
       exact.merge = MergeMode::kExact;  // the merge's heights need the exact range: the exact hull instead
       return describe_planar(xy, wide_planar_hull(xy, count), exact, "cpu-wide");
@@ -874,6 +865,12 @@ ConvexHull convex_hull_2d_device(const float* device_xy, std::size_t count,
 ConvexHull convex_hull_2d_device(const double* device_xy, std::size_t count,
                                  const ConvexHullOptions& options) {
   return device_planar_hull(device_xy, count, options);
+}
+
+CudaStatus cuda_presence() {
+  CudaStatus status;
+  status.usable = cuda_device_present(&status.reason);
+  return status;
 }
 
 CudaStatus cuda_status() {

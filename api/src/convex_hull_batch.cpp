@@ -421,7 +421,7 @@ HullPlan batch_plan(std::size_t count, Precision own, bool on_device, const Conv
   input.precision = own;
   input.count = count;
   input.on_device = on_device;
-  return plan_hull(options, input);
+  return plan_hull(options, input, cuda_presence);
 }
 
 // The batch of host points (`count` x, y, z triples at `xyz`): `hull_of(begin, n, options)` is convex_hull()

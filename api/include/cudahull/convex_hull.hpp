@@ -157,6 +157,9 @@ struct CudaStatus {
   std::string reason;  // e.g. "no CUDA-capable device is detected"
 };
 CudaStatus cuda_status();
+// The same without the device's name, cheaply (cuda_status() reads every property of the device, which costs
+// more than a small hull): what convex_hull() and convex_hull_batch() plan with.
+CudaStatus cuda_presence();
 
 // The memory cudahull keeps between calls on the current CUDA device and no result uses (at least 256 MiB,
 // and what a batch used, up to a sixteenth of the device's memory, for the next batch of its size), back to
