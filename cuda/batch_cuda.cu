@@ -106,11 +106,11 @@ class EventTimer {
   cudaEvent_t events_[2];
 };
 
-// A batch leaves the memory the pool holds at its end in the pool (what the batch used, and what the last
-// batch's result, often alive while the next one runs, holds), up to this share of the device's (1/16: 5 GB
-// of an H100's 80), for the next batch of its size: mapping it again and handing it back cost 100,000 clouds
-// of 100 points 1.2 ms of their 16 from PyTorch, 100 of 100,000 1.4 ms of 8; keeping what the batch used
-// alone left the next result's columns to map again, 1.3 ms more (docs/benchmarks.md, "Batched hulls").
+// After a batch the pool keeps what it holds, up to this share of the device's memory (1/16: 5 GB of an
+// H100's 80), for the next batch of its size: what the batch used, and what the last batch's result (often
+// alive while the next one runs) holds.  Mapping it again and handing it back cost 100,000 clouds of 100
+// points 1.2 ms of their 16 from PyTorch, 100 of 100,000 1.4 ms of 8; keeping what the batch used alone left
+// the next result's columns to map again (docs/benchmarks.md, "Batched hulls").
 // cudahull::release_device_memory() hands it back at once.
 constexpr std::size_t kBatchKeepShare = 16;
 
@@ -583,9 +583,9 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   }
   laps.lap("groups");
 
-  // After the arrays below: what the batch freed beyond what it used (up to a kBatchKeepShare of the
-  // device's memory), back to the driver.
-  TrimPoolAtEnd trim;
+  // After the arrays below: what the pool holds beyond a kBatchKeepShare of the device's memory, back to
+  // the driver.
+  TrimPoolAtEnd trim(batch_pool_keep());
   std::size_t held = 0;
   BatchMemory memory(held, run.device_bytes);
   // The offsets as the caller gave them (the kernels read them as 32 bits: the count is below 2^32).
@@ -630,11 +630,6 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
     pass_and_route(std::integral_constant<TeamKind, TeamKind::kBlock>{}, again, false);
   pass_and_route(std::integral_constant<TeamKind, TeamKind::kWarp>{}, on_warps, false);
   laps.lap("passes");
-  std::size_t free_bytes = 0, total_bytes = 0;
-  if (cudaMemGetInfo(&free_bytes, &total_bytes) == cudaSuccess)
-    trim.keep_at_least(
-        std::min(std::max(run.device_bytes, device_pool_reserved()), total_bytes / kBatchKeepShare));
-  cudaGetLastError();
   return run;
 }
 
@@ -753,6 +748,19 @@ void describe_batch_cuda(const BatchRun<Point>& run, const BatchColumns& columns
     check(cudaGetLastError(), "launching the describe");
   }
   check(cudaDeviceSynchronize(), "describing the hulls (kernel fault)");
+}
+
+std::size_t batch_pool_keep() {
+  std::size_t free_bytes = 0, total_bytes = 0;
+  if (cudaMemGetInfo(&free_bytes, &total_bytes) != cudaSuccess) {
+    cudaGetLastError();
+    return kPoolKeep;
+  }
+  return std::max(kPoolKeep, total_bytes / kBatchKeepShare);
+}
+
+void trim_batch_pool() {
+  trim_device_pool(batch_pool_keep());
 }
 
 std::shared_ptr<void> batch_column(std::size_t bytes, const char* what) {

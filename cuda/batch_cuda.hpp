@@ -74,6 +74,12 @@ std::vector<std::int64_t> read_device_values(const std::int64_t* column, const s
 template <class Point>
 void describe_batch_cuda(const BatchRun<Point>& run, const BatchColumns& columns);
 
+// What the device's pool keeps after a batch (a share of the device's memory: what the next batch of its
+// size needs, the last result's columns included), and the pool trimmed to it: after a batch of host points,
+// whose upload goes back to the pool once the batch is done.
+std::size_t batch_pool_keep();
+void trim_batch_pool();
+
 // The result's plumbing for the API, which sees no CUDA header: a column of `bytes` in the current device's
 // memory (given back with the last pointer), copies on the default stream (the host waits), the device.
 // Each throws DeviceError.

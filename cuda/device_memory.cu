@@ -173,18 +173,6 @@ void release_device_memory_now() {
   if (block_cache().release_cached(device)) trim_device_pool(0);
 }
 
-std::size_t device_pool_reserved() {
-  int device = 0;
-  cudaMemPool_t pool = nullptr;
-  std::uint64_t reserved = 0;
-  if (cudaGetDevice(&device) != cudaSuccess || cudaDeviceGetDefaultMemPool(&pool, device) != cudaSuccess ||
-      cudaMemPoolGetAttribute(pool, cudaMemPoolAttrReservedMemCurrent, &reserved) != cudaSuccess) {
-    cudaGetLastError();
-    return 0;
-  }
-  return static_cast<std::size_t>(reserved);
-}
-
 void trim_device_pool(std::size_t keep) {
   int device = 0;
   cudaMemPool_t pool = nullptr;

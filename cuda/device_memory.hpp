@@ -56,10 +56,6 @@ constexpr std::size_t kPoolKeep = std::size_t{256} << 20;
 // stream's work, whose frees it waits for); the cache's blocks stay.
 void trim_device_pool(std::size_t keep = kPoolKeep);
 
-// The bytes the current device's default pool holds now (in use and free: cudaMemPoolAttrReservedMemCurrent);
-// 0 where it cannot say.
-std::size_t device_pool_reserved();
-
 // Everything the allocator holds on the current device and no array uses (the cache's blocks and the pool's
 // free memory), back to the driver, after the default stream's work: for a caller that wants the memory
 // for another library (cudahull::release_device_memory()).  Never throws; no device, or one this process's

@@ -366,7 +366,10 @@ DeviceConvexHullBatch run_host_batch_on_device(const Scalar* xyz, std::size_t co
   std::shared_ptr<void> upload = batch_column(3 * count * sizeof(Scalar), "the points");
   copy_to_device(upload.get(), xyz, 3 * count * sizeof(Scalar));
   const auto* device_xyz = static_cast<const Scalar*>(upload.get());
-  return checked_batch_on_device<Point>(device_xyz, count, offsets, clouds, hull_of, std::move(upload));
+  DeviceConvexHullBatch batch =
+      checked_batch_on_device<Point>(device_xyz, count, offsets, clouds, hull_of, std::move(upload));
+  trim_batch_pool();  // the upload is back in the pool: what is beyond the batch's share goes to the driver
+  return batch;
 }
 
 // The per-cloud hulls packed into flat arrays, in cloud order (the copies on all cores: a batch of 100,000
@@ -575,8 +578,8 @@ ConvexHullBatch DeviceConvexHullBatch::to_host() const {
   for (auto [to, from] : {std::pair{&batch.vertex_offsets, &device_vertex_offsets},
                           std::pair{&batch.face_offsets, &device_face_offsets},
                           std::pair{&batch.polygon_offsets, &device_polygon_offsets}}) {
-    std::vector<std::int64_t> offsets(clouds + 1);
-    copy_to_host(offsets.data(), from->data.get(), offsets.size() * sizeof(std::int64_t));
+    std::vector<std::int64_t> offsets(clouds + 1, 0);
+    if (from->data) copy_to_host(offsets.data(), from->data.get(), offsets.size() * sizeof(std::int64_t));
     to->assign(offsets.begin(), offsets.end());
   }
   batch.vertices.resize(vertices.size);

@@ -282,21 +282,30 @@ nb::dict convex_hull_cuda_pointer(std::uintptr_t pointer, std::size_t count, std
 
 using OffsetArray = nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
 
-// The B + 1 offsets, checked non-negative, read in place as std::size_t (the same bits for these values): a
-// copy of 100,000 clouds' offsets into fresh pages cost a batch 0.5 ms.
+// The B + 1 offsets, checked non-negative, read in place as std::size_t where that is int64's unsigned
+// counterpart (the same bits for these values, and an access the aliasing rules allow): a copy of 100,000
+// clouds' offsets into fresh pages cost a batch 0.5 ms.  Elsewhere, copied.  The caller must not write the
+// array during the call (as for the points, read in place with the GIL released).
 struct Bounds {
-  const std::size_t* data;
-  std::size_t clouds;
+  const std::size_t* data = nullptr;
+  std::size_t clouds = 0;
+  std::vector<std::size_t> copy;  // where they could not be read in place
 };
 Bounds offsets_from(const OffsetArray& offsets) {
-  static_assert(sizeof(std::size_t) == sizeof(std::int64_t));
   if (offsets.shape(0) == 0)
     throw std::invalid_argument("offsets must hold B + 1 cloud boundaries ([0] for no clouds), not none");
   for (std::size_t k = 0; k < offsets.shape(0); ++k) {
     if (offsets.data()[k] < 0) throw std::invalid_argument("offsets[" + std::to_string(k) + "] is negative");
   }
-  // int64 read as its unsigned counterpart, which the aliasing rules allow.
-  return {reinterpret_cast<const std::size_t*>(offsets.data()), offsets.shape(0) - 1};
+  Bounds bounds;
+  bounds.clouds = offsets.shape(0) - 1;
+  if constexpr (std::is_same_v<std::make_unsigned_t<std::int64_t>, std::size_t>) {
+    bounds.data = reinterpret_cast<const std::size_t*>(offsets.data());
+  } else {
+    bounds.copy.assign(offsets.data(), offsets.data() + offsets.shape(0));
+    bounds.data = bounds.copy.data();
+  }
+  return bounds;
 }
 
 ConvexHullBatchOptions batch_options_from(const std::string& backend, const std::string& precision,

@@ -162,8 +162,8 @@ CudaStatus cuda_status();
 CudaStatus cuda_presence();
 
 // The memory cudahull keeps between calls on the current CUDA device and no result uses (at least 256 MiB,
-// and what a batch used, up to a sixteenth of the device's memory, for the next batch of its size), back to
-// the driver now: for memory another library (PyTorch, CuPy) needs.  The next call maps what it needs
+// and after a batch what it used, up to a sixteenth of the device's memory, for the next batch of its size),
+// back to the driver now: for memory another library (PyTorch, CuPy) needs.  The next call maps what it needs
 // again.  No device: nothing.
 void release_device_memory();
 
