@@ -7,8 +7,8 @@
 //     and checked there alike.  A double cloud outside the fast exact range takes the single-cloud path
 //     (its wide path), the others stay on the kernel (clouds_with_bad_points()); a NaN or an infinity sends
 //     its cloud and those after it there, which names the point
-//   batch_run_cuda(): the exact meshes of the clouds a block takes, left on the device; the results alone
-//     (sizes) read back
+//   batch_run_cuda(): the exact meshes of the clouds a warp or a block takes, left on the device with their
+//     sizes; only the clouds that did not end read back
 //   the other clouds through convex_hull() or convex_hull_device(), in cloud order
 //   the result assembled on the device (assemble_on_device()): offsets laid out there from the sizes (the
 //     kernel's hulls' never cross to the host; lay_out_batch_offsets()), the kernel's meshes described there
