@@ -316,6 +316,13 @@ TEST(ConvexHullBatch, NoCloudsAndOneCloud) {
   EXPECT_EQ(none.vertex_offsets, std::vector<std::size_t>{0});
   EXPECT_EQ(none.face_offsets, std::vector<std::size_t>{0});
   EXPECT_TRUE(none.vertices.empty() && none.faces.empty());
+  // A device result of no clouds (its columns never allocated) reads back as the same empty batch, with no
+  // device touched.
+  const ConvexHullBatch none_read_back = DeviceConvexHullBatch{}.to_host();
+  EXPECT_EQ(none_read_back.size(), 0u);
+  EXPECT_EQ(none_read_back.vertex_offsets, std::vector<std::size_t>{0});
+  EXPECT_EQ(none_read_back.face_offsets, std::vector<std::size_t>{0});
+  EXPECT_EQ(none_read_back.polygon_offsets, std::vector<std::size_t>{0});
 
   const std::vector<Point3> ball = generate_points(Distribution::kBall, 5000, 3);
   const std::vector<std::size_t> offsets{0, ball.size()};
