@@ -29,6 +29,7 @@
 #include <cuda_runtime.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <cub/device/device_scan.cuh>
 #include <string>
@@ -573,13 +574,10 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   }
   if (!any) return run;
   if (std::none_of(std::begin(groups), std::end(groups), [](const Group& g) { return g.clouds.every; })) {
-    for (Group& group : groups) {
-      const std::size_t listed = group.clouds.count;
-      group = Group{};
-      group.clouds.listed.reserve(listed);
-    }
-    for (std::size_t c = 0; c < clouds; ++c)
-      if (const int kind = kind_of(c); kind >= 0) groups[kind].add(static_cast<u32>(c), room_of(c, kind));
+    for (Group& group : groups)
+      group.clouds.listed.reserve(group.clouds.count);
+    for (std::size_t c = 0; c < clouds; ++c)  // counted and sized above: listed alone
+      if (const int kind = kind_of(c); kind >= 0) groups[kind].clouds.listed.push_back(static_cast<u32>(c));
   }
   laps.lap("groups");
 
@@ -658,11 +656,16 @@ __global__ void hosted_sizes_kernel(const HostedSizes* hosted, std::size_t count
   }
 }
 
-__global__ void gather_kernel(const std::int64_t* column, const std::size_t* at, std::size_t count,
+// The three columns' values at each index of `at`, three a row.
+__global__ void gather_kernel(const std::int64_t* vertex_offsets, const std::int64_t* face_offsets,
+                              const std::int64_t* polygon_offsets, const std::size_t* at, std::size_t count,
                               std::int64_t* out) {
   for (std::size_t i = blockIdx.x * std::size_t{blockDim.x} + threadIdx.x; i < count;
-       i += std::size_t{gridDim.x} * blockDim.x)
-    out[i] = column[at[i]];
+       i += std::size_t{gridDim.x} * blockDim.x) {
+    out[3 * i] = vertex_offsets[at[i]];
+    out[3 * i + 1] = face_offsets[at[i]];
+    out[3 * i + 2] = polygon_offsets[at[i]];
+  }
 }
 
 // The last offset of each of the three columns, side by side: the totals, read back in one copy.
@@ -719,17 +722,23 @@ BatchTotals lay_out_batch_offsets(const BatchRun<Point>& run, const std::vector<
           static_cast<std::size_t>(totals[2])};
 }
 
-std::vector<std::int64_t> read_device_values(const std::int64_t* column, const std::vector<std::size_t>& at) {
-  std::vector<std::int64_t> values(at.size());
+std::vector<std::array<std::int64_t, 3>> read_offsets_at(const std::int64_t* vertex_offsets,
+                                                         const std::int64_t* face_offsets,
+                                                         const std::int64_t* polygon_offsets,
+                                                         const std::vector<std::size_t>& at) {
+  std::vector<std::array<std::int64_t, 3>> values(at.size());
   if (at.empty()) return values;
   const DeviceArray<std::size_t> indices(at.size(), kWho, "the offsets to read");
-  const DeviceArray<std::int64_t> gathered(at.size(), kWho, "the offsets read");
+  const DeviceArray<std::int64_t> gathered(3 * at.size(), kWho, "the offsets read");
   check(cudaMemcpyAsync(indices.get(), at.data(), at.size() * sizeof(std::size_t), cudaMemcpyHostToDevice, 0),
         "uploading the offsets to read");
-  gather_kernel<<<list_blocks(at.size()), kListThreads>>>(column, indices.get(), at.size(), gathered.get());
+  gather_kernel<<<list_blocks(at.size()), kListThreads>>>(vertex_offsets, face_offsets, polygon_offsets,
+                                                          indices.get(), at.size(), gathered.get());
   check(cudaGetLastError(), "gathering the offsets");
-  check(cudaMemcpy(values.data(), gathered.get(), at.size() * sizeof(std::int64_t), cudaMemcpyDeviceToHost),
-        "reading the offsets");
+  static_assert(sizeof(values[0]) == 3 * sizeof(std::int64_t));
+  check(
+      cudaMemcpy(values.data(), gathered.get(), 3 * at.size() * sizeof(std::int64_t), cudaMemcpyDeviceToHost),
+      "reading the offsets");
   return values;
 }
 

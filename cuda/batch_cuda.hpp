@@ -5,6 +5,7 @@
 // path; then the hulls described on the device, into the packed result, where they stay.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -65,8 +66,12 @@ BatchTotals lay_out_batch_offsets(const BatchRun<Point>& run, const std::vector<
                                   std::size_t clouds, std::int64_t* vertex_offsets,
                                   std::int64_t* face_offsets, std::int64_t* polygon_offsets);
 
-// `column`'s values (int64, the current device's memory) at the indices `at`, read back in one copy.
-std::vector<std::int64_t> read_device_values(const std::int64_t* column, const std::vector<std::size_t>& at);
+// The three offset columns' values (int64, the current device's memory) at each index of `at` (vertex, face,
+// polygon), read back in one copy.
+std::vector<std::array<std::int64_t, 3>> read_offsets_at(const std::int64_t* vertex_offsets,
+                                                         const std::int64_t* face_offsets,
+                                                         const std::int64_t* polygon_offsets,
+                                                         const std::vector<std::size_t>& at);
 
 // The done clouds of `run` described into `columns`, as convex_hull() describes an exact mesh: the vertex
 // ids, the faces on them, each face's plane (detail::facet_plane_in_range), the volume and area (summed

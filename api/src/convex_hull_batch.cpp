@@ -231,12 +231,10 @@ DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls
   std::vector<std::size_t> run_starts;
   for (std::size_t k = 0; k < hosted.size(); ++k)
     if (k == 0 || hosted[k].first != hosted[k - 1].first + 1) run_starts.push_back(hosted[k].first);
-  const std::vector<std::int64_t> vertex_at =
-                                      read_device_values(batch.device_vertex_offsets.data.get(), run_starts),
-                                  face_at =
-                                      read_device_values(batch.device_face_offsets.data.get(), run_starts),
-                                  polygon_at =
-                                      read_device_values(batch.device_polygon_offsets.data.get(), run_starts);
+  // Per run: its first cloud's vertex, face and polygon offsets.
+  const std::vector<std::array<std::int64_t, 3>> run_at =
+      read_offsets_at(batch.device_vertex_offsets.data.get(), batch.device_face_offsets.data.get(),
+                      batch.device_polygon_offsets.data.get(), run_starts);
   const auto up = [](auto& column, const auto& values, std::size_t at = 0) {
     copy_to_device(column.data.get() + at, values.data(), values.size() * sizeof(values[0]));
   };
@@ -260,10 +258,10 @@ DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls
       dimensions.push_back(hull.dimension);
       hull = ConvexHull{};  // its memory back now
     }
-    up(batch.vertices, ids, static_cast<std::size_t>(vertex_at[r]));
-    up(batch.faces, corners, 3 * static_cast<std::size_t>(face_at[r]));
-    up(batch.planes, planes, 4 * static_cast<std::size_t>(face_at[r]));
-    up(batch.polygons, polygon, static_cast<std::size_t>(polygon_at[r]));
+    up(batch.vertices, ids, static_cast<std::size_t>(run_at[r][0]));
+    up(batch.faces, corners, 3 * static_cast<std::size_t>(run_at[r][1]));
+    up(batch.planes, planes, 4 * static_cast<std::size_t>(run_at[r][1]));
+    up(batch.polygons, polygon, static_cast<std::size_t>(run_at[r][2]));
     up(batch.volumes, volumes, c0);
     up(batch.areas, areas, c0);
     up(batch.dimensions, dimensions, c0);
