@@ -7,6 +7,8 @@
 # here for sm_90, unpacked into .carry/bin), .carry/lib (Qhull's and GMP's shared libraries), .carry/models, and .carry-py as
 # python/gpu_tests/run_on_gpu_machine.sh says.
 #   PART=tests|bench|python|all bash bench/batch_h100.sh
+#   PART=profile bash bench/batch_h100.sh  (ncu on a batch kernel; PROFILE_INPUTS="REGEX B N DIST|...")
+#   PART=variants bash bench/batch_h100.sh  (builds or settings side by side; VARIANTS="LABEL:ENV=VALUE:BIN|...")
 #   PART=ab bash bench/batch_h100.sh  (this build against cudahull_base; AB_INPUTS="B N DIST|...", ROUNDS)
 set -uo pipefail
 O=${OUT:-/tmp/out}
@@ -71,6 +73,22 @@ PY
   done
 fi
 
+if [ "$PART" = profile ]; then  # ncu's full set with source counters on one batch kernel (PROFILE_INPUTS="KERNEL_REGEX B N DIST|...")
+  [ -e /work/main ] || { mkdir -p /work && ln -s "$PWD" /work/main; }  # the source paths the build compiled in
+  IFS='|' read -ra profile_inputs <<< "${PROFILE_INPUTS:-batch_warp_kernel 100000 100 ball|batch_kernel 10000 1000 ball}"
+  for args in "${profile_inputs[@]}"; do
+    set -- $args
+    name=$(echo "$1_$2x$3_$4" | tr -c 'A-Za-z0-9_\n' _)
+    timeout 300 ncu --set full --import-source yes -k regex:"^$1" -c 1 -o $O/$name $B/cudahull bench --batch $2 \
+      --n $3 --dist $4 --backend cuda --repeat 1 >$O/$name.log 2>&1 || { echo "ncu $args failed"; tail -5 $O/$name.log; }
+    ncu -i $O/$name.ncu-rep --page details >$O/$name.details.txt 2>&1
+    ncu -i $O/$name.ncu-rep --page source --csv --print-source cuda >$O/$name.source.csv 2>&1
+    ncu -i $O/$name.ncu-rep --page source --csv --print-source sass >$O/$name.sass.csv 2>&1
+    xz -9 $O/$name.sass.csv
+    echo "$args: $(grep -E "Duration|Registers Per|Achieved Occupancy|Issued Ipc Active|Executed Instructions  " $O/$name.details.txt | tr -s ' ' | head -6 | tr '\n' ';')"
+  done
+fi
+
 if [ "$PART" = ab ]; then  # this build against .carry/bin/cudahull_base (built from another commit), ROUNDS rounds
   : >$O/batch_ab.jsonl
   IFS='|' read -ra ab_inputs <<< "${AB_INPUTS:-10000 1000 ball|100000 100 ball|100 100000 ball|20000 128 sphere}"
@@ -89,6 +107,31 @@ import json, sys
 for l in open(sys.argv[1]):
     j = json.loads(l); r = j['result'] or {}
     print(f"{j['input']:20s} {j['bin']:14s} round {j['round']}: total {r.get('total_ms', 0):7.2f} device "
+          f"{r.get('device_ms', 0):7.2f} kernel {r.get('kernel_ms', 0):7.2f} describe {r.get('describe_ms', 0):5.2f} ms")
+PY
+fi
+
+if [ "$PART" = variants ]; then  # builds or settings side by side, ROUNDS rounds: VARIANTS="LABEL:ENV=VALUE:BIN|..."
+  : >$O/batch_variants.jsonl
+  IFS='|' read -ra variants <<< "${VARIANTS:-warps:CUDAHULL_BATCH_HALF_WARP_POINTS=0:cudahull|half warps::cudahull}"
+  IFS='|' read -ra ab_inputs <<< "${AB_INPUTS:-100000 100 ball|20000 128 sphere|30000 60 ball}"
+  for round in $(seq ${ROUNDS:-2}); do
+    for variant in "${variants[@]}"; do
+      IFS=':' read -r label setting bin <<< "$variant"
+      for args in "${ab_inputs[@]}"; do
+        set -- $args
+        result=$(env $setting timeout 120 $B/$bin bench --batch $1 --n $2 --dist $3 --backend cuda --repeat 5 \
+          ${4:+--precision $4} --json) || result=null
+        echo "{\"variant\": \"$label\", \"round\": $round, \"input\": \"$args\", \"result\": $result}" \
+          >>$O/batch_variants.jsonl
+      done
+    done
+  done
+  python3 - $O/batch_variants.jsonl <<'PY'
+import json, sys
+for l in open(sys.argv[1]):
+    j = json.loads(l); r = j['result'] or {}
+    print(f"{j['input']:24s} {j['variant']:14s} round {j['round']}: total {r.get('total_ms', 0):7.2f} device "
           f"{r.get('device_ms', 0):7.2f} kernel {r.get('kernel_ms', 0):7.2f} describe {r.get('describe_ms', 0):5.2f} ms")
 PY
 fi

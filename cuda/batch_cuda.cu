@@ -194,35 +194,44 @@ __device__ BatchSlot slot_of(const PassArgs<Point>& a, u32 s) {
   return slot;
 }
 
-// Listed cloud k's hull on `team` in `slot`: the resident iteration (batch_hull()), or a furthest point at
-// a time (kSmall: small_hull(); its points copied to `staged` first where they fit, kStagedPoints).
-template <bool kSmall = false, u32 kStagedPoints = 0, class Team, class Point>
-__device__ void hull_listed(const Team& team, const BatchSlot& slot, const PassArgs<Point>& a, u32 k,
-                            Point* staged = nullptr) {
+// Listed cloud k: its points where they are, and its per-point arrays.
+template <class Point>
+__device__ BatchCloud<Point> cloud_listed(const PassArgs<Point>& a, u32 k) {
   const u32 c = a.clouds[k], begin = static_cast<u32>(a.offsets[c]),
             n = static_cast<u32>(a.offsets[c + 1] - a.offsets[c]);
   const std::size_t at = begin, total = a.points_total;
   u32* w = a.point_words;
-  const Point* points = a.points + at;
-  if constexpr (kStagedPoints > 0) {
-    if (n <= kStagedPoints) {
-      team.for_range(n, [&](u32 i) { staged[i] = points[i]; });
-      team.barrier();
-      points = staged;
-    }
-  }
-  const BatchCloud<Point> cloud{points,
-                                n,
-                                w + at,
-                                w + total + at,
-                                w + 2 * total + at,
-                                w + 3 * total + at,
-                                w + 4 * total + at,
-                                w + 5 * total + at};
-  if constexpr (kSmall)
+  return BatchCloud<Point>{a.points + at,
+                           n,
+                           w + at,
+                           w + total + at,
+                           w + 2 * total + at,
+                           w + 3 * total + at,
+                           w + 4 * total + at,
+                           w + 5 * total + at};
+}
+
+// Listed cloud k's hull on `team` in `slot`: the resident iteration (batch_hull()).
+template <class Team, class Point>
+__device__ void hull_listed(const Team& team, const BatchSlot& slot, const PassArgs<Point>& a, u32 k) {
+  resident::batch_hull(team, slot, cloud_listed(a, k), a.out, a.results + k);
+}
+
+// Listed cloud k's hull on a warp, a furthest point at a time (small_hull()): its points copied to `staged`
+// first, in double (kStaged: every cloud of the pass has at most kWarpPoints), or read where they are.
+template <bool kStaged, class Team, class Point>
+__device__ void small_hull_listed(const Team& team, const BatchSlot& slot, const PassArgs<Point>& a, u32 k,
+                                  Point3d* staged) {
+  if constexpr (kStaged) {
+    BatchCloud<Point> in = cloud_listed(a, k);
+    team.for_range(in.n, [&](u32 i) { staged[i] = Point3d{in.points[i].x, in.points[i].y, in.points[i].z}; });
+    team.barrier();
+    const BatchCloud<Point3d> cloud{staged,         in.n,          in.index, in.face,
+                                    in.index_spare, in.face_spare, in.keep,  in.point_rank};
     resident::small_hull(team, slot, cloud, a.out, a.results + k);
-  else
-    resident::batch_hull(team, slot, cloud, a.out, a.results + k);
+  } else {
+    resident::small_hull(team, slot, cloud_listed(a, k), a.out, a.results + k);
+  }
 }
 
 // A pass's kernel: each block a team, taking clouds from the counter until none is left.  kMinBlocks: the
@@ -251,13 +260,15 @@ __global__ void __launch_bounds__(Block, kMinBlocks) batch_kernel(PassArgs<Point
 }
 
 // The warps' kernel (WarpTeam): each warp a team with a slot of its own, taking clouds from the counter
-// until none is left; kWarps a block, kMinBlocks blocks an SM (the registers, as batch_kernel's).
-template <class Point, int kWarps, int kMinBlocks>
+// until none is left; kWarps a block, kMinBlocks blocks an SM (the registers, as batch_kernel's).  kStaged:
+// every cloud of the pass has at most kWarpPoints points, staged in the SM's own memory.
+template <class Point, int kWarps, int kMinBlocks, bool kStaged>
 __global__ void __launch_bounds__(32 * kWarps, kMinBlocks) batch_warp_kernel(PassArgs<Point> a) {
   __shared__ resident::RoundsState states[kWarps];  // as batch_kernel's: the SM's own memory
-  // Each warp's cloud in the SM's own memory: every step reads the corners of every face (ncu: the loads'
-  // latency, a third of the stall samples from global memory).
-  __shared__ Point staged[kWarps][kWarpPoints];
+  // Each warp's cloud in the SM's own memory, in double: every step reads the corners of every face (ncu:
+  // the loads' latency, a third of the stall samples from global memory), and a float cloud converted at
+  // each test cost 4% of the kernel's instructions.
+  __shared__ Point3d staged[kStaged ? kWarps : 1][kStaged ? kWarpPoints : 1];
   const u32 warp = threadIdx.x / 32, lane = threadIdx.x % 32;
   BatchSlot slot = slot_of(a, blockIdx.x * kWarps + warp);
   slot.st = &states[warp];
@@ -267,7 +278,7 @@ __global__ void __launch_bounds__(32 * kWarps, kMinBlocks) batch_warp_kernel(Pas
     if (lane == 0) k = atomicAdd(a.next, 1u);
     k = __shfl_sync(0xffffffffu, k, 0);
     if (k >= a.count) return;
-    hull_listed<true, kWarpPoints>(team, slot, a, k, staged[warp]);
+    small_hull_listed<kStaged>(team, slot, a, k, staged[kStaged ? warp : 0]);
   }
 }
 
@@ -300,6 +311,7 @@ struct CloudList {
   std::vector<u32> listed;
   bool every = false;
   std::size_t count = 0;
+  std::size_t points = 0;  // the largest cloud's
   u32 operator[](std::size_t k) const { return every ? static_cast<u32>(k) : listed[k]; }
   std::size_t size() const { return every ? count : listed.size(); }
 };
@@ -329,6 +341,17 @@ u32 list_blocks(std::size_t items) {
   return static_cast<u32>(std::min<std::size_t>((items + kListThreads - 1) / kListThreads, 4096));
 }
 
+// The kernel of a pass on kKind's teams: that one alone instantiated (a conditional expression would
+// compile the warps' kernel for every kind of block, and the blocks' for the warps).
+template <TeamKind kKind, class Point>
+void (*pass_kernel(bool staged))(PassArgs<Point>) {
+  if constexpr (kKind == TeamKind::kWarp)
+    return staged ? batch_warp_kernel<Point, kWarpsPerBlock, kMinBlocksOf<kKind>, true>
+                  : batch_warp_kernel<Point, kWarpsPerBlock, kMinBlocksOf<kKind>, false>;
+  else
+    return batch_kernel<Point, kBlockThreads<kKind>, kMinBlocksOf<kKind>>;
+}
+
 // One pass over the listed clouds (ids into `offsets`), each with room for a hull of `vertices` vertices;
 // the hulls and results kept on the device in `run.outputs`.  Returns the clouds that did not end, by
 // their index in the list.
@@ -340,9 +363,7 @@ std::vector<Unfinished> run_pass(const Point* points, std::size_t count, const s
   BatchMemory memory(held, run.device_bytes);
   constexpr int kBlock = kBlockThreads<kKind>;
   constexpr u32 kTeams = kTeamsPerBlock<kKind>;
-  void (*kernel)(PassArgs<Point>) = kKind == TeamKind::kWarp
-                                        ? batch_warp_kernel<Point, kWarpsPerBlock, kMinBlocksOf<kKind>>
-                                        : batch_kernel<Point, kBlock, kMinBlocksOf<kKind>>;
+  void (*kernel)(PassArgs<Point>) = pass_kernel<kKind, Point>(listed.points <= kWarpPoints);
   // A slot a team, for every team of the blocks launched.
   const u32 blocks = static_cast<u32>(std::min<std::size_t>((listed.size() + kTeams - 1) / kTeams,
                                                             resident::blocks_that_fit(kernel, kBlock, kWho)));
@@ -535,15 +556,16 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
     CloudList clouds;
     u32 vertices = 0;
     std::size_t word_room = 0, coordinate_room = 0;
-    void count(u32 v) {
+    void count(u32 v, std::size_t n) {
       ++clouds.count;
+      clouds.points = std::max(clouds.points, n);
       vertices = std::max(vertices, v);
       word_room += 7 * std::size_t{v};  // 2 v faces of 3 corners, and v vertices
       coordinate_room += v;
     }
-    void add(u32 c, u32 v) {
+    void add(u32 c, u32 v, std::size_t n) {
       clouds.listed.push_back(c);
-      count(v);
+      count(v, n);
     }
   };
   Group groups[4];  // TeamKind's order
@@ -566,7 +588,8 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   };
   // The groups counted first: where one kind takes every cloud (a batch of one size), none is listed.
   for (std::size_t c = 0; c < clouds; ++c)
-    if (const int kind = kind_of(c); kind >= 0) groups[kind].count(room_of(c, kind));
+    if (const int kind = kind_of(c); kind >= 0)
+      groups[kind].count(room_of(c, kind), offsets[c + 1] - offsets[c]);
   bool any = false;
   for (Group& group : groups) {
     group.clouds.every = group.clouds.count == clouds;
@@ -607,11 +630,11 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
         if (u.status == resident::kBatchRoom) {
           // Room for every point a vertex costs a slot some 900 bytes a point: a larger cloud takes the
           // single-cloud path, which grows its room as it goes.
-          if (first && n <= kSecondPassPoints) again.add(c, n);
+          if (first && n <= kSecondPassPoints) again.add(c, n, n);
         } else if (u.status == resident::kBatchSingle && warp_points != 0 && n <= kRetryOnWarpPoints) {
           // A block's stall or defect (coplanar facets the rounds cannot finish: integer grids, cylinders)
           // is no obstacle to small_hull(): the warps take it before the single-cloud path would.
-          on_warps.add(c, n);
+          on_warps.add(c, n, n);
         }
       }
     }

@@ -193,10 +193,12 @@ CUDAHULL_HD bool batch_tetrahedron(const Team& team, const BatchSlot& slot, cons
 // points `used` marks (1 a vertex) written where the batch's output has room, the vertices in index order
 // (a prefix sum into `rank`, listed in `list`) and the corners renumbered to them (one atomic a cloud; a
 // cloud past the room asks for the next pass).
-template <class Team, class Point>
+// The cloud's points may be wider than the output's (a warp's float cloud staged in double): each vertex
+// goes out as it came in.
+template <class Team, class Point, class OutPoint>
 CUDAHULL_HD void write_batch_hull(const Team& team, const BatchCloud<Point>& cloud, const u32* corners,
                                   u32 faces, const u32* used, u32* rank, u32* list,
-                                  const BatchOutput<Point>& out, BatchResult* result) {
+                                  const BatchOutput<OutPoint>& out, BatchResult* result) {
   const u32 n = cloud.n;
   const u32 vertices = team.exclusive_scan(
       n, [&](u32 i) { return used[i]; }, rank);
@@ -224,7 +226,10 @@ CUDAHULL_HD void write_batch_hull(const Team& team, const BatchCloud<Point>& clo
   team.for_range(3 * faces, [&](u32 k) { renumber(k); });
   team.for_range(vertices, [&](u32 k) {
     out.words[at.word_at + 3 * faces + k] = list[k];
-    out.coordinates[at.point_at + k] = cloud.points[list[k]];
+    const Point& p = cloud.points[list[k]];
+    out.coordinates[at.point_at + k] =
+        OutPoint{static_cast<decltype(OutPoint::x)>(p.x), static_cast<decltype(OutPoint::y)>(p.y),
+                 static_cast<decltype(OutPoint::z)>(p.z)};
   });
   team.barrier();
 }

@@ -57,10 +57,11 @@ CUDAHULL_HD inline BatchRoom small_hull_room(u32 v) {
 // hull into `out`).  Per point it uses the cloud's face (the face it is above), index and index_spare (the
 // horizon edge starting and ending there), keep and point_rank (the points still outside a face, listed:
 // this step's list and the next's; the finish's marks and ranks) and face_spare (a step's points to place;
-// the finish's list).
-template <class Team, class Point>
+// the finish's list).  The cloud's points may be wider than the output's: a warp stages a float cloud in
+// double, converted once, not at each of its tests.
+template <class Team, class Point, class OutPoint>
 CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const BatchCloud<Point>& cloud,
-                            const BatchOutput<Point>& out, BatchResult* result) {
+                            const BatchOutput<OutPoint>& out, BatchResult* result) {
   const u32 n = cloud.n;
   const SmallHullArrays h = small_hull_arrays(slot);
   u32 *face_of = cloud.face, *starts = cloud.index, *ends = cloud.index_spare;
