@@ -113,7 +113,7 @@ fi
 
 if [ "$PART" = variants ]; then  # builds or settings side by side, ROUNDS rounds: VARIANTS="LABEL:ENV=VALUE:BIN|..."
   : >$O/batch_variants.jsonl
-  IFS='|' read -ra variants <<< "${VARIANTS:-warps:CUDAHULL_BATCH_HALF_WARP_POINTS=0:cudahull|half warps::cudahull}"
+  IFS='|' read -ra variants <<< "${VARIANTS:-base::cudahull_base|new::cudahull}"
   IFS='|' read -ra ab_inputs <<< "${AB_INPUTS:-100000 100 ball|20000 128 sphere|30000 60 ball}"
   for round in $(seq ${ROUNDS:-2}); do
     for variant in "${variants[@]}"; do

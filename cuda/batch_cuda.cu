@@ -30,6 +30,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstdlib>
 #include <cub/device/device_scan.cuh>
 #include <string>
@@ -782,13 +783,30 @@ void describe_batch_cuda(const BatchRun<Point>& run, const BatchColumns& columns
   check(cudaDeviceSynchronize(), "describing the hulls (kernel fault)");
 }
 
-std::size_t batch_pool_keep() {
-  std::size_t free_bytes = 0, total_bytes = 0;
-  if (cudaMemGetInfo(&free_bytes, &total_bytes) != cudaSuccess) {
+// The current device's memory, asked once a device: cudaMemGetInfo() cost each batch 44 us of host time
+// (H100, torch.profiler; docs/benchmarks.md, "Batched hulls").  0 where it cannot be read.
+static std::size_t device_total_memory() {
+  constexpr int kDevices = 64;
+  static std::atomic<std::size_t> totals[kDevices];
+  int device = 0;
+  if (cudaGetDevice(&device) != cudaSuccess || device < 0 || device >= kDevices) {
     cudaGetLastError();
-    return kPoolKeep;
+    return 0;
   }
-  return std::max(kPoolKeep, total_bytes / kBatchKeepShare);
+  std::size_t total = totals[device].load(std::memory_order_relaxed);
+  if (total == 0) {
+    std::size_t free_bytes = 0;
+    if (cudaMemGetInfo(&free_bytes, &total) != cudaSuccess) {
+      cudaGetLastError();
+      return 0;
+    }
+    totals[device].store(total, std::memory_order_relaxed);
+  }
+  return total;
+}
+
+std::size_t batch_pool_keep() {
+  return std::max(kPoolKeep, device_total_memory() / kBatchKeepShare);
 }
 
 void trim_batch_pool() {
