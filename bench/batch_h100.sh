@@ -89,32 +89,12 @@ if [ "$PART" = profile ]; then  # ncu's full set with source counters on one bat
   done
 fi
 
-if [ "$PART" = ab ]; then  # this build against .carry/bin/cudahull_base (built from another commit), ROUNDS rounds
-  : >$O/batch_ab.jsonl
-  IFS='|' read -ra ab_inputs <<< "${AB_INPUTS:-10000 1000 ball|100000 100 ball|100 100000 ball|20000 128 sphere}"
-  for round in $(seq ${ROUNDS:-2}); do
-    for bin in cudahull_base cudahull; do
-      for args in "${ab_inputs[@]}"; do
-        set -- $args
-        result=$(timeout 120 $B/$bin bench --batch $1 --n $2 --dist $3 --backend cuda --repeat 5 --json) ||
-          result=null
-        echo "{\"bin\": \"$bin\", \"round\": $round, \"input\": \"$args\", \"result\": $result}" >>$O/batch_ab.jsonl
-      done
-    done
-  done
-  python3 - $O/batch_ab.jsonl <<'PY'
-import json, sys
-for l in open(sys.argv[1]):
-    j = json.loads(l); r = j['result'] or {}
-    print(f"{j['input']:20s} {j['bin']:14s} round {j['round']}: total {r.get('total_ms', 0):7.2f} device "
-          f"{r.get('device_ms', 0):7.2f} kernel {r.get('kernel_ms', 0):7.2f} describe {r.get('describe_ms', 0):5.2f} ms")
-PY
-fi
-
-if [ "$PART" = variants ]; then  # builds or settings side by side, ROUNDS rounds: VARIANTS="LABEL:ENV=VALUE:BIN|..."
+# Builds or settings side by side, ROUNDS rounds: VARIANTS="LABEL:ENV=VALUE:BIN|..." (PART=ab: this build
+# against cudahull_base, built from another commit).
+if [ "$PART" = variants ] || [ "$PART" = ab ]; then
   : >$O/batch_variants.jsonl
   IFS='|' read -ra variants <<< "${VARIANTS:-base::cudahull_base|new::cudahull}"
-  IFS='|' read -ra ab_inputs <<< "${AB_INPUTS:-100000 100 ball|20000 128 sphere|30000 60 ball}"
+  IFS='|' read -ra ab_inputs <<< "${AB_INPUTS:-10000 1000 ball|100000 100 ball|100 100000 ball|20000 128 sphere}"
   for round in $(seq ${ROUNDS:-2}); do
     for variant in "${variants[@]}"; do
       IFS=':' read -r label setting bin <<< "$variant"
