@@ -73,16 +73,17 @@ PY
   done
 fi
 
-if [ "$PART" = profile ]; then  # ncu's full set with source counters on one batch kernel (PROFILE_INPUTS="KERNEL_REGEX B N DIST|...")
-  [ -e /work/main ] || { mkdir -p /work && ln -s "$PWD" /work/main; }  # the source paths the build compiled in
+# ncu's full set on one batch kernel (PROFILE_INPUTS="KERNEL_REGEX B N DIST|..."): the details page, and the
+# per-instruction page (SASS addresses, samples, instructions) that nvdisasm -g maps to source lines on the
+# build machine, where the sources and the cubin are.
+if [ "$PART" = profile ]; then
   IFS='|' read -ra profile_inputs <<< "${PROFILE_INPUTS:-batch_warp_kernel 100000 100 ball|batch_kernel 10000 1000 ball}"
   for args in "${profile_inputs[@]}"; do
     set -- $args
     name=$(echo "$1_$2x$3_$4" | tr -c 'A-Za-z0-9_\n' _)
-    timeout 300 ncu --set full --import-source yes -k regex:"^$1" -c 1 -o $O/$name $B/cudahull bench --batch $2 \
-      --n $3 --dist $4 --backend cuda --repeat 1 >$O/$name.log 2>&1 || { echo "ncu $args failed"; tail -5 $O/$name.log; }
+    timeout 300 ncu --set full -k regex:"^$1" -c 1 -o $O/$name $B/cudahull bench --batch $2 --n $3 --dist $4 \
+      --backend cuda --repeat 1 >$O/$name.log 2>&1 || { echo "ncu $args failed"; tail -5 $O/$name.log; }
     ncu -i $O/$name.ncu-rep --page details >$O/$name.details.txt 2>&1
-    ncu -i $O/$name.ncu-rep --page source --csv --print-source cuda >$O/$name.source.csv 2>&1
     ncu -i $O/$name.ncu-rep --page source --csv --print-source sass >$O/$name.sass.csv 2>&1
     xz -9 $O/$name.sass.csv
     echo "$args: $(grep -E "Duration|Registers Per|Achieved Occupancy|Issued Ipc Active|Executed Instructions  " $O/$name.details.txt | tr -s ' ' | head -6 | tr '\n' ';')"
