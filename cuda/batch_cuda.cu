@@ -499,33 +499,35 @@ __global__ void __launch_bounds__(kDescribeThreads) describe_kernel(DescribeArgs
       detail::facet_plane_in_range(to_vec3d(xyz[w[0]]), to_vec3d(xyz[w[1]]), to_vec3d(xyz[w[2]]),
                                    a.columns.planes + 4 * (face_at + f));
     }
-    // As convex_hull() measures a mesh (convex_hull.cpp, measure_solid, centroid_of()): the centroid of the
-    // vertices added in the list's order, then the faces' terms added in the mesh's order, one after
-    // another: the same bits.  Each lane loads (and computes the terms of) its own, and every lane adds
-    // them all in order from the shuffles (with lane 0 alone, face after face, the describe took 3.7-4.1 ms
-    // on 100,000 clouds of 100 points on the H100, against 1.9-2.7: docs/benchmarks.md, "Batched hulls").
-    Vec3d sum{0, 0, 0};
-    for (u32 base = 0; base < r.vertices; base += 32) {
-      const Vec3d mine = base + lane < r.vertices ? to_vec3d(xyz[base + lane]) : Vec3d{0, 0, 0};
-      for (u32 j = 0; j < 32 && base + j < r.vertices; ++j)
-        sum = {detail::add_rn(sum.x, __shfl_sync(0xffffffffu, mine.x, j)),
-               detail::add_rn(sum.y, __shfl_sync(0xffffffffu, mine.y, j)),
-               detail::add_rn(sum.z, __shfl_sync(0xffffffffu, mine.z, j))};
-    }
-    const double count = static_cast<double>(r.vertices);
-    const Vec3d centroid{detail::div_rn(sum.x, count), detail::div_rn(sum.y, count),
-                         detail::div_rn(sum.z, count)};
+    // As convex_hull() measures a mesh (convex_hull.cpp, measure_solid; plane_impl.hpp, measure_mesh()):
+    // the faces' terms from the first face's first corner, added in the mesh's order one after another, and
+    // the exact pass where the first is uncertain: the same bits.  Each lane loads (and computes the terms
+    // of) its own faces, and every lane adds them all in order from the shuffles (with lane 0 alone, face
+    // after face, the describe took 3.7-4.1 ms on 100,000 clouds of 100 points on the H100, against
+    // 1.9-2.7: docs/benchmarks.md, "Batched hulls").
+    const auto corner = [&](u32 f, int k) { return to_vec3d(xyz[corners[3 * f + k]]); };
+    const Vec3d apex = corner(0, 0);
     detail::SolidMeasures measures;
     for (u32 base = 0; base < r.faces; base += 32) {
       const u32 f = base + lane;
-      detail::SolidMeasures::FaceTerms mine{0, 0};
+      detail::SolidMeasures::FaceTerms mine{0, 0, 0};
       if (f < r.faces)
-        mine = detail::SolidMeasures::face_terms(to_vec3d(xyz[corners[3 * f]]),
-                                                 to_vec3d(xyz[corners[3 * f + 1]]),
-                                                 to_vec3d(xyz[corners[3 * f + 2]]), centroid);
+        mine = detail::SolidMeasures::face_terms(corner(f, 0), corner(f, 1), corner(f, 2), apex);
       for (u32 j = 0; j < 32 && base + j < r.faces; ++j)
-        measures.add_terms(
-            {__shfl_sync(0xffffffffu, mine.twice_area, j), __shfl_sync(0xffffffffu, mine.six_volume, j)});
+        measures.add_terms({__shfl_sync(0xffffffffu, mine.twice_area, j),
+                            __shfl_sync(0xffffffffu, mine.six_volume, j),
+                            __shfl_sync(0xffffffffu, mine.six_volume_error, j)});
+    }
+    if (measures.volume_uncertain()) {  // the same sums on every lane: the warp takes the pass together
+      measures.exact_volume_pass();
+      for (u32 base = 0; base < r.faces; base += 32) {
+        const u32 f = base + lane;
+        const double mine = f < r.faces ? detail::SolidMeasures::exact_six_volume(corner(f, 0), corner(f, 1),
+                                                                                  corner(f, 2), apex)
+                                        : 0.0;
+        for (u32 j = 0; j < 32 && base + j < r.faces; ++j)
+          measures.add_exact(__shfl_sync(0xffffffffu, mine, j));
+      }
     }
     if (lane == 0) {
       a.columns.volumes[c] = measures.volume();

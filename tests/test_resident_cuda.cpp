@@ -118,7 +118,7 @@ class ResidentCuda : public ::testing::Test {
 // Batched hulls (issue 27): the batch kernel's clouds, from host points and from device memory, in float and
 // double, equal the CPU backend's batch cloud for cloud (which is convex_hull() on each cloud alone): vertex
 // sets, dimensions, face counts, volumes and areas.  Mixed clouds: every distribution, 1 to 6,000 points,
-// repeats, flat and collinear ones, and one cloud too large for a block.
+// repeats, slivers, flat and collinear ones, and one cloud too large for a block.
 TEST_F(ResidentCuda, BatchEqualsTheCpuCloudForCloud) {
   testing::Rng r(27);
   const std::vector<std::string> names = distribution_names();
@@ -132,6 +132,9 @@ TEST_F(ResidentCuda, BatchEqualsTheCpuCloudForCloud) {
     if (c % 11 == 0)  // repeats
       for (std::size_t i = 0; i < n; i += 3)
         cloud.push_back(cloud[i]);
+    if (c % 19 == 0)  // a sliver, 2^-19 thick: its volume takes the exact pass (plane_impl.hpp)
+      for (Point3& p : cloud)
+        p.z = 0.5f + 0x1p-20f * p.z;
     if (c % 13 == 0)  // flat
       for (Point3& p : cloud)
         p.z = 0.5f;
@@ -202,21 +205,20 @@ TEST_F(ResidentCuda, BatchEqualsTheCpuCloudForCloud) {
         EXPECT_NEAR(got->areas[c], want.areas[c], 1e-9 * std::abs(want.areas[c]) + 1e-30) << what << c;
         if (got->dimensions[c] != 3) continue;
         // The device's describe is the host's arithmetic (plane_impl.hpp): each face's plane and the
-        // measures, recomputed here from the result's own faces (in their order, from the centroid of the
-        // ascending vertices), are the same bits.
+        // measures, recomputed here from the result's own faces (in their order, from the first face's
+        // first corner), are the same bits.
         // The float points widen exactly, whichever precision the hull took.
         const auto point = [&](PointIndex i) { return to_vec3d(points[offsets[c] + i]); };
-        const Vec3d centroid = detail::centroid_of(
-            got->vertex_offsets[c + 1] - got->vertex_offsets[c],
-            [&](unsigned long long k) { return point(got->vertices[got->vertex_offsets[c] + k]); });
-        detail::SolidMeasures measures;
-        for (std::size_t f = got->face_offsets[c]; f < got->face_offsets[c + 1]; ++f) {
+        const std::size_t first = got->face_offsets[c];
+        for (std::size_t f = first; f < got->face_offsets[c + 1]; ++f) {
           const auto& face = got->faces[f];
           std::array<double, 4> plane;
           detail::facet_plane_in_range(point(face[0]), point(face[1]), point(face[2]), plane.data());
           ASSERT_EQ(plane, got->planes[f]) << what << " cloud " << c << " face " << f;
-          measures.add_face(point(face[0]), point(face[1]), point(face[2]), centroid);
         }
+        const auto corner = [&](unsigned long long f, int k) { return point(got->faces[first + f][k]); };
+        const detail::SolidMeasures measures =
+            detail::measure_mesh(got->face_offsets[c + 1] - first, corner, corner(0, 0));
         EXPECT_EQ(got->volumes[c], measures.volume()) << what << c;
         EXPECT_EQ(got->areas[c], measures.area()) << what << c;
       }

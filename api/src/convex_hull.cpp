@@ -134,11 +134,6 @@ double norm(Vec a) {
   return std::sqrt(dot(a, a));
 }
 
-template <class Point>
-Vec as_vec(const Point& p) {
-  return {static_cast<double>(p.x), static_cast<double>(p.y), static_cast<double>(p.z)};
-}
-
 // neighbors[f][k] = the face holding the reverse of the edge opposite corner k (each directed edge appears
 // once in a closed 2-manifold with consistent orientation).  `triangles` index `vertex_count` vertices: the
 // directed edges are grouped by their first vertex (a counting sort), so each reverse is found among a
@@ -178,17 +173,52 @@ std::vector<std::array<std::int32_t, 3>> face_neighbors(const std::vector<Triang
   return neighbors;
 }
 
+// Coordinates outside the fast exact range (the wide path's hulls) are brought into it, where a whole face
+// or solid allows, by a power of two: exact, and planes' directions and measures scale back exactly (a
+// plane's offset by 2^k, an area by 2^2k, a volume by 2^3k, to infinity where they exceed a double).
+// `scale` is 0 where every coordinate of `points` is in the range already (the device's describe computes
+// there too: the same bits), else the exponent k that brings their largest magnitude into [1, 2); false
+// where some coordinate, so scaled, would leave the range (magnitudes more than some 2^500 apart).
+template <class PointAt>
+bool fast_range_scale(std::size_t count, const PointAt& point, int* scale) {
+  double largest = 0;
+  bool in_range = true;
+  for (std::size_t k = 0; k < count; ++k) {
+    const Vec3d p = point(k);
+    in_range = in_range && in_fast_exact_range(p.x) && in_fast_exact_range(p.y) && in_fast_exact_range(p.z);
+    largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  }
+  *scale = in_range || largest == 0 ? 0 : std::ilogb(largest);
+  if (in_range) return true;
+  for (std::size_t k = 0; k < count; ++k) {
+    const Vec3d p = point(k);
+    for (const double v : {p.x, p.y, p.z}) {
+      const double scaled = std::ldexp(v, -*scale);
+      if (!in_fast_exact_range(scaled) || (scaled == 0) != (v == 0)) return false;
+    }
+  }
+  return true;
+}
+
+Vec3d scaled_by(const Vec3d& p, int scale) {
+  if (scale == 0) return p;
+  return {std::ldexp(p.x, -scale), std::ldexp(p.y, -scale), std::ldexp(p.z, -scale)};
+}
+
 // A facet's plane, accurate on slivers too (issue 25): detail::facet_plane_in_range() (plane_impl.hpp, which
-// the batch kernel's device describe shares: the same bits on both).
+// the batch kernel's device describe shares: the same bits on both), on the corners scaled into the fast
+// exact range where they are not in it.
 std::array<double, 4> facet_plane(Vec3d a, Vec3d b, Vec3d c) {
-  const double coordinates[9] = {a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z};
-  if (std::all_of(std::begin(coordinates), std::end(coordinates),
-                  [](double v) { return in_fast_exact_range(v); })) {
+  const Vec3d corners[3] = {a, b, c};
+  int scale = 0;
+  if (fast_range_scale(
+          3, [&](std::size_t k) { return corners[k]; }, &scale)) {
     std::array<double, 4> plane;
-    detail::facet_plane_in_range(a, b, c, plane.data());
+    detail::facet_plane_in_range(scaled_by(a, scale), scaled_by(b, scale), scaled_by(c, scale), plane.data());
+    plane[3] = std::ldexp(plane[3], scale);
     return plane;
   }
-  // Outside the exact range (the wide path's hulls): the cross product in long double, whose exponent range
+  // Corners more than 2^500 apart in magnitude: the cross product in long double, whose exponent range
   // holds every product of double differences (none over- or underflows), rounded; accurate to the last
   // place but where the products cancel (a sliver of such coordinates: then a few ulps of the products).
   using Wide = long double;
@@ -203,20 +233,47 @@ std::array<double, 4> facet_plane(Vec3d a, Vec3d b, Vec3d c) {
   return {n[0], n[1], n[2], static_cast<double>(-std::max({height(a), height(b), height(c)}))};
 }
 
-// The solid's volume and surface area into `hull`, over `triangles` (outward, indices into `vertices`).  The
-// tetrahedra are taken from the centroid of `corners` (the vertices the triangles use; all of `vertices`
-// for nullptr), which lies inside: every term is positive, so the sum loses nothing to cancellation.
+// The solid's volume and surface area into `hull`, over `triangles` (outward, indices into `vertices`):
+// detail::measure_mesh() (plane_impl.hpp, as the batch's device describe: the same bits), its apex the first
+// triangle's first corner; scaled into the fast exact range where the vertices are not in it.
 template <class Point>
-void measure_solid(const std::vector<Point>& vertices, const std::vector<PointIndex>* corners,
-                   const std::vector<Triangle>& triangles, ConvexHull& hull) {
-  const std::size_t count = corners ? corners->size() : vertices.size();
-  const Vec3d centroid = detail::centroid_of(
-      count, [&](std::size_t k) { return to_vec3d(vertices[corners ? (*corners)[k] : k]); });
-  detail::SolidMeasures measures;
-  for (const Triangle& t : triangles)
-    measures.add_face(to_vec3d(vertices[t[0]]), to_vec3d(vertices[t[1]]), to_vec3d(vertices[t[2]]), centroid);
-  hull.volume = measures.volume();
-  hull.area = measures.area();
+void measure_solid(const std::vector<Point>& vertices, const std::vector<Triangle>& triangles,
+                   ConvexHull& hull) {
+  if (triangles.empty()) return;
+  const auto vertex = [&](std::size_t k) { return to_vec3d(vertices[k]); };
+  int scale = 0;
+  if (fast_range_scale(vertices.size(), vertex, &scale)) {
+    const auto corner = [&](unsigned long long f, int k) {
+      return scaled_by(vertex(triangles[f][k]), scale);
+    };
+    const detail::SolidMeasures measures =
+        detail::measure_mesh(triangles.size(), corner, scaled_by(vertex(triangles[0][0]), scale));
+    hull.volume = std::ldexp(measures.volume(), 3 * scale);
+    hull.area = std::ldexp(measures.area(), 2 * scale);
+    return;
+  }
+  // Vertices more than 2^500 apart in magnitude: long double, from the same apex (no term negative).
+  using Wide = long double;
+  const auto wide = [&](PointIndex i) {
+    const Vec3d p = vertex(i);
+    return std::array<Wide, 3>{p.x, p.y, p.z};
+  };
+  const auto o = wide(triangles[0][0]);
+  Wide six_volume = 0, twice_area = 0;
+  for (const Triangle& t : triangles) {
+    std::array<Wide, 3> u, v, w;
+    const auto a = wide(t[0]), b = wide(t[1]), c = wide(t[2]);
+    for (int k = 0; k < 3; ++k) {
+      u[k] = b[k] - a[k];
+      v[k] = c[k] - a[k];
+      w[k] = a[k] - o[k];
+    }
+    const Wide nx = u[1] * v[2] - u[2] * v[1], ny = u[2] * v[0] - u[0] * v[2], nz = u[0] * v[1] - u[1] * v[0];
+    twice_area += std::sqrt(nx * nx + ny * ny + nz * nz);
+    six_volume += nx * w[0] + ny * w[1] + nz * w[2];
+  }
+  hull.volume = static_cast<double>(six_volume / 6);
+  hull.area = static_cast<double>(twice_area / 2);
 }
 
 template <class Point>
@@ -230,15 +287,35 @@ ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend,
   if (mesh.dimension == 2) {
     for (std::uint32_t corner : mesh.polygon)
       hull.polygon.push_back(mesh.vertex_ids[corner]);
-    // The flat solid's surface: both sides of the polygon, each a fan of triangles from corner 0.
-    Vec twice_area{0, 0, 0};
-    for (std::size_t k = 1; k + 1 < mesh.polygon.size(); ++k) {
-      const Vec origin = as_vec(mesh.vertices[mesh.polygon[0]]);
-      const Vec c = cross(as_vec(mesh.vertices[mesh.polygon[k]]) - origin,
-                          as_vec(mesh.vertices[mesh.polygon[k + 1]]) - origin);
-      twice_area = {twice_area.x + c.x, twice_area.y + c.y, twice_area.z + c.z};
+    // The flat solid's surface: both sides of the polygon, each a fan of triangles from corner 0 (scaled
+    // into the fast exact range as measure_solid() scales a solid).
+    const auto corner = [&](std::size_t k) { return to_vec3d(mesh.vertices[mesh.polygon[k]]); };
+    int scale = 0;
+    if (fast_range_scale(mesh.polygon.size(), corner, &scale)) {
+      const auto at = [&](std::size_t k) {
+        const Vec3d p = scaled_by(corner(k), scale);
+        return Vec{p.x, p.y, p.z};
+      };
+      Vec twice_area{0, 0, 0};
+      for (std::size_t k = 1; k + 1 < mesh.polygon.size(); ++k) {
+        const Vec c = cross(at(k) - at(0), at(k + 1) - at(0));
+        twice_area = {twice_area.x + c.x, twice_area.y + c.y, twice_area.z + c.z};
+      }
+      hull.area = std::ldexp(norm(twice_area), 2 * scale);
+    } else {
+      using Wide = long double;
+      Wide sum[3] = {0, 0, 0};
+      const Vec3d o = corner(0);
+      for (std::size_t k = 1; k + 1 < mesh.polygon.size(); ++k) {
+        const Vec3d p = corner(k), q = corner(k + 1);
+        const Wide u[3] = {Wide(p.x) - o.x, Wide(p.y) - o.y, Wide(p.z) - o.z};
+        const Wide v[3] = {Wide(q.x) - o.x, Wide(q.y) - o.y, Wide(q.z) - o.z};
+        sum[0] += u[1] * v[2] - u[2] * v[1];
+        sum[1] += u[2] * v[0] - u[0] * v[2];
+        sum[2] += u[0] * v[1] - u[1] * v[0];
+      }
+      hull.area = static_cast<double>(std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]));
     }
-    hull.area = norm(twice_area);
     return hull;
   }
   if (mesh.dimension != 3) return hull;
@@ -246,7 +323,7 @@ ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend,
   hull.faces.reserve(mesh.triangles.size());
   for (const Triangle& t : mesh.triangles)
     hull.faces.push_back({mesh.vertex_ids[t[0]], mesh.vertex_ids[t[1]], mesh.vertex_ids[t[2]]});
-  measure_solid(mesh.vertices, nullptr, mesh.triangles, hull);
+  measure_solid(mesh.vertices, mesh.triangles, hull);
   // Each face's plane on its own (on all cores: a sliver's is exact, and a hull of millions of faces has
   // some), so the result does not depend on the worker count.
   hull.planes.resize(mesh.triangles.size());
@@ -305,7 +382,7 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
   // merged's indices are positions in mesh.vertices (local's ids): its faces are the mesh's triangles.
   for (const Triangle& face : merged.faces)
     hull.faces.push_back({mesh.vertex_ids[face[0]], mesh.vertex_ids[face[1]], mesh.vertex_ids[face[2]]});
-  measure_solid(mesh.vertices, &merged.vertices, merged.faces, hull);
+  measure_solid(mesh.vertices, merged.faces, hull);
   hull.planes = merged.planes;
   hull.neighbors = face_neighbors(merged.faces, mesh.vertices.size());
   for (const auto& row : merged.coplanar)

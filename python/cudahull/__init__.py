@@ -718,6 +718,9 @@ def _host_integers(values, name):
         raise ValueError(f"{name} must be a 1-D array of integers, not one of shape {array.shape}")
     if array.size and array.dtype.kind not in "iu":
         raise ValueError(f"{name} must be integers, not {array.dtype}")
+    if array.dtype.kind == "u" and array.size and array.max() > np.iinfo(np.int64).max:
+        bad = int(np.flatnonzero(array > np.iinfo(np.int64).max)[0])
+        raise ValueError(f"{name}[{bad}] is {int(array[bad])}: beyond int64")
     return np.ascontiguousarray(array, dtype=np.int64)
 
 
@@ -826,6 +829,8 @@ def convex_hull_batch(points, offsets=None, lengths=None, *, backend="auto", pre
     Raises ValueError for a NaN or infinite coordinate (naming the cloud, the point in it and its row in the
     packed points), and for bad shapes, offsets or lengths; DeviceError as ``convex_hull``.
     """
+    if isinstance(threads, (bool, np.bool_)) or not isinstance(threads, (int, np.integer)) or threads < 0:
+        raise ValueError(f"threads must be a whole number of CPU clouds at once, 0 for every core, not {threads!r}")
     protocol = _cuda_protocol(points)
     if protocol is None:
         if isinstance(points, np.ma.MaskedArray):

@@ -2,6 +2,8 @@
 convex_hull() on that cloud alone and against scipy.spatial.ConvexHull (Qhull) where Qhull is exact; padded
 input against packed; edge cases written out; errors naming the cloud and the point."""
 
+from fractions import Fraction
+
 import numpy as np
 import pytest
 import scipy.spatial
@@ -291,6 +293,10 @@ def test_bad_layouts_are_value_errors():
         (dict(points=points.reshape(2, 5, 3), lengths=[5, 6]), "lengths\\[1\\] is 6: a cloud holds 0 to 5"),
         (dict(points=np.array([["a", "b", "c"]]), offsets=[0, 1]), "points must be numbers"),
         (dict(points=points, offsets=[0, 10], backend="gpu"), "backend must be auto, cpu or cuda"),
+        (dict(points=points, offsets=[0, 10], threads=-1), "threads must be a whole number"),
+        (dict(points=points, offsets=[0, 10], threads=1.5), "threads must be a whole number"),
+        (dict(points=points.reshape(2, 5, 3), lengths=np.array([5, 2**63 + 1], np.uint64)),
+         "lengths\\[1\\] is 9223372036854775809: beyond int64"),
     ]
     for arguments, words in cases:
         with pytest.raises(ValueError, match=words):
@@ -307,3 +313,58 @@ def test_cuda_backend_request(batch):
         with pytest.raises(cudahull.DeviceError, match="^backend cuda: no usable CUDA device: "):
             cudahull.convex_hull_batch(points, offsets, backend="cuda")
         assert cudahull.convex_hull_batch(points, offsets).backend.startswith("cpu")  # auto falls back
+
+
+def exact_volume(points, faces):
+    """Six times the volume of the closed outward mesh `faces` on `points`, in rational arithmetic, after
+    checking that every point is on or below every face (then the mesh is the hull, and this its volume)."""
+    q = [[Fraction(float(x)) for x in p] for p in points]
+
+    def det(a, b, c, d):  # (a - d) . ((b - d) x (c - d)), positive when d is below the face (a, b, c)
+        u, v, w = ([p[k] - d[k] for k in range(3)] for p in (a, b, c))
+        return u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + \
+            u[2] * (v[0] * w[1] - v[1] * w[0])
+
+    for a, b, c in faces:
+        assert all(det(q[a], q[b], q[c], p) >= 0 for p in q)
+    return sum(det(q[a], q[b], q[c], q[0]) for a, b, c in faces)
+
+
+def test_measures_of_slivers_and_wide_ranges():
+    """Volumes and areas where the tetrahedra's terms cancel (slivers: the exact pass of plane_impl.hpp) and
+    where the coordinates leave the fast exact range (the wide path, scaled by powers of two), against
+    rational arithmetic and closed forms; the batch and convex_hull() alike."""
+    rng = np.random.default_rng(5)
+    slivers = [np.array([[1e30, 3e29, 7e29], [-1e30, 1e30, 0], [1e-30, 2e-30, 1e-30], [0, 0, 0]]),
+               np.array([[-1.930194037646372, -1.204502626035393, -0.7088424652129783],
+                         [-0.21507838266500906, -0.0706887691553342, -0.07921269392390515],
+                         [0.5019532202178966, -0.9050357596317037, 1.382136313697382],
+                         [0.06497297525256951, -0.39840289853817645, 0.49323463054019184]])]
+    for _ in range(6):  # 30 points in a slab 1e-9 thick, tilted: slivers everywhere
+        p = rng.uniform(-1, 1, size=(30, 3)) * [1, 1, 1e-9]
+        slivers.append(p @ np.linalg.qr(rng.normal(size=(3, 3)))[0])
+    hulls = cudahull.convex_hull_batch(np.vstack(slivers), np.cumsum([0] + [len(p) for p in slivers]),
+                                       backend="cpu")
+    for c, points in enumerate(slivers):
+        hull = hulls.cloud(c)
+        assert hull["dimension"] == 3
+        want = float(exact_volume(points, hull["faces"]) / 6)
+        assert hull["volume"] == pytest.approx(want, rel=1e-12), c
+        assert cudahull.convex_hull(points, backend="cpu")["volume"] == hull["volume"]
+    cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=np.float64)
+    square = cube[cube[:, 2] == 0]
+    for e in (400, -400, 700, -340):  # the cube 2^e on a side: its measures exact, or beyond a double
+        def exactly(k, power):
+            return float(k * Fraction(2) ** (power * e)) if power * e < 1020 else np.inf
+        hull = cudahull.convex_hull_batch(cube * 2.0**e, [0, 8], backend="cpu").cloud(0)
+        assert (hull["volume"], hull["area"]) == (exactly(1, 3), exactly(6, 2)), e
+        flat = cudahull.convex_hull_batch(square * 2.0**e, [0, 4], backend="cpu").cloud(0)
+        assert (flat["dimension"], flat["area"]) == (2, exactly(2, 2)), e
+    # A sliver at 1e300 (the wide path): its planes as tight as the same sliver's in range.
+    t = rng.integers(-50, 50, 8)
+    wide = ((np.array([3.0, -4.0, 1.0]) + t[:, None] * np.array([1.0, 2.0, 3.0])) * 1e300
+            + rng.normal(size=(8, 3)) * 1e287)
+    hulls = cudahull.convex_hull_batch(wide, [0, 8], backend="cpu")
+    assert hulls.backend == "cpu-wide"
+    heights = wide @ hulls.planes[:, :3].T + hulls.planes[:, 3]
+    assert heights.max() <= 1e-13 * np.abs(wide).max()

@@ -8,8 +8,10 @@
 //                         permanents), else the exact one rounded (plane_through); see convex_hull.cpp
 //   plane_through         plane.cpp's exact plane: the cross product's components as exact expansions, each
 //                         rounded once (Compress's guess, corrected by exact comparisons)
-//   SolidMeasures         six times the volume and twice the area, summed face by face in the order given,
-//                         from the centroid of the vertices (every tetrahedron positive: nothing cancels)
+//   SolidMeasures         six times the volume and twice the area, summed face by face in the order given;
+//                         the volume's tetrahedra from one of the solid's vertices (no term negative), each
+//                         in double with its error bound, or exactly where their bounds add up to more than
+//                         2^-40 of the volume (slivers)
 // Every operation is explicitly rounded (the predicates' add_rn, mul_rn, div_rn, sqrt_rn), so neither
 // the host's contraction nor the device's fused multiply-add changes a bit.
 #pragma once
@@ -194,51 +196,81 @@ CUDAHULL_HD inline void facet_plane_in_range(const Vec3d& a, const Vec3d& b, con
 }
 
 // A closed outward mesh's six times volume and twice area, face by face in the order given (the order is
-// part of the result: the same order gives the same bits), from `centroid` (inside the solid: the mean of
-// its vertices, centroid_of()).
+// part of the result: the same order gives the same bits).  The volume's tetrahedra share an apex at one of
+// the solid's vertices (`apex`), so that no term is negative: each is Shewchuk's orient3d determinant of the
+// face and the apex, exactly zero or positive.  A first pass adds the terms in double with their error
+// bounds; where the bounds' sum exceeds 2^-40 of the volume (a sliver, where the terms cancel inside each
+// determinant), a second pass adds the exact determinants' values instead (exact_volume_pass()).
 struct SolidMeasures {
-  double six_volume = 0, twice_area = 0;
-  // A face's own terms (twice its area, six times its tetrahedron's volume from the centroid): independent
-  // of the other faces, so a warp may compute them at once and add them in order (add_terms()).
+  static constexpr double kVolumeTolerance = 0x1p-40;
+  double six_volume = 0, twice_area = 0, six_volume_error = 0;
+  // A face's own terms (twice its area, six times its tetrahedron's volume from the apex and the bound on
+  // that term's error): independent of the other faces, so a warp may compute them at once and add them in
+  // order (add_terms()).
   struct FaceTerms {
-    double twice_area, six_volume;
+    double twice_area, six_volume, six_volume_error;
   };
-  CUDAHULL_HD static FaceTerms face_terms(const Vec3d& a, const Vec3d& b, const Vec3d& c,
-                                          const Vec3d& centroid) {
-    const auto sub = [](const Vec3d& p, const Vec3d& q) {
-      return Vec3d{sub_rn(p.x, q.x), sub_rn(p.y, q.y), sub_rn(p.z, q.z)};
-    };
-    const auto cross = [](const Vec3d& p, const Vec3d& q) {
-      return Vec3d{sub_rn(mul_rn(p.y, q.z), mul_rn(p.z, q.y)), sub_rn(mul_rn(p.z, q.x), mul_rn(p.x, q.z)),
-                   sub_rn(mul_rn(p.x, q.y), mul_rn(p.y, q.x))};
-    };
-    const auto dot = [](const Vec3d& p, const Vec3d& q) {
-      return add_rn(add_rn(mul_rn(p.x, q.x), mul_rn(p.y, q.y)), mul_rn(p.z, q.z));
-    };
-    const Vec3d n = cross(sub(b, a), sub(c, a));
-    return FaceTerms{sqrt_rn(dot(n, n)), dot(cross(sub(b, centroid), sub(c, centroid)), sub(a, centroid))};
+  CUDAHULL_HD static bool is_corner(const Vec3d& p, const Vec3d& apex) {
+    return p.x == apex.x && p.y == apex.y && p.z == apex.z;
+  }
+  CUDAHULL_HD static FaceTerms face_terms(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& apex) {
+    const double ux = sub_rn(b.x, a.x), uy = sub_rn(b.y, a.y), uz = sub_rn(b.z, a.z);
+    const double vx = sub_rn(c.x, a.x), vy = sub_rn(c.y, a.y), vz = sub_rn(c.z, a.z);
+    const double nx = sub_rn(mul_rn(uy, vz), mul_rn(uz, vy)), ny = sub_rn(mul_rn(uz, vx), mul_rn(ux, vz)),
+                 nz = sub_rn(mul_rn(ux, vy), mul_rn(uy, vx));
+    const double twice_area = sqrt_rn(add_rn(add_rn(mul_rn(nx, nx), mul_rn(ny, ny)), mul_rn(nz, nz)));
+    // A face at the apex has no volume (and its determinant, exactly zero, would take the second pass).
+    if (is_corner(a, apex) || is_corner(b, apex) || is_corner(c, apex)) return FaceTerms{twice_area, 0, 0};
+    // orient3d's filter (predicates_impl.hpp) with the apex as d: the value and Shewchuk's bound.
+    const double adx = sub_rn(a.x, apex.x), bdx = sub_rn(b.x, apex.x), cdx = sub_rn(c.x, apex.x);
+    const double ady = sub_rn(a.y, apex.y), bdy = sub_rn(b.y, apex.y), cdy = sub_rn(c.y, apex.y);
+    const double adz = sub_rn(a.z, apex.z), bdz = sub_rn(b.z, apex.z), cdz = sub_rn(c.z, apex.z);
+    const double bdxcdy = mul_rn(bdx, cdy), cdxbdy = mul_rn(cdx, bdy);
+    const double cdxady = mul_rn(cdx, ady), adxcdy = mul_rn(adx, cdy);
+    const double adxbdy = mul_rn(adx, bdy), bdxady = mul_rn(bdx, ady);
+    const double det =
+        add_rn(add_rn(mul_rn(adz, sub_rn(bdxcdy, cdxbdy)), mul_rn(bdz, sub_rn(cdxady, adxcdy))),
+               mul_rn(cdz, sub_rn(adxbdy, bdxady)));
+    const double permanent = add_rn(add_rn(mul_rn(add_rn(abs_d(bdxcdy), abs_d(cdxbdy)), abs_d(adz)),
+                                           mul_rn(add_rn(abs_d(cdxady), abs_d(adxcdy)), abs_d(bdz))),
+                                    mul_rn(add_rn(abs_d(adxbdy), abs_d(bdxady)), abs_d(cdz)));
+    return FaceTerms{twice_area, det, mul_rn(kO3dErrBoundA, permanent)};
+  }
+  // The second pass's term: the face's exact determinant with the apex, to a few ulps.
+  CUDAHULL_HD static double exact_six_volume(const Vec3d& a, const Vec3d& b, const Vec3d& c,
+                                             const Vec3d& apex) {
+    if (is_corner(a, apex) || is_corner(b, apex) || is_corner(c, apex)) return 0;
+    return orient3d_exact_value(a, b, c, apex);
   }
   CUDAHULL_HD void add_terms(const FaceTerms& t) {
     twice_area = add_rn(twice_area, t.twice_area);
     six_volume = add_rn(six_volume, t.six_volume);
+    six_volume_error = add_rn(six_volume_error, t.six_volume_error);
   }
-  CUDAHULL_HD void add_face(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& centroid) {
-    add_terms(face_terms(a, b, c, centroid));
+  // After the first pass: whether the volume needs the second (its error bound above 2^-40 of it).
+  CUDAHULL_HD bool volume_uncertain() const {
+    return !(six_volume_error <= mul_rn(kVolumeTolerance, six_volume));
   }
+  // The second pass: exact_six_volume() of every face, added in the same order after this call.
+  CUDAHULL_HD void exact_volume_pass() { six_volume = 0; }
+  CUDAHULL_HD void add_exact(double term) { six_volume = add_rn(six_volume, term); }
   CUDAHULL_HD double volume() const { return div_rn(six_volume, 6.0); }
   CUDAHULL_HD double area() const { return div_rn(twice_area, 2.0); }
 };
 
-// The mean of `count` points, `point(k)` the k-th, summed in order.
-template <class PointAt>
-CUDAHULL_HD Vec3d centroid_of(unsigned long long count, PointAt point) {
-  Vec3d sum{0, 0, 0};
-  for (unsigned long long k = 0; k < count; ++k) {
-    const Vec3d p = point(k);
-    sum = {add_rn(sum.x, p.x), add_rn(sum.y, p.y), add_rn(sum.z, p.z)};
+// A closed outward mesh's measures, `corner(f, k)` the k-th corner of face f (of `faces`) and `apex` one of
+// its vertices: both passes on one thread (the batch's describe spreads them over a warp).
+template <class Corner>
+CUDAHULL_HD SolidMeasures measure_mesh(unsigned long long faces, const Corner& corner, const Vec3d& apex) {
+  SolidMeasures measures;
+  for (unsigned long long f = 0; f < faces; ++f)
+    measures.add_terms(SolidMeasures::face_terms(corner(f, 0), corner(f, 1), corner(f, 2), apex));
+  if (measures.volume_uncertain()) {
+    measures.exact_volume_pass();
+    for (unsigned long long f = 0; f < faces; ++f)
+      measures.add_exact(SolidMeasures::exact_six_volume(corner(f, 0), corner(f, 1), corner(f, 2), apex));
   }
-  const double n = static_cast<double>(count);
-  return {div_rn(sum.x, n), div_rn(sum.y, n), div_rn(sum.z, n)};
+  return measures;
 }
 
 }  // namespace detail

@@ -336,10 +336,12 @@ constexpr double kEpsilon = 1.1102230246251565404236316680908203125e-16;
 constexpr double kCcwErrBoundA = (3.0 + 16.0 * kEpsilon) * kEpsilon;
 constexpr double kO3dErrBoundA = (7.0 + 56.0 * kEpsilon) * kEpsilon;
 
-// Exact sign of Shewchuk's orient3d determinant det[a-d, b-d, c-d] (positive when d is BELOW the
-// counter-clockwise triangle abc; our orient3d negates it).
-CUDAHULL_HD CUDAHULL_COLD inline int orient3d_exact_shewchuk(const Vec3d& a, const Vec3d& b, const Vec3d& c,
-                                                             const Vec3d& d) {
+// Shewchuk's orient3d determinant det[a-d, b-d, c-d] (positive when d is BELOW the counter-clockwise
+// triangle abc; our orient3d negates it) evaluated exactly as two expansions whose sum it is; `last` is told
+// them (length, components; twice) and gives the result: their sum's sign, or its value.
+template <class Last>
+CUDAHULL_HD inline auto orient3d_exact_parts(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d,
+                                             const Last& last) {
   double adx, adx0, bdx, bdx0, cdx, cdx0, ady, ady0, bdy, bdy0, cdy, cdy0, adz, adz0, bdz, bdz0, cdz, cdz0;
   two_diff(a.x, d.x, adx, adx0);
   two_diff(b.x, d.x, bdx, bdx0);
@@ -370,7 +372,7 @@ CUDAHULL_HD CUDAHULL_COLD inline int orient3d_exact_shewchuk(const Vec3d& a, con
     int blen = scale_expansion(4, ca, bdz, bdet);
     int clen = scale_expansion(4, ab, cdz, cdet);
     int ablen = expansion_sum(alen, adet, blen, bdet, abdet);
-    return expansion_sum_sign(ablen, abdet, clen, cdet);
+    return last(ablen, abdet, clen, cdet);
   }
   // General case: every difference is a one- or two-component expansion; up to 192 components in all.
   // Buffers are reused to keep the (GPU local-memory) stack frame small.
@@ -386,7 +388,30 @@ CUDAHULL_HD CUDAHULL_COLD inline int orient3d_exact_shewchuk(const Vec3d& a, con
   mlen = pair_cross(ax, by, bx, ay, minor);
   double* cdet = adet;
   int clen = multiply_by_pair(mlen, minor, cz.len, cz.v, cdet);
-  return expansion_sum_sign(ablen, abdet, clen, cdet);
+  return last(ablen, abdet, clen, cdet);
+}
+
+// The exact sign of Shewchuk's orient3d determinant.
+CUDAHULL_HD CUDAHULL_COLD inline int orient3d_exact_shewchuk(const Vec3d& a, const Vec3d& b, const Vec3d& c,
+                                                             const Vec3d& d) {
+  return orient3d_exact_parts(a, b, c, d, [](int elen, const double* e, int flen, const double* f) {
+    return expansion_sum_sign(elen, e, flen, f);
+  });
+}
+
+// Shewchuk's orient3d determinant's value, from its exact expansion: the components added in increasing
+// magnitude (his `estimate`), within a few ulps of the exact value since they do not overlap.  For the
+// measures of a solid (plane_impl.hpp), where the double evaluation's error bound is too wide.
+CUDAHULL_HD CUDAHULL_COLD inline double orient3d_exact_value(const Vec3d& a, const Vec3d& b, const Vec3d& c,
+                                                             const Vec3d& d) {
+  return orient3d_exact_parts(a, b, c, d, [](int elen, const double* e, int flen, const double* f) {
+    double sum[192];  // the general case's 128 + 64 components at most
+    const int len = expansion_sum(elen, e, flen, f, sum);
+    double value = sum[0];
+    for (int i = 1; i < len; ++i)
+      value = add_rn(value, sum[i]);
+    return value;
+  });
 }
 
 // Exact sign of det[a-c, b-c] (Shewchuk's orient2d, same sign as ours).
