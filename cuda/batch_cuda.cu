@@ -507,17 +507,22 @@ __global__ void __launch_bounds__(kDescribeThreads) describe_kernel(DescribeArgs
     // 1.9-2.7: docs/benchmarks.md, "Batched hulls").
     const auto corner = [&](u32 f, int k) { return to_vec3d(xyz[corners[3 * f + k]]); };
     const Vec3d apex = corner(0, 0);
+    static_assert(detail::SolidMeasures::kErrorSums == 32, "a lane an error sum");
     detail::SolidMeasures measures;
+    double error_sum = 0;  // this lane's faces' bounds (f mod 32 = lane), as measure_mesh()'s sums
     for (u32 base = 0; base < r.faces; base += 32) {
       const u32 f = base + lane;
       detail::SolidMeasures::FaceTerms mine{0, 0, 0};
       if (f < r.faces)
         mine = detail::SolidMeasures::face_terms(corner(f, 0), corner(f, 1), corner(f, 2), apex);
+      error_sum = detail::add_rn(error_sum, mine.six_volume_error);
       for (u32 j = 0; j < 32 && base + j < r.faces; ++j)
-        measures.add_terms({__shfl_sync(0xffffffffu, mine.twice_area, j),
-                            __shfl_sync(0xffffffffu, mine.six_volume, j),
-                            __shfl_sync(0xffffffffu, mine.six_volume_error, j)});
+        measures.add_terms(
+            {__shfl_sync(0xffffffffu, mine.twice_area, j), __shfl_sync(0xffffffffu, mine.six_volume, j), 0});
     }
+    for (u32 j = 0; j < 32; ++j)
+      measures.six_volume_error =
+          detail::add_rn(measures.six_volume_error, __shfl_sync(0xffffffffu, error_sum, j));
     if (measures.volume_uncertain()) {  // the same sums on every lane: the warp takes the pass together
       measures.exact_volume_pass();
       for (u32 base = 0; base < r.faces; base += 32) {

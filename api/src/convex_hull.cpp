@@ -118,22 +118,6 @@ std::vector<Point> copy_checked(std::size_t count, Coordinate coordinate) {
   return points;
 }
 
-struct Vec {
-  double x, y, z;
-};
-Vec operator-(Vec a, Vec b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-Vec cross(Vec a, Vec b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-double dot(Vec a, Vec b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-double norm(Vec a) {
-  return std::sqrt(dot(a, a));
-}
-
 // neighbors[f][k] = the face holding the reverse of the edge opposite corner k (each directed edge appears
 // once in a closed 2-manifold with consistent orientation).  `triangles` index `vertex_count` vertices: the
 // directed edges are grouped by their first vertex (a counting sort), so each reverse is found among a
@@ -292,16 +276,12 @@ ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend,
     const auto corner = [&](std::size_t k) { return to_vec3d(mesh.vertices[mesh.polygon[k]]); };
     int scale = 0;
     if (fast_range_scale(mesh.polygon.size(), corner, &scale)) {
-      const auto at = [&](std::size_t k) {
-        const Vec3d p = scaled_by(corner(k), scale);
-        return Vec{p.x, p.y, p.z};
-      };
-      Vec twice_area{0, 0, 0};
-      for (std::size_t k = 1; k + 1 < mesh.polygon.size(); ++k) {
-        const Vec c = cross(at(k) - at(0), at(k + 1) - at(0));
-        twice_area = {twice_area.x + c.x, twice_area.y + c.y, twice_area.z + c.z};
-      }
-      hull.area = std::ldexp(norm(twice_area), 2 * scale);
+      // A convex polygon's fan: its triangles' normals all point one way, and their lengths add up.
+      const auto at = [&](std::size_t k) { return scaled_by(corner(k), scale); };
+      double twice_area = 0;
+      for (std::size_t k = 1; k + 1 < mesh.polygon.size(); ++k)
+        twice_area += detail::twice_triangle_area(at(0), at(k), at(k + 1));
+      hull.area = std::ldexp(twice_area, 2 * scale);
     } else {
       using Wide = long double;
       Wide sum[3] = {0, 0, 0};

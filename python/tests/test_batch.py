@@ -330,8 +330,19 @@ def exact_volume(points, faces):
     return sum(det(q[a], q[b], q[c], q[0]) for a, b, c in faces)
 
 
+def exact_area(points, faces):
+    """The faces' area from their exact cross products (each length to an ulp or so)."""
+    q = [[Fraction(float(x)) for x in p] for p in points]
+    area = 0.0
+    for a, b, c in faces:
+        u, v = ([q[i][k] - q[a][k] for k in range(3)] for i in (b, c))
+        n = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
+        area += float(sum(x * x for x in n)) ** 0.5 / 2
+    return area
+
+
 def test_measures_of_slivers_and_wide_ranges():
-    """Volumes and areas where the tetrahedra's terms cancel (slivers: the exact pass of plane_impl.hpp) and
+    """Volumes and areas where the terms cancel (slivers: the exact pass of plane_impl.hpp; needles) and
     where the coordinates leave the fast exact range (the wide path, scaled by powers of two), against
     rational arithmetic and closed forms; the batch and convex_hull() alike."""
     rng = np.random.default_rng(5)
@@ -340,6 +351,11 @@ def test_measures_of_slivers_and_wide_ranges():
                          [-0.21507838266500906, -0.0706887691553342, -0.07921269392390515],
                          [0.5019532202178966, -0.9050357596317037, 1.382136313697382],
                          [0.06497297525256951, -0.39840289853817645, 0.49323463054019184]])]
+    for _ in range(40):  # four points on a line but for rounding: needles, where a face's area cancels
+        p = rng.normal(size=(2, 3))
+        needle = np.array([p[0], p[1], p[0] + 2 * (p[1] - p[0]), p[0] - (p[1] - p[0])])
+        if cudahull.convex_hull(needle, backend="cpu")["dimension"] == 3:
+            slivers.append(needle)
     for _ in range(6):  # 30 points in a slab 1e-9 thick, tilted: slivers everywhere
         p = rng.uniform(-1, 1, size=(30, 3)) * [1, 1, 1e-9]
         slivers.append(p @ np.linalg.qr(rng.normal(size=(3, 3)))[0])
@@ -350,6 +366,7 @@ def test_measures_of_slivers_and_wide_ranges():
         assert hull["dimension"] == 3
         want = float(exact_volume(points, hull["faces"]) / 6)
         assert hull["volume"] == pytest.approx(want, rel=1e-12), c
+        assert hull["area"] == pytest.approx(exact_area(points, hull["faces"]), rel=1e-12), c
         assert cudahull.convex_hull(points, backend="cpu")["volume"] == hull["volume"]
     cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=np.float64)
     square = cube[cube[:, 2] == 0]

@@ -195,6 +195,44 @@ CUDAHULL_HD inline void facet_plane_in_range(const Vec3d& a, const Vec3d& b, con
   plane_through(a, b, c, plane);
 }
 
+// The length of a cross product n, scaled by a power of two (exact) so that its squares neither overflow
+// nor underflow.
+CUDAHULL_HD inline double scaled_length(const double* n) {
+  const double largest = max3(abs_d(n[0]), abs_d(n[1]), abs_d(n[2]));
+  if (largest == 0.0) return 0.0;
+  const int exponent = ilogb(largest);
+  const double x = ldexp(n[0], -exponent), y = ldexp(n[1], -exponent), z = ldexp(n[2], -exponent);
+  return ldexp(sqrt_rn(add_rn(add_rn(mul_rn(x, x), mul_rn(y, y)), mul_rn(z, z))), exponent);
+}
+
+// Twice the area of triangle abc, |(b - a) x (c - a)|: from the double cross product n (its components'
+// permanents p) where it does not cancel and its squares stay normal (facet_plane_in_range()'s test), else
+// from the exactly rounded components (cross_rounded(): a needle's area to a few ulps, not 1e-15 off 3e-15).
+CUDAHULL_HD inline double twice_triangle_area(const Vec3d& a, const Vec3d& b, const Vec3d& c, const double* n,
+                                              const double* p) {
+  const double length2 = add_rn(add_rn(mul_rn(n[0], n[0]), mul_rn(n[1], n[1])), mul_rn(n[2], n[2]));
+  const double permanent2 = add_rn(add_rn(mul_rn(p[0], p[0]), mul_rn(p[1], p[1])), mul_rn(p[2], p[2]));
+  if (length2 >= 0x1p-1000 && permanent2 <= mul_rn(1024.0, length2) && permanent2 <= 0x1p+1000)
+    return sqrt_rn(length2);
+  double exact[3];
+  cross_rounded(a, b, c, exact);
+  return scaled_length(exact);
+}
+
+// twice_triangle_area() with the double cross product computed here.
+CUDAHULL_HD inline double twice_triangle_area(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  const double ux = sub_rn(b.x, a.x), uy = sub_rn(b.y, a.y), uz = sub_rn(b.z, a.z);
+  const double vx = sub_rn(c.x, a.x), vy = sub_rn(c.y, a.y), vz = sub_rn(c.z, a.z);
+  const double products[6] = {mul_rn(uy, vz), mul_rn(uz, vy), mul_rn(uz, vx),
+                              mul_rn(ux, vz), mul_rn(ux, vy), mul_rn(uy, vx)};
+  const double n[3] = {sub_rn(products[0], products[1]), sub_rn(products[2], products[3]),
+                       sub_rn(products[4], products[5])};
+  const double p[3] = {add_rn(abs_d(products[0]), abs_d(products[1])),
+                       add_rn(abs_d(products[2]), abs_d(products[3])),
+                       add_rn(abs_d(products[4]), abs_d(products[5]))};
+  return twice_triangle_area(a, b, c, n, p);
+}
+
 // A closed outward mesh's six times volume and twice area, face by face in the order given (the order is
 // part of the result: the same order gives the same bits).  The volume's tetrahedra share an apex at one of
 // the solid's vertices (`apex`), so that no term is negative: each is Shewchuk's orient3d determinant of the
@@ -214,26 +252,25 @@ struct SolidMeasures {
     return p.x == apex.x && p.y == apex.y && p.z == apex.z;
   }
   CUDAHULL_HD static FaceTerms face_terms(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& apex) {
+    // n = (b - a) x (c - a), twice the face's area; the term n . (a - apex), the determinant expanded
+    // along its row a - apex, whose error Shewchuk's orient3d bound holds (each of its three products a
+    // rounded difference times a rounded minor of rounded differences).  From the face's own short edges
+    // the far faces' terms do not cancel, as three long vectors to a small face do.
     const double ux = sub_rn(b.x, a.x), uy = sub_rn(b.y, a.y), uz = sub_rn(b.z, a.z);
     const double vx = sub_rn(c.x, a.x), vy = sub_rn(c.y, a.y), vz = sub_rn(c.z, a.z);
-    const double nx = sub_rn(mul_rn(uy, vz), mul_rn(uz, vy)), ny = sub_rn(mul_rn(uz, vx), mul_rn(ux, vz)),
-                 nz = sub_rn(mul_rn(ux, vy), mul_rn(uy, vx));
-    const double twice_area = sqrt_rn(add_rn(add_rn(mul_rn(nx, nx), mul_rn(ny, ny)), mul_rn(nz, nz)));
+    const double uyvz = mul_rn(uy, vz), uzvy = mul_rn(uz, vy), uzvx = mul_rn(uz, vx), uxvz = mul_rn(ux, vz),
+                 uxvy = mul_rn(ux, vy), uyvx = mul_rn(uy, vx);
+    const double nx = sub_rn(uyvz, uzvy), ny = sub_rn(uzvx, uxvz), nz = sub_rn(uxvy, uyvx);
+    const double px = add_rn(abs_d(uyvz), abs_d(uzvy)), py = add_rn(abs_d(uzvx), abs_d(uxvz)),
+                 pz = add_rn(abs_d(uxvy), abs_d(uyvx));
+    const double n[3] = {nx, ny, nz}, p[3] = {px, py, pz};
+    const double twice_area = twice_triangle_area(a, b, c, n, p);
     // A face at the apex has no volume (and its determinant, exactly zero, would take the second pass).
     if (is_corner(a, apex) || is_corner(b, apex) || is_corner(c, apex)) return FaceTerms{twice_area, 0, 0};
-    // orient3d's filter (predicates_impl.hpp) with the apex as d: the value and Shewchuk's bound.
-    const double adx = sub_rn(a.x, apex.x), bdx = sub_rn(b.x, apex.x), cdx = sub_rn(c.x, apex.x);
-    const double ady = sub_rn(a.y, apex.y), bdy = sub_rn(b.y, apex.y), cdy = sub_rn(c.y, apex.y);
-    const double adz = sub_rn(a.z, apex.z), bdz = sub_rn(b.z, apex.z), cdz = sub_rn(c.z, apex.z);
-    const double bdxcdy = mul_rn(bdx, cdy), cdxbdy = mul_rn(cdx, bdy);
-    const double cdxady = mul_rn(cdx, ady), adxcdy = mul_rn(adx, cdy);
-    const double adxbdy = mul_rn(adx, bdy), bdxady = mul_rn(bdx, ady);
-    const double det =
-        add_rn(add_rn(mul_rn(adz, sub_rn(bdxcdy, cdxbdy)), mul_rn(bdz, sub_rn(cdxady, adxcdy))),
-               mul_rn(cdz, sub_rn(adxbdy, bdxady)));
-    const double permanent = add_rn(add_rn(mul_rn(add_rn(abs_d(bdxcdy), abs_d(cdxbdy)), abs_d(adz)),
-                                           mul_rn(add_rn(abs_d(cdxady), abs_d(adxcdy)), abs_d(bdz))),
-                                    mul_rn(add_rn(abs_d(adxbdy), abs_d(bdxady)), abs_d(cdz)));
+    const double wx = sub_rn(a.x, apex.x), wy = sub_rn(a.y, apex.y), wz = sub_rn(a.z, apex.z);
+    const double det = add_rn(add_rn(mul_rn(wx, nx), mul_rn(wy, ny)), mul_rn(wz, nz));
+    const double permanent =
+        add_rn(add_rn(mul_rn(px, abs_d(wx)), mul_rn(py, abs_d(wy))), mul_rn(pz, abs_d(wz)));
     return FaceTerms{twice_area, det, mul_rn(kO3dErrBoundA, permanent)};
   }
   // The second pass's term: the face's exact determinant with the apex, to a few ulps.
@@ -242,11 +279,15 @@ struct SolidMeasures {
     if (is_corner(a, apex) || is_corner(b, apex) || is_corner(c, apex)) return 0;
     return orient3d_exact_value(a, b, c, apex);
   }
+  // The area's and the volume's terms, in the mesh's order.
   CUDAHULL_HD void add_terms(const FaceTerms& t) {
     twice_area = add_rn(twice_area, t.twice_area);
     six_volume = add_rn(six_volume, t.six_volume);
-    six_volume_error = add_rn(six_volume_error, t.six_volume_error);
   }
+  // The error bounds go into kErrorSums strided partial sums (face f's into sum f mod 32), and those into
+  // six_volume_error in order: the order a warp adds them in, a lane a sum, with 32 shuffles a mesh and
+  // not one a face.
+  static constexpr int kErrorSums = 32;
   // After the first pass: whether the volume needs the second (its error bound above 2^-40 of it).
   CUDAHULL_HD bool volume_uncertain() const {
     return !(six_volume_error <= mul_rn(kVolumeTolerance, six_volume));
@@ -263,8 +304,16 @@ struct SolidMeasures {
 template <class Corner>
 CUDAHULL_HD SolidMeasures measure_mesh(unsigned long long faces, const Corner& corner, const Vec3d& apex) {
   SolidMeasures measures;
-  for (unsigned long long f = 0; f < faces; ++f)
-    measures.add_terms(SolidMeasures::face_terms(corner(f, 0), corner(f, 1), corner(f, 2), apex));
+  double error_sums[SolidMeasures::kErrorSums] = {};
+  for (unsigned long long f = 0; f < faces; ++f) {
+    const SolidMeasures::FaceTerms terms =
+        SolidMeasures::face_terms(corner(f, 0), corner(f, 1), corner(f, 2), apex);
+    measures.add_terms(terms);
+    double& sum = error_sums[f % SolidMeasures::kErrorSums];
+    sum = add_rn(sum, terms.six_volume_error);
+  }
+  for (const double sum : error_sums)
+    measures.six_volume_error = add_rn(measures.six_volume_error, sum);
   if (measures.volume_uncertain()) {
     measures.exact_volume_pass();
     for (unsigned long long f = 0; f < faces; ++f)
