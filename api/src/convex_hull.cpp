@@ -217,6 +217,55 @@ std::array<double, 4> facet_plane(Vec3d a, Vec3d b, Vec3d c) {
   return {n[0], n[1], n[2], static_cast<double>(-std::max({height(a), height(b), height(c)}))};
 }
 
+// detail::measure_mesh() on all cores for a mesh of more than kMeasureChunk faces: each chunk of that many
+// faces (fixed, whatever the core count) summed on its own, the chunks' sums added in order.  A mesh of one
+// chunk, as every batch cloud's, is measure_mesh()'s own order: the device describe's bits.
+constexpr std::size_t kMeasureChunk = std::size_t{1} << 20;  // a multiple of the 32 error sums
+
+template <class Corner>
+detail::SolidMeasures measure_on_cores(std::size_t faces, const Corner& corner, const Vec3d& apex) {
+  if (faces <= kMeasureChunk) return detail::measure_mesh(faces, corner, apex);
+  using detail::add_rn;
+  using detail::SolidMeasures;
+  const std::size_t chunks = (faces + kMeasureChunk - 1) / kMeasureChunk;
+  std::vector<SolidMeasures> parts(chunks);
+  std::vector<std::array<double, SolidMeasures::kErrorSums>> error_sums(chunks);
+  const auto each_chunk = [&](const auto& pass) {
+    parallel_chunks(
+        chunks, hardware_workers(),
+        [&](std::size_t begin, std::size_t end, unsigned) {
+          for (std::size_t k = begin; k < end; ++k)
+            pass(k, k * kMeasureChunk, std::min(faces, (k + 1) * kMeasureChunk));
+        },
+        1);
+  };
+  each_chunk([&](std::size_t k, std::size_t begin, std::size_t end) {
+    error_sums[k].fill(0);
+    detail::add_face_terms(begin, end, corner, apex, parts[k], error_sums[k].data());
+  });
+  SolidMeasures measures;
+  for (std::size_t k = 0; k < chunks; ++k) {
+    measures.twice_area = add_rn(measures.twice_area, parts[k].twice_area);
+    measures.six_volume = add_rn(measures.six_volume, parts[k].six_volume);
+  }
+  for (int l = 0; l < SolidMeasures::kErrorSums; ++l) {
+    double sum = 0;
+    for (std::size_t k = 0; k < chunks; ++k)
+      sum = add_rn(sum, error_sums[k][l]);
+    measures.six_volume_error = add_rn(measures.six_volume_error, sum);
+  }
+  if (measures.volume_uncertain()) {
+    each_chunk([&](std::size_t k, std::size_t begin, std::size_t end) {
+      parts[k].exact_volume_pass();
+      detail::add_exact_terms(begin, end, corner, apex, parts[k]);
+    });
+    measures.exact_volume_pass();
+    for (std::size_t k = 0; k < chunks; ++k)
+      measures.add_exact(parts[k].six_volume);
+  }
+  return measures;
+}
+
 // The solid's volume and surface area into `hull`, over `triangles` (outward, indices into `vertices`):
 // detail::measure_mesh() (plane_impl.hpp, as the batch's device describe: the same bits), its apex the first
 // triangle's first corner; scaled into the fast exact range where the vertices are not in it.
@@ -231,7 +280,7 @@ void measure_solid(const std::vector<Point>& vertices, const std::vector<Triangl
       return scaled_by(vertex(triangles[f][k]), scale);
     };
     const detail::SolidMeasures measures =
-        detail::measure_mesh(triangles.size(), corner, scaled_by(vertex(triangles[0][0]), scale));
+        measure_on_cores(triangles.size(), corner, scaled_by(vertex(triangles[0][0]), scale));
     hull.volume = std::ldexp(measures.volume(), 3 * scale);
     hull.area = std::ldexp(measures.area(), 2 * scale);
     return;

@@ -385,3 +385,22 @@ def test_measures_of_slivers_and_wide_ranges():
     assert hulls.backend == "cpu-wide"
     heights = wide @ hulls.planes[:, :3].T + hulls.planes[:, 3]
     assert heights.max() <= 1e-13 * np.abs(wide).max()
+
+
+def test_measures_of_a_hull_of_many_chunks():
+    """A hull of more than 2^20 faces is measured on all cores, a fixed chunk of faces a task
+    (convex_hull.cpp, measure_on_cores()): its volume and area against a compensated sum of its faces' terms
+    (math.fsum of numpy's)."""
+    import math
+    rng = np.random.default_rng(11)
+    points = rng.normal(size=(530_000, 3))
+    points /= np.linalg.norm(points, axis=1, keepdims=True)  # every point a vertex: 1,059,996 faces
+    hull = cudahull.convex_hull(points, backend="cpu")
+    faces = hull["simplices"]
+    assert len(faces) > 2**20
+    a, b, c = (points[faces[:, k]] for k in range(3))
+    n = np.cross(b - a, c - a)
+    volume = math.fsum((n * (a - a[0])).sum(axis=1)) / 6
+    area = math.fsum(np.linalg.norm(n, axis=1)) / 2
+    assert hull["volume"] == pytest.approx(volume, rel=1e-12)
+    assert hull["area"] == pytest.approx(area, rel=1e-12)

@@ -299,25 +299,40 @@ struct SolidMeasures {
   CUDAHULL_HD double area() const { return div_rn(twice_area, 2.0); }
 };
 
-// A closed outward mesh's measures, `corner(f, k)` the k-th corner of face f (of `faces`) and `apex` one of
-// its vertices: both passes on one thread (the batch's describe spreads them over a warp).
+// The first pass over faces [begin, end) (`corner(f, k)` the k-th corner of face f, `apex` one of the mesh's
+// vertices): their terms into `measures`, their error bounds into `error_sums` (face f's into f mod 32).
 template <class Corner>
-CUDAHULL_HD SolidMeasures measure_mesh(unsigned long long faces, const Corner& corner, const Vec3d& apex) {
-  SolidMeasures measures;
-  double error_sums[SolidMeasures::kErrorSums] = {};
-  for (unsigned long long f = 0; f < faces; ++f) {
+CUDAHULL_HD void add_face_terms(unsigned long long begin, unsigned long long end, const Corner& corner,
+                                const Vec3d& apex, SolidMeasures& measures, double* error_sums) {
+  for (unsigned long long f = begin; f < end; ++f) {
     const SolidMeasures::FaceTerms terms =
         SolidMeasures::face_terms(corner(f, 0), corner(f, 1), corner(f, 2), apex);
     measures.add_terms(terms);
     double& sum = error_sums[f % SolidMeasures::kErrorSums];
     sum = add_rn(sum, terms.six_volume_error);
   }
+}
+
+// The second pass over faces [begin, end): their exact volume terms into `measures`.
+template <class Corner>
+CUDAHULL_HD void add_exact_terms(unsigned long long begin, unsigned long long end, const Corner& corner,
+                                 const Vec3d& apex, SolidMeasures& measures) {
+  for (unsigned long long f = begin; f < end; ++f)
+    measures.add_exact(SolidMeasures::exact_six_volume(corner(f, 0), corner(f, 1), corner(f, 2), apex));
+}
+
+// A closed outward mesh's measures, both passes on one thread (the batch's describe spreads them over a
+// warp; convex_hull() a mesh of more than 2^20 faces over the cores, a fixed chunk a task).
+template <class Corner>
+CUDAHULL_HD SolidMeasures measure_mesh(unsigned long long faces, const Corner& corner, const Vec3d& apex) {
+  SolidMeasures measures;
+  double error_sums[SolidMeasures::kErrorSums] = {};
+  add_face_terms(0, faces, corner, apex, measures, error_sums);
   for (const double sum : error_sums)
     measures.six_volume_error = add_rn(measures.six_volume_error, sum);
   if (measures.volume_uncertain()) {
     measures.exact_volume_pass();
-    for (unsigned long long f = 0; f < faces; ++f)
-      measures.add_exact(SolidMeasures::exact_six_volume(corner(f, 0), corner(f, 1), corner(f, 2), apex));
+    add_exact_terms(0, faces, corner, apex, measures);
   }
   return measures;
 }
