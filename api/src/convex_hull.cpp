@@ -189,6 +189,20 @@ Vec3d scaled_by(const Vec3d& p, int scale) {
   return {std::ldexp(p.x, -scale), std::ldexp(p.y, -scale), std::ldexp(p.z, -scale)};
 }
 
+// (b - a) x (c - a) in long double, whose exponent range holds every product of double differences (none
+// over- or underflows): for faces beyond the fast exact range even when scaled, accurate to the last place
+// but where the products cancel (a sliver of such coordinates: then a few ulps of the products).
+using Wide = long double;
+using WideVec = std::array<Wide, 3>;
+WideVec wide_cross(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  const Wide ux = Wide(b.x) - a.x, uy = Wide(b.y) - a.y, uz = Wide(b.z) - a.z;
+  const Wide vx = Wide(c.x) - a.x, vy = Wide(c.y) - a.y, vz = Wide(c.z) - a.z;
+  return {uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx};
+}
+Wide wide_length(const WideVec& n) {
+  return std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
 // A facet's plane, accurate on slivers too (issue 25): detail::facet_plane_in_range() (plane_impl.hpp, which
 // the batch kernel's device describe shares: the same bits on both), on the corners scaled into the fast
 // exact range where they are not in it.
@@ -202,17 +216,12 @@ std::array<double, 4> facet_plane(Vec3d a, Vec3d b, Vec3d c) {
     plane[3] = std::ldexp(plane[3], scale);
     return plane;
   }
-  // Corners more than 2^500 apart in magnitude: the cross product in long double, whose exponent range
-  // holds every product of double differences (none over- or underflows), rounded; accurate to the last
-  // place but where the products cancel (a sliver of such coordinates: then a few ulps of the products).
-  using Wide = long double;
-  const Wide ux = Wide(b.x) - a.x, uy = Wide(b.y) - a.y, uz = Wide(b.z) - a.z;
-  const Wide vx = Wide(c.x) - a.x, vy = Wide(c.y) - a.y, vz = Wide(c.z) - a.z;
-  const Wide nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-  const Wide length = std::sqrt(nx * nx + ny * ny + nz * nz);
+  // Corners more than 2^500 apart in magnitude: the cross product in long double (wide_cross()), rounded.
+  const WideVec normal = wide_cross(a, b, c);
+  const Wide length = wide_length(normal);
   if (length == 0) return {0, 0, 0, 0};
-  const double n[3] = {static_cast<double>(nx / length), static_cast<double>(ny / length),
-                       static_cast<double>(nz / length)};
+  const double n[3] = {static_cast<double>(normal[0] / length), static_cast<double>(normal[1] / length),
+                       static_cast<double>(normal[2] / length)};
   auto height = [&](Vec3d p) { return Wide(n[0]) * p.x + Wide(n[1]) * p.y + Wide(n[2]) * p.z; };
   return {n[0], n[1], n[2], static_cast<double>(-std::max({height(a), height(b), height(c)}))};
 }
@@ -286,24 +295,13 @@ void measure_solid(const std::vector<Point>& vertices, const std::vector<Triangl
     return;
   }
   // Vertices more than 2^500 apart in magnitude: long double, from the same apex (no term negative).
-  using Wide = long double;
-  const auto wide = [&](PointIndex i) {
-    const Vec3d p = vertex(i);
-    return std::array<Wide, 3>{p.x, p.y, p.z};
-  };
-  const auto o = wide(triangles[0][0]);
+  const Vec3d apex = vertex(triangles[0][0]);
   Wide six_volume = 0, twice_area = 0;
   for (const Triangle& t : triangles) {
-    std::array<Wide, 3> u, v, w;
-    const auto a = wide(t[0]), b = wide(t[1]), c = wide(t[2]);
-    for (int k = 0; k < 3; ++k) {
-      u[k] = b[k] - a[k];
-      v[k] = c[k] - a[k];
-      w[k] = a[k] - o[k];
-    }
-    const Wide nx = u[1] * v[2] - u[2] * v[1], ny = u[2] * v[0] - u[0] * v[2], nz = u[0] * v[1] - u[1] * v[0];
-    twice_area += std::sqrt(nx * nx + ny * ny + nz * nz);
-    six_volume += nx * w[0] + ny * w[1] + nz * w[2];
+    const Vec3d a = vertex(t[0]);
+    const WideVec n = wide_cross(a, vertex(t[1]), vertex(t[2]));
+    twice_area += wide_length(n);
+    six_volume += n[0] * (Wide(a.x) - apex.x) + n[1] * (Wide(a.y) - apex.y) + n[2] * (Wide(a.z) - apex.z);
   }
   hull.volume = static_cast<double>(six_volume / 6);
   hull.area = static_cast<double>(twice_area / 2);
@@ -328,22 +326,19 @@ ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend,
       // A convex polygon's fan: its triangles' normals all point one way, and their lengths add up.
       const auto at = [&](std::size_t k) { return scaled_by(corner(k), scale); };
       double twice_area = 0;
-      for (std::size_t k = 1; k + 1 < mesh.polygon.size(); ++k)
-        twice_area += detail::twice_triangle_area(at(0), at(k), at(k + 1));
+      for (std::size_t k = 1; k + 1 < mesh.polygon.size(); ++k) {
+        const Vec3d o = at(0), p = at(k), q = at(k + 1);
+        twice_area += detail::twice_triangle_area(o, p, q, detail::double_cross(o, p, q));
+      }
       hull.area = std::ldexp(twice_area, 2 * scale);
     } else {
-      using Wide = long double;
-      Wide sum[3] = {0, 0, 0};
-      const Vec3d o = corner(0);
+      WideVec sum{0, 0, 0};
       for (std::size_t k = 1; k + 1 < mesh.polygon.size(); ++k) {
-        const Vec3d p = corner(k), q = corner(k + 1);
-        const Wide u[3] = {Wide(p.x) - o.x, Wide(p.y) - o.y, Wide(p.z) - o.z};
-        const Wide v[3] = {Wide(q.x) - o.x, Wide(q.y) - o.y, Wide(q.z) - o.z};
-        sum[0] += u[1] * v[2] - u[2] * v[1];
-        sum[1] += u[2] * v[0] - u[0] * v[2];
-        sum[2] += u[0] * v[1] - u[1] * v[0];
+        const WideVec n = wide_cross(corner(0), corner(k), corner(k + 1));
+        for (int j = 0; j < 3; ++j)
+          sum[j] += n[j];
       }
-      hull.area = static_cast<double>(std::sqrt(sum[0] * sum[0] + sum[1] * sum[1] + sum[2] * sum[2]));
+      hull.area = static_cast<double>(wide_length(sum));
     }
     return hull;
   }

@@ -156,21 +156,46 @@ CUDAHULL_HD inline void unit_plane(double x, double y, double z, double length, 
   plane[3] = -max3(height(a), height(b), height(c));
 }
 
+// n scaled by a power of two (exact) so that its largest component lies in [1, 2), into `scaled` with the
+// exponent: the squares can neither overflow nor underflow whatever the input's magnitude.  False for n = 0.
+CUDAHULL_HD inline bool scaled_to_unit_range(const double* n, double* scaled, int* exponent) {
+  const double largest = max3(abs_d(n[0]), abs_d(n[1]), abs_d(n[2]));
+  if (largest == 0.0) return false;
+  *exponent = ilogb(largest);
+  for (int k = 0; k < 3; ++k)
+    scaled[k] = ldexp(n[k], -*exponent);
+  return true;
+}
+
+CUDAHULL_HD inline double length_of(const double* n) {
+  return sqrt_rn(add_rn(add_rn(mul_rn(n[0], n[0]), mul_rn(n[1], n[1])), mul_rn(n[2], n[2])));
+}
+
 // plane.hpp's plane_through into plane[0..3].
 CUDAHULL_HD inline void plane_through(const Vec3d& a, const Vec3d& b, const Vec3d& c, double* plane) {
-  double n[3];
+  double n[3], scaled[3];
+  int exponent = 0;
   cross_rounded(a, b, c, n);
-  const double largest = max3(abs_d(n[0]), abs_d(n[1]), abs_d(n[2]));
-  if (largest == 0.0) {  // collinear or coincident: no plane
+  if (!scaled_to_unit_range(n, scaled, &exponent)) {  // collinear or coincident: no plane
     plane[0] = plane[1] = plane[2] = plane[3] = 0.0;
     return;
   }
-  // Scale by a power of two (exact) so that the largest component lies in [1, 2): the squares can neither
-  // overflow nor underflow whatever the input's magnitude.
-  const int exponent = ilogb(largest);
-  const double x = ldexp(n[0], -exponent), y = ldexp(n[1], -exponent), z = ldexp(n[2], -exponent);
-  const double length = sqrt_rn(add_rn(add_rn(mul_rn(x, x), mul_rn(y, y)), mul_rn(z, z)));
-  unit_plane(x, y, z, length, a, b, c, plane);
+  unit_plane(scaled[0], scaled[1], scaled[2], length_of(scaled), a, b, c, plane);
+}
+
+// (b - a) x (c - a) in double, each component n[k] beside its permanent p[k] (its two products' magnitudes
+// summed): where the permanents are much longer than n, the products cancelled.
+struct DoubleCross {
+  double n[3], p[3];
+};
+CUDAHULL_HD inline DoubleCross double_cross(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  const double ux = sub_rn(b.x, a.x), uy = sub_rn(b.y, a.y), uz = sub_rn(b.z, a.z);
+  const double vx = sub_rn(c.x, a.x), vy = sub_rn(c.y, a.y), vz = sub_rn(c.z, a.z);
+  const double uyvz = mul_rn(uy, vz), uzvy = mul_rn(uz, vy), uzvx = mul_rn(uz, vx), uxvz = mul_rn(ux, vz),
+               uxvy = mul_rn(ux, vy), uyvx = mul_rn(uy, vx);
+  return DoubleCross{
+      {sub_rn(uyvz, uzvy), sub_rn(uzvx, uxvz), sub_rn(uxvy, uyvx)},
+      {add_rn(abs_d(uyvz), abs_d(uzvy)), add_rn(abs_d(uzvx), abs_d(uxvz)), add_rn(abs_d(uxvy), abs_d(uyvx))}};
 }
 
 // A hull face's plane (its corners in the fast exact range), accurate on slivers too.  The cross product in
@@ -179,58 +204,33 @@ CUDAHULL_HD inline void plane_through(const Vec3d& a, const Vec3d& b, const Vec3
 // 100u of the exact one, and every point lies within ~5e-14 x scale of the plane.  Otherwise (a sliver,
 // where the products cancel) plane_through() evaluates the normal exactly and rounds it.
 CUDAHULL_HD inline void facet_plane_in_range(const Vec3d& a, const Vec3d& b, const Vec3d& c, double* plane) {
-  const double ux = sub_rn(b.x, a.x), uy = sub_rn(b.y, a.y), uz = sub_rn(b.z, a.z);
-  const double vx = sub_rn(c.x, a.x), vy = sub_rn(c.y, a.y), vz = sub_rn(c.z, a.z);
-  const double nx = sub_rn(mul_rn(uy, vz), mul_rn(uz, vy)), ny = sub_rn(mul_rn(uz, vx), mul_rn(ux, vz)),
-               nz = sub_rn(mul_rn(ux, vy), mul_rn(uy, vx));
-  const double px = add_rn(abs_d(mul_rn(uy, vz)), abs_d(mul_rn(uz, vy))),
-               py = add_rn(abs_d(mul_rn(uz, vx)), abs_d(mul_rn(ux, vz))),
-               pz = add_rn(abs_d(mul_rn(ux, vy)), abs_d(mul_rn(uy, vx)));
-  const double length2 = add_rn(add_rn(mul_rn(nx, nx), mul_rn(ny, ny)), mul_rn(nz, nz));
-  const double permanent2 = add_rn(add_rn(mul_rn(px, px), mul_rn(py, py)), mul_rn(pz, pz));
+  const DoubleCross cross = double_cross(a, b, c);
+  const double* n = cross.n;
+  const double length2 = add_rn(add_rn(mul_rn(n[0], n[0]), mul_rn(n[1], n[1])), mul_rn(n[2], n[2]));
+  const double* p = cross.p;
+  const double permanent2 = add_rn(add_rn(mul_rn(p[0], p[0]), mul_rn(p[1], p[1])), mul_rn(p[2], p[2]));
   if (length2 > 0 && permanent2 <= mul_rn(1024.0, length2)) {
-    unit_plane(nx, ny, nz, sqrt_rn(length2), a, b, c, plane);
+    unit_plane(n[0], n[1], n[2], sqrt_rn(length2), a, b, c, plane);
     return;
   }
   plane_through(a, b, c, plane);
 }
 
-// The length of a cross product n, scaled by a power of two (exact) so that its squares neither overflow
-// nor underflow.
-CUDAHULL_HD inline double scaled_length(const double* n) {
-  const double largest = max3(abs_d(n[0]), abs_d(n[1]), abs_d(n[2]));
-  if (largest == 0.0) return 0.0;
-  const int exponent = ilogb(largest);
-  const double x = ldexp(n[0], -exponent), y = ldexp(n[1], -exponent), z = ldexp(n[2], -exponent);
-  return ldexp(sqrt_rn(add_rn(add_rn(mul_rn(x, x), mul_rn(y, y)), mul_rn(z, z))), exponent);
-}
-
-// Twice the area of triangle abc, |(b - a) x (c - a)|: from the double cross product n (its components'
-// permanents p) where it does not cancel and its squares stay normal (facet_plane_in_range()'s test), else
-// from the exactly rounded components (cross_rounded(): a needle's area to a few ulps, not 1e-15 off 3e-15).
-CUDAHULL_HD inline double twice_triangle_area(const Vec3d& a, const Vec3d& b, const Vec3d& c, const double* n,
-                                              const double* p) {
+// Twice the area of triangle abc, |(b - a) x (c - a)|, from its double cross product where that does not
+// cancel and its squares stay normal (facet_plane_in_range()'s test), else from the exactly rounded
+// components (cross_rounded(): a needle's area to a few ulps, not 1e-15 off 3e-15).
+CUDAHULL_HD inline double twice_triangle_area(const Vec3d& a, const Vec3d& b, const Vec3d& c,
+                                              const DoubleCross& cross) {
+  const double* n = cross.n;
   const double length2 = add_rn(add_rn(mul_rn(n[0], n[0]), mul_rn(n[1], n[1])), mul_rn(n[2], n[2]));
+  const double* p = cross.p;
   const double permanent2 = add_rn(add_rn(mul_rn(p[0], p[0]), mul_rn(p[1], p[1])), mul_rn(p[2], p[2]));
   if (length2 >= 0x1p-1000 && permanent2 <= mul_rn(1024.0, length2) && permanent2 <= 0x1p+1000)
     return sqrt_rn(length2);
-  double exact[3];
+  double exact[3], scaled[3];
+  int exponent = 0;
   cross_rounded(a, b, c, exact);
-  return scaled_length(exact);
-}
-
-// twice_triangle_area() with the double cross product computed here.
-CUDAHULL_HD inline double twice_triangle_area(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-  const double ux = sub_rn(b.x, a.x), uy = sub_rn(b.y, a.y), uz = sub_rn(b.z, a.z);
-  const double vx = sub_rn(c.x, a.x), vy = sub_rn(c.y, a.y), vz = sub_rn(c.z, a.z);
-  const double products[6] = {mul_rn(uy, vz), mul_rn(uz, vy), mul_rn(uz, vx),
-                              mul_rn(ux, vz), mul_rn(ux, vy), mul_rn(uy, vx)};
-  const double n[3] = {sub_rn(products[0], products[1]), sub_rn(products[2], products[3]),
-                       sub_rn(products[4], products[5])};
-  const double p[3] = {add_rn(abs_d(products[0]), abs_d(products[1])),
-                       add_rn(abs_d(products[2]), abs_d(products[3])),
-                       add_rn(abs_d(products[4]), abs_d(products[5]))};
-  return twice_triangle_area(a, b, c, n, p);
+  return scaled_to_unit_range(exact, scaled, &exponent) ? ldexp(length_of(scaled), exponent) : 0.0;
 }
 
 // A closed outward mesh's six times volume and twice area, face by face in the order given (the order is
@@ -256,21 +256,15 @@ struct SolidMeasures {
     // along its row a - apex, whose error Shewchuk's orient3d bound holds (each of its three products a
     // rounded difference times a rounded minor of rounded differences).  From the face's own short edges
     // the far faces' terms do not cancel, as three long vectors to a small face do.
-    const double ux = sub_rn(b.x, a.x), uy = sub_rn(b.y, a.y), uz = sub_rn(b.z, a.z);
-    const double vx = sub_rn(c.x, a.x), vy = sub_rn(c.y, a.y), vz = sub_rn(c.z, a.z);
-    const double uyvz = mul_rn(uy, vz), uzvy = mul_rn(uz, vy), uzvx = mul_rn(uz, vx), uxvz = mul_rn(ux, vz),
-                 uxvy = mul_rn(ux, vy), uyvx = mul_rn(uy, vx);
-    const double nx = sub_rn(uyvz, uzvy), ny = sub_rn(uzvx, uxvz), nz = sub_rn(uxvy, uyvx);
-    const double px = add_rn(abs_d(uyvz), abs_d(uzvy)), py = add_rn(abs_d(uzvx), abs_d(uxvz)),
-                 pz = add_rn(abs_d(uxvy), abs_d(uyvx));
-    const double n[3] = {nx, ny, nz}, p[3] = {px, py, pz};
-    const double twice_area = twice_triangle_area(a, b, c, n, p);
+    const DoubleCross cross = double_cross(a, b, c);
+    const double *n = cross.n, *p = cross.p;
+    const double twice_area = twice_triangle_area(a, b, c, cross);
     // A face at the apex has no volume (and its determinant, exactly zero, would take the second pass).
     if (is_corner(a, apex) || is_corner(b, apex) || is_corner(c, apex)) return FaceTerms{twice_area, 0, 0};
     const double wx = sub_rn(a.x, apex.x), wy = sub_rn(a.y, apex.y), wz = sub_rn(a.z, apex.z);
-    const double det = add_rn(add_rn(mul_rn(wx, nx), mul_rn(wy, ny)), mul_rn(wz, nz));
+    const double det = add_rn(add_rn(mul_rn(wx, n[0]), mul_rn(wy, n[1])), mul_rn(wz, n[2]));
     const double permanent =
-        add_rn(add_rn(mul_rn(px, abs_d(wx)), mul_rn(py, abs_d(wy))), mul_rn(pz, abs_d(wz)));
+        add_rn(add_rn(mul_rn(p[0], abs_d(wx)), mul_rn(p[1], abs_d(wy))), mul_rn(p[2], abs_d(wz)));
     return FaceTerms{twice_area, det, mul_rn(kO3dErrBoundA, permanent)};
   }
   // The second pass's term: the face's exact determinant with the apex, to a few ulps.
