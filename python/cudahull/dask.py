@@ -6,23 +6,31 @@ of its chunk's hull is not one of the whole.  The candidates go in ascending inp
 duplicate points the lowest index stays the vertex, as in a one-shot hull.
 """
 
-import dask
-import dask.array
-import numpy as np
+from __future__ import annotations
 
-from . import _as_points, _cudahull
+from typing import Any
+
+import dask  # type: ignore[import-untyped, unused-ignore]
+import dask.array  # type: ignore[import-untyped, unused-ignore]
+import numpy as np
+import numpy.typing as npt
+
+from . import _cudahull
+from ._arrays import as_points
 
 __all__ = ["convex_hull"]
 
 
-def _chunk_vertices(block, offset, backend, precision, engine):
+def _chunk_vertices(block: Any, offset: int, backend: str, precision: str,
+                    engine: str) -> tuple[npt.NDArray[np.int64], npt.NDArray[Any]]:
     """One chunk's hull vertices: their indices in the whole array and their coordinates."""
-    points = _as_points(block)
+    points = as_points(block)
     vertices = _cudahull.convex_hull(points, backend, precision, engine, "exact", 0.0, 1.0)["vertices"]
     return vertices.astype(np.int64) + offset, points[vertices]
 
 
-def _hull_of_candidates(parts, backend, precision, engine):
+def _hull_of_candidates(parts: list[tuple[npt.NDArray[np.int64], npt.NDArray[Any]]], backend: str, precision: str,
+                        engine: str) -> dict[str, Any]:
     indices = np.concatenate([part[0] for part in parts])
     points = np.ascontiguousarray(np.concatenate([part[1] for part in parts]))
     result = _cudahull.convex_hull(points, backend, precision, engine, "exact", 0.0, 1.0)
@@ -33,13 +41,22 @@ def _hull_of_candidates(parts, backend, precision, engine):
     return result
 
 
-def convex_hull(array, backend="auto", precision="auto", engine="stepping"):
-    """The exact hull of an (n, 3) Dask array, computed with the current Dask scheduler (a
-    ``distributed.Client`` when one is active).
+def convex_hull(array: Any, backend: str = "auto", precision: str = "auto", engine: str = "stepping") -> dict[str, Any]:
+    """The exact hull of an (n, 3) Dask array, computed with the current Dask scheduler.
 
-    Returns a dict as ``cudahull.convex_hull`` does, with indices into the whole array (int64), plus
-    ``vertex_points`` (the vertices' coordinates, in the order of ``vertices``) and ``candidates`` (how
-    many chunk-hull vertices the last hull was computed on).
+    Parameters
+    ----------
+    array : dask.array.Array or array_like, shape (n, 3)
+        The points, in chunks of whole points (rechunked along the columns if need be).
+    backend, precision, engine : str
+        As for ``cudahull.convex_hull``, on each worker (a ``distributed.Client`` when one is active).
+
+    Returns
+    -------
+    dict
+        As ``cudahull.convex_hull`` gives it, with indices into the whole array (int64), plus
+        ``vertex_points`` (the vertices' coordinates, in the order of ``vertices``) and ``candidates`` (how
+        many chunk-hull vertices the last hull was computed on).
     """
     array = dask.array.asarray(array)
     if array.ndim != 2 or array.shape[1] != 3:
@@ -51,4 +68,5 @@ def convex_hull(array, backend="auto", precision="auto", engine="stepping"):
         dask.delayed(_chunk_vertices)(block, int(offset), backend, precision, engine)
         for block, offset in zip(array.to_delayed()[:, 0], offsets)
     ]
-    return dask.delayed(_hull_of_candidates)(parts, backend, precision, engine).compute()
+    result: dict[str, Any] = dask.delayed(_hull_of_candidates)(parts, backend, precision, engine).compute()
+    return result

@@ -12,8 +12,11 @@ design:
 What the options mean here (the hull itself is exact unless a tolerance asks for merging):
     Qt             triangulated output: always so; accepted
     Qbb, QbB, Qbk:n, QBk:n
-                   Qhull scales the input against its own roundoff; the exact hull needs none: no effect.
-                   Unlike scipy's, the equations stay in the input's coordinates
+                   Qhull scales the input against its own roundoff; the exact hull needs none.  As scipy's,
+                   ``volume`` and ``area`` are those of the scaled points (QbB: each coordinate mapped onto
+                   [-0.5, 0.5]; Qbb: the last onto [0, the largest magnitude of the others]; Qbk:n, QBk:n:
+                   coordinate k's low or high bound onto n).  Unlike scipy's, the equations stay in the
+                   input's coordinates.  Qbk:0Bk:0 (Qhull drops coordinate k) has no defined behaviour here
     Qc             ``coplanar`` also lists every point that is not a vertex but lies within the tolerance of
                    a facet (scipy's Qc), with its facet and nearest vertex
     Qi             ``coplanar`` also lists every interior point, with its nearest facet and vertex
@@ -32,8 +35,16 @@ What the options mean here (the hull itself is exact unless a tolerance asks for
                    counts differ from Qhull's
 """
 
+from __future__ import annotations
+
 import math
 import re
+from typing import Any, Callable, NoReturn
+
+import numpy as np
+import numpy.typing as npt
+
+Error = Callable[[str], Exception]
 
 _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 _INTEGER = re.compile(r"[-+]?\d+")
@@ -51,17 +62,51 @@ class ParsedOptions:
     without; 0 for C-0 and A-0); ``words``: the options as read.
     """
 
-    def __init__(self):
-        self.good_point = None
+    def __init__(self) -> None:
+        self.good_point: int | None = None
         self.good_visible = True
         self.interior = False
         self.coplanar = False
         self.joggle = False
-        self.centrum = None
-        self.angle_cosine = None  # An's n
-        self.words = []
+        self.centrum: float | None = None
+        self.angle_cosine: float | None = None  # An's n
+        self.words: list[str] = []
+        # Qhull's scaling, in the order given: ("box",) for QbB, ("last",) for Qbb, ("low" or "high", k, n).
+        self.scalings: list[tuple[Any, ...]] = []
 
-    def merge(self, default):
+    def scaled_axes(self, ndim: int) -> set[int]:
+        """The axes QbB maps onto [-0.5, 0.5] (Qhull's QH6022 names the first that holds one value)."""
+        return set(range(ndim)) if ("box",) in self.scalings else set()
+
+    def scaling(self, points: npt.NDArray[np.float64]) -> tuple[list[float], list[float]] | None:
+        """(scale, shift) per axis of the map Qhull applies to ``points`` under QbB, Qbb, Qbk:n and QBk:n, or
+        None without them: each axis' [low, high] onto its new bounds (a bound not given stays)."""
+        if not self.scalings:
+            return None
+        ndim = int(points.shape[1])
+        low, high = points.min(axis=0), points.max(axis=0)
+        new_low, new_high = [float(v) for v in low], [float(v) for v in high]
+        last = False
+        for scaling in self.scalings:
+            if scaling[0] == "box":
+                new_low, new_high = [-0.5] * ndim, [0.5] * ndim
+            elif scaling[0] == "last":
+                last = True
+            elif scaling[1] < ndim:
+                (new_low if scaling[0] == "low" else new_high)[scaling[1]] = scaling[2]
+        if last:
+            # Qbb: the last coordinate onto [0, m], m the largest magnitude among the other coordinates.
+            new_low[-1] = 0.0
+            new_high[-1] = float(np.abs(points[:, :-1]).max(initial=0.0))
+        scale, shift = [], []
+        for k in range(ndim):
+            width = float(high[k] - low[k])
+            factor = (new_high[k] - new_low[k]) / width if width > 0 else 1.0
+            scale.append(factor)
+            shift.append(new_low[k] - float(low[k]) * factor)
+        return scale, shift
+
+    def merge(self, default: Any) -> Any:
         """The merging these options ask for: None (the exact hull) with QJ; ``"qhull"`` for C-0, C0, A-0
         (Qhull's own roundoff-based tolerance); ``("options", distance, cosine)`` for Cn (distance, else
         None: Qhull's) and An (cosine, else None); else ``default``."""
@@ -74,7 +119,7 @@ class ParsedOptions:
         return default
 
 
-def parse(options, error):
+def parse(options: str | bytes, error: Error) -> ParsedOptions:
     """Parses a ``qhull_options`` string (str or bytes); raises ``error`` (QhullError) naming the first
     option with no meaning here."""
     if isinstance(options, bytes):
@@ -87,20 +132,20 @@ def parse(options, error):
     return parsed
 
 
-def _unknown(name, error, word=None):
+def _unknown(name: str, error: Error, word: str | None = None) -> NoReturn:
     where = f" (in '{word}': a word continues its first letter's group, as in Qhull)" if word and word != name else ""
     raise error(f"qhull_options: the option '{name}'{where} has no defined behaviour in cudahull "
                 f"(see the README's table of options)")
 
 
-def _number(word, at, name, pattern, error):
+def _number(word: str, at: int, name: str, pattern: re.Pattern[str], error: Error) -> tuple[str, int]:
     match = pattern.match(word, at)
     if match is None:
         raise error(f"qhull_options: '{name}' needs a number")
     return match.group(0), match.end()
 
 
-def _parse_word(word, parsed, error):
+def _parse_word(word: str, parsed: ParsedOptions, error: Error) -> None:
     group = word[0]
     if group in "CA":
         text, end = _number(word, 1, word, _NUMBER, error)
@@ -139,15 +184,22 @@ def _parse_word(word, parsed, error):
             parsed.coplanar = parsed.coplanar or letter == "c"
         elif letter == "b" and at < len(word) and word[at] in "bB":
             parsed.words.append("Qb" + word[at])
+            parsed.scalings.append(("box",) if word[at] == "B" else ("last",))
             at += 1
         elif letter in "bB" and at < len(word) and word[at].isdigit():
-            # Qbk:n, QBk:n: scale coordinate k's bound to n (no effect here); without ":n", Qhull's default.
+            # Qbk:n, QBk:n: coordinate k's low or high bound scaled to n (the measures follow, as scipy's); without
+            # ":n" (or with n 0), Qhull's default.
             axis, at = _number(word, at, "Q" + letter, _INTEGER, error)
             name = "Q" + letter + axis
+            bound = -0.5 if letter == "b" else 0.5  # Qhull's default for Qbk, QBk
             if at < len(word) and word[at] == ":":
                 value, at = _number(word, at + 1, name + ":", _NUMBER, error)
                 name += ":" + value
+                bound = float(value) if float(value) != 0 else bound
+                if float(value) == 0 and re.search(rf"B{axis}:0*\.?0*(?![\d.])", word[at:]) and letter == "b":
+                    _unknown(name + "B" + axis + ":0", error, word)  # Qbk:0Bk:0: Qhull drops coordinate k
             parsed.words.append(name)
+            parsed.scalings.append(("low" if letter == "b" else "high", int(axis), bound))
         elif letter == "J":
             match = _NUMBER.match(word, at)
             at = match.end() if match else at

@@ -231,8 +231,11 @@ def test_non_finite_input_is_a_value_error(bad):
 
 
 def test_other_bad_input():
-    with pytest.raises(ValueError, match="points are 4-dimensional: cudahull computes 2-D and 3-D hulls only"):
-        cudahull.ConvexHull(np.zeros((5, 4)))
+    # 4-D and higher go to Qhull, which asks for what only the exact engines give.
+    with pytest.raises(ValueError, match="4-D points are hulled by scipy's Qhull.*backend must be 'auto' or 'cpu'"):
+        cudahull.ConvexHull(np.eye(5, 4), backend="cuda")
+    with pytest.raises(ValueError, match=r"^points must be an \(n, 2\) or \(n, 3\) array, not one of shape \(5, 1\)"):
+        cudahull.ConvexHull(np.zeros((5, 1)))
     with pytest.raises(ValueError, match="masked arrays"):
         cudahull.ConvexHull(np.ma.masked_all((5, 3)))
     with pytest.raises(ValueError, match="does not fit in float"):

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import cudahull
+from cudahull._arrays import cuda_protocol
 
 GPU_USABLE, GPU_WHY = cudahull._cudahull.cuda_device()
 
@@ -48,11 +49,11 @@ class HostDLPackArray:
 
 
 def test_recognises_arrays_in_cuda_memory():
-    assert cudahull._cuda_protocol(np.zeros((4, 3))) is None
-    assert cudahull._cuda_protocol([[0, 0, 0]]) is None
-    assert cudahull._cuda_protocol(FakeDLPackArray()) == "dlpack"
-    assert cudahull._cuda_protocol(FakeInterfaceArray()) == "cuda_array_interface"
-    assert cudahull._cuda_protocol(HostDLPackArray(np.zeros((4, 3)))) is None
+    assert cuda_protocol(np.zeros((4, 3))) is None
+    assert cuda_protocol([[0, 0, 0]]) is None
+    assert cuda_protocol(FakeDLPackArray()) == "dlpack"
+    assert cuda_protocol(FakeInterfaceArray()) == "cuda_array_interface"
+    assert cuda_protocol(HostDLPackArray(np.zeros((4, 3)))) is None
 
 
 def test_host_dlpack_array_is_taken_through_numpy():
@@ -82,7 +83,8 @@ def test_device_arrays_refuse_the_stepping_engine_and_the_cpu(array):
 @pytest.mark.parametrize(
     "interface, message",
     [
-        (dict(shape=(8, 4)), r"^points are 4-dimensional: cudahull computes 2-D and 3-D hulls only"),
+        (dict(shape=(8, 4)), r"^points are 4-dimensional: cudahull's engines compute 2-D and 3-D hulls \(for 4-D points "
+                             r"through scipy's Qhull, pass them as NumPy"),
         (dict(shape=(8,)), r"^points must be an \(n, 3\) or \(n, 2\) array, not one of shape \(8,\)"),
         (dict(typestr="<f2"), "^points in GPU memory must be float32 or float64"),
         (dict(typestr="<i4"), "^points in GPU memory must be float32 or float64"),

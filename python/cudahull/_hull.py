@@ -1,0 +1,617 @@
+"""One cloud's hull: ``convex_hull()`` (a dict, with the lower-dimensional answer for flat input) and
+``ConvexHull`` (scipy's drop-in: its arguments, attributes, methods and errors)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+from . import _cudahull, _qhull
+from . import qhull_options as _qhull_options
+from ._arrays import (DeviceKind, as_points, checked_interface, cuda_protocol, device_shape, host_array,
+                      index_array, numeric, require_device)
+from ._errors import InputError, degenerate_error, qhull_error, too_few_points_error
+
+__all__ = ["ConvexHull", "convex_hull"]
+
+Tolerance = Union[None, str, float]
+_Merge = tuple[str, float, float]
+
+_RESULT_ARRAYS = ("vertices", "simplices", "neighbors", "equations", "polygon", "coplanar")
+
+
+def check_engine(engine: str, on_device: bool) -> str:
+    # "auto" stays "auto": the module's plan_hull() (hull_plan.hpp) resolves it, as for the command line's
+    # --engine auto: the resident engine where it runs on a GPU (only it reads GPU memory), the stepping
+    # engine on the CPU, whose worker threads make it the faster one there.
+    if engine not in ("auto", "stepping", "resident"):
+        raise ValueError(f"engine must be auto, stepping or resident, not '{engine}'")
+    if on_device and engine == "stepping":
+        raise ValueError("the stepping engine edits the mesh on the host and takes host points: points in GPU "
+                         "memory take engine 'resident' (or 'auto')")
+    return engine
+
+
+def _device_hull(points: Any, protocol: str, backend: str, precision: str, merge: _Merge) -> dict[str, Any]:
+    """The hull dict of (n, 3) or (n, 2) points in CUDA memory: 3-D read in place by the resident engine,
+    2-D filtered on the device with only the possible corners read back."""
+    if backend == "cpu":
+        raise ValueError("points in GPU memory need backend 'auto' or 'cuda', not 'cpu' (for the CPU backend, "
+                         "pass them as NumPy: cupy.asnumpy(x), x.cpu().numpy())")
+    shape = device_shape(points, protocol)
+    if protocol == "cuda_array_interface":
+        pointer, is_double = checked_interface(points, shape)  # checked before any data is read
+        require_device()
+        return _cudahull.convex_hull_cuda_pointer(pointer, shape[0], shape[1], is_double, backend, precision,
+                                                  *merge)
+    require_device()
+    if getattr(points, "requires_grad", False):
+        points = points.detach()  # PyTorch exports no tensor that requires grad; the hull reads values only
+    return _cudahull.convex_hull_cuda(points, backend, precision, *merge)
+
+
+def _merge_arguments(tolerance: object, low: Any = None, high: Any = None) -> _Merge:
+    """The module's (merge, tolerance, angle_cosine) for a ``tolerance``: None (exact), "qhull", a float
+    (relative to the bounding box's largest side), or ("options", distance, cosine) from qhull_options' C
+    and A: an absolute distance (None: Qhull's), which needs the bounding box (``low``, ``high``) to become
+    relative, and An's cosine (None: no angle)."""
+    if tolerance is None:
+        return ("exact", 0.0, 1.0)
+    if isinstance(tolerance, str):
+        if tolerance != "qhull":
+            raise ValueError(f"tolerance must be None, 'qhull' or a number, not '{tolerance}'")
+        return ("qhull", 0.0, 1.0)
+    if isinstance(tolerance, tuple):
+        _, distance, cosine = tolerance
+        cosine = 1.0 if cosine is None else float(cosine)
+        if distance is None:
+            return ("qhull", 0.0, cosine)
+        low, high = np.asarray(low, dtype=np.float64), np.asarray(high, dtype=np.float64)
+        side = float(np.max(high - low)) if low.size else 0.0
+        return ("relative", distance / side if side > 0 else 0.0, cosine)
+    try:
+        value = float(tolerance)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        value = math.nan
+    if not math.isfinite(value) or value < 0:
+        raise ValueError(f"tolerance must be None, 'qhull' or a finite number >= 0, not {tolerance!r}")
+    return ("relative", value, 1.0)
+
+
+def _bounds_of(points: Any, tolerance: object, kind: DeviceKind | None = None) -> tuple[Any, Any]:
+    """The bounding box, only where an absolute tolerance needs it (else (None, None))."""
+    if not isinstance(tolerance, tuple) or tolerance[1] is None or points.shape[0] == 0:
+        return None, None
+    if kind is None:
+        return points.min(axis=0), points.max(axis=0)
+    low, high = kind.bounds(points)
+    return kind.to_numpy(low), kind.to_numpy(high)
+
+
+def _hull_dict(points: Any, protocol: str | None, kind: DeviceKind | None, backend: str, precision: str,
+               engine: str, tolerance: object) -> dict[str, Any]:
+    """The module's hull dict of (n, 2) or (n, 3) points (host points already through as_points): in GPU
+    memory through _device_hull, else the 2-D or 3-D hull on the host's array."""
+    merge = _merge_arguments(tolerance, *_bounds_of(points, tolerance, kind))
+    if protocol is not None:
+        return _device_hull(points, protocol, backend, precision, merge)
+    if points.shape[1] == 2:
+        return _cudahull.convex_hull_2d(points, backend, precision, *merge)
+    return _cudahull.convex_hull(points, backend, precision, engine, *merge)
+
+
+def convex_hull(points: npt.ArrayLike, backend: str = "auto", precision: str = "auto", engine: str = "auto",
+                device_results: bool = False, tolerance: Tolerance = None) -> dict[str, Any]:
+    """The hull of ``points`` as a dict of arrays and numbers, with the lower-dimensional answer for flat input.
+
+    Parameters
+    ----------
+    points : (n, 3) or (n, 2) array_like, an (n, 3) or (n, 2) array in GPU memory, or (n, d >= 4) array_like
+        As for ``ConvexHull``.  Points of 4 or more dimensions are hulled by scipy's Qhull (scipy must be
+        installed): its answer, ``backend`` "qhull", and its QhullError for flat input.
+    backend : {"auto", "cpu", "cuda"}
+        "auto" takes the CUDA backend when a usable GPU is present.  Points in GPU memory need the GPU.
+    precision : {"auto", "float", "double"}
+        "auto" takes the input's own; "float" rounds double input once, "double" widens float input.
+    engine : {"auto", "stepping", "resident"}
+        "auto" is "resident" where the hull runs on a GPU (points in GPU memory, which only it reads in
+        place, or host points with a usable GPU and backend "auto" or "cuda") and "stepping" on the CPU,
+        as the command line's ``--engine auto``.
+    device_results : bool
+        Return the arrays of a CuPy or PyTorch input as CuPy arrays or tensors on its device.
+    tolerance : None, "qhull" or float
+        None: the exact hull.  "qhull": merged as Qhull's default merging does.  A number: merged within
+        that fraction of the bounding box's largest side.
+
+    Returns
+    -------
+    dict
+        ``dimension`` (the hull's affine dimension: below the input's for flat input), ``input_dimension``,
+        ``precision``, ``backend``, ``vertices``, ``simplices``, ``neighbors``, ``equations``, ``polygon``
+        (a flat or 2-D hull's corners in order), ``coplanar``, ``volume``, ``area``, ``tolerance``,
+        ``max_outside`` (as on ``ConvexHull``; indices are uint32 here), and ``stats``: the resident
+        engine's counters (``host_syncs``, ``bytes_from_device``, ``points_read_back``, ...), None otherwise.
+        2-D points in GPU memory are filtered there: only the points that can be corners come back.
+
+    Raises
+    ------
+    ValueError
+        For NaN or infinite coordinates (``InputError``), bad shapes and bad arguments.
+    DeviceError
+        For ``backend="cuda"``, or points in GPU memory, without a usable GPU.
+
+    Examples
+    --------
+    >>> import numpy as np, cudahull
+    >>> square = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0.5, 0.5, 0]])
+    >>> hull = cudahull.convex_hull(square, backend="cpu")
+    >>> hull["dimension"], hull["polygon"].tolist(), hull["area"]
+    (2, [0, 1, 2, 3], 2.0)
+    """
+    protocol = cuda_protocol(points)
+    engine = check_engine(engine, protocol is not None)
+    if protocol is None:
+        array = host_array(points)
+        if array.ndim == 2 and array.shape[1] >= 4:
+            _qhull.check_request(int(array.shape[1]), tolerance, backend, precision, engine)
+            return _qhull.hull_dict(numeric(array))
+        return _hull_dict(as_points(array, (2, 3)), None, None, backend, precision, engine, tolerance)
+    kind = DeviceKind(points)
+    if device_results:
+        kind.require_known("device_results=True")
+    result = _hull_dict(points, protocol, kind, backend, precision, engine, tolerance)
+    if device_results:
+        for key in _RESULT_ARRAYS:
+            array = result[key]
+            # Indices as int64 on the device: PyTorch has few operations on uint32.
+            result[key] = kind.like_input(array.astype(np.int64) if array.dtype == np.uint32 else array)
+    return result
+
+
+class _Default:
+    """``tolerance`` not given: None without qhull_options, "qhull" with them."""
+
+    def __repr__(self) -> str:
+        return "<default>"
+
+
+_DEFAULT: Any = _Default()
+
+
+class ConvexHull:
+    """Convex hull of points, a drop-in for ``scipy.spatial.ConvexHull``.
+
+    2-D and 3-D points are hulled exactly by cudahull's engines (on the GPU where one is usable); points of 4
+    or more dimensions by scipy's Qhull, with scipy's answer (``backend == "qhull"``; scipy must be
+    installed).
+
+    Parameters
+    ----------
+    points : (n, 3) or (n, 2) array_like, an (n, 3) or (n, 2) array in GPU memory, or (n, d >= 4) array_like
+        float32 input is computed in float, float64 (and integer) input in double: the hull is exact for
+        those values (a point on a face is not a vertex) unless a ``tolerance`` asks for merging.  A CuPy
+        array, a PyTorch CUDA tensor or another array in CUDA memory (``__dlpack__`` or
+        ``__cuda_array_interface__``; C-contiguous float32 or float64, on the current device) is read in
+        place (3-D by the resident engine; 2-D filtered on the device, only the possible corners read back):
+        no host copy of it is made.  Masked arrays raise ValueError, as in scipy.
+    incremental : bool
+        scipy's.  For 2-D and 3-D points ``add_points`` works either way; for 4-D and higher it is passed to
+        Qhull, and ``add_points`` without it recomputes the hull of all the points.
+    qhull_options : str, optional
+        Parsed as Qhull parses it; every option has a documented meaning here (the README's table,
+        ``cudahull.qhull_options``), and one without raises ``QhullError`` naming it.  Giving any options
+        makes the default ``tolerance`` "qhull": such code expects Qhull's merged output.  For 4-D and higher
+        they go to Qhull as they are.
+    tolerance : None, "qhull" or float
+        None: the exact hull, every strictly extreme point a vertex (the default without
+        ``qhull_options``).  "qhull": facets merged as Qhull's default roundoff-based merging does (the
+        default with ``qhull_options``).  A float: merged within that fraction of the bounding box's
+        largest side.  A merged hull has no facet thinner than the tolerance, is triangulated as Qhull's
+        Qt, lists the points merging set aside in ``coplanar``, and is checked: every input point lies
+        within ``max_outside`` of every facet's plane.
+    backend : {"auto", "cpu", "cuda"}
+        "auto" takes the CUDA backend when a usable GPU is present.  Points in GPU memory need the GPU.
+    precision : {"auto", "float", "double"}
+        "auto" takes the input's own; "float" rounds double input once, "double" widens float input
+        (for points in GPU memory, into a temporary array on the device).
+    engine : {"auto", "stepping", "resident"}
+        "auto", as the command line's ``--engine auto``: "resident" (every phase on the device) where the
+        hull runs on a GPU, which points in GPU memory need; "stepping" (Algorithm 1 an iteration at a
+        time, the host editing the mesh) on the CPU.
+    device_results : bool
+        For a CuPy or PyTorch input: the array attributes as arrays of the input's kind on its device
+        instead of NumPy arrays.
+
+    Attributes
+    ----------
+    points : ndarray of double, shape (npoints, ndim)
+        The input points as given: float32 input stays float32, and points in GPU memory stay there.
+    vertices : ndarray of ints, shape (nvertices,)
+        int32 indices of the hull's vertices: sorted ascending in 3-D, counter-clockwise in 2-D (as scipy's).
+    simplices : ndarray of ints, shape (nsimplex, ndim)
+        Triangles counter-clockwise seen from outside in 3-D, edges counter-clockwise in 2-D.
+    neighbors : ndarray of ints, shape (nsimplex, ndim)
+        The k-th neighbour is opposite the k-th vertex.
+    equations : ndarray of double, shape (nsimplex, ndim + 1)
+        Unit outward normal and offset: normal . x + offset <= 0 inside; the exact normal rounded, so
+        every point lies within a few units in the last place of them.  Always in the input's coordinates
+        (under ``QbB``/``Qbb`` scipy gives them in Qhull's scaled coordinates instead).
+    volume, area : float
+        Volume and surface area (in 2-D: area and perimeter, as scipy's).  Under ``QbB``, ``Qbb``,
+        ``Qbk:n`` or ``QBk:n`` these are, as scipy's, the measures of the points as Qhull scales them (QbB:
+        each coordinate onto [-0.5, 0.5]), not of the input: compute without those options, or with
+        ``tolerance`` alone, for the true measures.
+    npoints, nsimplex, ndim : int
+        As scipy's.
+    min_bound, max_bound : ndarray of double, shape (ndim,)
+        As scipy's (computed when first asked for).
+    coplanar : ndarray of int, shape (ncoplanar, 3)
+        The points merging set aside (with Qi, also the interior points), each with its nearest facet and
+        nearest vertex, as scipy's; empty for the exact hull.
+    good : ndarray of bool or None
+        With qhull_options QGn / QG-n, which facets point n sees (does not see), as scipy's; else None.
+    tolerance, max_outside : float
+        The absolute merge tolerance (0 when exact) and the proven bound on every input point's height above
+        every facet's plane (0 when exact); NaN for Qhull's hulls (not reported).
+    dimension : int
+        The input's dimension.
+    precision, backend : str
+        What the hull was computed in and on: backend "cpu" or "cuda" for the exact engines, "qhull" where
+        scipy's Qhull computed it (4 or more dimensions).
+    stats : dict or None
+        The resident engine's counters, None for the others.
+
+    Raises
+    ------
+    ValueError
+        For no points (as scipy), NaN or infinite coordinates (``InputError``), masked arrays, and points of
+        one dimension.
+    QhullError
+        A ``scipy.spatial.QhullError``: for fewer than ndim + 1 points, flat input (its lower-dimensional
+        hull is ``cudahull.convex_hull()``'s answer) and unknown ``qhull_options``, with Qhull's code and
+        words for the case.
+    DeviceError
+        A RuntimeError: for backend="cuda", or points in GPU memory, without a usable GPU.
+
+    Examples
+    --------
+    >>> import numpy as np, cudahull
+    >>> cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
+    >>> hull = cudahull.ConvexHull(np.vstack([cube, [[0.5, 0.5, 0.5]]]), backend="cpu")
+    >>> hull.vertices.tolist(), hull.volume, hull.nsimplex
+    ([0, 1, 2, 3, 4, 5, 6, 7], 1.0, 12)
+    """
+
+    points: Any
+    vertices: npt.NDArray[np.intc]
+    simplices: npt.NDArray[np.intc]
+    neighbors: npt.NDArray[np.intc]
+    equations: npt.NDArray[np.float64]
+    coplanar: npt.NDArray[np.intc]
+    good: npt.NDArray[np.bool_] | None
+    volume: float
+    area: float
+    npoints: int
+    nsimplex: int
+    ndim: int
+    dimension: int
+    precision: str
+    backend: str
+    tolerance: float
+    max_outside: float
+    stats: dict[str, Any] | None
+
+    def __init__(self, points: npt.ArrayLike, incremental: bool = False, qhull_options: str | None = None, *,
+                 tolerance: Tolerance = _DEFAULT, backend: str = "auto", precision: str = "auto",
+                 engine: str = "auto", device_results: bool = False) -> None:
+        self._closed = False
+        self._bounds: tuple[Any, Any] | None = None
+        self._scipy: Any = None
+        self._protocol = cuda_protocol(points)
+        if self._protocol is None:
+            array = host_array(points)
+            if array.ndim == 2 and array.shape[1] >= 4:
+                self._init_qhull(array, incremental, qhull_options, tolerance, backend, precision, engine)
+                return
+        self._options = _qhull_options.parse(qhull_options, qhull_error) if qhull_options is not None else None
+        if self._options is not None and not self._options.words:
+            self._options = None  # "" asks for nothing, as None (scipy treats them alike)
+        if tolerance is _DEFAULT:
+            tolerance = self._options.merge("qhull") if self._options is not None else None
+        self._tolerance_choice = tolerance
+        self._kind = DeviceKind(points) if self._protocol else None
+        self._engine_choice = check_engine(engine, self._protocol is not None)
+        self._device_results = bool(device_results) and self._kind is not None
+        if self._device_results and self._kind is not None:
+            self._kind.require_known("device_results=True")
+        self._backend_choice = backend
+        self._precision_choice = precision
+        if self._protocol:
+            device_shape(points, self._protocol)
+            taken: Any = points
+        else:
+            taken = as_points(array, (2, 3))
+        self._commit(taken, self._compute(taken, None))
+
+    # --- 4-D and higher: scipy's Qhull -------------------------------------------------------------------
+
+    def _init_qhull(self, array: npt.NDArray[Any], incremental: bool, qhull_options: str | None,
+                    tolerance: object, backend: str, precision: str, engine: str) -> None:
+        _qhull.check_request(int(array.shape[1]), None if tolerance is _DEFAULT else tolerance, backend,
+                             precision, engine)
+        self._incremental = bool(incremental)
+        self._qhull_options = qhull_options
+        self._scipy = _qhull.scipy_hull(numeric(array), self._incremental, qhull_options)
+        self._from_scipy()
+
+    def _from_scipy(self) -> None:
+        """scipy's attributes, copied (scipy's are views of its own state)."""
+        hull = self._scipy
+        for key in ("vertices", "simplices", "neighbors", "equations", "coplanar", "good", "points"):
+            setattr(self, key, getattr(hull, key))
+        self.volume, self.area = float(hull.volume), float(hull.area)
+        self.npoints, self.nsimplex, self.ndim = int(hull.npoints), int(hull.nsimplex), int(hull.ndim)
+        self._bounds = (hull.min_bound, hull.max_bound)
+        self.dimension = self.ndim
+        self.precision, self.backend, self.stats = "double", "qhull", None
+        self.tolerance = self.max_outside = math.nan
+
+    # --- computing ------------------------------------------------------------------------------------
+
+    @property
+    def _good_point(self) -> int | None:
+        return None if self._options is None else self._options.good_point
+
+    def _compute(self, points: Any, subset: npt.NDArray[Any] | None) -> dict[str, Any]:
+        """The hull of ``points[subset]`` (all of them for None; ``subset`` ascending, so the lowest index
+        of duplicates stays it), less the QGn point, as the attributes' values: nothing is changed here,
+        so a failure leaves the object as it was."""
+        npoints = int(points.shape[0])
+        ndim = int(points.shape[1])
+        good = self._good_point
+        if good is not None and not 0 <= good < npoints:
+            raise qhull_error(f"qhull_options QG{good}: there is no point {good} among {npoints} points")
+        if good is not None:
+            subset = np.arange(npoints) if subset is None else np.asarray(subset)
+            subset = subset[subset != good]
+        if subset is None:
+            chosen = points
+        elif self._protocol and self._kind is not None:
+            chosen = self._kind.take(points, subset)
+        else:
+            chosen = np.ascontiguousarray(points[subset])
+        if npoints == 0:
+            raise ValueError("No points given")  # scipy's words and type
+        if int(chosen.shape[0]) <= ndim:
+            raise too_few_points_error(int(chosen.shape[0]), ndim)
+        result = _hull_dict(chosen, self._protocol, self._kind, self._backend_choice, self._precision_choice,
+                            self._engine_choice, self._tolerance_choice)
+        if result["dimension"] == ndim and result["tolerance"] > 0 and len(result["vertices"]) <= 2000:
+            # A merged hull thinner than its tolerance in some facet's direction is flat at that
+            # tolerance, as Qhull finds it (QH6154).  (Merging leaves a thin body few vertices.)
+            corners = result["vertices"].astype(np.int64)
+            host = np.asarray(self._host(self._kind.take(chosen, corners)) if self._kind is not None
+                              else chosen[corners], dtype=np.float64)
+            equations = result["equations"]
+            widths = -(host @ equations[:, :-1].T + equations[:, -1]).min(axis=0)
+            if widths.size and widths.min() <= result["tolerance"]:
+                raise qhull_error(f"QH6154 Qhull precision error: Initial simplex is flat (the merged hull is "
+                                  f"{widths.min():.3g} thick, within its tolerance {result['tolerance']:.3g}: "
+                                  f"flat at that tolerance; tolerance=None gives the exact hull)")
+        if result["dimension"] < ndim:
+            raise degenerate_error(self._host(chosen), int(result["dimension"]),
+                                   self._options.scaled_axes(ndim) if self._options is not None else set())
+
+        def original(indices: npt.ArrayLike) -> npt.NDArray[Any]:
+            return index_array(indices if subset is None else np.asarray(subset)[np.asarray(indices)], npoints)
+
+        values = {
+            "dimension": ndim,
+            "precision": result["precision"],
+            "backend": result["backend"],
+            "stats": result["stats"],
+            "tolerance": result["tolerance"],
+            "max_outside": result["max_outside"],
+            "volume": result["volume"],
+            "area": result["area"],
+            # scipy's vertices run counter-clockwise in 2-D (the polygon), ascending in 3-D.
+            "vertices": original(result["polygon"] if ndim == 2 else result["vertices"]),
+            "simplices": original(result["simplices"]).reshape(-1, ndim),
+            "neighbors": result["neighbors"].astype(np.int32, copy=False),
+            "equations": result["equations"],
+        }
+        coplanar = result["coplanar"].astype(np.int64).reshape(-1, 3)
+        if coplanar.size:
+            coplanar[:, 0] = original(coplanar[:, 0])
+            coplanar[:, 2] = original(coplanar[:, 2])
+        # The exact hull's vertices, merged away or not: what add_points computes on next.
+        values["exact_vertices"] = (np.union1d(values["vertices"], coplanar[:, 0]) if coplanar.size
+                                    else values["vertices"]).astype(np.int64)
+        options = self._options
+        other_points = options is not None and (options.interior or options.coplanar)
+        scaled = options is not None and bool(options.scalings)
+        # Qc, Qi, QG and Qhull's scaling look at the points themselves, on the host (one copy, in double).
+        host = (np.ascontiguousarray(self._host(points), dtype=np.float64)
+                if other_points or good is not None or scaled else None)
+        if other_points and host is not None:
+            coplanar = self._with_other_points(host, values, coplanar, result["tolerance"])
+        values["coplanar"] = index_array(coplanar.reshape(-1, 3), npoints)
+        values["good"] = None
+        if good is not None and host is not None:
+            values["good"] = self._good(host, values, good)
+        scaling = options.scaling(host) if options is not None and scaled and host is not None else None
+        if scaling is not None and host is not None:
+            values["volume"], values["area"] = _scaled_measures(host, values["simplices"], scaling,
+                                                                float(values["volume"]))
+        return values
+
+    def _host(self, points: Any) -> npt.NDArray[Any]:
+        return self._kind.to_numpy(points) if self._kind is not None else np.asarray(points)
+
+    def _good(self, host: npt.NDArray[np.float64], values: dict[str, Any], good: int) -> npt.NDArray[np.bool_]:
+        """QGn: the facets point n sees (strictly above their planes, decided exactly); QG-n: the others."""
+        visible = _cudahull.facets_visible(host, np.ascontiguousarray(values["simplices"], dtype=np.int64),
+                                           host[good].copy())
+        assert self._options is not None
+        return np.asarray(visible if self._options.good_visible else ~visible, dtype=bool)
+
+    def _with_other_points(self, host: npt.NDArray[np.float64], values: dict[str, Any],
+                           coplanar: npt.NDArray[np.int64], tolerance: float) -> npt.NDArray[np.int64]:
+        """Qc: also every point that is neither a vertex nor already listed but lies within the tolerance of
+        a facet (within rounding, 8 units in the last place of the largest coordinate, for the exact hull),
+        as scipy's coplanar points; Qi: every other point too (the interior ones).  Each with its nearest
+        facet (the one it is least below) and that facet's nearest vertex.  O(n x facets), on the host."""
+        assert self._options is not None
+        listed = np.zeros(host.shape[0], dtype=bool)
+        listed[values["vertices"]] = True
+        listed[coplanar[:, 0]] = True
+        if self._good_point is not None:
+            listed[self._good_point] = True
+        rest = np.flatnonzero(~listed)
+        within = max(tolerance, 8 * float(np.finfo(np.float64).eps) * float(np.abs(host).max(initial=0.0)))
+        equations, simplices = values["equations"], values["simplices"]
+        rows = [coplanar]
+        for begin in range(0, rest.size, 4096):
+            chunk = rest[begin:begin + 4096]
+            heights = host[chunk] @ equations[:, :-1].T + equations[:, -1]
+            facet = np.argmax(heights, axis=1)
+            if not self._options.interior:
+                near = heights[np.arange(chunk.size), facet] >= -within
+                chunk, facet = chunk[near], facet[near]
+            corners = simplices[facet]
+            distance = np.linalg.norm(host[corners] - host[chunk][:, None, :], axis=2)
+            vertex = corners[np.arange(chunk.size), np.argmin(distance, axis=1)]
+            rows.append(np.column_stack([chunk, facet, vertex]))
+        return np.concatenate(rows).astype(np.int64)
+
+    def _commit(self, points: Any, values: dict[str, Any]) -> None:
+        self.points = points
+        self.npoints = int(points.shape[0])
+        self.ndim = int(points.shape[1])
+        self._bounds = None
+        self.nsimplex = int(values["simplices"].shape[0])
+        self._exact_vertices = values["exact_vertices"]
+        for key in ("dimension", "precision", "backend", "stats", "tolerance", "max_outside", "volume", "area",
+                    "good"):
+            setattr(self, key, values[key])
+        for key in ("vertices", "simplices", "neighbors", "equations", "coplanar"):
+            setattr(self, key, self._result_array(values[key]))
+
+    def _result_array(self, array: npt.NDArray[Any]) -> Any:
+        return self._kind.like_input(array) if self._device_results and self._kind is not None else array
+
+    def _compute_bounds(self) -> tuple[Any, Any]:
+        if self.npoints == 0:
+            empty = np.full(self.ndim, np.nan)
+            return self._result_array(empty), self._result_array(empty)
+        if self._kind is None or not self._protocol:
+            return self.points.min(axis=0), self.points.max(axis=0)
+        low, high = self._kind.bounds(self.points)
+        if self._device_results:
+            return low, high
+        return self._kind.to_numpy(low), self._kind.to_numpy(high)
+
+    # Computed when first asked for: over millions of points they cost more than a resident hull.
+    @property
+    def min_bound(self) -> npt.NDArray[np.float64]:
+        """Per-axis minimum of the points (scipy's)."""
+        if self._bounds is None:
+            self._bounds = self._compute_bounds()
+        return self._bounds[0]  # type: ignore[no-any-return]
+
+    @property
+    def max_bound(self) -> npt.NDArray[np.float64]:
+        """Per-axis maximum of the points (scipy's)."""
+        if self._bounds is None:
+            self._bounds = self._compute_bounds()
+        return self._bounds[1]  # type: ignore[no-any-return]
+
+    def add_points(self, points: npt.ArrayLike, restart: bool = False) -> None:
+        """Add points and update the hull: afterwards it is the hull of all the points.
+
+        Parameters
+        ----------
+        points : (m, ndim) array_like
+            The new points.  A hull of CuPy or PyTorch points in GPU memory takes new points of the same
+            kind, joined on the device.
+        restart : bool
+            Compute on every point rather than on the old hull's vertices and the new points (the same
+            answer: the hull of a union is the hull of its parts' vertices).
+
+        Raises
+        ------
+        RuntimeError
+            After ``close()``.
+        ValueError
+            For a bad coordinate, named by its row in the new points.  Atomic: a batch that is rejected
+            changes nothing.
+        """
+        if self._closed:
+            raise RuntimeError("the hull is closed: add_points is no longer possible")
+        if self._scipy is not None:
+            new = numeric(host_array(points))
+            if new.ndim != 2 or new.shape[1] != self.ndim:
+                raise ValueError(f"add_points takes (m, {self.ndim}) points, not an array of shape {new.shape}")
+            self._scipy = _qhull.add_points(self._scipy, new, bool(restart), self._incremental, self._qhull_options)
+            self._from_scipy()
+            return
+        old_count = self.npoints
+        if self._protocol and self._kind is not None:
+            joined = self._kind.concatenate(self.points, points)
+        else:
+            new = as_points(points, (self.ndim,))
+            self._check_batch(new)
+            joined = np.ascontiguousarray(np.concatenate([self.points, new]))
+        subset: npt.NDArray[Any] | None = None
+        if not restart:
+            subset = np.concatenate([self._exact_vertices, np.arange(old_count, int(joined.shape[0]))])
+            subset.sort()
+            if self._good_point is not None:
+                subset = np.unique(np.append(subset, self._good_point))
+            if self._options is not None and (self._options.interior or self._options.coplanar):
+                subset = None  # Qi and Qc look at every point
+        self._commit(joined, self._compute(joined, subset))
+
+    def _check_batch(self, new: npt.NDArray[Any]) -> None:
+        """A new batch's coordinates checked alone, so that an error names its row in the batch (in float,
+        a value beyond float's range too)."""
+        lifted = new if new.shape[1] == 3 else np.column_stack([new, np.zeros(new.shape[0], dtype=new.dtype)])
+        try:
+            _cudahull.check_points(np.ascontiguousarray(lifted))
+            if self.precision == "float" and new.dtype == np.float64:
+                beyond = np.argwhere(np.abs(new) > np.finfo(np.float32).max)
+                if beyond.size:
+                    row, axis = beyond[0]
+                    raise InputError(f"point {row}: {'xyz'[axis]} coordinate {new[row, axis]!r} does not fit in "
+                                     f"float")
+        except ValueError as error:
+            raise type(error)(f"add_points: {error} (a row of the new points; nothing was added)") from None
+
+    def close(self) -> None:
+        """Finish: ``add_points`` raises afterwards (as in scipy); the attributes stay."""
+        if self._scipy is not None and self._incremental:
+            self._scipy.close()
+        self._closed = True
+
+    def __repr__(self) -> str:
+        return (f"<cudahull.ConvexHull of {self.npoints} {self.ndim}-D points: {len(self.vertices)} vertices, "
+                f"{self.nsimplex} simplices, backend={self.backend!r}>")
+
+
+def _scaled_measures(host: npt.NDArray[np.float64], simplices: npt.NDArray[Any],
+                     scaling: tuple[Sequence[float], Sequence[float]], volume: float) -> tuple[float, float]:
+    """The volume and area Qhull reports under QbB / Qbb / Qbk:n / QBk:n: those of the points mapped by
+    x -> x * scale + shift per axis.  The volume is the true one times the map's determinant; the area
+    (perimeter in 2-D) is summed over the simplices in the scaled coordinates."""
+    scale, shift = np.asarray(scaling[0]), np.asarray(scaling[1])
+    scaled = host * scale + shift
+    corners = scaled[np.asarray(simplices, dtype=np.int64)]
+    if host.shape[1] == 2:
+        area = float(np.linalg.norm(corners[:, 1] - corners[:, 0], axis=1).sum())
+    else:
+        normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+        area = float(np.linalg.norm(normals, axis=1).sum() / 2)
+    return volume * float(np.prod(np.abs(scale))), area
