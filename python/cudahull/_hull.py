@@ -259,8 +259,9 @@ class ConvexHull:
     dimension : int
         The input's dimension.
     precision, backend : str
-        What the hull was computed in and on: backend "cpu" or "cuda" for the exact engines, "qhull" where
-        scipy's Qhull computed it (4 or more dimensions).
+        What the hull was computed in and on: for the exact engines ``backend`` begins with "cpu" or "cuda"
+        (and says the threads or the device, as "cpu (8 threads)"); it is "qhull" where scipy's Qhull
+        computed the hull (4 or more dimensions).
     stats : dict or None
         The resident engine's counters, None for the others.
 
@@ -321,6 +322,9 @@ class ConvexHull:
             self._options = None  # "" asks for nothing, as None (scipy treats them alike)
         if tolerance is _DEFAULT:
             tolerance = self._options.merge("qhull") if self._options is not None else None
+        if self._options is not None:
+            self._options.check_dimension(int(np.shape(points)[1]) if len(np.shape(points)) == 2 else 3,
+                                          qhull_error)
         self._tolerance_choice = tolerance
         self._kind = DeviceKind(points) if self._protocol else None
         self._engine_choice = check_engine(engine, self._protocol is not None)

@@ -74,6 +74,14 @@ class ParsedOptions:
         # Qhull's scaling, in the order given: ("box",) for QbB, ("last",) for Qbb, ("low" or "high", k, n).
         self.scalings: list[tuple[Any, ...]] = []
 
+    def check_dimension(self, ndim: int, error: Error) -> None:
+        """Raises ``error`` as Qhull does for a Qbk:n or QBk:n naming an axis the points do not have."""
+        for scaling in self.scalings:
+            if scaling[0] in ("low", "high") and scaling[1] >= ndim:
+                option = "Qb" if scaling[0] == "low" else "QB"
+                raise error(f"QH7048 qhull option warning: dimension {scaling[1]} for Qhull option '{option}' is >= "
+                            f"{ndim}.  Ignored\nQH6036 qhull option error: see previous warnings")
+
     def scaled_axes(self, ndim: int) -> set[int]:
         """The axes QbB maps onto [-0.5, 0.5] (Qhull's QH6022 names the first that holds one value)."""
         return set(range(ndim)) if ("box",) in self.scalings else set()
