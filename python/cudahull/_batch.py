@@ -224,7 +224,8 @@ def _pack_clouds(clouds: Sequence[Any]) -> tuple[Any, npt.NDArray[np.int64]]:
             cloud = cloud.detach()
         array = np.asarray(cloud)
         if array.ndim != 2 or array.shape[1] != 3:
-            raise ValueError(f"cloud {c} must be an (n, 3) array, not one of shape {array.shape}")
+            hint = " (one packed (N, 3) array of points takes offsets)" if array.ndim < 2 else ""
+            raise ValueError(f"cloud {c} must be an (n, 3) array, not one of shape {array.shape}{hint}")
         arrays.append(array)
     sizes = [int(array.shape[0]) for array in arrays]
     offsets = np.concatenate([[0], np.cumsum(sizes, dtype=np.int64)]).astype(np.int64)

@@ -404,3 +404,61 @@ def test_measures_of_a_hull_of_many_chunks():
     area = math.fsum(np.linalg.norm(n, axis=1)) / 2
     assert hull["volume"] == pytest.approx(volume, rel=1e-12)
     assert hull["area"] == pytest.approx(area, rel=1e-12)
+
+
+# --- a list of clouds, as scipy users reach for it ----------------------------------------------------------
+
+
+def test_a_list_of_clouds_is_each_clouds_hull():
+    """10,000 clouds of 6-40 points given as a list: each cloud's vertices are convex_hull()'s on it alone and
+    Qhull's (general position: no repeated point, so the vertex sets are the same), with scipy's measures."""
+    rng = np.random.default_rng(20118)
+    clouds = [rng.normal(size=(int(n), 3)) for n in rng.integers(6, 41, size=10_000)]
+    hulls = cudahull.convex_hull_batch(clouds, backend="cpu")
+    assert len(hulls) == len(clouds) and hulls.dimensions.tolist() == [3] * len(clouds)
+    for c in range(0, len(clouds), 97):  # every 97th against both oracles
+        vertices = hulls.cloud(c)["vertices"].tolist()
+        assert vertices == cudahull.convex_hull(clouds[c], backend="cpu")["vertices"].tolist(), c
+        theirs = scipy.spatial.ConvexHull(clouds[c])
+        assert vertices == sorted(theirs.vertices.tolist()), c
+        assert hulls.volumes[c] == pytest.approx(theirs.volume, rel=1e-9)
+        assert hulls.areas[c] == pytest.approx(theirs.area, rel=1e-9)
+    # The same answer as the packed call.
+    packed = cudahull.convex_hull_batch(np.concatenate(clouds), np.cumsum([0] + [len(p) for p in clouds]),
+                                        backend="cpu")
+    for key in ("vertex_offsets", "vertices", "face_offsets", "faces", "planes", "volumes", "areas"):
+        assert np.array_equal(getattr(hulls, key), getattr(packed, key)), key
+
+
+def test_lists_tuples_and_mixed_clouds():
+    cube = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=np.float32)
+    clouds = (cube, np.empty((0, 3)), [[0.0, 0, 0], [1, 0, 0], [0, 1, 0]], cube.astype(np.float64) * 2,
+              np.ones((5, 3), dtype=np.int64))
+    hulls = cudahull.convex_hull_batch(clouds, backend="cpu")
+    assert hulls.dimensions.tolist() == [3, -1, 2, 3, 0]
+    assert hulls.volumes.tolist()[0] == 1.0 and hulls.volumes.tolist()[3] == 8.0
+    assert hulls.precision == "double"  # NumPy's promotion of float32 with float64: exact, in double
+    for c, cloud in enumerate(clouds):
+        alone = cudahull.convex_hull(np.asarray(cloud, dtype=np.float64).reshape(-1, 3), backend="cpu")
+        assert hulls.cloud(c)["vertices"].tolist() == alone["vertices"].tolist(), c
+    assert hulls.vertex_offsets.tolist() == [0, 8, 8, 11, 19, 20]
+    assert len(cudahull.convex_hull_batch([], backend="cpu")) == 0
+    # All float32: computed in float.
+    assert cudahull.convex_hull_batch([cube, cube + 1], backend="cpu").precision == "float"
+    # Equal-sized clouds written as nested lists: the same as the padded array they also are.
+    nested = [cube.tolist(), (cube + 3).tolist()]
+    assert cudahull.convex_hull_batch(nested, backend="cpu").vertices.tolist() == list(range(8)) * 2
+
+
+def test_a_list_of_clouds_names_the_bad_cloud():
+    clouds = [np.eye(4, 3), np.eye(4, 3) + 1, np.random.default_rng(0).normal(size=(6, 3))]
+    clouds[2][3, 2] = np.nan
+    # The cloud and the point in it: the packed copy's row is nothing the caller saw.
+    with pytest.raises(ValueError, match=r"^cloud 2: point 3: z coordinate nan is not finite$"):
+        cudahull.convex_hull_batch(clouds, backend="cpu")
+    with pytest.raises(ValueError, match=r"^cloud 1 must be an \(n, 3\) array, not one of shape \(4, 2\)"):
+        cudahull.convex_hull_batch([np.eye(4, 3), np.eye(4, 2)], backend="cpu")
+    with pytest.raises(ValueError, match=r"^cloud 0 must be an \(n, 3\) array, not one of shape \(3,\)"):
+        cudahull.convex_hull_batch([np.zeros(3)], backend="cpu")
+    with pytest.raises(ValueError, match="points must be numbers"):
+        cudahull.convex_hull_batch([np.array([["a", "b", "c"]])], backend="cpu")

@@ -11,7 +11,7 @@ import pytest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "scipy_suite"))
-from cudahull_in_scipys_place import SELECTION  # noqa: E402
+from cudahull_in_scipys_place import FACET_ORDER_TESTS, SELECTION  # noqa: E402
 
 
 def test_scipys_convex_hull_tests_pass_with_cudahull_in_its_place():
@@ -25,7 +25,7 @@ def test_scipys_convex_hull_tests_pass_with_cudahull_in_its_place():
     assert run.returncode == 0, report[-6000:]
     summary = report.strip().splitlines()[-1]
     counts = {word: int(number) for number, word in re.findall(r"(\d+) (passed|xfailed|failed|error)", summary)}
-    # With scipy 1.17.1 (python/requirements-test.txt): 39 of the selected tests are 2-D or 3-D and pass;
-    # 22 are 4-D and higher, and 6 assert Qhull's facet order (strict xfails, each with its reason).
-    assert counts.get("passed") == 39 and counts.get("xfailed") == 28, summary
+    # With scipy 1.17.1 (python/requirements-test.txt): 59 of the selected tests pass (4-D to 8-D ones through
+    # Qhull); the 8 that assert Qhull's facet order are strict xfails, each named with its reason.
+    assert counts.get("passed") == 59 and counts.get("xfailed") == len(FACET_ORDER_TESTS) == 8, summary
     assert "failed" not in counts and "error" not in counts, summary
