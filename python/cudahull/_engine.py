@@ -83,7 +83,7 @@ class Engine:
         RuntimeError
             When the hull is already done.
         """
-        return self._engine.step()  # type: ignore[no-any-return]
+        return self._engine.step()
 
     def run(self) -> list[dict[str, Any]]:
         """Steps until done.
@@ -111,7 +111,7 @@ class Engine:
             ``faces`` (input indices, counter-clockwise from outside), ``neighbors`` (the k-th opposite the
             k-th corner) and ``vertices``.
         """
-        return self._engine.mesh()  # type: ignore[no-any-return]
+        return self._engine.mesh()
 
     def result(self) -> dict[str, Any]:
         """The exact hull, as ``cudahull.convex_hull`` gives it.
@@ -126,4 +126,4 @@ class Engine:
         RuntimeError
             Before the hull is done.
         """
-        return self._engine.result()  # type: ignore[no-any-return]
+        return self._engine.result()

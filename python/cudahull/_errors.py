@@ -52,11 +52,13 @@ def qhull_error_class() -> type[RuntimeError]:
     """The ``QhullError`` class, built on first use on scipy's base (``RuntimeError`` without scipy)."""
     global _built
     if _built is None:
-        base: type[RuntimeError]
+        base: type[RuntimeError] = RuntimeError
         try:
-            from scipy.spatial import QhullError as base  # type: ignore[import-untyped, unused-ignore]
+            import scipy.spatial  # type: ignore[import-untyped, unused-ignore]
+
+            base = scipy.spatial.QhullError
         except ImportError:
-            base = RuntimeError
+            pass
         # __module__ "cudahull": pickling finds the class as cudahull.QhullError.
         _built = type("QhullError", (base,), {"__doc__": _QHULL_ERROR_DOC, "__module__": "cudahull"})
     return _built

@@ -397,10 +397,10 @@ class ConvexHull:
             # A merged hull thinner than its tolerance in some facet's direction is flat at that
             # tolerance, as Qhull finds it (QH6154).  (Merging leaves a thin body few vertices.)
             corners = result["vertices"].astype(np.int64)
-            host = np.asarray(self._host(self._kind.take(chosen, corners)) if self._kind is not None
-                              else chosen[corners], dtype=np.float64)
+            hull_corners = np.asarray(self._host(self._kind.take(chosen, corners)) if self._kind is not None
+                                      else chosen[corners], dtype=np.float64)
             equations = result["equations"]
-            widths = -(host @ equations[:, :-1].T + equations[:, -1]).min(axis=0)
+            widths = -(hull_corners @ equations[:, :-1].T + equations[:, -1]).min(axis=0)
             if widths.size and widths.min() <= result["tolerance"]:
                 raise qhull_error(f"QH6154 Qhull precision error: Initial simplex is flat (the merged hull is "
                                   f"{widths.min():.3g} thick, within its tolerance {result['tolerance']:.3g}: "
@@ -438,8 +438,8 @@ class ConvexHull:
         other_points = options is not None and (options.interior or options.coplanar)
         scaled = options is not None and bool(options.scalings)
         # Qc, Qi, QG and Qhull's scaling look at the points themselves, on the host (one copy, in double).
-        host = (np.ascontiguousarray(self._host(points), dtype=np.float64)
-                if other_points or good is not None or scaled else None)
+        host: npt.NDArray[np.float64] | None = (np.ascontiguousarray(self._host(points), dtype=np.float64)
+                                                if other_points or good is not None or scaled else None)
         if other_points and host is not None:
             coplanar = self._with_other_points(host, values, coplanar, result["tolerance"])
         values["coplanar"] = index_array(coplanar.reshape(-1, 3), npoints)
@@ -457,8 +457,8 @@ class ConvexHull:
 
     def _good(self, host: npt.NDArray[np.float64], values: dict[str, Any], good: int) -> npt.NDArray[np.bool_]:
         """QGn: the facets point n sees (strictly above their planes, decided exactly); QG-n: the others."""
-        visible = _cudahull.facets_visible(host, np.ascontiguousarray(values["simplices"], dtype=np.int64),
-                                           host[good].copy())
+        visible: npt.NDArray[np.bool_] = np.asarray(_cudahull.facets_visible(host, np.ascontiguousarray(values["simplices"], dtype=np.int64),
+                                           host[good].copy()), dtype=bool)
         assert self._options is not None
         return np.asarray(visible if self._options.good_visible else ~visible, dtype=bool)
 

@@ -20,6 +20,8 @@ from ._arrays import as_points
 
 __all__ = ["convex_hull"]
 
+_delayed: Any = dask.delayed  # type: ignore[attr-defined, unused-ignore]
+
 
 def _chunk_vertices(block: Any, offset: int, backend: str, precision: str,
                     engine: str) -> tuple[npt.NDArray[np.int64], npt.NDArray[Any]]:
@@ -58,15 +60,15 @@ def convex_hull(array: Any, backend: str = "auto", precision: str = "auto", engi
         ``vertex_points`` (the vertices' coordinates, in the order of ``vertices``) and ``candidates`` (how
         many chunk-hull vertices the last hull was computed on).
     """
-    array = dask.array.asarray(array)
+    array = dask.array.asarray(array)  # type: ignore[no-untyped-call, unused-ignore]
     if array.ndim != 2 or array.shape[1] != 3:
         raise ValueError(f"points must be an (n, 3) array of 3-D points, not one of shape {array.shape}")
     if array.numblocks[1] != 1:
         array = array.rechunk({1: 3})  # each chunk holds whole points
     offsets = np.concatenate([[0], np.cumsum(array.chunks[0])[:-1]]).astype(np.int64)
     parts = [
-        dask.delayed(_chunk_vertices)(block, int(offset), backend, precision, engine)
+        _delayed(_chunk_vertices)(block, int(offset), backend, precision, engine)
         for block, offset in zip(array.to_delayed()[:, 0], offsets)
     ]
-    result: dict[str, Any] = dask.delayed(_hull_of_candidates)(parts, backend, precision, engine).compute()
+    result: dict[str, Any] = _delayed(_hull_of_candidates)(parts, backend, precision, engine).compute()
     return result

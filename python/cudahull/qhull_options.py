@@ -201,10 +201,10 @@ def _parse_word(word: str, parsed: ParsedOptions, error: Error) -> None:
             name = "Q" + letter + axis
             bound = -0.5 if letter == "b" else 0.5  # Qhull's default for Qbk, QBk
             if at < len(word) and word[at] == ":":
-                value, at = _number(word, at + 1, name + ":", _NUMBER, error)
-                name += ":" + value
-                bound = float(value) if float(value) != 0 else bound
-                if float(value) == 0 and re.search(rf"B{axis}:0*\.?0*(?![\d.])", word[at:]) and letter == "b":
+                text, at = _number(word, at + 1, name + ":", _NUMBER, error)
+                name += ":" + text
+                bound = float(text) if float(text) != 0 else bound
+                if float(text) == 0 and re.search(rf"B{axis}:0*\.?0*(?![\d.])", word[at:]) and letter == "b":
                     _unknown(name + "B" + axis + ":0", error, word)  # Qbk:0Bk:0: Qhull drops coordinate k
             parsed.words.append(name)
             parsed.scalings.append(("low" if letter == "b" else "high", int(axis), bound))
@@ -219,10 +219,11 @@ def _parse_word(word: str, parsed: ParsedOptions, error: Error) -> None:
             parsed.good_point = abs(int(text))
             parsed.words.append("QG" + text)
         elif letter.isdigit():
-            match = re.compile(r"\d+").match(word, at - 1)
-            at = match.end()
-            if match.group(0) != "12":
-                _unknown("Q" + match.group(0), error, word)
+            digits = re.compile(r"\d+").match(word, at - 1)
+            assert digits is not None  # word[at - 1] is a digit
+            at = digits.end()
+            if digits.group(0) != "12":
+                _unknown("Q" + digits.group(0), error, word)
             parsed.words.append("Q12")
         else:
             _unknown("Q" + letter, error, word)
