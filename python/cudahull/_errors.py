@@ -81,28 +81,27 @@ def too_few_points_error(count: int, ndim: int) -> RuntimeError:
                        f"(need {ndim + 1})")
 
 
-def degenerate_error(points: npt.NDArray[Any], dimension: int, scaled_axes: set[int]) -> RuntimeError:
-    """The error for ``points`` (n, d) whose hull spans only ``dimension`` < d dimensions, with the code and
-    first line Qhull gives for them, in the order Qhull checks: an axis Qhull is told to rescale (QbB,
-    Qbk:n, QBk:n; ``scaled_axes``) holding one value (QH6022), every point the same (QH6421), every x the same
+def degenerate_error(low: npt.NDArray[Any], high: npt.NDArray[Any], dimension: int,
+                     scaled_axes: set[int]) -> RuntimeError:
+    """The error for points (per-axis bounds ``low``, ``high``) whose hull spans only ``dimension`` < d
+    dimensions, with the code and first line Qhull gives for them, in the order Qhull checks: an axis QbB
+    rescales (``scaled_axes``) holding one value (QH6022), every point the same (QH6421), every x the same
     (QH6013), else flat (QH6154)."""
-    ndim = int(points.shape[1])
+    ndim = int(low.shape[0])
     span = f"the points span {dimension} of {ndim} dimensions"
     hint = "cudahull.convex_hull() gives their lower-dimensional hull"
-    if points.shape[0]:
-        low, high = points.min(axis=0), points.max(axis=0)
-        for axis in sorted(scaled_axes):
-            if axis < ndim and low[axis] == high[axis]:
-                return qhull_error(
-                    f"QH6022 qhull input error: {axis}'th dimension's new bounds [-0.5, 0.5] too wide for\n"
-                    f"existing bounds [{low[axis]:2.2g}, {high[axis]:2.2g}]\n\n({span}: every point has the "
-                    f"same {'xyz'[axis] if axis < 3 else f'coordinate {axis}'}; {hint})")
-        if dimension <= 0:
+    for axis in sorted(scaled_axes):
+        if axis < ndim and low[axis] == high[axis]:
             return qhull_error(
-                "QH6421 qhull internal error (qh_maxsimplex): qh.MAXwidth required for qh_maxsimplex.  Used to "
-                f"estimate determinate\n\n(every point is the same point: {hint})")
-        if low[0] == high[0]:
-            return qhull_error(
-                f"QH6013 qhull input error: input is less than {ndim}-dimensional since all points have the "
-                f"same x coordinate {float(low[0]):4.4g}\n\n({span}; {hint})")
+                f"QH6022 qhull input error: {axis}'th dimension's new bounds [-0.5, 0.5] too wide for\n"
+                f"existing bounds [{low[axis]:2.2g}, {high[axis]:2.2g}]\n\n({span}: every point has the "
+                f"same {'xyz'[axis] if axis < 3 else f'coordinate {axis}'}; {hint})")
+    if dimension <= 0:
+        return qhull_error(
+            "QH6421 qhull internal error (qh_maxsimplex): qh.MAXwidth required for qh_maxsimplex.  Used to "
+            f"estimate determinate\n\n(every point is the same point: {hint})")
+    if low[0] == high[0]:
+        return qhull_error(
+            f"QH6013 qhull input error: input is less than {ndim}-dimensional since all points have the "
+            f"same x coordinate {float(low[0]):4.4g}\n\n({span}; {hint})")
     return qhull_error(f"QH6154 Qhull precision error: Initial simplex is flat ({span}; {hint})")

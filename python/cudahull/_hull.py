@@ -406,7 +406,8 @@ class ConvexHull:
                                   f"{widths.min():.3g} thick, within its tolerance {result['tolerance']:.3g}: "
                                   f"flat at that tolerance; tolerance=None gives the exact hull)")
         if result["dimension"] < ndim:
-            raise degenerate_error(self._host(chosen), int(result["dimension"]),
+            low, high = (chosen.min(axis=0), chosen.max(axis=0)) if self._kind is None else self._kind.bounds(chosen)
+            raise degenerate_error(self._host(low), self._host(high), int(result["dimension"]),
                                    self._options.scaled_axes(ndim) if self._options is not None else set())
 
         def original(indices: npt.ArrayLike) -> npt.NDArray[Any]:
