@@ -55,11 +55,25 @@ _ONE_OPTION_GROUPS = {"P": "p", "T": "v"}
 
 
 class ParsedOptions:
-    """What a ``qhull_options`` string asks for.
+    """What a ``qhull_options`` string asks for, as ``parse`` reads it.
 
-    ``good_point``: n of QGn (None without); ``good_visible``: True for QGn, False for QG-n;
-    ``interior``: Qi; ``coplanar``: Qc; ``joggle``: QJ; ``centrum``: the distance of Cn / C-n (None
-    without; 0 for C-0 and A-0); ``words``: the options as read.
+    Attributes
+    ----------
+    good_point : int or None
+        n of QGn (None without).
+    good_visible : bool
+        True for QGn, False for QG-n.
+    interior, coplanar, joggle : bool
+        Qi, Qc, QJ.
+    centrum : float or None
+        The distance of Cn / C-n (None without; 0 for C-0 and A-0).
+    angle_cosine : float or None
+        An's n.
+    words : list of str
+        The options as read.
+    scalings : list of tuple
+        Qhull's scalings in the order given: ("box",) for QbB, ("last",) for Qbb, ("low" or "high", k, n)
+        for Qbk:n and QBk:n.
     """
 
     def __init__(self) -> None:
@@ -128,8 +142,27 @@ class ParsedOptions:
 
 
 def parse(options: str | bytes, error: Error) -> ParsedOptions:
-    """Parses a ``qhull_options`` string (str or bytes); raises ``error`` (QhullError) naming the first
-    option with no meaning here."""
+    """Parses a ``qhull_options`` string as Qhull reads it.
+
+    Parameters
+    ----------
+    options : str or bytes
+        The options, as scipy's ``qhull_options``.
+    error : callable
+        Makes the exception to raise from a message (``QhullError``'s).
+
+    Returns
+    -------
+    ParsedOptions
+        What the options ask for.
+
+    Raises
+    ------
+    TypeError
+        For options that are not a string.
+    Exception
+        ``error``'s, naming the first option with no meaning here.
+    """
     if isinstance(options, bytes):
         options = options.decode("latin-1")
     if not isinstance(options, str):
