@@ -201,9 +201,13 @@ def run_mypy(tmp_path, code):
     pytest.importorskip("mypy", reason="mypy is not installed here")
     path = tmp_path / "user_code.py"
     path.write_text(code)
-    # mypy finds the package on the interpreter's sys.path (PYTHONPATH too), as an installed typed package.
+    # mypy finds the package on the interpreter's sys.path, as an installed typed package: the folder of the
+    # package imported here goes first on PYTHONPATH (absolute: mypy runs in tmp_path).
+    parent = os.path.dirname(os.path.dirname(os.path.abspath(cudahull.__file__)))
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([parent] + [os.path.abspath(p) for p in os.environ.get(
+        "PYTHONPATH", "").split(os.pathsep) if p]))
     return subprocess.run([sys.executable, "-m", "mypy", "--strict", "--no-incremental", "--cache-dir", os.devnull,
-                           str(path)], capture_output=True, text=True, timeout=600, cwd=tmp_path)
+                           str(path)], capture_output=True, text=True, timeout=600, cwd=tmp_path, env=env)
 
 
 def test_mypy_strict_checks_code_using_the_package(tmp_path):
