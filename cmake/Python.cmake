@@ -8,7 +8,9 @@ if(NOT CUDAHULL_PYTHON STREQUAL "OFF")
     # An ASan-instrumented module would need the sanitizer runtime preloaded into the interpreter.
     message(STATUS "Python module: off in a sanitizer build")
   else()
-    find_package(Python 3.9 COMPONENTS Interpreter Development.Module)
+    # SKBUILD_SABI_COMPONENT: Development.SABIModule where the wheel is abi3 (pyproject's wheel.py-api), so
+    # that nanobind's STABLE_ABI builds a module every later Python loads.
+    find_package(Python 3.9 COMPONENTS Interpreter Development.Module ${SKBUILD_SABI_COMPONENT})
     if(Python_FOUND)
       execute_process(COMMAND "${Python_EXECUTABLE}" -m nanobind --cmake_dir
                       OUTPUT_VARIABLE _nanobind_dir OUTPUT_STRIP_TRAILING_WHITESPACE
