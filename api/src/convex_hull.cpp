@@ -440,6 +440,10 @@ ConvexHull hull_in(const std::vector<Point>& points, const HullPlan& plan, const
     hull.resident_stats = std::move(stats);
     return hull;
   }
+  if (plan.small_cloud) {
+    BasicHullMesh<Point> mesh;
+    if (small_hull_host(points.data(), points.size(), mesh)) return describe(mesh, "cpu", options);
+  }
   std::unique_ptr<BasicBackend<Point>> backend =
       plan.backend == BackendChoice::kCuda ? make_cuda_backend<Point>() : make_cpu_backend<Point>();
   std::string name = backend->name();

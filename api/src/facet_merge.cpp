@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "cudahull/detail/plane_impl.hpp"
 #include "cudahull/exact_hull.hpp"
 #include "cudahull/morton.hpp"
 #include "cudahull/parallel.hpp"
@@ -197,6 +198,51 @@ double vertex_height(const std::vector<Point>& points, const Vec3d& v, const std
   return kInfinity;
 }
 
+// Whether v's height over hull(link) (vertex_height()) is certainly above `limit`, found without that hull
+// (which, with its planes, was most of a merge: almost every vertex stands far above its link).  A plane
+// through three link points with every link point on or below it (exact orient3d) and v strictly above is
+// the plane of a facet of hull(link) that v is above, so v's distance to it is at most the height; a lower
+// bound on that distance (the determinant's error by Shewchuk's orient3d bound, the edges' lengths rounded
+// up) beyond the limit plus a margin for the height's own rounding (under 2^-46 of the largest coordinate)
+// decides.  False where no triple shows it: the exact height then decides, as it always did.
+template <class Point>
+bool clearly_above(const std::vector<Point>& points, const Vec3d& v, const std::vector<PointIndex>& link,
+                   double limit) {
+  constexpr std::size_t kMaxLink = 12;  // C(12, 3) triples at most; a larger link takes the exact height
+  const std::size_t k = link.size();
+  if (k < 3 || k > kMaxLink) return false;
+  Vec3d q[kMaxLink];
+  double scale = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+  for (std::size_t j = 0; j < k; ++j) {
+    q[j] = to_vec3d(points[link[j]]);
+    scale = std::max({scale, std::fabs(q[j].x), std::fabs(q[j].y), std::fabs(q[j].z)});
+  }
+  const double needed = limit + 0x1p-40 * scale;
+  auto length_up = [](const Vec3d& a, const Vec3d& b) {
+    const Vec3d d = sub(b, a);
+    return std::sqrt(dot(d, d)) * (1 + 0x1p-40);
+  };
+  for (std::size_t a = 0; a < k; ++a)
+    for (std::size_t b = a + 1; b < k; ++b)
+      for (std::size_t c = b + 1; c < k; ++c) {
+        const int side = orient3d(q[a], q[b], q[c], v);
+        if (side == 0) continue;
+        const Vec3d &pa = q[a], &pb = side > 0 ? q[b] : q[c], &pc = side > 0 ? q[c] : q[b];
+        bool supports = true;
+        for (std::size_t j = 0; j < k && supports; ++j)
+          supports = j == a || j == b || j == c || orient3d(pa, pb, pc, q[j]) <= 0;
+        if (!supports) continue;
+        const detail::DoubleCross cross = detail::double_cross(pa, pb, pc);
+        const Vec3d w = sub(v, pa);
+        const double det = w.x * cross.n[0] + w.y * cross.n[1] + w.z * cross.n[2];
+        const double permanent =
+            std::fabs(w.x) * cross.p[0] + std::fabs(w.y) * cross.p[1] + std::fabs(w.z) * cross.p[2];
+        const double low = det - detail::kO3dErrBoundA * permanent * (1 + 0x1p-40);
+        if (low > 0 && low / (length_up(pa, pb) * length_up(pa, pc)) * (1 - 0x1p-40) > needed) return true;
+      }
+  return false;
+}
+
 // Steps 1-2: drops the vertices of `current` (its vertex_ids index `points`) whose height is within
 // `limit`, in rounds of independent sets, until a round drops nothing or only the flat remains.
 // With an angle (`angle_sine` > 0, Qhull's An), a vertex's limit grows by angle_sine times half its
@@ -234,7 +280,11 @@ void drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Point>& c
             }
             if (angle_sine > 0) reach[i] = first_reach[id];
             if (cached_link[id] != link) {  // each entry is only this chunk's
-              cached_height[id] = vertex_height(points, to_vec3d(current.vertices[i]), link);
+              // Above its limit: never dropped, whatever its exact height (infinity stands for it).
+              const Vec3d v = to_vec3d(current.vertices[i]);
+              cached_height[id] = clearly_above(points, v, link, limit + angle_sine * reach[i] / 2)
+                                      ? kInfinity
+                                      : vertex_height(points, v, link);
               cached_link[id] = link;
             }
             heights[i] = cached_height[id];
