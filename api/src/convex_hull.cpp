@@ -26,6 +26,7 @@
 #include "device_memory.hpp"
 #include "device_points.hpp"
 #include "facet_merge.hpp"
+#include "host_hull.hpp"
 #include "planar_filter.hpp"
 #include "planar_hull.hpp"
 #include "resident_cuda.hpp"
@@ -417,15 +418,17 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
 // The result convex_hull() returns for the exact hull `mesh`, merged where `options` ask for it (a flat hull
 // has nothing to merge).
 template <class Point>
-ConvexHull describe(const BasicHullMesh<Point>& mesh, std::string backend, const ConvexHullOptions& options) {
+ConvexHull describe(const BasicHullMesh<Point>& mesh, std::string backend, const ConvexHullOptions& options,
+                    bool neighbors = true) {
   if (options.merge == MergeMode::kExact || mesh.dimension != 3)
-    return describe_exact(mesh, std::move(backend));
+    return describe_exact(mesh, std::move(backend), neighbors);
   return describe_merged(mesh, std::move(backend), options);
 }
 
 // The hull of checked points in Point, run as `plan` says (plan_hull(): engine and backend definite).
 template <class Point>
-ConvexHull hull_in(const std::vector<Point>& points, const HullPlan& plan, const ConvexHullOptions& options) {
+ConvexHull hull_in(const std::vector<Point>& points, const HullPlan& plan, const ConvexHullOptions& options,
+                   bool neighbors = true) {
   if (!plan.unavailable.empty()) throw DeviceError(plan.unavailable);
   if (plan.engine == EngineChoice::kResident) {
     ResidentStats stats;
@@ -442,14 +445,14 @@ ConvexHull hull_in(const std::vector<Point>& points, const HullPlan& plan, const
   }
   if (plan.small_cloud) {
     BasicHullMesh<Point> mesh;
-    if (small_hull_host(points.data(), points.size(), mesh)) return describe(mesh, "cpu", options);
+    if (small_hull_host(points.data(), points.size(), mesh)) return describe(mesh, "cpu", options, neighbors);
   }
   std::unique_ptr<BasicBackend<Point>> backend =
       plan.backend == BackendChoice::kCuda ? make_cuda_backend<Point>() : make_cpu_backend<Point>();
   std::string name = backend->name();
   BasicEngine<Point> engine(points, std::move(backend), EngineOptions{.keep_decisions = false});
   engine.run();
-  return describe(engine.result(), std::move(name), options);
+  return describe(engine.result(), std::move(name), options, neighbors);
 }
 
 template <class Scalar>
@@ -471,7 +474,7 @@ ConvexHull wide_hull(const std::vector<Point3d>& points, const ConvexHullOptions
 // plan's precision, then planned with their range known.
 template <class Coordinate>
 ConvexHull checked_hull(std::size_t count, Coordinate coordinate, Precision own,
-                        const ConvexHullOptions& options) {
+                        const ConvexHullOptions& options, bool neighbors = true) {
   HullInput input;
   input.precision = own;
   input.count = count;
@@ -480,9 +483,10 @@ ConvexHull checked_hull(std::size_t count, Coordinate coordinate, Precision own,
     input.outside_exact_range = !in_fast_exact_range(points);
     const HullPlan plan = plan_hull(options, input, cuda_presence);
     if (plan.wide_range) return wide_hull(points, options);
-    return hull_in(points, plan, options);
+    return hull_in(points, plan, options, neighbors);
   }
-  return hull_in(copy_checked<Point3>(count, coordinate), plan_hull(options, input, cuda_presence), options);
+  return hull_in(copy_checked<Point3>(count, coordinate), plan_hull(options, input, cuda_presence), options,
+                 neighbors);
 }
 
 // The hull of points that only the current device holds, in Point: checked (and converted) there, then
@@ -552,7 +556,8 @@ ConvexHull device_hull(const Scalar* device_xyz, std::size_t count, Precision ow
 // copy of them (it reads back the few coordinates its exact checks need), and the copy would cost more
 // than the hull.  Otherwise they are checked into a host copy.
 template <class Scalar>
-ConvexHull array_hull(const Scalar* xyz, std::size_t count, Precision own, const ConvexHullOptions& options) {
+ConvexHull array_hull(const Scalar* xyz, std::size_t count, Precision own, const ConvexHullOptions& options,
+                      bool neighbors = true) {
   HullInput input;
   input.precision = own;
   input.count = count;
@@ -561,7 +566,7 @@ ConvexHull array_hull(const Scalar* xyz, std::size_t count, Precision own, const
     const std::shared_ptr<void> copy = upload_to_device(xyz, count * 3 * sizeof(Scalar));
     return device_hull(static_cast<const Scalar*>(copy.get()), count, own, options);
   }
-  return checked_hull(count, array_coordinate(xyz), own, options);
+  return checked_hull(count, array_coordinate(xyz), own, options, neighbors);
 }
 
 template <class Point>
@@ -944,6 +949,16 @@ ConvexHull convex_hull(const float* xyz, std::size_t count, const ConvexHullOpti
 
 ConvexHull convex_hull(const double* xyz, std::size_t count, const ConvexHullOptions& options) {
   return array_hull(xyz, count, Precision::kDouble, options);
+}
+
+ConvexHull convex_hull_without_neighbors(const float* xyz, std::size_t count,
+                                         const ConvexHullOptions& options) {
+  return array_hull(xyz, count, Precision::kFloat, options, false);
+}
+
+ConvexHull convex_hull_without_neighbors(const double* xyz, std::size_t count,
+                                         const ConvexHullOptions& options) {
+  return array_hull(xyz, count, Precision::kDouble, options, false);
 }
 
 ConvexHull convex_hull_device(const float* device_xyz, std::size_t count, const ConvexHullOptions& options) {

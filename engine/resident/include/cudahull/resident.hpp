@@ -88,8 +88,10 @@ BasicHullMesh<Point> resident_hull_host(const std::vector<Point>& points, Reside
                                         ResidentPath path = ResidentPath::kHost,
                                         bool executor_points_only = false);
 
-// The clouds small_hull_host() takes: up to the batch kernel's warp clouds (cuda/batch_cuda.cu, kWarpPoints).
-inline constexpr std::size_t kSmallHullPoints = 256;
+// The clouds small_hull_host() takes.  Its cost grows with vertices times faces: on a sphere (every point a
+// vertex) it matches the stepping engine at about 150 points and loses beyond (1.14 ms against 0.92 at 256 on
+// 2 cores); on a ball's 256 points it takes a third of the engine's time.
+inline constexpr std::size_t kSmallHullPoints = 128;
 
 // The exact hull of `count` points (4..kSmallHullPoints) on the calling thread by the batch warps' hull
 // (resident/small_hull.hpp on HostTeam, its workspace kept per thread): the batch kernel's mesh for the
