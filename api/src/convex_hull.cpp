@@ -393,6 +393,7 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
   for (std::size_t k = 0; k < local.vertex_ids.size(); ++k)
     local.vertex_ids[k] = static_cast<PointIndex>(k);
   const double cosine = std::clamp(options.angle_cosine, 0.0, 1.0);
+  PhaseLaps laps("describe_merged");  // CUDAHULL_PHASE_TIMES=1
   const MergedHull merged = merge_facets(mesh.vertices, local, merge_tolerance(mesh.vertices, options),
                                          std::sqrt(1 - cosine * cosine));
   ConvexHull hull;
@@ -407,9 +408,12 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
   // merged's indices are positions in mesh.vertices (local's ids): its faces are the mesh's triangles.
   for (const Triangle& face : merged.faces)
     hull.faces.push_back({mesh.vertex_ids[face[0]], mesh.vertex_ids[face[1]], mesh.vertex_ids[face[2]]});
+  laps.lap("merge and faces");
   measure_solid(mesh.vertices, merged.faces, hull);
+  laps.lap("measures");
   hull.planes = merged.planes;
   hull.neighbors = face_neighbors(merged.faces, mesh.vertices.size());
+  laps.lap("planes and neighbours");
   for (const auto& row : merged.coplanar)
     hull.coplanar.push_back({mesh.vertex_ids[row[0]], row[1], mesh.vertex_ids[row[2]]});
   return hull;
