@@ -402,6 +402,7 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
   hull.backend = std::move(backend);
   hull.tolerance = merged.tolerance;
   hull.max_outside = merged.max_outside;
+  hull.thinnest = merged.thinnest;
   for (PointIndex v : merged.vertices)
     hull.vertices.push_back(mesh.vertex_ids[v]);
   std::sort(hull.vertices.begin(), hull.vertices.end());

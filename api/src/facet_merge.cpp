@@ -615,6 +615,55 @@ std::vector<double> kept_bounds(const BasicHullMesh<Point>& hull, const EdgeInde
   return bounds;
 }
 
+// MergedHull::thinnest: per facet, the depth of the vertices' centroid below its plane, which no vertex
+// falls short of; within `near` of the plane (a thin hull), the deepest vertex itself, by an ascent along
+// hull(S)'s edges against the plane's normal with exact comparisons (as kept_bounds()).
+template <class Point>
+double thinnest(const BasicHullMesh<Point>& hull, const EdgeIndex& edges, const std::vector<Plane>& planes,
+                const std::vector<std::uint32_t>& starts, double near) {
+  if (planes.empty()) return kInfinity;
+  std::vector<Vec3d> at(hull.vertices.size());
+  Vec3d centroid{0, 0, 0};
+  bool coordinates_safe = true;
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    at[i] = to_vec3d(hull.vertices[i]);
+    centroid = {centroid.x + at[i].x, centroid.y + at[i].y, centroid.z + at[i].z};
+    coordinates_safe =
+        coordinates_safe && coordinate_safe(at[i].x) && coordinate_safe(at[i].y) && coordinate_safe(at[i].z);
+  }
+  const double count = static_cast<double>(at.size());
+  centroid = {centroid.x / count, centroid.y / count, centroid.z / count};
+  const unsigned workers = hardware_workers();
+  std::vector<double> least(workers, kInfinity);
+  parallel_chunks(
+      planes.size(), workers,
+      [&](std::size_t begin, std::size_t end, unsigned worker) {
+        for (std::size_t f = begin; f < end; ++f) {
+          const Plane& plane = planes[f];
+          double depth = -plane_value(plane, centroid);
+          if (depth <= near) {
+            const Plane against{-plane[0], -plane[1], -plane[2], plane[3]};
+            if (!coordinates_safe || !plane_safe(plane)) {
+              for (const Vec3d& p : at)
+                depth = std::max(depth, -plane_value(plane, p));
+            } else {
+              std::uint32_t v = starts[f];
+              for (bool moved = true; moved;) {
+                moved = false;
+                for (std::uint32_t k = 0; k < edges.degree(v) && !moved; ++k)
+                  if (const std::uint32_t q = edges.neighbour(v, k); compare_along(against, at[q], at[v]) > 0)
+                    v = q, moved = true;  // deeper, exactly: the descent ends
+              }
+              depth = -plane_value(plane, at[v]);
+            }
+          }
+          least[worker] = std::min(least[worker], depth);
+        }
+      },
+      64);
+  return *std::min_element(least.begin(), least.end());
+}
+
 // The dropped points: a bounding-box tree over them, searched per plane from the kept vertices' bound.  A
 // box is skipped when no point in it can exceed the best bound so far: every p in it is within R of the
 // box's computed centre c (R: half the computed diagonal plus the centre's rounding, inflated), so
@@ -808,6 +857,8 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
     if (facets.seeds[facets.facet_of[t]] == t) in_mesh_order.push_back(facets.facet_of[t]);
   const std::vector<double> kept_bound = kept_bounds(current, edges, facets.planes, starts, in_mesh_order);
   laps.lap("kept bound");
+  merged.thinnest = thinnest(current, edges, facets.planes, starts, 4 * tolerance);
+  laps.lap("thinnest");
   std::vector<Vec3d> dropped_points;
   for (std::uint32_t i : dropped)
     dropped_points.push_back(to_vec3d(vertices[i]));
