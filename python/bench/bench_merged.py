@@ -1,7 +1,8 @@
 """The merged path (trimesh's options) against Qhull on the CPU, per call from NumPy.
 
 Times ``scipy.spatial.ConvexHull(points, qhull_options=OPTIONS)``, ``cudahull.ConvexHull`` with the same
-options (the merged path) and ``cudahull.ConvexHull(points)`` (the exact path), best of ``--repeat`` calls
+options (the merged path), the merged path's C++ call alone (``_cudahull.convex_hull``: what the Python layer
+adds is the difference) and ``cudahull.ConvexHull(points)`` (the exact path), best of ``--repeat`` calls
 each, on the rows of issue 42's table, and prints each hull's vertex count and the merged hull's certificate
 (``max_outside``).  The module comes from PYTHONPATH; the backend is the CPU's.
 
@@ -67,19 +68,24 @@ def main():
     a = ap.parse_args()
 
     table = rows()
-    print(f"cudahull from {os.path.dirname(cudahull.__file__)}; options {a.options!r}; best of {a.repeat}")
-    print(f"{'input':<28}{'points':>9}{'Qhull':>11}{'merged':>11}{'exact':>11}{'merged/Qhull':>14}"
+    print(f"cudahull from {os.path.dirname(cudahull.__file__)}; options {a.options!r}; best of {a.repeat} "
+          f"({20 * a.repeat} up to 10,000 points)")
+    print(f"{'input':<28}{'points':>9}{'Qhull':>11}{'merged':>11}{'C++ alone':>11}{'exact':>11}{'merged/Qhull':>14}"
           f"{'V qhull':>9}{'V merged':>9}{'V exact':>9}  max_outside")
     for key in a.rows.split(","):
         name, points = table[key]
+        repeat = a.repeat * (20 if len(points) <= 10_000 else 1)  # a call of microseconds: more tries
         # One untimed call each first: imports, the worker pool, the allocator.
         scipy.spatial.ConvexHull(points, qhull_options=a.options)
         cudahull.ConvexHull(points, qhull_options=a.options, backend="cpu")
-        qhull, t_qhull = best(lambda: scipy.spatial.ConvexHull(points, qhull_options=a.options), a.repeat)
+        qhull, t_qhull = best(lambda: scipy.spatial.ConvexHull(points, qhull_options=a.options), repeat)
         merged, t_merged = best(lambda: cudahull.ConvexHull(points, qhull_options=a.options, backend="cpu"),
-                                a.repeat)
-        exact, t_exact = best(lambda: cudahull.ConvexHull(points, backend="cpu"), a.repeat)
-        print(f"{name:<28}{len(points):>9}{shown(t_qhull):>11}{shown(t_merged):>11}{shown(t_exact):>11}"
+                                repeat)
+        _, t_module = best(lambda: cudahull._cudahull.convex_hull(points, "cpu", "auto", "auto", "qhull", 0.0, 1.0),
+                           repeat)
+        exact, t_exact = best(lambda: cudahull.ConvexHull(points, backend="cpu"), repeat)
+        print(f"{name:<28}{len(points):>9}{shown(t_qhull):>11}{shown(t_merged):>11}{shown(t_module):>11}"
+              f"{shown(t_exact):>11}"
               f"{t_merged / t_qhull:>13.2f}x{len(qhull.vertices):>9}{len(merged.vertices):>9}"
               f"{len(exact.vertices):>9}  {merged.max_outside:.3g}")
 
