@@ -214,7 +214,7 @@ std::array<double, 4> facet_plane(Vec3d a, Vec3d b, Vec3d c) {
           3, [&](std::size_t k) { return corners[k]; }, &scale)) {
     std::array<double, 4> plane;
     detail::facet_plane_in_range(scaled_by(a, scale), scaled_by(b, scale), scaled_by(c, scale), plane.data());
-    plane[3] = std::ldexp(plane[3], scale);
+    if (scale != 0) plane[3] = std::ldexp(plane[3], scale);  // a library call a face otherwise
     return plane;
   }
   // Corners more than 2^500 apart in magnitude: the cross product in long double (wide_cross()), rounded.
@@ -291,8 +291,8 @@ void measure_solid(const std::vector<Point>& vertices, const std::vector<Triangl
     };
     const detail::SolidMeasures measures =
         measure_on_cores(triangles.size(), corner, scaled_by(vertex(triangles[0][0]), scale));
-    hull.volume = std::ldexp(measures.volume(), 3 * scale);
-    hull.area = std::ldexp(measures.area(), 2 * scale);
+    hull.volume = scale == 0 ? measures.volume() : std::ldexp(measures.volume(), 3 * scale);
+    hull.area = scale == 0 ? measures.area() : std::ldexp(measures.area(), 2 * scale);
     return;
   }
   // Vertices more than 2^500 apart in magnitude: long double, from the same apex (no term negative).
@@ -955,6 +955,47 @@ ConvexHull convex_hull(const float* xyz, std::size_t count, const ConvexHullOpti
 ConvexHull convex_hull(const double* xyz, std::size_t count, const ConvexHullOptions& options) {
   return array_hull(xyz, count, Precision::kDouble, options);
 }
+
+namespace {
+
+// small_cloud_hull() in Point: the points read into this thread's buffer (rejection() converts them as
+// copy_checked() does), the small hull into this thread's mesh, described as hull_in() describes it.
+template <class Point, class Scalar>
+bool small_cloud_in(const Scalar* xyz, std::size_t count, ConvexHull& hull) {
+  thread_local std::vector<Point> points;
+  thread_local BasicHullMesh<Point> mesh;
+  points.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const double widened[3] = {static_cast<double>(xyz[3 * i]), static_cast<double>(xyz[3 * i + 1]),
+                               static_cast<double>(xyz[3 * i + 2])};
+    int axis = 0;
+    if (rejection(widened, axis, points[i])) return false;
+  }
+  if constexpr (std::is_same_v<Point, Point3d>) {
+    if (!in_fast_exact_range(points.data(), count)) return false;
+  }
+  if (!small_hull_host(points.data(), count, mesh)) return false;
+  hull = describe_exact(mesh, "cpu", false);
+  return true;
+}
+
+}  // namespace
+
+template <class Scalar>
+bool small_cloud_hull(const Scalar* xyz, std::size_t count, const ConvexHullOptions& options,
+                      ConvexHull& hull) {
+  // As plan_hull() sets small_cloud, for a request whose backend and precision the batch has resolved.
+  if (options.merge != MergeMode::kExact || options.engine != EngineChoice::kAuto ||
+      options.backend != BackendChoice::kCpu || count < 4 || count > kSmallHullPoints)
+    return false;
+  const Precision own = std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat;
+  if (plan_precision(options.precision, own).precision == Precision::kDouble)
+    return small_cloud_in<Point3d>(xyz, count, hull);
+  return small_cloud_in<Point3>(xyz, count, hull);
+}
+
+template bool small_cloud_hull(const float*, std::size_t, const ConvexHullOptions&, ConvexHull&);
+template bool small_cloud_hull(const double*, std::size_t, const ConvexHullOptions&, ConvexHull&);
 
 ConvexHull convex_hull_without_neighbors(const float* xyz, std::size_t count,
                                          const ConvexHullOptions& options) {

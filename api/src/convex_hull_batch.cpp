@@ -462,12 +462,21 @@ ConvexHullBatch host_batch(const Scalar* xyz, std::size_t count, const std::size
   return pack(std::move(hulls), plan.precision);
 }
 
+// A cloud's hull on the host: the small-cloud path where it takes the cloud, else convex_hull()'s (without
+// the neighbours, which the batch does not keep); the same hull either way.
+template <class Scalar>
+ConvexHull cloud_hull(const Scalar* xyz, std::size_t n, const ConvexHullOptions& each) {
+  ConvexHull hull;
+  if (small_cloud_hull(xyz, n, each, hull)) return hull;
+  return convex_hull_without_neighbors(xyz, n, each);
+}
+
 template <class Scalar>
 ConvexHullBatch array_batch(const Scalar* xyz, std::size_t count, const std::size_t* offsets,
                             std::size_t clouds, const ConvexHullBatchOptions& options) {
   return host_batch(xyz, count, offsets, clouds, options,
                     [xyz](std::size_t begin, std::size_t n, const ConvexHullOptions& each) {
-                      return convex_hull_without_neighbors(xyz + 3 * begin, n, each);
+                      return cloud_hull(xyz + 3 * begin, n, each);
                     });
 }
 
@@ -482,8 +491,7 @@ ConvexHullBatch vector_batch(const std::vector<Point>& points, const std::vector
                     offsets.size() - 1, options,
                     [&points](std::size_t begin, std::size_t n, const ConvexHullOptions& each) {
                       // The packed coordinates in place: convex_hull()'s array form reads the same values.
-                      return convex_hull_without_neighbors(
-                          reinterpret_cast<const Scalar*>(points.data()) + 3 * begin, n, each);
+                      return cloud_hull(reinterpret_cast<const Scalar*>(points.data()) + 3 * begin, n, each);
                     });
 }
 

@@ -15,4 +15,13 @@ ConvexHull convex_hull_without_neighbors(const float* xyz, std::size_t count,
 ConvexHull convex_hull_without_neighbors(const double* xyz, std::size_t count,
                                          const ConvexHullOptions& options);
 
+// The batch's fast path for a small cloud on the CPU: convex_hull_without_neighbors()'s hull, bit for bit,
+// where plan_hull() would take the small-cloud hull (`options` as the batch resolved them: backend cpu,
+// engine auto, no merging; 4 to kSmallHullPoints points) and it succeeds, read without a copy of the points,
+// a plan or an allocation but the result's.  False (`hull` untouched) otherwise, a bad coordinate included:
+// convex_hull_without_neighbors() then, which names it.
+template <class Scalar>
+bool small_cloud_hull(const Scalar* xyz, std::size_t count, const ConvexHullOptions& options,
+                      ConvexHull& hull);
+
 }  // namespace cudahull
