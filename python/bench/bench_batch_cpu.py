@@ -2,7 +2,7 @@
 
 Times ``cudahull.convex_hull_batch(points, offsets, backend="cpu")`` on B clouds of 6 to 40 points (sizes
 and points seeded; normal points, so that scipy's vertex sets are exact) against a loop of
-``scipy.spatial.ConvexHull`` over the same clouds, best of ``--repeat`` each, and checks every cloud's
+``scipy.spatial.ConvexHull`` over the same clouds, best of ``--repeat`` each (taken in turn), and checks every cloud's
 vertex set against scipy's.  The module comes from PYTHONPATH.
 
     PYTHONPATH=build/python python3 python/bench/bench_batch_cpu.py [--clouds 10000] [--low 6] [--high 40]
@@ -18,13 +18,16 @@ import scipy.spatial
 import cudahull
 
 
-def best(fn, repeat):
-    out, times = None, []
+def best_of(fns, repeat):
+    """Each function's result and best time over `repeat` rounds, the functions taken in turn within a round
+    (a busy machine slows them alike)."""
+    results, times = [None] * len(fns), [float("inf")] * len(fns)
     for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t0)
-    return out, min(times)
+        for k, fn in enumerate(fns):
+            t0 = time.perf_counter()
+            results[k] = fn()
+            times[k] = min(times[k], time.perf_counter() - t0)
+    return results, times
 
 
 def main():
@@ -44,9 +47,10 @@ def main():
     clouds = [points[offsets[c]:offsets[c + 1]] for c in range(a.clouds)]
 
     cudahull.convex_hull_batch(points[:offsets[10]], offsets[:11], backend="cpu")  # warm: the worker pool
-    hulls, t_batch = best(lambda: cudahull.convex_hull_batch(points, offsets, backend="cpu", threads=a.threads),
-                          a.repeat)
-    loop, t_scipy = best(lambda: [scipy.spatial.ConvexHull(cloud) for cloud in clouds], a.repeat)
+    (hulls, loop), (t_batch, t_scipy) = best_of([
+        lambda: cudahull.convex_hull_batch(points, offsets, backend="cpu", threads=a.threads),
+        lambda: [scipy.spatial.ConvexHull(cloud) for cloud in clouds],
+    ], a.repeat)
     wrong = sum(not np.array_equal(hulls.vertices[hulls.vertex_offsets[c]:hulls.vertex_offsets[c + 1]],
                                    np.sort(loop[c].vertices)) for c in range(a.clouds))
     print(f"cudahull from {os.path.dirname(cudahull.__file__)}; {os.cpu_count()} cores; best of {a.repeat}")

@@ -3,7 +3,7 @@
 Times ``scipy.spatial.ConvexHull(points, qhull_options=OPTIONS)``, ``cudahull.ConvexHull`` with the same
 options (the merged path), the merged path's C++ call alone (``_cudahull.convex_hull``: what the Python layer
 adds is the difference) and ``cudahull.ConvexHull(points)`` (the exact path), best of ``--repeat`` calls
-each, on the rows of issue 42's table, and prints each hull's vertex count and the merged hull's certificate
+each (the four taken in turn within each round), on the rows of issue 42's table, and prints each hull's vertex count and the merged hull's certificate
 (``max_outside``).  The module comes from PYTHONPATH; the backend is the CPU's.
 
     PYTHONPATH=build/python python3 python/bench/bench_merged.py [--repeat 5] [--options "QbB Pp Qt"]
@@ -46,13 +46,16 @@ def rows():
     }
 
 
-def best(fn, repeat):
-    out, times = None, []
+def best_of(fns, repeat):
+    """Each function's result and best time over `repeat` rounds, the functions taken in turn within a round
+    (a busy machine slows them alike, not whichever ran during the busy spell)."""
+    results, times = [None] * len(fns), [float("inf")] * len(fns)
     for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t0)
-    return out, min(times)
+        for k, fn in enumerate(fns):
+            t0 = time.perf_counter()
+            results[k] = fn()
+            times[k] = min(times[k], time.perf_counter() - t0)
+    return results, times
 
 
 def shown(seconds):
@@ -78,12 +81,12 @@ def main():
         # One untimed call each first: imports, the worker pool, the allocator.
         scipy.spatial.ConvexHull(points, qhull_options=a.options)
         cudahull.ConvexHull(points, qhull_options=a.options, backend="cpu")
-        qhull, t_qhull = best(lambda: scipy.spatial.ConvexHull(points, qhull_options=a.options), repeat)
-        merged, t_merged = best(lambda: cudahull.ConvexHull(points, qhull_options=a.options, backend="cpu"),
-                                repeat)
-        _, t_module = best(lambda: cudahull._cudahull.convex_hull(points, "cpu", "auto", "auto", "qhull", 0.0, 1.0),
-                           repeat)
-        exact, t_exact = best(lambda: cudahull.ConvexHull(points, backend="cpu"), repeat)
+        (qhull, merged, _, exact), (t_qhull, t_merged, t_module, t_exact) = best_of([
+            lambda: scipy.spatial.ConvexHull(points, qhull_options=a.options),
+            lambda: cudahull.ConvexHull(points, qhull_options=a.options, backend="cpu"),
+            lambda: cudahull._cudahull.convex_hull(points, "cpu", "auto", "auto", "qhull", 0.0, 1.0),
+            lambda: cudahull.ConvexHull(points, backend="cpu"),
+        ], repeat)
         print(f"{name:<28}{len(points):>9}{shown(t_qhull):>11}{shown(t_merged):>11}{shown(t_module):>11}"
               f"{shown(t_exact):>11}"
               f"{t_merged / t_qhull:>13.2f}x{len(qhull.vertices):>9}{len(merged.vertices):>9}"
