@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <stdexcept>
@@ -18,9 +19,11 @@
 #include "cudahull/convex_hull.hpp"
 #include "cudahull/convex_hull_batch.hpp"
 #include "cudahull/errors.hpp"
+#include "cudahull/exact_hull.hpp"
 #include "cudahull/generators.hpp"
 #include "cudahull/parallel.hpp"
 #include "cudahull/predicates.hpp"
+#include "cudahull/resident.hpp"
 #include "qhull_reference.hpp"
 #include "support/cli_runner.hpp"
 
@@ -404,6 +407,84 @@ TEST(ConvexHullBatch, TinyDegenerateCloudsMatchTheBruteForce) {
   }
   for (int d = 1; d <= 3; ++d)
     EXPECT_GT(dimensions_seen[d + 1], 0) << "dimension " << d;
+}
+
+// The small-cloud path (small_hull_host(): what convex_hull() and so the batch take on the CPU for 4 to
+// kSmallHullPoints points) against the exact reference, exact_hull(), on seeded clouds of every kind
+// (coplanar faces full of points, flat, collinear, repeated points, pyramids over a flat base full of
+// points, 4 points): the same vertex set, and a closed outward mesh with every point on or below every face
+// (exact orient3d); a flat cloud is handed on.  Then the batch: each cloud's vertices the reference's and,
+// where the small path took it, its faces that mesh's.
+TEST(ConvexHullBatch, SmallCloudPathIsTheExactHull) {
+  Random random(4242);
+  MixedBatch small;
+  std::vector<std::vector<std::array<PointIndex, 3>>> small_faces;
+  std::size_t taken = 0, flat = 0;
+  for (std::size_t c = 0; c < 1500; ++c) {
+    const Kind kind = static_cast<Kind>(c % kKinds);
+    const std::size_t n = c % 13 == 0 ? 4 : 4 + random.below(kSmallHullPoints - 4);
+    std::vector<Point3> cloud = cloud_of(kind, n, 9000 + c, random);
+    if (kind == kFlat && c % 2 == 0) cloud.push_back({3, -2, 500});  // a pyramid's apex over the flat base
+    SCOPED_TRACE("cloud " + std::to_string(c) + " of kind " + std::to_string(kind) + ", " +
+                 std::to_string(cloud.size()) + " points");
+    const HullMesh exact = exact_hull(cloud);
+    HullMesh mesh;
+    std::vector<std::array<PointIndex, 3>> faces;
+    if (small_hull_host(cloud.data(), cloud.size(), mesh)) {
+      ++taken;
+      ASSERT_EQ(mesh.dimension, 3);
+      std::vector<PointIndex> sorted = mesh.vertex_ids;
+      std::sort(sorted.begin(), sorted.end());
+      EXPECT_EQ(sorted, exact.vertex_ids);
+      EXPECT_EQ(mesh.triangles.size() + 4, 2 * mesh.vertices.size());  // Euler, for a closed sphere
+      std::map<std::pair<PointIndex, PointIndex>, int> edges;          // each directed edge once
+      for (const Triangle& t : mesh.triangles) {
+        const Vec3d a = to_vec3d(mesh.vertices[t[0]]), b = to_vec3d(mesh.vertices[t[1]]),
+                    c3 = to_vec3d(mesh.vertices[t[2]]);
+        EXPECT_FALSE(collinear3d(a, b, c3));
+        for (const Point3& p : cloud)
+          EXPECT_LE(orient3d(a, b, c3, to_vec3d(p)), 0) << "a point above a face";
+        faces.push_back({mesh.vertex_ids[t[0]], mesh.vertex_ids[t[1]], mesh.vertex_ids[t[2]]});
+        for (int k = 0; k < 3; ++k)
+          ++edges[{mesh.vertex_ids[t[k]], mesh.vertex_ids[t[(k + 1) % 3]]}];
+      }
+      for (const auto& [edge, count] : edges) {
+        EXPECT_EQ(count, 1);
+        EXPECT_EQ(edges.count({edge.second, edge.first}), 1u) << "an open edge";
+      }
+      for (std::size_t k = 0; k < mesh.vertices.size(); ++k)
+        EXPECT_EQ(mesh.vertices[k], cloud[mesh.vertex_ids[k]]);
+      // The same cloud in double: the same values, so the same mesh.
+      std::vector<Point3d> wide;
+      for (const Point3& p : cloud)
+        wide.push_back({p.x, p.y, p.z});
+      HullMeshd in_double;
+      ASSERT_TRUE(small_hull_host(wide.data(), wide.size(), in_double));
+      EXPECT_EQ(in_double.vertex_ids, mesh.vertex_ids);
+      EXPECT_EQ(in_double.triangles, mesh.triangles);
+    } else {
+      // Handed on: a flat cloud always is; a cloud in general position never.
+      EXPECT_FALSE(kind == kCube || kind == kBall || kind == kSphere || kind == kGauss);
+    }
+    if (exact.dimension < 3) {
+      ++flat;
+      EXPECT_TRUE(faces.empty()) << "a flat cloud taken by the small path";
+    }
+    small.add(cloud, kind);
+    small_faces.push_back(std::move(faces));
+  }
+  EXPECT_GE(taken, 900u);
+  EXPECT_GE(flat, 200u);
+
+  const ConvexHullBatch batch = convex_hull_batch(small.points, small.offsets, on_cpu());
+  expect_each_cloud_is_its_own_hull(small.points, small.offsets, batch, on_cpu().hull);
+  for (std::size_t c = 0; c < batch.size(); ++c) {
+    SCOPED_TRACE("cloud " + std::to_string(c));
+    EXPECT_EQ(slice(batch.vertices, batch.vertex_offsets[c], batch.vertex_offsets[c + 1]),
+              exact_hull(small.cloud(c)).vertex_ids);
+    if (!small_faces[c].empty())
+      EXPECT_EQ(slice(batch.faces, batch.face_offsets[c], batch.face_offsets[c + 1]), small_faces[c]);
+  }
 }
 
 // The result is the same on one thread, two, every core and more threads than cores.

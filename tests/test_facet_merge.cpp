@@ -416,6 +416,61 @@ TEST(FacetMerge, TinyToleranceChangesNothingOnBallsAndSpheres) {
   }
 }
 
+// MergedHull::thinnest (Qhull's flatness test, QH6154) against the brute force, max over the merged hull's
+// vertices of -(n . p + d) per facet, min over facets: within rounding of it on slabs a few ulps to a few
+// tolerances thick; on a ball, above 4 x the tolerance and at most the brute force (a lower bound there).
+TEST(FacetMerge, ThinnestIsTheLeastDepthBelowAFacet) {
+  Rng r(17);
+  const auto brute_force = [](const std::vector<Point3d>& points, const MergedHull& merged) {
+    double least = INFINITY;
+    for (const auto& plane : merged.planes) {
+      double depth = -INFINITY;
+      for (PointIndex v : merged.vertices) {
+        const Point3d& p = points[v];
+        depth = std::max(depth, -(plane[0] * p.x + plane[1] * p.y + plane[2] * p.z + plane[3]));
+      }
+      least = std::min(least, depth);
+    }
+    return least;
+  };
+  int thin = 0, thick = 0;
+  for (const double thickness : {1e-16, 1e-15, 3e-15, 2e-14, 1e-13}) {
+    SCOPED_TRACE("thickness " + std::to_string(thickness));
+    // A tilted slab of 300 points: z = x / 3 - y / 5 + thickness times a number in [0, 1].
+    std::vector<Point3d> slab;
+    for (int i = 0; i < 300; ++i) {
+      const double x = r.unit(), y = r.unit();
+      slab.push_back({x, y, x / 3 - y / 5 + thickness * uniform(r)});
+    }
+    const HullMeshd exact = exact_hull(slab);
+    ASSERT_EQ(exact.dimension, 3);
+    const double tolerance = qhull_default_tolerance(slab);
+    const MergedHull merged = merge_facets(slab, exact, tolerance);
+    const double expected = brute_force(slab, merged);
+    if (expected <= 4 * tolerance) {
+      ++thin;
+      EXPECT_NEAR(merged.thinnest, expected, 1e-16);
+    } else {
+      ++thick;
+      EXPECT_GT(merged.thinnest, 4 * tolerance);
+      EXPECT_LE(merged.thinnest, expected + 1e-16);
+    }
+  }
+  EXPECT_GE(thin, 2);  // both branches met
+  EXPECT_GE(thick, 1);
+  std::vector<Point3d> ball;
+  while (ball.size() < 2000) {
+    const Point3d q{r.unit(), r.unit(), r.unit()};
+    if (q.x * q.x + q.y * q.y + q.z * q.z <= 1) ball.push_back(q);
+  }
+  const HullMeshd exact = exact_hull(ball);
+  const double tolerance = qhull_default_tolerance(ball);
+  const MergedHull merged = merge_facets(ball, exact, tolerance);
+  EXPECT_GT(merged.thinnest, 4 * tolerance);
+  EXPECT_LE(merged.thinnest, brute_force(ball, merged) + 1e-15);
+  EXPECT_GT(merged.thinnest, 0.5);  // the centroid lies deep inside a ball of radius about 1
+}
+
 // A tolerance beyond the part's thickness: merging stops before the hull turns flat.
 TEST(FacetMerge, NeverMergesDownToFlat) {
   Rng r(9);

@@ -19,6 +19,7 @@
 #include <random>
 #include <vector>
 
+#include "cudahull/detail/plane_impl.hpp"
 #include "cudahull/predicates.hpp"
 
 namespace cudahull {
@@ -321,6 +322,39 @@ TEST(CrossRounded, EveryComponentIsTheExactValueRoundedToNearest) {
     check(p[0], p[1], p[2]);
   }
   EXPECT_EQ(checked, 400 + 3 * 4000 + 20000);
+}
+
+// The host's double-double path (rounded_minor_fast()) against the exact expansion's rounding, on random
+// doubles (where it answers: two-component differences, no cancellation) and on the cases above that it
+// must leave to the exact path (ties, near-ties and cancellations: it may decline, never differ).
+TEST(CrossRounded, FastMinorIsTheExactRoundingWhereItAnswers) {
+  std::mt19937_64 rng(12);
+  std::normal_distribution<double> normal;
+  int answered = 0, declined = 0;
+  const auto check = [&](double a, double b, double c, double d, double e, double f, double g, double h) {
+    const detail::Pair uj = detail::exact_diff(a, b), vk = detail::exact_diff(c, d),
+                       uk = detail::exact_diff(e, f), vj = detail::exact_diff(g, h);
+    double fast = 0;
+    if (!detail::rounded_minor_fast(uj, vk, uk, vj, &fast)) {
+      ++declined;
+      return;
+    }
+    ++answered;
+    ASSERT_EQ(std::bit_cast<std::uint64_t>(fast + 0.0),
+              std::bit_cast<std::uint64_t>(detail::rounded_minor_exact(uj, vk, uk, vj)));
+  };
+  for (int k = 0; k < 200000; ++k)
+    check(normal(rng), normal(rng), normal(rng), normal(rng), normal(rng), normal(rng), normal(rng),
+          normal(rng));
+  EXPECT_GT(answered, 199000);  // the fast path is the common one
+  // Products that cancel to a few ulps, and near-ties: one ulp off the operands of an exact cancellation.
+  std::uniform_int_distribution<int> ulps(-2, 2);
+  for (int k = 0; k < 200000; ++k) {
+    const double x = normal(rng), y = normal(rng);
+    const auto off = [&](double v) { return v + ulps(rng) * std::ldexp(std::fabs(v), -52); };
+    check(off(x), 0.0, off(y), 0.0, off(y), 0.0, off(x), 0.0);
+  }
+  EXPECT_GT(declined, 1000);  // the cancellations reached the exact path
 }
 
 TEST(CrossRounded, TiesGoToEven) {

@@ -26,6 +26,7 @@
 #include "device_memory.hpp"
 #include "device_points.hpp"
 #include "facet_merge.hpp"
+#include "host_hull.hpp"
 #include "planar_filter.hpp"
 #include "planar_hull.hpp"
 #include "resident_cuda.hpp"
@@ -213,7 +214,7 @@ std::array<double, 4> facet_plane(Vec3d a, Vec3d b, Vec3d c) {
           3, [&](std::size_t k) { return corners[k]; }, &scale)) {
     std::array<double, 4> plane;
     detail::facet_plane_in_range(scaled_by(a, scale), scaled_by(b, scale), scaled_by(c, scale), plane.data());
-    plane[3] = std::ldexp(plane[3], scale);
+    if (scale != 0) plane[3] = std::ldexp(plane[3], scale);  // a library call a face otherwise
     return plane;
   }
   // Corners more than 2^500 apart in magnitude: the cross product in long double (wide_cross()), rounded.
@@ -290,8 +291,8 @@ void measure_solid(const std::vector<Point>& vertices, const std::vector<Triangl
     };
     const detail::SolidMeasures measures =
         measure_on_cores(triangles.size(), corner, scaled_by(vertex(triangles[0][0]), scale));
-    hull.volume = std::ldexp(measures.volume(), 3 * scale);
-    hull.area = std::ldexp(measures.area(), 2 * scale);
+    hull.volume = scale == 0 ? measures.volume() : std::ldexp(measures.volume(), 3 * scale);
+    hull.area = scale == 0 ? measures.area() : std::ldexp(measures.area(), 2 * scale);
     return;
   }
   // Vertices more than 2^500 apart in magnitude: long double, from the same apex (no term negative).
@@ -392,6 +393,7 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
   for (std::size_t k = 0; k < local.vertex_ids.size(); ++k)
     local.vertex_ids[k] = static_cast<PointIndex>(k);
   const double cosine = std::clamp(options.angle_cosine, 0.0, 1.0);
+  PhaseLaps laps("describe_merged");  // CUDAHULL_PHASE_TIMES=1
   const MergedHull merged = merge_facets(mesh.vertices, local, merge_tolerance(mesh.vertices, options),
                                          std::sqrt(1 - cosine * cosine));
   ConvexHull hull;
@@ -400,15 +402,19 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
   hull.backend = std::move(backend);
   hull.tolerance = merged.tolerance;
   hull.max_outside = merged.max_outside;
+  hull.thinnest = merged.thinnest;
   for (PointIndex v : merged.vertices)
     hull.vertices.push_back(mesh.vertex_ids[v]);
   std::sort(hull.vertices.begin(), hull.vertices.end());
   // merged's indices are positions in mesh.vertices (local's ids): its faces are the mesh's triangles.
   for (const Triangle& face : merged.faces)
     hull.faces.push_back({mesh.vertex_ids[face[0]], mesh.vertex_ids[face[1]], mesh.vertex_ids[face[2]]});
+  laps.lap("merge and faces");
   measure_solid(mesh.vertices, merged.faces, hull);
+  laps.lap("measures");
   hull.planes = merged.planes;
   hull.neighbors = face_neighbors(merged.faces, mesh.vertices.size());
+  laps.lap("planes and neighbours");
   for (const auto& row : merged.coplanar)
     hull.coplanar.push_back({mesh.vertex_ids[row[0]], row[1], mesh.vertex_ids[row[2]]});
   return hull;
@@ -417,15 +423,17 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
 // The result convex_hull() returns for the exact hull `mesh`, merged where `options` ask for it (a flat hull
 // has nothing to merge).
 template <class Point>
-ConvexHull describe(const BasicHullMesh<Point>& mesh, std::string backend, const ConvexHullOptions& options) {
+ConvexHull describe(const BasicHullMesh<Point>& mesh, std::string backend, const ConvexHullOptions& options,
+                    bool neighbors = true) {
   if (options.merge == MergeMode::kExact || mesh.dimension != 3)
-    return describe_exact(mesh, std::move(backend));
+    return describe_exact(mesh, std::move(backend), neighbors);
   return describe_merged(mesh, std::move(backend), options);
 }
 
 // The hull of checked points in Point, run as `plan` says (plan_hull(): engine and backend definite).
 template <class Point>
-ConvexHull hull_in(const std::vector<Point>& points, const HullPlan& plan, const ConvexHullOptions& options) {
+ConvexHull hull_in(const std::vector<Point>& points, const HullPlan& plan, const ConvexHullOptions& options,
+                   bool neighbors = true) {
   if (!plan.unavailable.empty()) throw DeviceError(plan.unavailable);
   if (plan.engine == EngineChoice::kResident) {
     ResidentStats stats;
@@ -440,12 +448,16 @@ ConvexHull hull_in(const std::vector<Point>& points, const HullPlan& plan, const
     hull.resident_stats = std::move(stats);
     return hull;
   }
+  if (plan.small_cloud) {
+    BasicHullMesh<Point> mesh;
+    if (small_hull_host(points.data(), points.size(), mesh)) return describe(mesh, "cpu", options, neighbors);
+  }
   std::unique_ptr<BasicBackend<Point>> backend =
       plan.backend == BackendChoice::kCuda ? make_cuda_backend<Point>() : make_cpu_backend<Point>();
   std::string name = backend->name();
   BasicEngine<Point> engine(points, std::move(backend), EngineOptions{.keep_decisions = false});
   engine.run();
-  return describe(engine.result(), std::move(name), options);
+  return describe(engine.result(), std::move(name), options, neighbors);
 }
 
 template <class Scalar>
@@ -467,7 +479,7 @@ ConvexHull wide_hull(const std::vector<Point3d>& points, const ConvexHullOptions
 // plan's precision, then planned with their range known.
 template <class Coordinate>
 ConvexHull checked_hull(std::size_t count, Coordinate coordinate, Precision own,
-                        const ConvexHullOptions& options) {
+                        const ConvexHullOptions& options, bool neighbors = true) {
   HullInput input;
   input.precision = own;
   input.count = count;
@@ -476,9 +488,10 @@ ConvexHull checked_hull(std::size_t count, Coordinate coordinate, Precision own,
     input.outside_exact_range = !in_fast_exact_range(points);
     const HullPlan plan = plan_hull(options, input, cuda_presence);
     if (plan.wide_range) return wide_hull(points, options);
-    return hull_in(points, plan, options);
+    return hull_in(points, plan, options, neighbors);
   }
-  return hull_in(copy_checked<Point3>(count, coordinate), plan_hull(options, input, cuda_presence), options);
+  return hull_in(copy_checked<Point3>(count, coordinate), plan_hull(options, input, cuda_presence), options,
+                 neighbors);
 }
 
 // The hull of points that only the current device holds, in Point: checked (and converted) there, then
@@ -548,7 +561,8 @@ ConvexHull device_hull(const Scalar* device_xyz, std::size_t count, Precision ow
 // copy of them (it reads back the few coordinates its exact checks need), and the copy would cost more
 // than the hull.  Otherwise they are checked into a host copy.
 template <class Scalar>
-ConvexHull array_hull(const Scalar* xyz, std::size_t count, Precision own, const ConvexHullOptions& options) {
+ConvexHull array_hull(const Scalar* xyz, std::size_t count, Precision own, const ConvexHullOptions& options,
+                      bool neighbors = true) {
   HullInput input;
   input.precision = own;
   input.count = count;
@@ -557,7 +571,7 @@ ConvexHull array_hull(const Scalar* xyz, std::size_t count, Precision own, const
     const std::shared_ptr<void> copy = upload_to_device(xyz, count * 3 * sizeof(Scalar));
     return device_hull(static_cast<const Scalar*>(copy.get()), count, own, options);
   }
-  return checked_hull(count, array_coordinate(xyz), own, options);
+  return checked_hull(count, array_coordinate(xyz), own, options, neighbors);
 }
 
 template <class Point>
@@ -940,6 +954,57 @@ ConvexHull convex_hull(const float* xyz, std::size_t count, const ConvexHullOpti
 
 ConvexHull convex_hull(const double* xyz, std::size_t count, const ConvexHullOptions& options) {
   return array_hull(xyz, count, Precision::kDouble, options);
+}
+
+namespace {
+
+// small_cloud_hull() in Point: the points read into this thread's buffer (rejection() converts them as
+// copy_checked() does), the small hull into this thread's mesh, described as hull_in() describes it.
+template <class Point, class Scalar>
+bool small_cloud_in(const Scalar* xyz, std::size_t count, ConvexHull& hull) {
+  thread_local std::vector<Point> points;
+  thread_local BasicHullMesh<Point> mesh;
+  points.resize(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const double widened[3] = {static_cast<double>(xyz[3 * i]), static_cast<double>(xyz[3 * i + 1]),
+                               static_cast<double>(xyz[3 * i + 2])};
+    int axis = 0;
+    if (rejection(widened, axis, points[i])) return false;
+  }
+  if constexpr (std::is_same_v<Point, Point3d>) {
+    if (!in_fast_exact_range(points.data(), count)) return false;
+  }
+  if (!small_hull_host(points.data(), count, mesh)) return false;
+  hull = describe_exact(mesh, "cpu", false);
+  return true;
+}
+
+}  // namespace
+
+template <class Scalar>
+bool small_cloud_hull(const Scalar* xyz, std::size_t count, const ConvexHullOptions& options,
+                      ConvexHull& hull) {
+  // As plan_hull() sets small_cloud, for a request whose backend and precision the batch has resolved.
+  if (options.merge != MergeMode::kExact || options.engine != EngineChoice::kAuto ||
+      options.backend != BackendChoice::kCpu || count < 4 || count > kSmallHullPoints)
+    return false;
+  const Precision own = std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat;
+  if (plan_precision(options.precision, own).precision == Precision::kDouble)
+    return small_cloud_in<Point3d>(xyz, count, hull);
+  return small_cloud_in<Point3>(xyz, count, hull);
+}
+
+template bool small_cloud_hull(const float*, std::size_t, const ConvexHullOptions&, ConvexHull&);
+template bool small_cloud_hull(const double*, std::size_t, const ConvexHullOptions&, ConvexHull&);
+
+ConvexHull convex_hull_without_neighbors(const float* xyz, std::size_t count,
+                                         const ConvexHullOptions& options) {
+  return array_hull(xyz, count, Precision::kFloat, options, false);
+}
+
+ConvexHull convex_hull_without_neighbors(const double* xyz, std::size_t count,
+                                         const ConvexHullOptions& options) {
+  return array_hull(xyz, count, Precision::kDouble, options, false);
 }
 
 ConvexHull convex_hull_device(const float* device_xyz, std::size_t count, const ConvexHullOptions& options) {

@@ -34,6 +34,7 @@
 #include "cudahull/parallel.hpp"
 #include "cudahull/phase_times.hpp"
 #include "device_points.hpp"
+#include "host_hull.hpp"
 
 namespace cudahull {
 
@@ -461,12 +462,21 @@ ConvexHullBatch host_batch(const Scalar* xyz, std::size_t count, const std::size
   return pack(std::move(hulls), plan.precision);
 }
 
+// A cloud's hull on the host: the small-cloud path where it takes the cloud, else convex_hull()'s (without
+// the neighbours, which the batch does not keep); the same hull either way.
+template <class Scalar>
+ConvexHull cloud_hull(const Scalar* xyz, std::size_t n, const ConvexHullOptions& each) {
+  ConvexHull hull;
+  if (small_cloud_hull(xyz, n, each, hull)) return hull;
+  return convex_hull_without_neighbors(xyz, n, each);
+}
+
 template <class Scalar>
 ConvexHullBatch array_batch(const Scalar* xyz, std::size_t count, const std::size_t* offsets,
                             std::size_t clouds, const ConvexHullBatchOptions& options) {
   return host_batch(xyz, count, offsets, clouds, options,
                     [xyz](std::size_t begin, std::size_t n, const ConvexHullOptions& each) {
-                      return convex_hull(xyz + 3 * begin, n, each);
+                      return cloud_hull(xyz + 3 * begin, n, each);
                     });
 }
 
@@ -477,12 +487,12 @@ ConvexHullBatch vector_batch(const std::vector<Point>& points, const std::vector
     throw std::invalid_argument("convex_hull_batch: no offsets (B + 1 of them are needed, {0} for none)");
   using Scalar = decltype(Point::x);
   static_assert(sizeof(Point) == 3 * sizeof(Scalar), "x, y, z packed");
-  return host_batch(
-      reinterpret_cast<const Scalar*>(points.data()), points.size(), offsets.data(), offsets.size() - 1,
-      options, [&points](std::size_t begin, std::size_t n, const ConvexHullOptions& each) {
-        const auto first = points.begin() + static_cast<std::ptrdiff_t>(begin);
-        return convex_hull(std::vector<Point>(first, first + static_cast<std::ptrdiff_t>(n)), each);
-      });
+  return host_batch(reinterpret_cast<const Scalar*>(points.data()), points.size(), offsets.data(),
+                    offsets.size() - 1, options,
+                    [&points](std::size_t begin, std::size_t n, const ConvexHullOptions& each) {
+                      // The packed coordinates in place: convex_hull()'s array form reads the same values.
+                      return cloud_hull(reinterpret_cast<const Scalar*>(points.data()) + 3 * begin, n, each);
+                    });
 }
 
 // `int32_indices`: the result is kept on the device, whose index columns are int32 (a cloud of 2^31 points

@@ -4,14 +4,17 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 
+#include "cudahull/detail/plane_impl.hpp"
 #include "cudahull/exact_hull.hpp"
 #include "cudahull/morton.hpp"
 #include "cudahull/parallel.hpp"
+#include "cudahull/phase_times.hpp"
 #include "cudahull/plane.hpp"
 #include "cudahull/predicates.hpp"
 
@@ -197,24 +200,85 @@ double vertex_height(const std::vector<Point>& points, const Vec3d& v, const std
   return kInfinity;
 }
 
+// Whether v's height over hull(link) (vertex_height()) is certainly above `limit`, found without that hull
+// (which, with its planes, was most of a merge: almost every vertex stands far above its link).  A plane
+// through three link points with every link point on or below it (exact orient3d) and v strictly above is
+// the plane of a facet of hull(link) that v is above, so v's distance to it is at most the height; a lower
+// bound on that distance (the determinant's error by Shewchuk's orient3d bound, the edges' lengths rounded
+// up) beyond the limit plus a margin for the height's own rounding (under 2^-46 of the largest coordinate)
+// decides.  False where no triple shows it: the exact height then decides, as it always did.
+template <class Point>
+bool clearly_above(const std::vector<Point>& points, const Vec3d& v, const std::vector<PointIndex>& link,
+                   double limit) {
+  constexpr std::size_t kMaxLink = 12;  // C(12, 3) triples at most; a larger link takes the exact height
+  const std::size_t k = link.size();
+  if (k < 3 || k > kMaxLink) return false;
+  Vec3d q[kMaxLink];
+  double scale = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+  for (std::size_t j = 0; j < k; ++j) {
+    q[j] = to_vec3d(points[link[j]]);
+    scale = std::max({scale, std::fabs(q[j].x), std::fabs(q[j].y), std::fabs(q[j].z)});
+  }
+  // The facets of hull(link) that v stands above face about the way from the link's centroid to v: their
+  // triples are tried first, with the link point furthest that way in every one of the first C(k - 1, 2).
+  Vec3d centre{0, 0, 0};
+  for (std::size_t j = 0; j < k; ++j)
+    centre = {centre.x + q[j].x, centre.y + q[j].y, centre.z + q[j].z};
+  const Vec3d way = sub(v, {centre.x / k, centre.y / k, centre.z / k});
+  std::size_t furthest = 0;
+  for (std::size_t j = 1; j < k; ++j)
+    if (dot(way, q[j]) > dot(way, q[furthest])) furthest = j;
+  std::swap(q[0], q[furthest]);
+  const double needed = limit + 0x1p-40 * scale;
+  auto length_up = [](const Vec3d& a, const Vec3d& b) {
+    const Vec3d d = sub(b, a);
+    return std::sqrt(dot(d, d)) * (1 + 0x1p-40);
+  };
+  for (std::size_t a = 0; a < k; ++a)
+    for (std::size_t b = a + 1; b < k; ++b)
+      for (std::size_t c = b + 1; c < k; ++c) {
+        const int side = orient3d(q[a], q[b], q[c], v);
+        if (side == 0) continue;
+        const Vec3d &pa = q[a], &pb = side > 0 ? q[b] : q[c], &pc = side > 0 ? q[c] : q[b];
+        bool supports = true;
+        for (std::size_t j = 0; j < k && supports; ++j)
+          supports = j == a || j == b || j == c || orient3d(pa, pb, pc, q[j]) <= 0;
+        if (!supports) continue;
+        const detail::DoubleCross cross = detail::double_cross(pa, pb, pc);
+        const Vec3d w = sub(v, pa);
+        const double det = w.x * cross.n[0] + w.y * cross.n[1] + w.z * cross.n[2];
+        const double permanent =
+            std::fabs(w.x) * cross.p[0] + std::fabs(w.y) * cross.p[1] + std::fabs(w.z) * cross.p[2];
+        const double low = det - detail::kO3dErrBoundA * permanent * (1 + 0x1p-40);
+        if (low > 0 && low / (length_up(pa, pb) * length_up(pa, pc)) * (1 - 0x1p-40) > needed) return true;
+      }
+  return false;
+}
+
 // Steps 1-2: drops the vertices of `current` (its vertex_ids index `points`) whose height is within
-// `limit`, in rounds of independent sets, until a round drops nothing or only the flat remains.
+// `limit`, in rounds of independent sets, until a round drops nothing or only the flat remains.  Returns
+// the final mesh's edges.
 // With an angle (`angle_sine` > 0, Qhull's An), a vertex's limit grows by angle_sine times half its
 // distance r to its farthest neighbour in the exact hull (taken once, so that the drops do not compound: a
 // later, wider link would let the angle grow): a vertex h above its link makes facets that meet at about
 // 2h / r, so the dropped ones are those whose facets' normals differ by less than about the angle, Qhull's
 // test for a pair of facets.
 template <class Point>
-void drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Point>& current, double limit,
-                       double angle_sine) {
+EdgeIndex drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Point>& current, double limit,
+                            double angle_sine) {
   // Per vertex of `points`: its link (ascending) when its height was computed, and that height; a vertex
-  // whose link did not change keeps its height (it depends on nothing else).
-  std::vector<std::vector<PointIndex>> cached_link(points.size());
+  // whose link did not change keeps its height (it depends on nothing else).  The links lie in one pool,
+  // each vertex's latest at link_at[id] (link_size[id] of them; a vertex a round did not touch keeps its
+  // place): no allocation a vertex.
+  std::vector<PointIndex> link_pool;
+  std::vector<std::size_t> link_at(points.size(), 0);
+  std::vector<std::uint32_t> link_size(points.size(), kNone);  // kNone: no height yet
   std::vector<double> cached_height(points.size(), kInfinity), first_reach(points.size(), -1);
   for (;;) {
     const std::size_t n = current.vertices.size();
-    const EdgeIndex edges(current);
+    EdgeIndex edges(current);
     std::vector<double> heights(n, kInfinity), reach(n, 0);
+    std::vector<std::uint8_t> relinked(n, 0);
     parallel_chunks(
         n, hardware_workers(),
         [&](std::size_t begin, std::size_t end, unsigned) {
@@ -233,14 +297,27 @@ void drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Point>& c
               }
             }
             if (angle_sine > 0) reach[i] = first_reach[id];
-            if (cached_link[id] != link) {  // each entry is only this chunk's
-              cached_height[id] = vertex_height(points, to_vec3d(current.vertices[i]), link);
-              cached_link[id] = link;
+            if (link_size[id] != link.size() ||
+                !std::equal(link.begin(), link.end(), link_pool.begin() + link_at[id])) {
+              // Above its limit: never dropped, whatever its exact height (infinity stands for it).
+              const Vec3d v = to_vec3d(current.vertices[i]);
+              cached_height[id] = clearly_above(points, v, link, limit + angle_sine * reach[i] / 2)
+                                      ? kInfinity
+                                      : vertex_height(points, v, link);
+              relinked[i] = 1;  // each entry is only this chunk's
             }
             heights[i] = cached_height[id];
           }
         },
         64);
+    for (std::uint32_t i = 0; i < n; ++i) {
+      if (!relinked[i]) continue;
+      const PointIndex id = current.vertex_ids[i];
+      link_at[id] = link_pool.size();
+      link_size[id] = edges.degree(i);
+      for (std::uint32_t k = 0; k < edges.degree(i); ++k)
+        link_pool.push_back(current.vertex_ids[edges.neighbour(i, k)]);
+    }
     // Lowest first, no two adjacent: their stars are disjoint, so each one's height stays what it was.
     std::vector<std::uint32_t> order;
     for (std::uint32_t i = 0; i < n; ++i)
@@ -272,7 +349,7 @@ void drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Point>& c
       }
       dropped.resize(dropped.size() / 2);
     }
-    if (dropped.empty()) return;
+    if (dropped.empty()) return edges;  // the mesh's, unchanged by this round
   }
 }
 
@@ -285,26 +362,86 @@ struct Facets {
 // Step 3: groups the triangles of `mesh` into merged facets.
 // With an angle (`angle_sine` > 0), a corner also fits where it lies within angle_sine times its distance
 // from the seed's nearest corner of the seed's plane (a tilt of at most about that angle).
+//
+// Each triangle's plane, its neighbours across its edges, which of them would join it as a seed and, for a
+// group of it alone, the plane's offset are found first, on all cores in the mesh's order: the seeds come
+// largest first, scattered over the mesh, and most of them stay alone (every one on a ball), so that the
+// sequential grouping then reads four words for such a seed, where it read both triangles' corners and
+// planes for each of its edges (a cache miss each, most of the grouping's time on a large hull).
 template <class Point>
-Facets group_facets(const BasicHullMesh<Point>& mesh, double tolerance, double angle_sine) {
+Facets group_facets(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, double tolerance,
+                    double angle_sine) {
   const std::size_t nt = mesh.triangles.size();
   auto corner = [&](std::uint32_t t, int k) { return to_vec3d(mesh.vertices[mesh.triangles[t][k]]); };
   std::vector<Plane> plane(nt);
   std::vector<double> twice_area(nt);
+  std::vector<std::uint32_t> across(3 * nt);  // the triangle across edge k of t: the one holding its reverse
   parallel_chunks(nt, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
     for (std::size_t t = begin; t < end; ++t) {
       const Vec3d a = corner(t, 0), b = corner(t, 1), c = corner(t, 2);
       plane[t] = plane_through(a, b, c);
       const Vec3d n = cross(sub(b, a), sub(c, a));
       twice_area[t] = std::sqrt(dot(n, n));
+      const Triangle& tri = mesh.triangles[t];
+      for (int k = 0; k < 3; ++k)
+        across[3 * t + k] = edges.triangle(tri[(k + 1) % 3], tri[k]);
     }
   });
-  const EdgeIndex edges(mesh);
-  std::vector<std::uint32_t> order(nt);
-  std::iota(order.begin(), order.end(), 0u);
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return twice_area[a] > twice_area[b] || (twice_area[a] == twice_area[b] && a < b);
+  // Whether `vertex` fits the group of `seed`: within the tolerance of the seed's plane, or exactly on it (a
+  // point exactly on it evaluates to within a few ulps of the coordinates' scale, under 28u by plane.cpp's
+  // analysis; the exact orient3d decides).
+  auto fits = [&](std::uint32_t seed, std::uint32_t vertex) {
+    const Vec3d sa = corner(seed, 0), sb = corner(seed, 1), sc = corner(seed, 2);
+    const Vec3d p = to_vec3d(mesh.vertices[vertex]);
+    const double value = std::fabs(plane_value(plane[seed], p));
+    if (value <= tolerance) return true;
+    if (angle_sine > 0) {
+      double nearest = kInfinity;
+      for (const Vec3d& s : {sa, sb, sc}) {
+        const Vec3d d = sub(p, s);
+        nearest = std::min(nearest, std::sqrt(dot(d, d)));
+      }
+      if (value <= tolerance + angle_sine * nearest) return true;
+    }
+    const double scale = std::max({std::fabs(sa.x), std::fabs(sa.y), std::fabs(sa.z), std::fabs(sb.x),
+                                   std::fabs(sb.y), std::fabs(sb.z), std::fabs(sc.x), std::fabs(sc.y),
+                                   std::fabs(sc.z), std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+    return value <= 64 * kUnitRoundoff * scale && orient3d(sa, sb, sc, p) == 0;
+  };
+  // Whether triangle u joins the group of `seed` across an edge: facing the group's way too (across a body
+  // thinner than the tolerance, the far side's triangles fit the plane but face away from it), every corner
+  // fitting.
+  auto joins = [&](std::uint32_t seed, std::uint32_t u) {
+    if (dot3(plane[seed], {plane[u][0], plane[u][1], plane[u][2]}) <= 0) return false;
+    const Triangle& tu = mesh.triangles[u];
+    return fits(seed, tu[0]) && fits(seed, tu[1]) && fits(seed, tu[2]);
+  };
+  // Per triangle as a seed: which neighbours would join (bit k: across edge k), and the offset of its plane
+  // were it alone (the top of its corners).
+  std::vector<std::uint8_t> joining(nt);
+  std::vector<double> alone_top(nt);
+  parallel_chunks(nt, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
+    for (std::size_t t = begin; t < end; ++t) {
+      std::uint8_t bits = 0;
+      for (int k = 0; k < 3; ++k)
+        if (const std::uint32_t u = across[3 * t + k]; u != kNone && joins(t, u)) bits |= 1u << k;
+      joining[t] = bits;
+      alone_top[t] = std::max(
+          {dot3(plane[t], corner(t, 0)), dot3(plane[t], corner(t, 1)), dot3(plane[t], corner(t, 2))});
+    }
   });
+  // Largest first, ties by index: sorted as (the area's bits inverted, index) keys, which order as the
+  // areas do (no area is negative or NaN), without a look-up a comparison.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(nt);
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &twice_area[t], sizeof bits);
+    keyed[t] = {~bits, t};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::uint32_t> order(nt);
+  for (std::size_t k = 0; k < nt; ++k)
+    order[k] = keyed[k].second;
   Facets facets;
   facets.facet_of.assign(nt, kNone);
   std::vector<std::uint32_t> queue, vertices;
@@ -312,41 +449,19 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, double tolerance, double a
   for (std::uint32_t seed : order) {
     if (facets.facet_of[seed] != kNone) continue;
     const std::uint32_t id = static_cast<std::uint32_t>(facets.planes.size());
-    const Vec3d sa = corner(seed, 0), sb = corner(seed, 1), sc = corner(seed, 2);
-    const Plane seed_plane = plane[seed];
-    const double seed_scale =
-        std::max({std::fabs(sa.x), std::fabs(sa.y), std::fabs(sa.z), std::fabs(sb.x), std::fabs(sb.y),
-                  std::fabs(sb.z), std::fabs(sc.x), std::fabs(sc.y), std::fabs(sc.z)});
-    // Within the tolerance of the group's plane, or exactly on the seed's plane (a point exactly on it
-    // evaluates to within a few ulps of the coordinates' scale, under 28u by plane.cpp's analysis; the
-    // exact orient3d decides).
-    auto fits = [&](std::uint32_t vertex) {
-      const Vec3d p = to_vec3d(mesh.vertices[vertex]);
-      const double value = std::fabs(plane_value(seed_plane, p));
-      if (value <= tolerance) return true;
-      if (angle_sine > 0) {
-        double nearest = kInfinity;
-        for (const Vec3d& s : {sa, sb, sc}) {
-          const Vec3d d = sub(p, s);
-          nearest = std::min(nearest, std::sqrt(dot(d, d)));
-        }
-        if (value <= tolerance + angle_sine * nearest) return true;
-      }
-      const double scale = std::max({seed_scale, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-      return value <= 64 * kUnitRoundoff * scale && orient3d(sa, sb, sc, p) == 0;
-    };
-    queue.assign(1, seed);
+    const Plane& seed_plane = plane[seed];
     facets.facet_of[seed] = id;
+    facets.seeds.push_back(seed);
+    if (joining[seed] == 0) {  // alone: no neighbour fits, whichever are free
+      facets.planes.push_back({seed_plane[0], seed_plane[1], seed_plane[2], -alone_top[seed]});
+      continue;
+    }
+    queue.assign(1, seed);
     for (std::size_t q = 0; q < queue.size(); ++q) {
-      const Triangle& t = mesh.triangles[queue[q]];
       for (int k = 0; k < 3; ++k) {
-        const std::uint32_t u = edges.triangle(t[(k + 1) % 3], t[k]);
+        const std::uint32_t u = across[3 * queue[q] + k];
         if (u == kNone || facets.facet_of[u] != kNone) continue;
-        const Triangle& tu = mesh.triangles[u];
-        // Facing the group's way too: across a body thinner than the tolerance, the far side's triangles
-        // fit the plane but face away from it.
-        if (dot3(seed_plane, {plane[u][0], plane[u][1], plane[u][2]}) <= 0) continue;
-        if (!fits(tu[0]) || !fits(tu[1]) || !fits(tu[2])) continue;
+        if (queue[q] == seed ? !(joining[seed] >> k & 1u) : !joins(seed, u)) continue;
         facets.facet_of[u] = id;
         queue.push_back(u);
       }
@@ -365,7 +480,6 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, double tolerance, double a
       in_group[v] = 0;
     }
     facets.planes.push_back({seed_plane[0], seed_plane[1], seed_plane[2], -top});
-    facets.seeds.push_back(seed);
   }
   return facets;
 }
@@ -400,6 +514,31 @@ int compare_along(const Plane& n, const Vec3d& q, const Vec3d& p) {
     if (value > bound) return 1;
     if (value < -bound) return -1;
   }
+  // A second filter, in about double-double (a facet's own corners always reach it: their n . (q - p) is
+  // of the order of the normal's rounding): the differences as exact pairs h + l, n h exact as P + e, so
+  // that the value is P0 + P1 + P2 (summed into s with its errors exactly) plus a tail of terms each within
+  // a few u of the value's scale, whose computed sum T is within E = 16u of their magnitudes (recursive
+  // summation of 8 terms, and the products n l rounded once).  s decides where it outweighs |T| + E, T where
+  // s is zero; else the exact sign.
+  {
+    const double qs[3] = {q.x, q.y, q.z}, ps[3] = {p.x, p.y, p.z};
+    double big[3], tail[8];
+    for (int k = 0; k < 3; ++k) {
+      double h, l;
+      detail::two_diff(qs[k], ps[k], h, l);
+      detail::two_product(n[k], h, big[k], tail[k]);
+      tail[3 + k] = n[k] * l;
+    }
+    double s1, s2;
+    detail::two_sum(big[0], big[1], s1, tail[6]);
+    detail::two_sum(s1, big[2], s2, tail[7]);
+    double sum = 0, spread = 0;
+    for (const double t : tail)
+      sum += t, spread += std::fabs(t);
+    const double error = 16 * kUnitRoundoff * spread * (1 + 0x1p-40);
+    if (s2 != 0 && std::fabs(s2) > (std::fabs(sum) + error) * (1 + 0x1p-40)) return s2 > 0 ? 1 : -1;
+    if (s2 == 0 && std::fabs(sum) > error * (1 + 0x1p-40)) return sum > 0 ? 1 : -1;
+  }
   double terms[3][4];
   int lengths[3];
   const double qs[3] = {q.x, q.y, q.z}, ps[3] = {p.x, p.y, p.z};
@@ -431,11 +570,13 @@ bool coordinate_safe(double x) {
 // a vertex that no neighbour exceeds (every vertex of a convex polytope lies in the cone from any vertex
 // along its edges, which the triangulation's edges include), so an ascent from the facet's own corner along
 // hull(S)'s edges with exact comparisons finds it in a few steps; its evaluation is then bounded.  A plane or
-// coordinates outside the exact range take all vertices instead.  Per plane: the bound over S.
+// coordinates outside the exact range take all vertices instead.  Per plane: the bound over S.  The planes
+// are taken in the order of their starts (`order`), neighbours on the mesh, not in the facets' (largest
+// first, scattered): the same bounds, from the cache.
 template <class Point>
-std::vector<double> kept_bounds(const BasicHullMesh<Point>& hull, const std::vector<Plane>& planes,
-                                const std::vector<std::uint32_t>& starts) {
-  const EdgeIndex edges(hull);
+std::vector<double> kept_bounds(const BasicHullMesh<Point>& hull, const EdgeIndex& edges,
+                                const std::vector<Plane>& planes, const std::vector<std::uint32_t>& starts,
+                                const std::vector<std::uint32_t>& order) {
   std::vector<Vec3d> at(hull.vertices.size());
   bool coordinates_safe = true;
   for (std::size_t i = 0; i < at.size(); ++i) {
@@ -447,7 +588,8 @@ std::vector<double> kept_bounds(const BasicHullMesh<Point>& hull, const std::vec
   parallel_chunks(
       planes.size(), hardware_workers(),
       [&](std::size_t begin, std::size_t end, unsigned) {
-        for (std::size_t f = begin; f < end; ++f) {
+        for (std::size_t i = begin; i < end; ++i) {
+          const std::uint32_t f = order[i];
           const Plane& plane = planes[f];
           if (!coordinates_safe || !plane_safe(plane)) {
             for (const Vec3d& p : at)
@@ -471,6 +613,55 @@ std::vector<double> kept_bounds(const BasicHullMesh<Point>& hull, const std::vec
       },
       64);
   return bounds;
+}
+
+// MergedHull::thinnest: per facet, the depth of the vertices' centroid below its plane, which no vertex
+// falls short of; within `near` of the plane (a thin hull), the deepest vertex itself, by an ascent along
+// hull(S)'s edges against the plane's normal with exact comparisons (as kept_bounds()).
+template <class Point>
+double thinnest(const BasicHullMesh<Point>& hull, const EdgeIndex& edges, const std::vector<Plane>& planes,
+                const std::vector<std::uint32_t>& starts, double near) {
+  if (planes.empty()) return kInfinity;
+  std::vector<Vec3d> at(hull.vertices.size());
+  Vec3d centroid{0, 0, 0};
+  bool coordinates_safe = true;
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    at[i] = to_vec3d(hull.vertices[i]);
+    centroid = {centroid.x + at[i].x, centroid.y + at[i].y, centroid.z + at[i].z};
+    coordinates_safe =
+        coordinates_safe && coordinate_safe(at[i].x) && coordinate_safe(at[i].y) && coordinate_safe(at[i].z);
+  }
+  const double count = static_cast<double>(at.size());
+  centroid = {centroid.x / count, centroid.y / count, centroid.z / count};
+  const unsigned workers = hardware_workers();
+  std::vector<double> least(workers, kInfinity);
+  parallel_chunks(
+      planes.size(), workers,
+      [&](std::size_t begin, std::size_t end, unsigned worker) {
+        for (std::size_t f = begin; f < end; ++f) {
+          const Plane& plane = planes[f];
+          double depth = -plane_value(plane, centroid);
+          if (depth <= near) {
+            const Plane against{-plane[0], -plane[1], -plane[2], plane[3]};
+            if (!coordinates_safe || !plane_safe(plane)) {
+              for (const Vec3d& p : at)
+                depth = std::max(depth, -plane_value(plane, p));
+            } else {
+              std::uint32_t v = starts[f];
+              for (bool moved = true; moved;) {
+                moved = false;
+                for (std::uint32_t k = 0; k < edges.degree(v) && !moved; ++k)
+                  if (const std::uint32_t q = edges.neighbour(v, k); compare_along(against, at[q], at[v]) > 0)
+                    v = q, moved = true;  // deeper, exactly: the descent ends
+              }
+              depth = -plane_value(plane, at[v]);
+            }
+          }
+          least[worker] = std::min(least[worker], depth);
+        }
+      },
+      64);
+  return *std::min_element(least.begin(), least.end());
 }
 
 // The dropped points: a bounding-box tree over them, searched per plane from the kept vertices' bound.  A
@@ -559,11 +750,16 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   // Work on the exact hull's vertices, by their position in exact.vertices.
   const std::vector<Point>& vertices = exact.vertices;
   const std::size_t m = vertices.size();
+  PhaseLaps laps("merge_facets");  // CUDAHULL_PHASE_TIMES=1
   BasicHullMesh<Point> current = exact;
   std::iota(current.vertex_ids.begin(), current.vertex_ids.end(), PointIndex{0});
 
-  if (tolerance > 0 || angle_sine > 0) drop_low_vertices(vertices, current, tolerance, angle_sine);
-  const Facets facets = group_facets(current, tolerance, angle_sine);
+  const EdgeIndex edges = tolerance > 0 || angle_sine > 0
+                              ? drop_low_vertices(vertices, current, tolerance, angle_sine)
+                              : EdgeIndex(current);
+  laps.lap("drop");
+  const Facets facets = group_facets(current, edges, tolerance, angle_sine);
+  laps.lap("group");
 
   // Output: triangles grouped by facet, in input indices.
   std::vector<std::uint32_t> by_facet(current.triangles.size());
@@ -592,6 +788,7 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
     if (!kept[i]) dropped.push_back(i);
   std::sort(dropped.begin(), dropped.end(),
             [&](std::uint32_t a, std::uint32_t b) { return exact.vertex_ids[a] < exact.vertex_ids[b]; });
+  laps.lap("output");
   merged.coplanar.resize(dropped.size());
   auto face_corner = [&](std::uint32_t f, int k) {
     return to_vec3d(current.vertices[current.triangles[by_facet[f]][k]]);
@@ -651,14 +848,22 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
       },
       16);
 
+  laps.lap("coplanar");
   std::vector<std::uint32_t> starts;  // per facet: a corner of its largest triangle
   for (std::uint32_t seed : facets.seeds)
     starts.push_back(current.triangles[seed][0]);
-  const std::vector<double> kept_bound = kept_bounds(current, facets.planes, starts);
+  std::vector<std::uint32_t> in_mesh_order;  // the facets by their seeds' places in the mesh
+  for (std::uint32_t t = 0; t < current.triangles.size(); ++t)
+    if (facets.seeds[facets.facet_of[t]] == t) in_mesh_order.push_back(facets.facet_of[t]);
+  const std::vector<double> kept_bound = kept_bounds(current, edges, facets.planes, starts, in_mesh_order);
+  laps.lap("kept bound");
+  merged.thinnest = thinnest(current, edges, facets.planes, starts, 4 * tolerance);
+  laps.lap("thinnest");
   std::vector<Vec3d> dropped_points;
   for (std::uint32_t i : dropped)
     dropped_points.push_back(to_vec3d(vertices[i]));
   merged.max_outside = std::nextafter(dropped_bound(dropped_points, facets.planes, kept_bound), kInfinity);
+  laps.lap("dropped bound");
   return merged;
 }
 

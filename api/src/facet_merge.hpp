@@ -64,6 +64,11 @@ struct MergedHull {
   // Proven: for every input point p and every triangle t, n_t . p + d_t <= max_outside in exact arithmetic
   // on the stored doubles (the rounding of the evaluation is included).
   double max_outside = 0;
+  // Qhull's flatness test (QH6154: a merged hull thinner than its tolerance is flat at it): the hull's least
+  // depth below a facet's plane, min over facets of max over its vertices of -(n . p + d) in double, exactly
+  // where some facet's depth is within 4 x the tolerance; above that, a lower bound above it (the depth of
+  // the vertices' centroid), so that a thick hull costs no search.
+  double thinnest = 0;
 };
 
 // The Qhull-like merged hull of `points` (Point3 or Point3d) from their exact hull `exact` (exact_hull();

@@ -3,6 +3,8 @@
 
 #include <optional>
 
+#include "cudahull/resident.hpp"
+
 namespace cudahull {
 
 namespace {
@@ -107,6 +109,9 @@ HullPlan plan_hull(const ConvexHullOptions& requested, const HullInput& input,
       plan.backend = BackendChoice::kCpu;
       plan.backend_reason = "auto: no usable CUDA device: " + gpu().reason;
     }
+    plan.small_cloud = requested.engine == EngineChoice::kAuto && plan.engine == EngineChoice::kStepping &&
+                       plan.backend == BackendChoice::kCpu && !plan.wide_range && input.count >= 4 &&
+                       input.count <= kSmallHullPoints;
     // The upload costs less than a host copy of the points, which the resident engine does not need.
     plan.upload_first = plan.engine == EngineChoice::kResident && plan.backend == BackendChoice::kCuda &&
                         plan.unavailable.empty() && !plan.wide_range && input.count != 0;

@@ -122,6 +122,7 @@ nb::dict hull_to_dict(ConvexHull&& hull) {
   d["input_dimension"] = hull.input_dimension;
   d["tolerance"] = hull.tolerance;
   d["max_outside"] = hull.max_outside;
+  d["thinnest"] = hull.thinnest;
   d["vertices"] = to_numpy(std::move(hull.vertices));
   d["polygon"] = to_numpy(std::move(hull.polygon));
   d["coplanar"] = take_rows(std::move(hull.coplanar));

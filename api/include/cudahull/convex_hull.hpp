@@ -12,6 +12,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -88,6 +89,10 @@ struct ConvexHull {
   // are the exact normals rounded (every point within a few units in the last place of them).
   std::vector<std::array<PointIndex, 3>> coplanar;
   double tolerance = 0, max_outside = 0;
+  // A merged hull of dimension 3: its least depth below one of its faces' planes (min over faces of max over
+  // its vertices of -(n . p + d), in double), exactly where that is within 4 x the tolerance, else a lower
+  // bound above it: Qhull's flatness test (QH6154) is `thinnest <= tolerance`.  Infinity otherwise.
+  double thinnest = std::numeric_limits<double>::infinity();
   // The resident engine's counters (iterations, host waits, bytes each way, coordinates read back for its
   // exact checks; resident.hpp), empty for the stepping engine.  For convex_hull_device() they include
   // the input check's wait and read-back.

@@ -17,7 +17,9 @@
 //   the offsets checked (B + 1 of them, from 0, never decreasing, to the point count)
 //   one plan for the batch (plan_hull() on all its points): where it runs, CPU or CUDA
 //   CPU: the clouds on all cores, a cloud a worker at a time in cloud order (each cloud's engine passes on
-//     its worker's thread, SerialScope); a cloud too large to share the cores runs alone on all of them
+//     its worker's thread, SerialScope); a cloud too large to share the cores runs alone on all of them; a
+//     cloud of 4 to kSmallHullPoints points takes convex_hull()'s small-cloud hull (the batch warps'
+//     small_hull() on the host, small_hull_host()) read in place, with no plan, copy or neighbours
 //   CUDA: the points checked once and on the device (host points uploaded once, as given); a launch of the
 //     batch kernel (cuda/batch_cuda.hpp: a block a cloud, the resident engine's iteration) a kind of block
 //     for the clouds of 4 to 131,072 points (128 threads; four blocks an SM above 256 points; 512 threads

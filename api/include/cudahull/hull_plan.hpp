@@ -52,6 +52,10 @@ struct HullPlan {
   // Host points go to the GPU as they are and are checked there: the resident engine on CUDA needs no
   // host copy of them, which would cost more than the upload.
   bool upload_first = false;
+  // The stepping engine on the CPU chosen by "auto" for 4..kSmallHullPoints points: convex_hull() runs the
+  // batch warps' small hull on the calling thread instead (small_hull_host(), resident.hpp), whose fixed
+  // cost is microseconds where the engine's is a hundred; the engine still takes a flat cloud.
+  bool small_cloud = false;
   std::string device;  // the CUDA device's name where backend is kCuda and the status named it
   // Non-empty where the request cannot be met here, and why, as the error's one line (e.g. "backend cuda:
   // no usable CUDA device: ..."): the plan is otherwise the one that would run.

@@ -118,6 +118,77 @@ CUDAHULL_HD inline double round_expansion(int len, const double* e) {
   return r;  // not reached: Compress's guess is within one ulp, so two steps suffice
 }
 
+// u_j v_k - u_k v_j, rounded to nearest, from its exact expansion.
+CUDAHULL_HD inline double rounded_minor_exact(const Pair& uj, const Pair& vk, const Pair& uk,
+                                              const Pair& vj) {
+  double h[kPlaneComponents];
+  const int len = pair_cross(uj, vk, uk, vj, h);
+  return add_rn(round_expansion(len, h), 0.0);  // + 0.0: a zero component is +0, never -0
+}
+
+#if !defined(__CUDA_ARCH__)
+// The next double above the positive normal double a, and the one below it.
+inline double next_up_positive(double a) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &a, sizeof bits);
+  ++bits;
+  std::memcpy(&a, &bits, sizeof bits);
+  return a;
+}
+inline double next_down_positive(double a) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &a, sizeof bits);
+  --bits;
+  std::memcpy(&a, &bits, sizeof bits);
+  return a;
+}
+
+// The minor rounded to nearest, where about double-double arithmetic proves it: true with it in *rounded.
+// With each pair h + l, u_j v_k = P + e (h h's product, exact) + the three products with an l, each within
+// u of u_j v_k's scale times u; so the minor is S + s (P - Q, exact) plus a tail of nine terms whose computed
+// sum T is within E = 16u of their magnitudes (8 roundings of the sum, one of each rounded product).  S + T
+// = r + r' exactly (two_sum), so the minor is r + r' + (tail - T): r is its rounding where |r'| + E stays
+// under half the gap to r's neighbour on that side (on either side where E could change the side).  False
+// otherwise (a tie, or the cancellation of a sliver): rounded_minor_exact() then.  Host only: the device
+// keeps the exact path, which is not measured there.
+inline bool rounded_minor_fast(const Pair& uj, const Pair& vk, const Pair& uk, const Pair& vj,
+                               double* rounded) {
+  const auto hi = [](const Pair& x) { return x.len == 1 ? x.v[0] : x.v[1]; };
+  const auto lo = [](const Pair& x) { return x.len == 1 ? 0.0 : x.v[0]; };
+  double p, p_err, q, q_err;
+  two_product(hi(uj), hi(vk), p, p_err);
+  two_product(hi(uk), hi(vj), q, q_err);
+  double big, big_err;
+  two_diff(p, q, big, big_err);
+  const double tail[9] = {big_err,
+                          p_err,
+                          -q_err,
+                          mul_rn(hi(uj), lo(vk)),
+                          mul_rn(lo(uj), hi(vk)),
+                          mul_rn(lo(uj), lo(vk)),
+                          -mul_rn(hi(uk), lo(vj)),
+                          -mul_rn(lo(uk), hi(vj)),
+                          -mul_rn(lo(uk), lo(vj))};
+  double sum = 0.0, spread = 0.0;
+  for (const double t : tail) {
+    sum = add_rn(sum, t);
+    spread = add_rn(spread, abs_d(t));
+  }
+  const double error = mul_rn(mul_rn(16.0 * kEpsilon, spread), 1.0 + 0x1p-40);  // 16u (kEpsilon is u)
+  double r, r_err;
+  two_sum(big, sum, r, r_err);
+  const double a = abs_d(r);
+  if (!(a >= 0x1p-900 && a <= 0x1p+900)) return false;  // zero, tiny or huge: the exact path
+  const double up = sub_rn(next_up_positive(a), a), down = sub_rn(a, next_down_positive(a));
+  const double drift = abs_d(r_err);
+  // The side r's remainder lies on, away from zero or towards it; both where the error could cross zero.
+  const double gap = error < drift ? ((r_err > 0) == (r > 0) ? up : down) : (up < down ? up : down);
+  if (!(mul_rn(add_rn(drift, error), 1.0 + 0x1p-40) < mul_rn(0.5, gap))) return false;
+  *rounded = r;
+  return true;
+}
+#endif
+
 // u_j v_k - u_k v_j, rounded to nearest.
 CUDAHULL_HD inline double rounded_minor(const Pair& uj, const Pair& vk, const Pair& uk, const Pair& vj) {
   if (uj.len == 1 && vk.len == 1 && uk.len == 1 && vj.len == 1) {
@@ -128,9 +199,11 @@ CUDAHULL_HD inline double rounded_minor(const Pair& uj, const Pair& vk, const Pa
     two_product(uk.v[0], vj.v[0], q, q_err);
     if (p_err == 0.0 && q_err == 0.0) return add_rn(sub_rn(p, q), 0.0);
   }
-  double h[kPlaneComponents];
-  const int len = pair_cross(uj, vk, uk, vj, h);
-  return add_rn(round_expansion(len, h), 0.0);  // + 0.0: a zero component is +0, never -0
+#if !defined(__CUDA_ARCH__)
+  double fast;
+  if (rounded_minor_fast(uj, vk, uk, vj, &fast)) return add_rn(fast, 0.0);
+#endif
+  return rounded_minor_exact(uj, vk, uk, vj);
 }
 
 // (b - a) x (c - a), each component the exact value rounded to nearest (plane.hpp's cross_rounded).

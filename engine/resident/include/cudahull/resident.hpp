@@ -4,6 +4,7 @@
 // docs/architecture.md, "The resident engine", says how it differs from the stepping Engine.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -86,6 +87,18 @@ template <class Point>
 BasicHullMesh<Point> resident_hull_host(const std::vector<Point>& points, ResidentStats* stats = nullptr,
                                         ResidentPath path = ResidentPath::kHost,
                                         bool executor_points_only = false);
+
+// The clouds small_hull_host() takes.  Its cost grows with vertices times faces: on a sphere (every point a
+// vertex) it matches the stepping engine at about 150 points and loses beyond (1.14 ms against 0.92 at 256 on
+// 2 cores); on a ball's 256 points it takes a third of the engine's time.
+inline constexpr std::size_t kSmallHullPoints = 128;
+
+// The exact hull of `count` points (4..kSmallHullPoints) on the calling thread by the batch warps' hull
+// (resident/small_hull.hpp on HostTeam, its workspace kept per thread): the batch kernel's mesh for the
+// cloud, face for face.  False (mesh untouched) for another count, a flat cloud or one small_hull() hands
+// on: the caller takes another path.  Coordinates in the fast exact range (a float's always are).
+template <class Point>
+bool small_hull_host(const Point* points, std::size_t count, BasicHullMesh<Point>& mesh);
 
 class SteppingEngine;
 

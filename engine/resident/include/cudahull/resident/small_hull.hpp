@@ -34,6 +34,17 @@ namespace cudahull::resident {
 
 inline constexpr u32 kNoFace = 0xffffffffu;
 
+// Whether a team runs its ranges one index after another, in order (HostTeam): then a point's tests against
+// the new faces stop at the first it is above, the least, which a team of threads finds with atomic_min().
+template <class Team>
+struct RunsInOrder {
+  static constexpr bool value = false;
+};
+template <>
+struct RunsInOrder<HostTeam> {
+  static constexpr bool value = true;
+};
+
 // The slot's arrays as this hull uses them (a face: 3 corners, 3 links, a live flag, a seen flag, its
 // furthest key; a horizon edge: its start, end and outer edge; the seen faces and the free slots listed;
 // seen_rank and edge_rank: the finish's ranks and corners, edge_rank a step's first new faces until then).
@@ -192,6 +203,9 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
     // corners read from the horizon, not through its slot.
     team.for_range(movers * edges, [&](u32 t) {
       const u32 x = t / edges, k = t % edges;
+      if constexpr (RunsInOrder<Team>::value) {
+        if (first_above[x] < k) return;  // a lesser new face already found: this one cannot be the least
+      }
       if (orient3d(at(h.horizon[3 * k]), at(h.horizon[3 * k + 1]), pp, at(mover[x])) > 0)
         atomic_min_u32(&first_above[x], k);
     });
