@@ -393,17 +393,21 @@ class ConvexHull:
             raise too_few_points_error(int(chosen.shape[0]), ndim)
         result = _hull_dict(chosen, self._protocol, self._kind, self._backend_choice, self._precision_choice,
                             self._engine_choice, self._tolerance_choice)
-        if result["dimension"] == ndim and result["tolerance"] > 0 and len(result["vertices"]) <= 2000:
+        if result["dimension"] == ndim and result["tolerance"] > 0:
             # A merged hull thinner than its tolerance in some facet's direction is flat at that
-            # tolerance, as Qhull finds it (QH6154).  (Merging leaves a thin body few vertices.)
-            corners = result["vertices"].astype(np.int64)
-            hull_corners = np.asarray(self._host(self._kind.take(chosen, corners)) if self._kind is not None
-                                      else chosen[corners], dtype=np.float64)
-            equations = result["equations"]
-            widths = -(hull_corners @ equations[:, :-1].T + equations[:, -1]).min(axis=0)
-            if widths.size and widths.min() <= result["tolerance"]:
+            # tolerance, as Qhull finds it (QH6154).  The 3-D module measures the thinnest direction itself
+            # (exactly, where it is near the tolerance); 2-D hulls are measured here.
+            thinnest = result.get("thinnest")
+            if thinnest is None and len(result["vertices"]) <= 2000:
+                corners = result["vertices"].astype(np.int64)
+                hull_corners = np.asarray(self._host(self._kind.take(chosen, corners)) if self._kind is not None
+                                          else chosen[corners], dtype=np.float64)
+                equations = result["equations"]
+                widths = -(hull_corners @ equations[:, :-1].T + equations[:, -1]).min(axis=0)
+                thinnest = float(widths.min()) if widths.size else None
+            if thinnest is not None and thinnest <= result["tolerance"]:
                 raise qhull_error(f"QH6154 Qhull precision error: Initial simplex is flat (the merged hull is "
-                                  f"{widths.min():.3g} thick, within its tolerance {result['tolerance']:.3g}: "
+                                  f"{thinnest:.3g} thick, within its tolerance {result['tolerance']:.3g}: "
                                   f"flat at that tolerance; tolerance=None gives the exact hull)")
         if result["dimension"] < ndim:
             low, high = (chosen.min(axis=0), chosen.max(axis=0)) if self._kind is None else self._kind.bounds(chosen)
@@ -432,9 +436,9 @@ class ConvexHull:
         if coplanar.size:
             coplanar[:, 0] = original(coplanar[:, 0])
             coplanar[:, 2] = original(coplanar[:, 2])
-        # The exact hull's vertices, merged away or not: what add_points computes on next.
-        values["exact_vertices"] = (np.union1d(values["vertices"], coplanar[:, 0]) if coplanar.size
-                                    else values["vertices"]).astype(np.int64)
+        # The exact hull's vertices, merged away or not, are what add_points computes on next: kept as the
+        # two arrays they come from and joined only when add_points asks.
+        values["exact_vertices"] = (values["vertices"], coplanar[:, 0].copy() if coplanar.size else None)
         options = self._options
         other_points = options is not None and (options.interior or options.coplanar)
         scaled = options is not None and bool(options.scalings)
@@ -572,7 +576,9 @@ class ConvexHull:
             joined = np.ascontiguousarray(np.concatenate([self.points, new]))
         subset: npt.NDArray[Any] | None = None
         if not restart:
-            subset = np.concatenate([self._exact_vertices, np.arange(old_count, int(joined.shape[0]))])
+            vertices, merged_away = self._exact_vertices
+            exact = np.union1d(vertices, merged_away) if merged_away is not None else vertices
+            subset = np.concatenate([np.asarray(exact, dtype=np.int64), np.arange(old_count, int(joined.shape[0]))])
             subset.sort()
             if self._good_point is not None:
                 subset = np.unique(np.append(subset, self._good_point))
@@ -611,12 +617,15 @@ def _scaled_measures(host: npt.NDArray[np.float64], simplices: npt.NDArray[Any],
     """The volume and area Qhull reports under QbB / Qbb / Qbk:n / QBk:n: those of the points mapped by
     x -> x * scale + shift per axis.  The volume is the true one times the map's determinant; the area
     (perimeter in 2-D) is summed over the simplices in the scaled coordinates."""
-    scale, shift = np.asarray(scaling[0]), np.asarray(scaling[1])
-    scaled = host * scale + shift
-    corners = scaled[np.asarray(simplices, dtype=np.int64)]
+    scale = np.asarray(scaling[0])
+    # Edges of the scaled simplices: the map's shift cancels, so only the hull's edges are scaled.
+    corners = host[simplices]
+    edges = (corners[:, 1:] - corners[:, :1]) * scale
     if host.shape[1] == 2:
-        area = float(np.linalg.norm(corners[:, 1] - corners[:, 0], axis=1).sum())
+        area = float(np.sqrt(np.einsum("ij,ij->i", edges[:, 0], edges[:, 0])).sum())
     else:
-        normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-        area = float(np.linalg.norm(normals, axis=1).sum() / 2)
+        # The cross product by columns: np.cross's axis handling costs more than the products on small hulls.
+        first, second = edges[:, 0], edges[:, 1]
+        cross = first[:, [1, 2, 0]] * second[:, [2, 0, 1]] - first[:, [2, 0, 1]] * second[:, [1, 2, 0]]
+        area = float(np.sqrt(np.einsum("ij,ij->i", cross, cross)).sum() / 2)
     return volume * float(np.prod(np.abs(scale))), area

@@ -107,6 +107,11 @@ class ParsedOptions:
             return None
         ndim = int(points.shape[1])
         low, high = points.min(axis=0), points.max(axis=0)
+        if list(self.scalings) == [("box",)]:
+            # QbB alone (trimesh passes it on every call), by arrays: each axis onto [-0.5, 0.5].
+            widths = high - low
+            factors = 1.0 / np.where(widths > 0, widths, 1.0)
+            return list(map(float, factors)), list(map(float, -0.5 - low * factors))
         new_low, new_high = [float(v) for v in low], [float(v) for v in high]
         last = False
         for scaling in self.scalings:
