@@ -29,12 +29,27 @@ def check_request(ndim: int, tolerance: object, backend: str, precision: str, en
                          f"'qhull', not {tolerance!r}")
 
 
+def _scipy_convex_hull() -> Any:
+    """scipy's own ConvexHull class, also where a caller has put cudahull's in its place (trimesh's tests
+    swap ``scipy.spatial.ConvexHull``): asking for it by name would then call cudahull again, for ever."""
+    from scipy.spatial import _qhull  # type: ignore[import-untyped, unused-ignore]
+
+    named = getattr(_qhull, "ConvexHull", None)
+    if named is not None and str(getattr(named, "__module__", "")).startswith("scipy."):
+        return named
+    for candidate in _qhull._QhullUser.__subclasses__():
+        if candidate.__name__ == "ConvexHull" and candidate.__module__.startswith("scipy."):
+            return candidate
+    raise ImportError("scipy.spatial's ConvexHull class was not found")
+
+
 def scipy_hull(points: npt.NDArray[Any], incremental: bool, qhull_options: str | None) -> Any:
     """``scipy.spatial.ConvexHull(points, incremental, qhull_options)``; its QhullError raised as ours (a
     subclass of scipy's), so that code catching ``cudahull.QhullError`` catches it too."""
     try:
-        from scipy.spatial import ConvexHull as ScipyConvexHull  # type: ignore[import-untyped, unused-ignore]
-        from scipy.spatial import QhullError as ScipyQhullError
+        from scipy.spatial import QhullError as ScipyQhullError  # type: ignore[import-untyped, unused-ignore]
+
+        ScipyConvexHull = _scipy_convex_hull()
     except ImportError:
         raise ValueError(f"points are {points.shape[1]}-dimensional: cudahull's engines compute 2-D and 3-D "
                          f"hulls, and higher dimensions go through scipy's Qhull, which is not installed "

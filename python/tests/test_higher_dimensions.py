@@ -114,3 +114,16 @@ def test_what_only_the_exact_engines_do_is_refused():
     assert cudahull.ConvexHull(cloud(4)[:, :3]).backend != "qhull"
     with pytest.raises(ValueError, match=r"must be an \(n, 3\) array"):
         cudahull.convex_hull_batch([cloud(4)])
+
+
+def test_4d_with_cudahull_in_scipys_place(monkeypatch):
+    """A client that swaps scipy.spatial.ConvexHull for cudahull's (trimesh's own tests do) still gets
+    Qhull's 4-D hull, not cudahull calling itself until RecursionError."""
+    points = np.random.default_rng(0).random((100, 4))
+    expected = scipy.spatial.ConvexHull(points)
+    monkeypatch.setattr(scipy.spatial, "ConvexHull", cudahull.ConvexHull)
+    monkeypatch.setattr(scipy.spatial._qhull, "ConvexHull", cudahull.ConvexHull)
+    hull = scipy.spatial.ConvexHull(points)
+    assert hull.backend == "qhull"
+    assert np.array_equal(np.sort(hull.vertices), np.sort(expected.vertices))
+    assert hull.volume == pytest.approx(expected.volume, rel=1e-12)
