@@ -444,17 +444,25 @@ class ConvexHull:
         scaled = options is not None and bool(options.scalings)
         # Qc, Qi, QG and Qhull's scaling look at the points themselves, on the host (one copy, in double).
         host: npt.NDArray[np.float64] | None = (np.ascontiguousarray(self._host(points), dtype=np.float64)
-                                                if other_points or good is not None or scaled else None)
+                                                if other_points or good is not None else None)
         if other_points and host is not None:
             coplanar = self._with_other_points(host, values, coplanar, result["tolerance"])
         values["coplanar"] = index_array(coplanar.reshape(-1, 3), npoints)
         values["good"] = None
         if good is not None and host is not None:
             values["good"] = self._good(host, values, good)
-        scaling = options.scaling(host) if options is not None and scaled and host is not None else None
-        if scaling is not None and host is not None:
-            values["volume"], values["area"] = _scaled_measures(host, values["simplices"], scaling,
-                                                                float(values["volume"]))
+        if options is not None and scaled:
+            # Qhull's map comes from the points' bounds, which the exact hull's vertices attain (each axis'
+            # extreme is a face of the hull, whose corners are vertices): only those points are read, not
+            # all of them (a column reduction of 523,000 points took 27 ms, a copy from the GPU more).
+            extreme = np.unique(np.concatenate([values["vertices"], coplanar[:, 0]]))
+            corners = (host[extreme] if host is not None else
+                       np.asarray(self._host(self._kind.take(points, extreme)) if self._kind is not None
+                                  else points[extreme], dtype=np.float64))
+            scaling = options.scaling(corners)
+            if scaling is not None:
+                values["volume"], values["area"] = _scaled_measures(
+                    corners, np.searchsorted(extreme, values["simplices"]), scaling, float(values["volume"]))
         return values
 
     def _host(self, points: Any) -> npt.NDArray[Any]:

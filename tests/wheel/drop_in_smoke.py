@@ -25,7 +25,9 @@ def same_hull(points: np.ndarray, **options: object) -> None:
 
 def main() -> int:
     site = Path(cudahull.__file__).resolve()
-    assert "site-packages" in site.parts, f"cudahull imported from {site}, not from the installed wheel"
+    source = Path(__file__).resolve().parents[2] / "python"
+    assert source not in site.parents, f"cudahull imported from the source tree ({site}), not the installed wheel"
+    assert (site.parent / "_bin" / "cudahull").is_file(), f"{site.parent} holds no command line: not the wheel"
     rng = np.random.default_rng(20261206)
     same_hull(rng.standard_normal((2000, 3)))
     same_hull(rng.random((500, 2)))
