@@ -409,6 +409,12 @@ class ConvexHull:
                 raise qhull_error(f"QH6154 Qhull precision error: Initial simplex is flat (the merged hull is "
                                   f"{thinnest:.3g} thick, within its tolerance {result['tolerance']:.3g}: "
                                   f"flat at that tolerance; tolerance=None gives the exact hull)")
+        if result["dimension"] < ndim and self._options is not None and self._options.joggle:
+            # QJ on flat points: Qhull's answer, the hull of the points each moved by a tiny random amount
+            # (its joggle), so that a client retrying with QJ (trimesh does) gets a thin full-dimensional hull.
+            joggled = _joggled(np.asarray(self._host(chosen), dtype=np.float64))
+            result = _hull_dict(joggled, None, None, self._backend_choice, self._precision_choice,
+                                "auto", None)
         if result["dimension"] < ndim:
             low, high = (chosen.min(axis=0), chosen.max(axis=0)) if self._kind is None else self._kind.bounds(chosen)
             raise degenerate_error(self._host(low), self._host(high), int(result["dimension"]),
@@ -618,6 +624,18 @@ class ConvexHull:
     def __repr__(self) -> str:
         return (f"<cudahull.ConvexHull of {self.npoints} {self.ndim}-D points: {len(self.vertices)} vertices, "
                 f"{self.nsimplex} simplices, backend={self.backend!r}>")
+
+
+def _joggled(points: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+    """The points moved as Qhull's QJ moves them: each coordinate by a uniform random amount within
+    30,000 times Qhull's distance roundoff (qh_detjoggle), from a fixed seed, so the result repeats."""
+    epsilon = float(np.finfo(np.float64).eps)
+    magnitudes = np.abs(points)
+    largest = float(magnitudes.max(initial=0.0))
+    largest_sum = float(magnitudes.sum(axis=1).max(initial=0.0))
+    roundoff = epsilon * (points.shape[1] * largest_sum * 1.01 + largest)
+    joggle = 30000.0 * max(roundoff, epsilon)
+    return points + np.random.default_rng(1).uniform(-joggle, joggle, size=points.shape)
 
 
 def _scaled_measures(host: npt.NDArray[np.float64], simplices: npt.NDArray[Any],

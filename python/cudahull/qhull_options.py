@@ -23,7 +23,8 @@ What the options mean here (the hull itself is exact unless a tolerance asks for
     Qx, Qz, Q12, Qs, Qv, Pp, Tv
                    Qhull's internal search, checks and warnings: accepted, no effect on the result
     QJ, QJn        joggle the input so that the output is simplicial: the exact hull already is, without
-                   joggling; no merging (tolerance None)
+                   joggling; no merging (tolerance None).  Flat points are joggled as Qhull joggles them
+                   (by up to 30,000 times its roundoff), and their thin full-dimensional hull returned
     QGn, QG-n      ``good``: the facets visible (QGn) or not visible (QG-n) from point n, which is left out
                    of the hull, as in Qhull
     Cn, C-n        merge facets within the distance n (absolute, as in Qhull); C0 and C-0 are Qhull's

@@ -121,3 +121,20 @@ def test_a_bound_for_an_axis_beyond_the_points_is_qhulls_error():
 def test_qhulls_projection_has_no_defined_behaviour():
     with pytest.raises(cudahull.QhullError, match="has no defined behaviour"):
         cudahull.ConvexHull(np.random.default_rng(0).normal(size=(20, 3)), qhull_options="Qb1:0B1:0")
+
+
+def test_qj_on_flat_points_gives_qhulls_thin_hull():
+    """QJ asks Qhull to joggle: flat points then get a thin full-dimensional hull, not an error (trimesh
+    retries a flat mesh's hull with QJ).  Each corner of the flat polygon stays a vertex."""
+    points = np.random.default_rng(0).random((200, 3)) * 1000 + 5
+    points[:, 2] = 7.0
+    theirs = scipy.spatial.ConvexHull(points, qhull_options="QJ")
+    ours = cudahull.ConvexHull(points, qhull_options="QJ")
+    corners = scipy.spatial.ConvexHull(points[:, :2]).vertices
+    assert set(corners) <= set(ours.vertices.tolist())
+    for hull in (ours, theirs):  # thin: a joggle's thickness under the polygon's two sides
+        assert 0 < hull.volume < 1e-6 * hull.area ** 1.5
+    assert ours.area == pytest.approx(theirs.area, rel=1e-6)  # both sides of the flat polygon
+    assert np.array_equal(ours.points, points)
+    with pytest.raises(cudahull.QhullError, match="QH6154"):
+        cudahull.ConvexHull(points)  # without QJ: the flat input's error, as Qhull's
