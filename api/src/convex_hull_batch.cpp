@@ -487,12 +487,9 @@ ConvexHullBatch vector_batch(const std::vector<Point>& points, const std::vector
     throw std::invalid_argument("convex_hull_batch: no offsets (B + 1 of them are needed, {0} for none)");
   using Scalar = decltype(Point::x);
   static_assert(sizeof(Point) == 3 * sizeof(Scalar), "x, y, z packed");
-  return host_batch(reinterpret_cast<const Scalar*>(points.data()), points.size(), offsets.data(),
-                    offsets.size() - 1, options,
-                    [&points](std::size_t begin, std::size_t n, const ConvexHullOptions& each) {
-                      // The packed coordinates in place: convex_hull()'s array form reads the same values.
-                      return cloud_hull(reinterpret_cast<const Scalar*>(points.data()) + 3 * begin, n, each);
-                    });
+  // The packed coordinates in place: the array form reads the same values.
+  return array_batch(reinterpret_cast<const Scalar*>(points.data()), points.size(), offsets.data(),
+                     offsets.size() - 1, options);
 }
 
 // `int32_indices`: the result is kept on the device, whose index columns are int32 (a cloud of 2^31 points
