@@ -10,24 +10,13 @@ vertex set against scipy's.  The module comes from PYTHONPATH.
 """
 import argparse
 import os
-import time
 
 import numpy as np
 import scipy.spatial
 
 import cudahull
+from timing import best_of
 
-
-def best_of(fns, repeat):
-    """Each function's result and best time over `repeat` rounds, the functions taken in turn within a round
-    (a busy machine slows them alike)."""
-    results, times = [None] * len(fns), [float("inf")] * len(fns)
-    for _ in range(repeat):
-        for k, fn in enumerate(fns):
-            t0 = time.perf_counter()
-            results[k] = fn()
-            times[k] = min(times[k], time.perf_counter() - t0)
-    return results, times
 
 
 def main():

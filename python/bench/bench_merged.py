@@ -11,12 +11,12 @@ each (the four taken in turn within each round), on the rows of issue 42's table
 """
 import argparse
 import os
-import time
 
 import numpy as np
 import scipy.spatial
 
 import cudahull
+from timing import best_of
 
 ASSETS = os.path.join(os.path.dirname(__file__), "..", "..", "assets")
 
@@ -45,17 +45,6 @@ def rows():
         "sphere": ("1e5 sphere points", sphere),
     }
 
-
-def best_of(fns, repeat):
-    """Each function's result and best time over `repeat` rounds, the functions taken in turn within a round
-    (a busy machine slows them alike, not whichever ran during the busy spell)."""
-    results, times = [None] * len(fns), [float("inf")] * len(fns)
-    for _ in range(repeat):
-        for k, fn in enumerate(fns):
-            t0 = time.perf_counter()
-            results[k] = fn()
-            times[k] = min(times[k], time.perf_counter() - t0)
-    return results, times
 
 
 def shown(seconds):
