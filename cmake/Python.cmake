@@ -1,7 +1,9 @@
-# The Python module (issue 16, python/) is built when the Python named by Python_EXECUTABLE has nanobind:
-# scripts/build names build-venv's (scripts/setup fills it), and `pip install .` sets CUDAHULL_PYTHON=ON.
+# The Python module (python/) is built with the Python named by Python_EXECUTABLE, which needs nanobind:
+# scripts/build names build-venv's (scripts/setup fills it).  ON (the default) fails at configure time where
+# it cannot be built, so that its tests never vanish unseen; OFF leaves it out on purpose, and AUTO builds
+# it where nanobind is found.
 # A module is a shared object, so every library it links is then compiled as position-independent code.
-set(CUDAHULL_PYTHON AUTO CACHE STRING "Build the Python module: AUTO (when nanobind is found), ON or OFF")
+set(CUDAHULL_PYTHON ON CACHE STRING "Build the Python module: ON (fail without nanobind), OFF, or AUTO (when found)")
 set(CUDAHULL_WITH_PYTHON OFF)
 if(NOT CUDAHULL_PYTHON STREQUAL "OFF")
   if(CUDAHULL_SANITIZE)
@@ -22,7 +24,9 @@ if(NOT CUDAHULL_PYTHON STREQUAL "OFF")
     endif()
     if(NOT CUDAHULL_WITH_PYTHON)
       if(CUDAHULL_PYTHON STREQUAL "ON")
-        message(FATAL_ERROR "CUDAHULL_PYTHON=ON, but ${Python_EXECUTABLE} has no nanobind (pip install nanobind)")
+        message(FATAL_ERROR "the Python module cannot be built: ${Python_EXECUTABLE} has no nanobind (pip install "
+                            "nanobind, or -DPython_EXECUTABLE=build-venv/bin/python after scripts/setup); "
+                            "-DCUDAHULL_PYTHON=OFF builds without it")
       endif()
       message(STATUS "Python module: off (no nanobind for ${Python_EXECUTABLE}; scripts/setup prepares build-venv)")
     endif()
