@@ -21,7 +21,7 @@
 //     passes and the single-cloud path; the hulls and their sizes stay on the device (BatchRun's outputs)
 //   the offsets (lay_out_batch_offsets()): each done cloud's sizes written from its pass's results, the
 //     hosted clouds' from the host, a prefix sum a column; the totals alone read back (a host loop over
-//     100,000 clouds' results and their offsets' copies cost 2.4 ms of a 13.6 ms batch from PyTorch)
+//     every cloud's result was a sixth of a batch's time)
 //   describe (describe_batch_cuda()): a warp a done cloud, into the packed result's columns at the offsets
 //     the caller laid out: vertex ids, faces on the cloud's indices, planes (a lane a face), the volume and
 //     area (a lane a face's terms, added face after face in the mesh's order, as convex_hull() sums them
@@ -70,12 +70,12 @@ constexpr std::size_t kLargeBlockPoints = 16384;
 constexpr std::size_t kMidBlockPoints = 256;
 // The clouds of at most this many points take a warp each (TeamKind::kWarp; CUDAHULL_BATCH_WARP_POINTS, up
 // to kRetryOnWarpPoints; 0: no cloud on a warp, no retry either).  small_hull() tests every face and point at
-// each step: 100,000 balls of 100 ran 2.3 times faster than on blocks, 50,000 of 200 1.4 times, 30,000 of
-// 400 1.1 times slower, 10,000 of 1,000 2.6 times slower (docs/benchmarks.md, "Batched hulls").
+// each step, so warps win on small clouds and lose above a few hundred points (docs/benchmarks.md, "The
+// measurements behind the code's constants").
 constexpr std::size_t kWarpPoints = 256;
 // The clouds of at most this many points that a block sent to the single-cloud path take a warp first
-// (small_hull(), with room for every point): 300 integer grids of 1,000 points took 0.7 ms there against
-// 230 ms on the single-cloud path, one after another (docs/benchmarks.md, "Batched hulls").
+// (small_hull(), with room for every point), hundreds of times quicker than the single-cloud path, one
+// cloud after another (docs/benchmarks.md, "The measurements behind the code's constants").
 constexpr u32 kRetryOnWarpPoints = 4096;
 
 void check(cudaError_t e, const char* what) {
@@ -108,12 +108,11 @@ class EventTimer {
   cudaEvent_t events_[2];
 };
 
-// After a batch the pool keeps what it holds, up to this share of the device's memory (1/16: 5 GB of an
-// H100's 80), for the next batch of its size: what the batch used, and what the last batch's result (often
-// alive while the next one runs) holds.  Mapping it again and handing it back cost 100,000 clouds of 100
-// points 1.2 ms of their 16 from PyTorch, 100 of 100,000 1.4 ms of 8; keeping what the batch used alone left
-// the next result's columns to map again (docs/benchmarks.md, "Batched hulls").
-// cudahull::release_device_memory() hands it back at once.
+// After a batch the pool keeps what it holds, up to this share of the device's memory, for the next batch
+// of its size: what the batch used, and what the last batch's result (often alive while the next one runs)
+// holds, since mapping it again and handing it back cost a batch about a tenth of its time; keeping what
+// the batch used alone left the next result's columns to map again (docs/benchmarks.md, "The measurements
+// behind the code's constants"). cudahull::release_device_memory() hands it back at once.
 constexpr std::size_t kBatchKeepShare = 16;
 
 // The clouds with more points than this take the single-cloud path (or CUDAHULL_BATCH_BLOCK_POINTS, up to
@@ -286,15 +285,12 @@ __global__ void __launch_bounds__(32 * kWarps, kMinBlocks) batch_warp_kernel(Pas
 // The kinds of team a pass runs its clouds on: a block of kThreads (five an SM, or four above
 // kMidBlockPoints), or of kLargeThreads.  The small blocks are held to the registers of five blocks an SM:
 // at the 168 a thread the iteration would take, three fit, and the SM waits on memory with nothing to
-// issue (ncu: 83% of cycles); with five the batch kernel runs some 25% faster (docs/benchmarks.md,
-// "Batched hulls").  Clouds of more than kMidBlockPoints take four an SM: 128 registers a thread spill
-// less, and their longer phases wait on memory more than on the barriers.
+// issue.  Clouds of more than kMidBlockPoints take four an SM: 128 registers a thread spill less, and their
+// longer phases wait on memory more than on the barriers.
 // The smallest clouds take a warp each (kWarp: kWarpsPerBlock warps a block, small_hull()), four blocks an
-// SM: small_hull() at 128 registers a thread spills less than at five's 96 and ran 9-17% faster (100,000
-// balls of 100 points 8.3 ms against 9.2, 20,000 spheres of 128 8.0 against 9.7); at three (168) and two,
-// slower (docs/benchmarks.md, "Batched hulls").  The resident iteration on a warp a cloud ran slower than on
-// blocks (100,000 balls of 100: 36.4 ms against 28.6): twenty warps an SM, each in a phase of its own, waited
-// on instruction fetch (ncu: 52% of the stall samples).
+// SM: small_hull() at 128 registers a thread spills less than at five's 96; three and two blocks were
+// slower.  The resident iteration on a warp a cloud lost to blocks: twenty warps an SM, each in a phase of
+// its own, waited on instruction fetch (docs/benchmarks.md, "The measurements behind the code's constants").
 enum class TeamKind { kWarp, kBlock, kMidBlock, kLargeBlock };
 constexpr int kWarpsPerBlock = kThreads / 32;
 template <TeamKind kKind>
@@ -307,7 +303,7 @@ constexpr int kMinBlocksOf = kKind == TeamKind::kLargeBlock                     
                                                                                         : 5;
 
 // A pass's clouds, in cloud order: listed, or (`every`) all the batch's clouds 0 .. count - 1, which the
-// host never lists (a list of 100,000 clouds, written to fresh pages and uploaded, cost 0.5 ms).
+// host never lists (a list of every cloud, written to fresh pages and uploaded, costs host time).
 struct CloudList {
   std::vector<u32> listed;
   bool every = false;
@@ -502,9 +498,9 @@ __global__ void __launch_bounds__(kDescribeThreads) describe_kernel(DescribeArgs
     // As convex_hull() measures a mesh (convex_hull.cpp, measure_solid; plane_impl.hpp, measure_mesh()):
     // the faces' terms from the first face's first corner, added in the mesh's order one after another, and
     // the exact pass where the first is uncertain: the same bits.  Each lane loads (and computes the terms
-    // of) its own faces, and every lane adds them all in order from the shuffles (with lane 0 alone, face
-    // after face, the describe took 3.7-4.1 ms on 100,000 clouds of 100 points on the H100, against
-    // 1.9-2.7: docs/benchmarks.md, "Batched hulls").
+    // of) its own faces, and every lane adds them all in order from the shuffles: lane 0 alone, face after
+    // face, took about half again as long (docs/benchmarks.md, "The measurements behind the code's
+    // constants").
     const auto corner = [&](u32 f, int k) { return to_vec3d(xyz[corners[3 * f + k]]); };
     const Vec3d apex = corner(0, 0);
     static_assert(detail::SolidMeasures::kErrorSums == 32, "a lane an error sum");
@@ -610,8 +606,9 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   };
   // The groups counted first: where one kind takes every cloud, none is listed.  Where the sizes' range
   // falls to one kind, its group is counted at once from the range and the points' sum (a warp's room is
-  // its point count; a block's is the same for one size): a loop over 100,000 clouds' kinds and rooms cost
-  // 0.25-0.29 ms of host time with one size, 0.53 ms with sizes of 50 to 150 (H100 machine).
+  // its point count; a block's is the same for one size): a host loop over every cloud's kind and room is
+  // what a batch of small clouds can least afford (docs/benchmarks.md, "The measurements behind the code's
+  // constants").
   std::size_t smallest = clouds != 0 ? offsets[1] - offsets[0] : 0, biggest = smallest;
   for (std::size_t c = 1; c < clouds; ++c) {
     const std::size_t n = offsets[c + 1] - offsets[c];
@@ -823,8 +820,8 @@ void describe_batch_cuda(const BatchRun<Point>& run, const BatchColumns& columns
   check(cudaDeviceSynchronize(), "describing the hulls (kernel fault)");
 }
 
-// The current device's memory, asked once a device: cudaMemGetInfo() cost each batch 44 us of host time
-// (H100, torch.profiler; docs/benchmarks.md, "Batched hulls").  0 where it cannot be read.
+// The current device's memory, asked once a device: cudaMemGetInfo() is a host round trip a batch need not
+// pay (docs/benchmarks.md, "The measurements behind the code's constants").  0 where it cannot be read.
 static std::size_t device_total_memory() {
   constexpr int kDevices = 64;
   static std::atomic<std::size_t> totals[kDevices];

@@ -251,8 +251,8 @@ struct WarpTeam {
   }
   // The indices below n that pass (pred(i), once each), in index order, each told its rank among them
   // (emit(i, rank), on its lane); the count to every lane.  A loop of its own, not list_two()'s first list
-  // alone as on HostTeam: the unused second ballot cost the batch kernel 1% (H100, 100,000 balls of 100:
-  // 8.32 ms against 8.25).
+  // alone as on HostTeam: the unused second ballot cost the batch kernel time
+  // (docs/benchmarks.md, "The measurements behind the code's constants").
   template <class Pred, class Emit>
   __device__ u32 list(u32 n, const Pred& pred, const Emit& emit) const {
     __syncwarp();

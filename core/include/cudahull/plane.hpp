@@ -10,8 +10,8 @@
 //   place of the exact one for every triangle, and a point on or below the exact plane evaluates to
 //   n . p + d < 3.1e-15 x scale (the largest coordinate magnitude) in double; the bound is in plane.cpp.
 //
-//   It runs once per output facet, after the hull is built (about 40 ns a facet for float32 input, 250 ns
-//   for double input whose coordinate differences are inexact), on the host, and on the device for the
+//   It runs once per output facet, after the hull is built (a small share of the hull's time: docs/
+//   benchmarks.md, "The measurements behind the code's constants"), on the host, and on the device for the
 //   batch kernel's hulls (the code: cudahull/detail/plane_impl.hpp).
 #pragma once
 
