@@ -78,9 +78,7 @@ constexpr std::size_t kWarpPoints = 256;
 // cloud after another (docs/benchmarks.md, "The measurements behind the code's constants").
 constexpr u32 kRetryOnWarpPoints = 4096;
 
-void check(cudaError_t e, const char* what) {
-  if (e != cudaSuccess) throw_cuda_error(kWho, what, e);
-}
+constexpr CudaCheck check{kWho};
 
 // Milliseconds of the default stream's work between construction and stop() (CUDA events).
 class EventTimer {

@@ -38,9 +38,7 @@ constexpr const char* kWho = "CUDA backend";
   throw_cuda_error(kWho, what, e);
 }
 
-void check(cudaError_t e, const char* what) {
-  if (e != cudaSuccess) fail(what, e);
-}
+constexpr CudaCheck check{kWho};
 
 [[noreturn]] void fail_alloc(const char* what, std::size_t bytes, cudaError_t e, bool pinned) {
   throw_out_of_memory(kWho, what, bytes, e, pinned);

@@ -22,4 +22,14 @@ std::string memory_text(std::size_t bytes);  // "N bytes (M MiB)"
 [[noreturn]] void throw_out_of_memory(const char* who, const char* what, std::size_t bytes, cudaError_t e,
                                       bool pinned = false);
 
+// The one check of a CUDA call's result, bound to the component that makes the call:
+//   constexpr CudaCheck check{"batched hulls"};
+//   check(cudaMemcpy(...), "reading the hulls back");  // DeviceError "batched hulls: reading ...: ..."
+struct CudaCheck {
+  const char* who;
+  void operator()(cudaError_t e, const char* what) const {
+    if (e != cudaSuccess) throw_cuda_error(who, what, e);
+  }
+};
+
 }  // namespace cudahull

@@ -18,9 +18,7 @@ namespace {
 constexpr const char* kWho = "device points";
 constexpr unsigned kThreads = 256;
 
-void check(cudaError_t e, const char* what) {
-  if (e != cudaSuccess) throw_cuda_error(kWho, what, e);
-}
+constexpr CudaCheck check{kWho};
 
 // in_fast_exact_range() (predicates.hpp), the engines' range: a double outside it is not refused but sent
 // to the host's wide-range path (convex_hull_device() reads its first such point and decides).

@@ -30,9 +30,7 @@ struct InnerPolygon {
   int corners;
 };
 
-void check(cudaError_t e, const char* what) {
-  if (e != cudaSuccess) throw_cuda_error(kWho, what, e);
-}
+constexpr CudaCheck check{kWho};
 
 // in_fast_exact_range() (predicates.hpp) for double: one outside it goes to the host's wide-range path;
 // a float is finite or not.

@@ -32,9 +32,7 @@ namespace cudahull {
 namespace resident {
 namespace {
 
-void check(cudaError_t e, const char* what) {
-  if (e != cudaSuccess) throw_cuda_error("resident engine", what, e);
-}
+constexpr CudaCheck check{"resident engine"};
 
 constexpr int kBlock = 256;
 constexpr int kOneBlockThreads = 512;  // the rounds of a small mesh (fused_rounds_kernel)

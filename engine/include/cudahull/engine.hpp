@@ -22,6 +22,7 @@
 #include "cudahull/point_map.hpp"
 #include "cudahull/predicates.hpp"
 #include "cudahull/records.hpp"
+#include "cudahull/routing.hpp"
 #include "cudahull/types.hpp"
 
 namespace cudahull {
@@ -30,13 +31,6 @@ namespace phases {
 struct SwapScratch;
 }
 struct ResidentStats;
-
-// Each face's cell (section 3): its plane and its three separating planes (through edge i, containing the
-// average of the unit normals of the two faces of the edge), positive inside the cell.
-struct FaceCell {
-  SeparatingPlane face_plane;  // unit normal, positive outside
-  SeparatingPlane edge_plane[3];
-};
 
 struct EngineOptions {
   bool keep_decisions = true;  // copy the decision array into each IterationRecord

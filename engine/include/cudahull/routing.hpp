@@ -22,6 +22,13 @@ struct SeparatingPlane {
   double nx = 0, ny = 0, nz = 0, d = 0;
 };
 
+// Each face's cell (section 3): its plane and its three separating planes (through edge i, containing the
+// average of the unit normals of the two faces of the edge), positive inside the cell.
+struct FaceCell {
+  SeparatingPlane face_plane;  // unit normal, positive outside
+  SeparatingPlane edge_plane[3];
+};
+
 inline constexpr std::int32_t kRouteInternal = -0x7fffffff;  // point proven inside the hull
 
 // One refined face (Fig. 3a): its apex and three children.  Only refined faces have an entry; every old

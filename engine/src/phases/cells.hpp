@@ -14,7 +14,6 @@
 #include <array>
 #include <vector>
 
-#include "cudahull/engine.hpp"
 #include "cudahull/mesh.hpp"
 #include "cudahull/routing.hpp"
 

@@ -21,9 +21,9 @@
 #include <utility>
 #include <vector>
 
-#include "cudahull/engine.hpp"
 #include "cudahull/mesh.hpp"
 #include "cudahull/point_map.hpp"
+#include "cudahull/records.hpp"
 #include "phases/decision_array.hpp"
 
 namespace cudahull::phases {
