@@ -96,12 +96,14 @@ ResidentRun<Point> run_resident(const std::vector<Point>& points, const HullPlan
     const auto t_run = Clock::now();
     r.hull = resident.run(&r.stats);
     r.run_ms = ms_since(t_run);
+    fill_floors(r.stats, device_pace());  // after the clock: no run pays for measuring the hardware
   } else {
     r.backend_name = "cpu-resident";
     r.device = "cpu";
     const auto t_run = Clock::now();
     r.hull = resident_hull_host(points, &r.stats);
     r.run_ms = ms_since(t_run);
+    fill_floors(r.stats, host_pace());
   }
   if (!quiet) std::fprintf(stderr, "backend: %s (%s)\n", r.backend_name.c_str(), plan.backend_reason.c_str());
   if (!quiet && r.stats.exact_finish) std::fprintf(stderr, "note: exact finish: %s\n", r.stats.note.c_str());
@@ -223,10 +225,26 @@ int run_gen(const GenOptions& o) {
 
 namespace {
 
-// The resident engine's stats as one JSON object (`hull --stats`, `bench --json`): every field.
+// The resident engine's stats as one JSON object (`hull --stats`, `bench --json`): every field, then each
+// phase with its distance to the hardware ("phases": name, ms, bytes, launches, host_waits, floor_ms) and
+// the pace the floors were taken at.
 nlohmann::json resident_stats_json(const ResidentStats& stats) {
   nlohmann::json j = nlohmann::json::object();
   for_each_stat(stats, [&](const char* name, const auto& value) { j[name] = value; });
+  nlohmann::json phases = nlohmann::json::array();
+  for_each_phase(stats, [&](const char* name, const PhaseStat& p) {
+    phases.push_back({{"name", name},
+                      {"ms", p.ms},
+                      {"bytes", p.bytes},
+                      {"launches", p.launches},
+                      {"host_waits", p.host_waits},
+                      {"floor_ms", p.floor_ms}});
+  });
+  j["phases"] = phases;
+  j["phases_total_ms"] = stats.total_ms;
+  j["pace"] = {{"bytes_per_ms", stats.pace.bytes_per_ms},
+               {"launch_ms", stats.pace.launch_ms},
+               {"wait_ms", stats.pace.wait_ms}};
   return j;
 }
 

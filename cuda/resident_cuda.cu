@@ -7,6 +7,7 @@
 #include <cooperative_groups.h>
 
 #include <thrust/iterator/counting_iterator.h>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <cub/block/block_radix_sort.cuh>
@@ -50,6 +51,42 @@ DeviceBytes device_bytes;
 
 unsigned blocks_for(std::size_t n) {
   return static_cast<unsigned>((n + kBlock - 1) / kBlock);
+}
+
+__global__ void empty_kernel() {}
+
+// The current device's pace, measured once a process: its peak memory bandwidth from its attributes (two
+// transfers a memory clock across the bus), and a launch's and a wait's host time from empty kernels (a
+// launch: the mean of 64 queued; a wait: the mean of 16 launches each waited for, less a launch).
+HardwarePace measure_device_pace() {
+  static const HardwarePace pace = [] {
+    HardwarePace p;
+    int device = 0, clock_khz = 0, bus_bits = 0;
+    if (cudaGetDevice(&device) != cudaSuccess ||
+        cudaDeviceGetAttribute(&clock_khz, cudaDevAttrMemoryClockRate, device) != cudaSuccess ||
+        cudaDeviceGetAttribute(&bus_bits, cudaDevAttrGlobalMemoryBusWidth, device) != cudaSuccess)
+      return p;
+    p.bytes_per_ms = 2.0 * clock_khz * (bus_bits / 8.0);  // kHz x bytes = bytes per ms
+    using Clock = std::chrono::steady_clock;
+    auto ms_since = [](Clock::time_point t0) {
+      return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    };
+    empty_kernel<<<1, 1>>>();  // the first launch loads the module: not timed
+    check(cudaDeviceSynchronize(), "timing a launch");
+    auto t0 = Clock::now();
+    for (int i = 0; i < 64; ++i)
+      empty_kernel<<<1, 1>>>();
+    p.launch_ms = ms_since(t0) / 64;
+    check(cudaDeviceSynchronize(), "timing a launch");
+    t0 = Clock::now();
+    for (int i = 0; i < 16; ++i) {
+      empty_kernel<<<1, 1>>>();
+      check(cudaStreamSynchronize(0), "timing a wait");
+    }
+    p.wait_ms = std::max(0.0, ms_since(t0) / 16 - p.launch_ms);
+    return p;
+  }();
+  return pace;
 }
 
 template <class Op>
@@ -277,12 +314,14 @@ struct CudaExec {
   void for_each(std::size_t n, const Op& op) {
     if (n == 0) return;
     for_each_kernel<<<blocks_for(n), kBlock>>>(n, op);
+    ++launches;
     check(cudaGetLastError(), "launching a kernel");
   }
   template <class Op>
   void segmented_max(std::size_t n, const Op& op) {
     if (n == 0) return;
     segmented_max_kernel<<<blocks_for(n), kBlock>>>(static_cast<u32>(n), op);
+    ++launches;
     check(cudaGetLastError(), "launching the furthest-point kernel");
   }
   template <class KeyOp>
@@ -291,6 +330,7 @@ struct CudaExec {
     check(cudaMemset(scalar64_.data(), 0, sizeof(u64)), "clearing a reduction");
     const unsigned blocks = std::max(1u, std::min(blocks_for(n), 4096u));
     reduce_max_kernel<<<blocks, kBlock>>>(n, key, scalar64_.data());
+    ++launches;
     check(cudaGetLastError(), "launching a reduction");
     u64 out = 0;
     read(&out, scalar64_.data(), 1);
@@ -303,6 +343,7 @@ struct CudaExec {
     check(cudaMemsetAsync(scalar64_.data(), 0, K * sizeof(u64), 0), "clearing a reduction");
     const unsigned blocks = std::max(1u, std::min(blocks_for(n), 512u));
     reduce_max_many_kernel<K><<<blocks, kBlock>>>(n, keys, scalar64_.data());
+    ++launches;
     check(cudaGetLastError(), "launching a reduction");
     meanwhile();
     std::array<u64, K> out{};
@@ -316,6 +357,7 @@ struct CudaExec {
     if (n == 0) return 0;
     select_flags_.grow(n);
     flag_kernel<<<blocks_for(n), kBlock>>>(n, pred, select_flags_.data());
+    ++launches;
     check(cudaGetLastError(), "launching a select");
     const thrust::counting_iterator<u32> ids(0);
     scalar32_.grow(1);
@@ -324,6 +366,7 @@ struct CudaExec {
                                      static_cast<std::int64_t>(n)),
           "sizing a select");
     scratch_.grow(bytes);
+    ++launches;
     check(cub::DeviceSelect::Flagged(scratch_.data(), bytes, ids, select_flags_.data(), out, scalar32_.data(),
                                      static_cast<std::int64_t>(n)),
           "a select");
@@ -346,7 +389,9 @@ struct CudaExec {
     check(cub::DeviceRadixSort::SortKeys(nullptr, sort_bytes, in, scratch, items, 0, bits), "sizing a sort");
     check(cub::DeviceSelect::Unique(nullptr, unique_bytes, scratch, out, count, items), "sizing a unique");
     scratch_.grow(std::max(sort_bytes, unique_bytes));
+    ++launches;
     check(cub::DeviceRadixSort::SortKeys(scratch_.data(), sort_bytes, in, scratch, items, 0, bits), "a sort");
+    ++launches;
     check(cub::DeviceSelect::Unique(scratch_.data(), unique_bytes, scratch, out, count, items), "a unique");
   }
   // The same, the total not brought back.
@@ -356,6 +401,7 @@ struct CudaExec {
     check(cub::DeviceScan::ExclusiveSum(nullptr, bytes, in, out, static_cast<std::int64_t>(n)),
           "sizing a scan");
     scratch_.grow(bytes);
+    ++launches;
     check(cub::DeviceScan::ExclusiveSum(scratch_.data(), bytes, in, out, static_cast<std::int64_t>(n)),
           "a scan");
   }
@@ -371,6 +417,7 @@ struct CudaExec {
       ++bits;
     finish_small_kernel<Point, kOneBlockThreads, kFinishItems>
         <<<1, kOneBlockThreads>>>(m, static_cast<u32>(faces), bits, out);
+    ++launches;
     check(cudaGetLastError(), "launching the finish");
   }
   u32 exclusive_scan(const u32* in, u32* out, std::size_t n) {
@@ -378,6 +425,7 @@ struct CudaExec {
     scan(in, out, n);
     scalar32_.grow(1);
     scan_total_kernel<<<1, 1>>>(in, out, n, scalar32_.data());
+    ++launches;
     check(cudaGetLastError(), "launching a scan total");
     u32 total = 0;
     read(&total, scalar32_.data(), 1);
@@ -387,6 +435,7 @@ struct CudaExec {
     const u32 count = exclusive_scan(flags, rank, n);
     if (count != 0) {
       scatter_selected_kernel<<<blocks_for(n), kBlock>>>(flags, rank, list, n);
+      ++launches;
       check(cudaGetLastError(), "launching a select");
     }
     return count;
@@ -395,6 +444,7 @@ struct CudaExec {
   void fill(T* at, std::size_t n, T value) {
     if (n == 0) return;
     fill_kernel<<<blocks_for(n), kBlock>>>(at, n, value);
+    ++launches;
     check(cudaGetLastError(), "launching a fill");
   }
   template <class T>
@@ -450,6 +500,7 @@ struct CudaExec {
   }
 
   std::uint64_t host_syncs = 0, bytes_to_device = 0, bytes_from_device = 0;
+  std::uint64_t launches = 0;  // kernels launched
 
  private:
   // Small reads go through a pinned buffer (one a thread, made once: pinning is slow): a read of a few bytes
@@ -531,6 +582,7 @@ struct CudaExec {
     auto* kernel = iteration_kernel<Point, Log, Range, Block, kOneBlock>;
     if constexpr (kOneBlock) {
       kernel<<<1, Block>>>(b, nullptr, launch);
+      ++launches;
       check(cudaGetLastError(), "launching an iteration");
       return;
     }
@@ -541,6 +593,7 @@ struct CudaExec {
     IterationBuffers<Point, Log> args_b = b;
     u32* offsets = block_offset_.data();
     void* args[] = {&args_b, &offsets, &launch};
+    ++launches;
     check(cudaLaunchCooperativeKernel(reinterpret_cast<void*>(kernel), blocks, Block, args, 0, nullptr),
           "launching an iteration");
   }
@@ -646,6 +699,10 @@ template <class Point>
 std::unique_ptr<SteppingEngine> make_resident_cuda_stepping_engine(const std::vector<Point>& points) {
   if (points.size() >= 0xffffffffu) throw std::invalid_argument("too many points (at most 2^32 - 2)");
   return std::make_unique<CudaResidentStepper<Point>>(points);
+}
+
+HardwarePace device_pace() {
+  return resident::measure_device_pace();
 }
 
 // The two coordinate types (README, "Precision").

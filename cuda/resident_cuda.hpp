@@ -38,4 +38,9 @@ class ResidentCudaHull {
 template <class Point>
 std::unique_ptr<SteppingEngine> make_resident_cuda_stepping_engine(const std::vector<Point>& points);
 
+// The current device's pace for a run's floors (fill_floors(), resident.hpp): its peak memory bandwidth from
+// its attributes, and a launch's and a wait's host time measured with empty kernels, once a process.
+// Zeros where the device cannot be asked.
+HardwarePace device_pace();
+
 }  // namespace cudahull

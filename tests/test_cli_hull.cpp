@@ -429,6 +429,36 @@ TEST(CliHull, ThreadCountFromTheEnvironmentChangesNothingButTheThreads) {
   EXPECT_EQ(slurp(dir / "vz"), vertices);
 }
 
+// Every resident run reports its distance to the hardware: `bench --json` lists the phases (setup, refine,
+// rounds, route, finish, host) with their time, least bytes, launches, waits and floor.  The phases' times
+// add up to the run's total within 5%, no floor exceeds its phase's time, the setup reads every point once,
+// and the floors come from a measured pace.
+TEST(CliBench, ResidentPhasesAddUpAndNoFloorExceedsItsTime) {
+  for (const char* dist : {"ball", "sphere", "cube"}) {
+    const CliRun r = run_cli({"bench", "--dist", dist, "--n", "100000", "--repeat", "1", "--backend", "cpu",
+                              "--engine", "resident", "--json"});
+    ASSERT_EQ(r.exit_code, kExitOk) << describe(r);
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    const nlohmann::json& stats = j.at("resident");
+    const nlohmann::json& phases = stats.at("phases");
+    std::vector<std::string> names;
+    double sum = 0;
+    for (const nlohmann::json& p : phases) {
+      names.push_back(p.at("name"));
+      const double ms = p.at("ms"), floor = p.at("floor_ms");
+      sum += ms;
+      EXPECT_GE(floor, 0) << dist << " " << names.back();
+      EXPECT_LE(floor, ms) << dist << " " << names.back() << ": a floor above the time it bounds";
+    }
+    EXPECT_EQ(names, (std::vector<std::string>{"setup", "refine", "rounds", "route", "finish", "host"}));
+    const double total = j.at("total_ms");
+    EXPECT_NEAR(sum, total, 0.05 * total) << dist << ": the phases do not add up to the run";
+    EXPECT_EQ(phases.at(0).at("bytes").get<std::uint64_t>(), 100000u * 3 * sizeof(float)) << dist;
+    EXPECT_GT(phases.at(3).at("launches").get<std::uint64_t>(), 0u) << dist << ": no routing launched";
+    EXPECT_GT(stats.at("pace").at("bytes_per_ms").get<double>(), 0) << dist;
+  }
+}
+
 // The CLI runs with glibc's huge-page tunable unless told not to (cli/huge_pages.hpp), and a caller's own
 // setting of it wins; the hull is the same either way.
 TEST(CliHull, HugePagesByDefaultOffOnRequestAndTheCallersChoiceKept) {

@@ -1,10 +1,34 @@
 // resident_hull_host(): the resident engine on the host executor.
 #include "cudahull/resident.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <vector>
+
 #include "cudahull/resident/host_exec.hpp"
 #include "cudahull/resident/resident_driver.hpp"
 #include "cudahull/resident/resident_stepping.hpp"
 
 namespace cudahull {
+
+HardwarePace host_pace() {
+  static const double bytes_per_ms = [] {
+    const std::size_t n = std::size_t{32} << 20;
+    std::vector<unsigned char> from(n, 1), to(n, 0);
+    double best = 0;
+    for (int r = 0; r < 3; ++r) {
+      const auto t0 = std::chrono::steady_clock::now();
+      std::memcpy(to.data(), from.data(), n);
+      const double ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      if (ms > 0) best = std::max(best, 2.0 * static_cast<double>(n) / ms);
+      from[r] = to[n - 1 - r];  // each copy's result is read: none can be left out
+    }
+    return best;
+  }();
+  return HardwarePace{bytes_per_ms, 0, 0};
+}
 
 namespace {
 template <class Exec, class Point>

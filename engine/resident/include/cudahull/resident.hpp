@@ -14,6 +14,33 @@
 
 namespace cudahull {
 
+// The phases of a resident run, as its host clock sees them: P and the first mesh (setup); the launches
+// that mark the faces to refine and find their furthest points (refine); the swap rounds, where the host
+// waits for them apart (rounds: recording only); the launches that split, swap and route to the end of an
+// iteration, fused (route); the exact check and the result (finish); and the host's own work between them,
+// growing buffers (host).
+enum class ResidentPhase { kSetup, kRefine, kRounds, kRoute, kFinish, kHost, kCount };
+inline constexpr const char* kResidentPhaseNames[] = {"setup", "refine", "rounds", "route", "finish", "host"};
+
+// How fast the executor's hardware can go: memory bandwidth (measured with a large copy, counting its read
+// and its write), and the cost of a launch and of a wait for a value from the executor (measured with empty
+// ones; zero on the host executor, whose operations are plain calls).
+struct HardwarePace {
+  double bytes_per_ms = 0;
+  double launch_ms = 0, wait_ms = 0;
+};
+
+// One phase's distance to the hardware: its time, the bytes it moves at least (a lower bound modelled from
+// the sizes it works on: every point read once by the setup; the kept points' coordinates, index and face
+// read and written once by a routing; the mesh's corners and links once by refinement, rounds and finish),
+// its launches and waits, and the least time those could take: the larger of the bytes at the bandwidth and
+// the launches and waits at their latency.
+struct PhaseStat {
+  double ms = 0;
+  std::uint64_t bytes = 0, launches = 0, host_waits = 0;
+  double floor_ms = 0;
+};
+
 // What a resident run did, and what it cost in traffic between host and executor.
 struct ResidentStats {
   std::uint64_t iterations = 0;
@@ -40,7 +67,35 @@ struct ResidentStats {
   // Inside the device's rounds (device clock, the slowest block): finding and claiming, judging the
   // claims, numbering the winners, applying.  Zero on the host.
   double round_phase_ms[4] = {0, 0, 0, 0};
+  // Every phase of the run (ResidentPhase order), the hardware's pace they are measured against, and the
+  // run's wall time, which the phases' times add up to.
+  PhaseStat phases[static_cast<int>(ResidentPhase::kCount)];
+  HardwarePace pace;
+  double total_ms = 0;
 };
+
+// Each phase's floor at `pace` (PhaseStat), and the pace itself, into `stats`: asked by whoever reports a run
+// once it is over, so that no run pays for measuring the hardware.
+inline void fill_floors(ResidentStats& stats, const HardwarePace& pace) {
+  stats.pace = pace;
+  for (PhaseStat& p : stats.phases) {
+    const double moving = pace.bytes_per_ms > 0 ? static_cast<double>(p.bytes) / pace.bytes_per_ms : 0;
+    const double waiting =
+        static_cast<double>(p.launches) * pace.launch_ms + static_cast<double>(p.host_waits) * pace.wait_ms;
+    p.floor_ms = moving > waiting ? moving : waiting;
+  }
+}
+
+// The host executor's pace: this thread's memory bandwidth, measured once a process (the best of three
+// copies of 32 MiB, each a read and a write); an operation is a plain call, with no launch or wait to pay.
+HardwarePace host_pace();
+
+// Each phase with its name: visit(name, const PhaseStat&), in ResidentPhase order (bench --json "phases").
+template <class Visit>
+void for_each_phase(const ResidentStats& s, Visit&& visit) {
+  for (int p = 0; p < static_cast<int>(ResidentPhase::kCount); ++p)
+    visit(kResidentPhaseNames[p], s.phases[p]);
+}
 
 // Every field of the stats with its name, in declaration order: visit(name, value) with a std::uint64_t,
 // bool, std::string, double or const double (&)[4].  The CLI's JSON and the Python module's dict are made

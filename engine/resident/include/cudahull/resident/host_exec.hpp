@@ -43,6 +43,7 @@ struct HostExec {
 
   template <class Op>
   void for_each(std::size_t n, const Op& op) {
+    ++launches;
     for (std::size_t i = 0; i < n; ++i)
       op(i);
   }
@@ -52,6 +53,7 @@ struct HostExec {
   }
   template <class KeyOp>
   std::uint64_t reduce_max(std::size_t n, const KeyOp& key) {
+    ++launches;
     std::uint64_t best = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const std::uint64_t k = key(i);
@@ -65,6 +67,7 @@ struct HostExec {
   template <int K, class KeysOp, class Meanwhile>
   std::array<std::uint64_t, K> reduce_max_many(std::size_t n, const KeysOp& keys, Meanwhile&& meanwhile) {
     meanwhile();
+    ++launches;
     std::array<std::uint64_t, K> best{};
     std::uint64_t mine[K];
     for (std::size_t i = 0; i < n; ++i) {
@@ -79,6 +82,7 @@ struct HostExec {
   // `bound`; scratch: n entries).
   void sort_unique_to(const std::uint32_t* in, std::size_t n, std::uint32_t* out, std::uint32_t* /*scratch*/,
                       std::size_t /*bound*/, std::uint32_t* count) {
+    ++launches;
     std::vector<std::uint32_t> values(in, in + n);
     std::sort(values.begin(), values.end());
     values.erase(std::unique(values.begin(), values.end()), values.end());
@@ -88,6 +92,7 @@ struct HostExec {
   // The indices i < n with pred(i), in order, into out; returns how many.
   template <class Pred>
   std::uint32_t select_if(std::size_t n, const Pred& pred, std::uint32_t* out) {
+    ++launches;
     std::uint32_t count = 0;
     for (std::size_t i = 0; i < n; ++i) {
       if (pred(static_cast<std::uint32_t>(i))) out[count++] = static_cast<std::uint32_t>(i);
@@ -97,6 +102,7 @@ struct HostExec {
   }
   // out[i] = in[0] + ... + in[i-1]; returns the total.
   std::uint32_t exclusive_scan(const std::uint32_t* in, std::uint32_t* out, std::size_t n) {
+    ++launches;
     std::uint32_t sum = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const std::uint32_t v = in[i];
@@ -116,6 +122,7 @@ struct HostExec {
   }
   template <class T>
   void fill(T* at, std::size_t n, T value) {
+    ++launches;
     for (std::size_t i = 0; i < n; ++i)
       at[i] = value;
   }
@@ -143,17 +150,20 @@ struct HostExec {
     b.win_mask = win_mask_.data();
     b.word_rank = word_rank_.data();
     if (loop) {
+      ++launches;
       resident_iterations(HostTeam{}, b, launch);
       return;
     }
     // As the device's executor: a range of phases a launch, each after the last (iteration.hpp).
     for_each_phase_range(launch, [&](auto range, const IterationLaunch& part) {
+      ++launches;
       resident_iterations(HostTeam{}, b, part, range);
     });
   }
 
   std::vector<u32> win_mask_, word_rank_;  // the rounds' bits per face and ranks per word
   std::uint64_t host_syncs = 0, bytes_to_device = 0, bytes_from_device = 0;
+  std::uint64_t launches = 0;  // operations run (a kernel launch each on the device)
 };
 
 // The host executor taking the driver's paths as the GPU's executor does: the device loop once few points

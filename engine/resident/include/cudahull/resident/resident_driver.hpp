@@ -89,17 +89,19 @@ class ResidentHull {
   // begin(): P, the first mesh and the first distribution; false when that is already the answer (no points,
   // lower-dimensional input), then in `done`.
   bool begin(ResidentStats& stats, BasicHullMesh<Point>& done) {
-    stats = ResidentStats{};
-    lap();
-    return setup(stats, done, true);
+    start_laps(stats);
+    if (setup(stats, done, true)) return true;
+    close_laps(stats);
+    return false;
   }
   // One iteration, recorded; false when no face could refine (a stall: end(stats, true) finishes exactly).
   bool step(ResidentStats& stats, RecordedIteration& out) { return iterate(stats, &out); }
   // After the last step: the exact check and the result (the exact finish after a stall).
   BasicHullMesh<Point> end(ResidentStats& stats, bool stalled) {
-    lap();
+    lap(stats, ResidentPhase::kHost);
     BasicHullMesh<Point> out = stalled ? exact_finish(stats, "stalled: no face could refine") : finish(stats);
-    stats.finish_ms = lap();
+    stats.finish_ms = lap(stats, ResidentPhase::kFinish, mesh_bytes());
+    close_laps(stats);
     stats.points_read_back = points_read_back_;
     return out;
   }
@@ -146,20 +148,24 @@ class ResidentHull {
 
  private:
   BasicHullMesh<Point> run_all(ResidentStats& stats) {
-    stats = ResidentStats{};
-    lap();
+    start_laps(stats);
     BasicHullMesh<Point> done;
-    if (!setup(stats, done, false)) return done;
-    while (active_ > 0) {
+    if (!setup(stats, done, false)) {
+      close_laps(stats);
+      return done;
+    }
+    bool stalled = false;
+    while (active_ > 0 && !stalled) {
       if (!iterate(stats)) {
         if (active_ == 0) break;  // no point was left outside (only after setup() left them uncompacted)
-        return exact_finish(stats, "stalled: no face could refine");
+        stalled = true;
       }
     }
-    lap();
-    release_rounds();
-    BasicHullMesh<Point> out = finish(stats);
-    stats.finish_ms = lap();
+    lap(stats, ResidentPhase::kHost);
+    if (!stalled) release_rounds();
+    BasicHullMesh<Point> out = stalled ? exact_finish(stats, "stalled: no face could refine") : finish(stats);
+    stats.finish_ms = lap(stats, ResidentPhase::kFinish, mesh_bytes());
+    close_laps(stats);
     return out;
   }
 
@@ -170,6 +176,7 @@ class ResidentHull {
     const std::size_t n = n_;
     if (n == 0) {
       done = exact_hull(std::vector<Point>{});
+      stats.setup_ms = lap(stats, ResidentPhase::kSetup);
       return false;
     }
     // P, the drop filter, and the first mesh: P itself where its centre is strictly inside every face
@@ -186,6 +193,7 @@ class ResidentHull {
       const std::string flat = first_tetrahedron(host, queries, fv, fn, c_);
       if (!flat.empty()) {
         done = lower_dimensional(stats, flat);
+        stats.setup_ms = lap(stats, ResidentPhase::kSetup, n * sizeof(Point));
         return false;
       }
     }
@@ -221,7 +229,7 @@ class ResidentHull {
       run_phases(kFirst, kFirst, false);
       compact_only();
     }
-    stats.setup_ms = lap();
+    stats.setup_ms = lap(stats, ResidentPhase::kSetup, n * sizeof(Point));  // every point read once
     return true;
   }
 
@@ -307,13 +315,37 @@ class ResidentHull {
     return hull;
   }
 
-  // Milliseconds since the last lap.
-  double lap() {
+  // Milliseconds since the last lap, charged to `phase` with the executor's launches and waits since then
+  // and `bytes`, the least the phase moved (ResidentStats::phases).
+  double lap(ResidentStats& stats, ResidentPhase phase, std::uint64_t bytes = 0) {
     const auto now = std::chrono::steady_clock::now();
     const double ms = std::chrono::duration<double, std::milli>(now - lap_start_).count();
     lap_start_ = now;
+    PhaseStat& p = stats.phases[static_cast<int>(phase)];
+    p.ms += ms;
+    p.bytes += bytes;
+    p.launches += exec_.launches - lap_launches_;
+    p.host_waits += exec_.host_syncs - lap_waits_;
+    lap_launches_ = exec_.launches;
+    lap_waits_ = exec_.host_syncs;
     return ms;
   }
+  void start_laps(ResidentStats& stats) {
+    stats = ResidentStats{};
+    lap_start_ = std::chrono::steady_clock::now();
+    lap_launches_ = exec_.launches;
+    lap_waits_ = exec_.host_syncs;
+  }
+  // Once the run is over: its total, which its phases add up to (fill_floors() adds the floors).
+  void close_laps(ResidentStats& stats) {
+    stats.total_ms = 0;
+    for (const PhaseStat& p : stats.phases)
+      stats.total_ms += p.ms;
+  }
+  // The mesh's corners and links, read once (refinement, rounds and finish each read at least that).
+  std::uint64_t mesh_bytes() const { return std::uint64_t{faces_} * 6 * sizeof(u32); }
+  // A routing's least traffic: the kept points' coordinates read, and their index and face read and written.
+  std::uint64_t routing_bytes(std::size_t kept) const { return kept * (sizeof(Point) + 4 * sizeof(u32)); }
 
   MeshView<Point> view() {
     return MeshView<Point>{points_, c_, fv_.data(), fn_.data(), killer_.data(), entries_.data()};
@@ -833,6 +865,7 @@ class ResidentHull {
   Buffer<u32> gather_ids_;
   Buffer<Point> gathered_;
   std::chrono::steady_clock::time_point lap_start_;
+  std::uint64_t lap_launches_ = 0, lap_waits_ = 0;  // the executor's counts at the last lap
   Vec3d c_{};
   double max_coordinate_ = 0;        // every point's coordinates are at most this in size
   bool first_pending_ = false;       // the first distribution (kFirst) is the next launch's
@@ -876,7 +909,7 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
     round_capacity_ = 64;
     round_first_entry_.grow(round_capacity_);
   }
-  lap();
+  lap(stats, ResidentPhase::kHost);
   u32 from = first_pending_ ? kFirst : kFurthest;
   std::size_t face_ids = 0;
   while (true) {
@@ -895,7 +928,13 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
     } else {
       state = run_phases(from, to, loop);
     }
-    (to == kFurthest ? stats.refine_ms : to == kRounds ? stats.rounds_ms : stats.route_ms) += lap();
+    const ResidentPhase phase = to == kFurthest ? ResidentPhase::kRefine
+                                : to == kRounds ? ResidentPhase::kRounds
+                                                : ResidentPhase::kRoute;
+    const std::uint64_t bytes = phase == ResidentPhase::kRoute ? routing_bytes(active_) : mesh_bytes();
+    (to == kFurthest ? stats.refine_ms
+     : to == kRounds ? stats.rounds_ms
+                     : stats.route_ms) += lap(stats, phase, bytes);
     take_counters(state, stats);
     stats.iterations += state.loop_iterations;
     stats.loop_iterations += loop ? state.loop_iterations : 0;
