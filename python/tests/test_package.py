@@ -30,8 +30,13 @@ def test_the_face_shows_only_the_public_names():
     # The public names and the public submodules (cudahull.dask is there once someone imported it).
     shown = {name for name in dir(cudahull) if not name.startswith("_")} - {"dask"}
     assert shown == set(PUBLIC) | {"qhull_options"}
+    # Each name is the package's own object: a class or function of cudahull, or the swap kinds' names.
     for name in PUBLIC:
-        assert getattr(cudahull, name) is not None
+        value = getattr(cudahull, name)
+        if name == "SWAP_KINDS":
+            assert isinstance(value, tuple) and value and all(isinstance(kind, str) for kind in value), value
+        else:
+            assert callable(value) and value.__module__.partition(".")[0] == "cudahull", (name, value)
     with pytest.raises(AttributeError, match="no attribute 'np'"):
         cudahull.np
 

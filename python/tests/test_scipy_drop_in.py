@@ -262,7 +262,7 @@ def test_merged_hull_matches_qhull_on_rotated_chamfered_boxes():
         merged = cudahull.ConvexHull(points, tolerance="qhull")
         reference = scipy.spatial.ConvexHull(points)  # Qhull's default merging
         assert vertex_points(points, merged.vertices) == vertex_points(points, reference.vertices), part
-        assert len(exact.vertices) >= len(merged.vertices)
+        assert set(merged.vertices.tolist()) < set(exact.vertices.tolist())  # merging dropped the slivers' corners
         # The certificate, checked independently: every input point within max_outside of every plane.
         heights = points @ merged.equations[:, :3].T + merged.equations[:, 3]
         assert heights.max() <= merged.max_outside
