@@ -291,7 +291,8 @@ def convex_hull_batch(points: Any, offsets: npt.ArrayLike | None = None, lengths
     (3, [3, 3, 3])
     """
     if isinstance(threads, (bool, np.bool_)) or not isinstance(threads, (int, np.integer)) or threads < 0:
-        raise ValueError(f"threads must be a whole number of CPU clouds at once, 0 for every core, not {value_text(threads)}")
+        raise ValueError(f"threads must be a whole number of CPU clouds at once, 0 for every core, not "
+                         f"{value_text(threads)}")
     from_list = offsets is None and lengths is None and _is_cloud_list(points)
     if from_list:
         points, offsets = _pack_clouds(points)

@@ -610,8 +610,8 @@ class ConvexHull:
                 beyond = np.argwhere(np.abs(new) > np.finfo(np.float32).max)
                 if beyond.size:
                     row, axis = beyond[0]
-                    raise InputError(f"point {row}: {'xyz'[axis]} coordinate {number_text(new[row, axis])} does not fit in "
-                                     f"float")
+                    raise InputError(f"point {row}: {'xyz'[axis]} coordinate {number_text(new[row, axis])} does "
+                                     f"not fit in float")
         except ValueError as error:
             raise type(error)(f"add_points: {error} (a row of the new points; nothing was added)") from None
 
