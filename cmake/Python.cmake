@@ -6,9 +6,10 @@
 set(CUDAHULL_PYTHON ON CACHE STRING "Build the Python module: ON (fail without nanobind), OFF, or AUTO (when found)")
 set(CUDAHULL_WITH_PYTHON OFF)
 if(NOT CUDAHULL_PYTHON STREQUAL "OFF")
-  if(CUDAHULL_SANITIZE)
-    # An ASan-instrumented module would need the sanitizer runtime preloaded into the interpreter.
-    message(STATUS "Python module: off in a sanitizer build")
+  if(CUDAHULL_SANITIZE AND NOT CUDAHULL_PYTHON STREQUAL "ON")
+    # An ASan-instrumented module needs the sanitizer runtime preloaded into the interpreter: it is built
+    # only when asked for (-DCUDAHULL_PYTHON=ON), as tests/python_sanitizer.sh asks, which preloads it.
+    message(STATUS "Python module: off in a sanitizer build (CUDAHULL_PYTHON=ON builds it)")
   else()
     # SKBUILD_SABI_COMPONENT: Development.SABIModule where the wheel is abi3 (pyproject's wheel.py-api), so
     # that nanobind's STABLE_ABI builds a module every later Python loads.

@@ -10,6 +10,7 @@ import numpy.typing as npt
 
 from . import _cudahull
 from ._arrays import DeviceKind, checked_interface, cuda_protocol, host_integers, library_of, numeric, require_device
+from ._errors import value_text
 from ._hull import check_engine
 
 __all__ = ["BatchHulls", "convex_hull_batch", "release_device_memory"]
@@ -290,7 +291,8 @@ def convex_hull_batch(points: Any, offsets: npt.ArrayLike | None = None, lengths
     (3, [3, 3, 3])
     """
     if isinstance(threads, (bool, np.bool_)) or not isinstance(threads, (int, np.integer)) or threads < 0:
-        raise ValueError(f"threads must be a whole number of CPU clouds at once, 0 for every core, not {threads!r}")
+        raise ValueError(f"threads must be a whole number of CPU clouds at once, 0 for every core, not "
+                         f"{value_text(threads)}")
     from_list = offsets is None and lengths is None and _is_cloud_list(points)
     if from_list:
         points, offsets = _pack_clouds(points)

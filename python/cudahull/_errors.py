@@ -7,6 +7,8 @@ asked for (``qhull_error_class()``, the package's module ``__getattr__``), not w
 
 from __future__ import annotations
 
+import decimal
+import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -15,7 +17,7 @@ import numpy.typing as npt
 from ._cudahull import DeviceError, InputError
 
 __all__ = ["DeviceError", "InputError", "QhullError", "qhull_error", "qhull_error_class", "degenerate_error",
-           "too_few_points_error"]
+           "too_few_points_error", "number_text", "value_text"]
 
 InputError.__doc__ = """Raised for bad points: a NaN or infinite coordinate (naming the point and its axis), or
 a value beyond float's range for ``precision="float"``.
@@ -38,6 +40,46 @@ flat``, ``QH6013``, ``QH6421``, ``QH6022``), so that code matching Qhull's text 
 
 A subclass of ``scipy.spatial.QhullError`` where scipy is importable, else of ``RuntimeError``.
 """
+
+
+
+def number_text(value: float) -> str:
+    """A number as every error message writes it: as the module's C++ does (std::to_chars, the shortest text
+    that reads back as the same double, in fixed or scientific notation, whichever is shorter, fixed on a
+    tie): ``1e+39``, ``0.25``, ``-3``, ``nan``, ``-inf``; never NumPy's ``np.float64(1e+39)``."""
+    number = float(value)
+    if math.isnan(number):
+        return "-nan" if math.copysign(1.0, number) < 0 else "nan"
+    if math.isinf(number):
+        return "-inf" if number < 0 else "inf"
+    if number == 0:
+        return "-0" if math.copysign(1.0, number) < 0 else "0"
+    sign, digits, exponent = decimal.Decimal(repr(number)).as_tuple()
+    assert isinstance(exponent, int)
+    text = "".join(map(str, digits)).lstrip("0")
+    stripped = text.rstrip("0")
+    exponent += len(text) - len(stripped)
+    text = stripped  # |value| = text * 10**exponent, without leading or trailing zeros
+    point = len(text) + exponent  # digits before the decimal point
+    if exponent >= 0:
+        fixed = str(abs(int(number)))  # a whole number in fixed notation: its exact digits, as to_chars
+    elif point > 0:
+        fixed = text[:point] + "." + text[point:]
+    else:
+        fixed = "0." + "0" * -point + text
+    power = point - 1
+    scientific = text[0] + ("." + text[1:] if len(text) > 1 else "") + f"e{'-' if power < 0 else '+'}{abs(power):02d}"
+    chosen = fixed if len(fixed) <= len(scientific) else scientific
+    return ("-" if sign else "") + chosen
+
+
+def value_text(value: object) -> str:
+    """An argument as an error message names it: a real number as ``number_text`` writes it, anything else
+    as its repr."""
+    if isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_)):
+        return str(int(value)) if isinstance(value, (int, np.integer)) else number_text(float(value))
+    return repr(value)
+
 
 if TYPE_CHECKING:
     # What type checkers see: scipy's QhullError is a RuntimeError, and scipy need not be installed.

@@ -13,7 +13,7 @@ from . import _cudahull, _qhull
 from . import qhull_options as _qhull_options
 from ._arrays import (DeviceKind, as_points, checked_interface, cuda_protocol, device_shape, host_array,
                       index_array, numeric, require_device)
-from ._errors import InputError, degenerate_error, qhull_error, too_few_points_error
+from ._errors import InputError, degenerate_error, number_text, qhull_error, too_few_points_error, value_text
 
 __all__ = ["ConvexHull", "convex_hull"]
 
@@ -77,7 +77,7 @@ def _merge_arguments(tolerance: object, low: Any = None, high: Any = None) -> _M
     except (TypeError, ValueError):
         value = math.nan
     if not math.isfinite(value) or value < 0:
-        raise ValueError(f"tolerance must be None, 'qhull' or a finite number >= 0, not {tolerance!r}")
+        raise ValueError(f"tolerance must be None, 'qhull' or a finite number >= 0, not {value_text(tolerance)}")
     return ("relative", value, 1.0)
 
 
@@ -610,8 +610,8 @@ class ConvexHull:
                 beyond = np.argwhere(np.abs(new) > np.finfo(np.float32).max)
                 if beyond.size:
                     row, axis = beyond[0]
-                    raise InputError(f"point {row}: {'xyz'[axis]} coordinate {new[row, axis]!r} does not fit in "
-                                     f"float")
+                    raise InputError(f"point {row}: {'xyz'[axis]} coordinate {number_text(new[row, axis])} does "
+                                     f"not fit in float")
         except ValueError as error:
             raise type(error)(f"add_points: {error} (a row of the new points; nothing was added)") from None
 

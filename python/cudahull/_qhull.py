@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from ._errors import qhull_error
+from ._errors import qhull_error, value_text
 
 
 def check_request(ndim: int, tolerance: object, backend: str, precision: str, engine: str) -> None:
@@ -26,7 +26,7 @@ def check_request(ndim: int, tolerance: object, backend: str, precision: str, en
         raise ValueError(f"{what}: engine must be 'auto', not {engine!r} (the engines are 2-D and 3-D)")
     if tolerance is not None and tolerance != "qhull":
         raise ValueError(f"{what}, which merges facets with its own roundoff tolerance: tolerance must be None or "
-                         f"'qhull', not {tolerance!r}")
+                         f"'qhull', not {value_text(tolerance)}")
 
 
 def _scipy_convex_hull() -> Any:

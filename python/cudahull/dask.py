@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from typing import Any
 
+import re
+
 import dask  # type: ignore[import-untyped, unused-ignore]
 import dask.array  # type: ignore[import-untyped, unused-ignore]
 import numpy as np
@@ -17,6 +19,7 @@ import numpy.typing as npt
 
 from . import _cudahull
 from ._arrays import as_points
+from ._errors import InputError
 
 __all__ = ["convex_hull"]
 
@@ -27,8 +30,22 @@ def _chunk_vertices(block: Any, offset: int, backend: str, precision: str,
                     engine: str) -> tuple[npt.NDArray[np.int64], npt.NDArray[Any]]:
     """One chunk's hull vertices: their indices in the whole array and their coordinates."""
     points = as_points(block)
-    vertices = _cudahull.convex_hull(points, backend, precision, engine, "exact", 0.0, 1.0)["vertices"]
+    try:
+        vertices = _cudahull.convex_hull(points, backend, precision, engine, "exact", 0.0, 1.0)["vertices"]
+    except InputError as error:
+        raise _in_whole_array(error, offset) from None
     return vertices.astype(np.int64) + offset, points[vertices]
+
+
+def _in_whole_array(error: InputError, offset: int) -> InputError:
+    """A chunk's error for a bad point ("point 177: ..."), naming the point by its row in the whole array."""
+    message = str(error)
+    found = re.match(r"point (\d+): ", message)
+    if found is None:
+        return error
+    row = offset + int(found.group(1))
+    return InputError(f"point {row}: {message[found.end():]} (row {found.group(1)} of the chunk that starts at "
+                      f"row {offset})")
 
 
 def _hull_of_candidates(parts: list[tuple[npt.NDArray[np.int64], npt.NDArray[Any]]], backend: str, precision: str,

@@ -99,9 +99,13 @@ def test_same_hull_as_numpy(lib, name, dtype):
     device_points = on_device(lib, points)
     got = cudahull.ConvexHull(device_points)
     assert got.points is device_points and got.npoints == len(points)
-    assert got.backend == "cuda-resident" and got.stats["iterations"] >= 0
-    # The same engine from host memory: the same mesh, face for face.
-    assert_same_hull(got, cudahull.ConvexHull(points, engine="resident"))
+    # The same engine from host memory: the same mesh, face for face, in as many iterations (at least one in
+    # general position; the grid's and the duplicates' 8 corners can be the first hull's).
+    host = cudahull.ConvexHull(points, engine="resident")
+    assert got.backend == host.backend == "cuda-resident"
+    assert got.stats["iterations"] == host.stats["iterations"]
+    assert got.stats["iterations"] > 0 or name not in GENERAL_POSITION
+    assert_same_hull(got, host)
     # The stepping engine, host points checked on the host: the same exact hull; the same triangles where
     # they are unique.
     stepping = cudahull.ConvexHull(points, engine="stepping")
@@ -336,4 +340,6 @@ def test_merging_on_the_device_as_on_the_host(lib):
     want = cudahull.ConvexHull(box, qhull_options="Qt")
     assert np.array_equal(got.vertices, want.vertices)
     assert got.max_outside == want.max_outside and got.tolerance == want.tolerance
-    assert len(got.vertices) == len(scipy.spatial.ConvexHull(box).vertices)
+    # Qhull's vertices, as points (the clipped corners are many duplicate points: Qhull keeps any one of them).
+    assert {tuple(p) for p in box[to_numpy(got.vertices)].tolist()} == \
+        {tuple(p) for p in box[scipy.spatial.ConvexHull(box).vertices].tolist()}

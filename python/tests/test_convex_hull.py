@@ -287,3 +287,49 @@ def test_resident_engine_gives_the_same_hull():
     assert resident["backend"] == "cpu-resident"
     assert np.array_equal(resident["vertices"], stepping["vertices"])
     assert resident["volume"] == pytest.approx(stepping["volume"], rel=1e-14)
+
+
+# --- one number format in every error ------------------------------------------------------------------------
+
+# std::to_chars's shortest text (libstdc++), which the module's C++ messages use, for values that exercise each
+# rule: fixed or scientific, whichever is shorter, fixed on a tie, a whole number's exact digits.
+TO_CHARS = [(0.0, "0"), (-0.0, "-0"), (1.0, "1"), (-3.0, "-3"), (0.25, "0.25"), (0.1, "0.1"), (1e-05, "1e-05"),
+            (0.001, "0.001"), (0.0001, "1e-04"), (0.0001234, "0.0001234"), (1e5, "1e+05"), (123456.0, "123456"),
+            (1e16, "1e+16"), (1e39, "1e+39"), (-3.5e38, "-3.5e+38"), (1.2345678901234568e18, "1234567890123456768"),
+            (2.2250738585072014e-308, "2.2250738585072014e-308"), (5e-324, "5e-324"), (12345.678, "12345.678"),
+            (float("nan"), "nan"), (float("inf"), "inf"), (float("-inf"), "-inf")]
+
+
+def test_number_text_is_the_modules_to_chars():
+    from cudahull._errors import number_text
+
+    for value, text in TO_CHARS:
+        assert number_text(value) == text, value
+        assert number_text(np.float64(value)) == text, value
+
+
+@pytest.mark.parametrize("value", [1e39, -3.5e38, np.float64(4e38)])
+def test_a_value_is_written_alike_by_the_constructor_and_add_points(value):
+    points = np.random.default_rng(40).normal(size=(50, 3)).astype(np.float32)
+    bad = np.array([[0.0, float(value), 0.0]])
+    with pytest.raises(ValueError) as built:
+        cudahull.ConvexHull(np.vstack([points, bad]), precision="float")
+    hull = cudahull.ConvexHull(points, incremental=True)
+    with pytest.raises(ValueError) as added:
+        hull.add_points(bad)
+    text = str(built.value).split(": ", 1)[1]  # "y coordinate 1e+39 does not fit in float"
+    assert str(built.value) == f"point 50: {text}"
+    assert str(added.value) == f"add_points: point 0: {text} (a row of the new points; nothing was added)"
+    assert "np." not in text
+
+
+def test_numpy_scalar_arguments_are_written_as_numbers():
+    points = np.random.default_rng(41).normal(size=(20, 3))
+    for tolerance, text in ((np.float64(-1.0), "-1"), (np.float32(-0.5), "-0.5"), (-2.5, "-2.5"),
+                            (np.float64("nan"), "nan")):
+        with pytest.raises(ValueError, match=f"finite number >= 0, not {text}$"):
+            cudahull.ConvexHull(points, tolerance=tolerance)
+    with pytest.raises(ValueError, match="0 for every core, not 1.5$"):
+        cudahull.convex_hull_batch([points], threads=np.float64(1.5))
+    with pytest.raises(ValueError, match="tolerance must be None or 'qhull', not 0.25$"):
+        cudahull.ConvexHull(np.random.default_rng(42).normal(size=(20, 4)), tolerance=np.float64(0.25))

@@ -41,3 +41,16 @@ def test_float32_chunks_stay_float(client):
     result = cudahull.dask.convex_hull(dask_array.from_array(points, chunks=(1000, 3)), backend="cpu")
     assert result["precision"] == "float"
     assert np.array_equal(result["vertices"], cudahull.ConvexHull(points, backend="cpu").vertices)
+
+
+@pytest.mark.parametrize("row", [0, 177, 777, 999])
+def test_bad_point_is_named_by_its_row_in_the_whole_array(client, row):
+    points = np.random.default_rng(35).normal(size=(1000, 3))
+    points[row, 1] = np.nan
+    with pytest.raises(ValueError) as error:
+        cudahull.dask.convex_hull(dask_array.from_array(points, chunks=(200, 3)), backend="cpu")
+    assert str(error.value).startswith(f"point {row}: y coordinate nan is not finite (row {row % 200} of the chunk "
+                                       f"that starts at row {row - row % 200})"), str(error.value)
+    # The same words as the one-shot hull's, which names the row itself.
+    with pytest.raises(ValueError, match=f"^point {row}: y coordinate nan is not finite$"):
+        cudahull.ConvexHull(points, backend="cpu")

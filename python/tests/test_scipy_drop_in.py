@@ -220,6 +220,40 @@ def chamfered_box(rng, size=(2.0, 1.0, 0.5), chamfer=0.1, per_face=200):
     return points @ rotation(rng).T + rng.normal(size=3) * 10
 
 
+def vertex_points(points, vertices):
+    """A hull's vertex set, as points: of duplicate points Qhull may keep any one (part 4's chamfer collapses
+    four pairs of corners), the same point whichever."""
+    return {tuple(p) for p in points[np.asarray(vertices)].tolist()}
+
+
+def rotated_cube(rng, per_edge=50, per_face=100):
+    """The unit cube sampled on its 12 edges and 6 faces, its 8 corners first, rotated arbitrarily in double."""
+    corners = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=float)
+    samples = [corners]
+    for i in range(8):
+        for j in range(i + 1, 8):
+            if np.sum(corners[i] != corners[j]) == 1:
+                samples.append(corners[i] + rng.uniform(0, 1, size=(per_edge, 1)) * (corners[j] - corners[i]))
+    for axis in range(3):
+        for side in (0.0, 1.0):
+            face = rng.uniform(0, 1, size=(per_face, 3))
+            face[:, axis] = side
+            samples.append(face)
+    return np.vstack(samples) @ rotation(rng).T + rng.normal(size=3) * 10
+
+
+def cylinder_part(rng, sides=24, rings=5, per_cap=100):
+    """A 24-sided prism (a turned part's facets), its two end rings (the corners) first, then rings between
+    them on its sides and points inside its two caps, rotated arbitrarily in double."""
+    angle = np.linspace(0, 2 * np.pi, sides, endpoint=False)
+    ring = np.c_[np.cos(angle), np.sin(angle)]
+    samples = [np.c_[ring, np.full(sides, z)] for z in np.r_[0.0, 2.0, np.linspace(0, 2, rings)[1:-1]]]
+    for z in (0.0, 2.0):
+        r, t = 0.99 * np.sqrt(rng.uniform(0, 1, per_cap)), rng.uniform(0, 2 * np.pi, per_cap)
+        samples.append(np.c_[r * np.cos(t), r * np.sin(t), np.full(per_cap, z)])
+    return np.vstack(samples) @ rotation(rng).T + rng.normal(size=3) * 10
+
+
 def test_merged_hull_matches_qhull_on_rotated_chamfered_boxes():
     rng = np.random.default_rng(25)
     for part in range(6):
@@ -227,8 +261,8 @@ def test_merged_hull_matches_qhull_on_rotated_chamfered_boxes():
         exact = cudahull.ConvexHull(points)
         merged = cudahull.ConvexHull(points, tolerance="qhull")
         reference = scipy.spatial.ConvexHull(points)  # Qhull's default merging
-        assert len(merged.vertices) == len(reference.vertices), part
-        assert len(exact.vertices) >= len(merged.vertices)
+        assert vertex_points(points, merged.vertices) == vertex_points(points, reference.vertices), part
+        assert set(merged.vertices.tolist()) < set(exact.vertices.tolist())  # merging dropped the slivers' corners
         # The certificate, checked independently: every input point within max_outside of every plane.
         heights = points @ merged.equations[:, :3].T + merged.equations[:, 3]
         assert heights.max() <= merged.max_outside
@@ -241,6 +275,77 @@ def test_merged_hull_matches_qhull_on_rotated_chamfered_boxes():
         # The exact hull's vertices that merging left out are listed in coplanar.
         dropped = sorted(set(exact.vertices.tolist()) - set(merged.vertices.tolist()))
         assert sorted(merged.coplanar[:, 0].tolist()) == dropped
+
+
+# Qhull's Cn on CAD-like parts: Qhull's vertices are exactly the part's corners (its answer is well defined:
+# every input point lies within roundoff of the hull of the corners), as (shape, seed, option).
+_PARTS = {"chamfered box": chamfered_box, "rotated cube": rotated_cube, "cylinder": cylinder_part}
+_CORNERS = {"chamfered box": 24, "rotated cube": 8, "cylinder": 48}
+# Where no input point lies within n of a corner along its edges, cudahull's Cn keeps Qhull's vertex set.
+_CN_AS_QHULL = [(shape, seed, option) for seed in (0, 1, 2) for shape, options in (
+    ("chamfered box", ("C0", "C-0", "C0.0001", "C-0.0001", "C1e-06")),
+    ("rotated cube", ("C0", "C-0", "C0.001", "C-0.001", "C0.0001")),
+    ("cylinder", ("C0", "C0.01", "C-0.01", "C0.001", "C-0.001"))) for option in options]
+# Where edge points lie within about n of a corner, cudahull's Cn can keep one of them in the corner's place
+# (docs/python.md's options table): these cases differ from Qhull today.
+_CN_CORNER_REPLACED = [("chamfered box", 0, "C0.01"), ("chamfered box", 1, "C0.01"), ("chamfered box", 5, "C0.01"),
+                       ("chamfered box", 0, "C0.001"), ("chamfered box", 0, "C-0.001"),
+                       ("rotated cube", 0, "C0.01"), ("rotated cube", 5, "C0.001")]
+_CN_REASON = ("cudahull's Cn drops a vertex that stands within n of the hull of its neighbours, so a corner with "
+              "edge points within about n of it can be replaced by one of them (left outside by up to about n); "
+              "Qhull merges facets and keeps every vertex where three merged facets meet")
+
+
+def _part(shape, seed):
+    points = _PARTS[shape](np.random.default_rng(seed))
+    reference = scipy.spatial.ConvexHull(points)  # Qhull's default merging: exactly the corners
+    assert sorted(reference.vertices.tolist()) == list(range(_CORNERS[shape])), (shape, seed)
+    return points
+
+
+def _check_cn(shape, seed, option):
+    points = _part(shape, seed)
+    merged = cudahull.ConvexHull(points, qhull_options=option)
+    reference = scipy.spatial.ConvexHull(points, qhull_options=option)
+    assert sorted(reference.vertices.tolist()) == list(range(_CORNERS[shape]))  # Qhull's answer: the corners
+    assert sorted(merged.vertices.tolist()) == sorted(reference.vertices.tolist())
+
+
+@pytest.mark.parametrize("shape, seed, option", _CN_AS_QHULL)
+def test_cn_keeps_qhulls_vertex_set_on_cad_parts(shape, seed, option):
+    _check_cn(shape, seed, option)
+
+
+@pytest.mark.parametrize("shape, seed, option", [
+    pytest.param(*case, marks=pytest.mark.xfail(reason=_CN_REASON, raises=AssertionError, strict=True))
+    for case in _CN_CORNER_REPLACED])
+def test_cn_keeps_the_corners_where_edge_points_are_near(shape, seed, option):
+    _check_cn(shape, seed, option)
+
+
+@pytest.mark.parametrize("shape, seed, option", _CN_CORNER_REPLACED)
+def test_cn_where_a_corner_is_replaced_stays_within_its_certificate(shape, seed, option):
+    """What the options table documents where Cn's vertices differ from Qhull's: the vertices are the exact
+    hull's, every input point lies within max_outside of every facet's plane, and the corner left out lies
+    within about n (1.5 n) of the triangles kept, so that the volume differs from Qhull's by about n x area."""
+    points = _part(shape, seed)
+    distance = abs(float(option[1:]))
+    merged = cudahull.ConvexHull(points, qhull_options=option)
+    exact = cudahull.ConvexHull(points)
+    assert set(merged.vertices.tolist()) <= set(exact.vertices.tolist())
+    heights = points @ merged.equations[:, :3].T + merged.equations[:, 3]
+    assert heights.max() <= merged.max_outside <= 1.5 * distance
+    dropped = sorted(set(exact.vertices.tolist()) - set(merged.vertices.tolist()))
+    assert sorted(merged.coplanar[:, 0].tolist()) == dropped
+    # Each triangle's own plane (merging keeps a triangle within n of its facet's plane, not on it).
+    a, b, c = (points[merged.simplices[:, k]] for k in range(3))
+    normals = np.cross(b - a, c - a)
+    normals /= np.linalg.norm(normals, axis=1, keepdims=True)
+    outside = np.einsum("ij,kj->ik", points, normals) - np.einsum("kj,kj->k", normals, a)
+    corners = list(range(_CORNERS[shape]))
+    assert 0 < outside[corners].max() <= 1.5 * distance  # a corner left out, by about n at most
+    reference = scipy.spatial.ConvexHull(points, qhull_options=option)
+    assert 0 < reference.volume - merged.volume <= 1.5 * distance * merged.area
 
 
 def test_merged_hull_of_a_sphere_changes_nothing():

@@ -15,7 +15,7 @@ import cudahull
 SELECTION = ("TestConvexHull or test_volume_area or test_random_volume_area or "
              "test_incremental_volume_area_random_input")
 
-_FACET_ORDER = ("asserts the order in which Qhull lists its facets (good[k] of the k-th simplex), an artefact "
+FACET_ORDER_REASON = ("asserts the order in which Qhull lists its facets (good[k] of the k-th simplex), an artefact "
                 "of Qhull's construction; cudahull's good marks the same facets, listed counter-clockwise")
 
 
@@ -37,12 +37,42 @@ FACET_ORDER_TESTS = (
 def expected_failure(nodeid):
     """The reason a test is expected to fail with cudahull in scipy's place, or None."""
     if nodeid.split("::", 1)[-1] in FACET_ORDER_TESTS:
-        return _FACET_ORDER, AssertionError
+        return FACET_ORDER_REASON, AssertionError
     return None
 
 
+# Which backends each test's hulls ran on (hull.backend: "qhull" for 4-D and up), by test id, so that the run
+# reports how many passed through Qhull and how many through cudahull's engines (test_scipy_suite.py checks).
+_backends: dict[str, set[str]] = {}
+_current = [""]
+_passed: dict[str, int] = {}
+
+
+class _RecordingConvexHull(cudahull.ConvexHull):
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        _backends.setdefault(_current[0], set()).add("qhull" if self.backend == "qhull" else "engines")
+
+
 def pytest_configure(config):
-    qhull.ConvexHull = cudahull.ConvexHull
+    qhull.ConvexHull = _RecordingConvexHull
+
+
+def pytest_runtest_setup(item):
+    _current[0] = item.nodeid
+
+
+def pytest_runtest_logreport(report):
+    if report.when == "call" and report.passed and not hasattr(report, "wasxfail"):
+        ran = _backends.get(report.nodeid, set())
+        kind = "through Qhull" if ran == {"qhull"} else "through cudahull" if "engines" in ran else "with no hull"
+        _passed[kind] = _passed.get(kind, 0) + 1
+
+
+def pytest_terminal_summary(terminalreporter):
+    counts = ", ".join(f"{_passed.get(kind, 0)} {kind}" for kind in ("through cudahull", "through Qhull",
+                                                                         "with no hull"))
+    terminalreporter.write_line(f"cudahull_in_scipys_place: passed {counts}")
 
 
 def pytest_collection_modifyitems(config, items):
