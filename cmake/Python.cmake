@@ -6,31 +6,27 @@
 set(CUDAHULL_PYTHON ON CACHE STRING "Build the Python module: ON (fail without nanobind), OFF, or AUTO (when found)")
 set(CUDAHULL_WITH_PYTHON OFF)
 if(NOT CUDAHULL_PYTHON STREQUAL "OFF")
-  if(CUDAHULL_SANITIZE AND NOT CUDAHULL_PYTHON STREQUAL "ON")
-    # An ASan-instrumented module needs the sanitizer runtime preloaded into the interpreter: it is built
-    # only when asked for (-DCUDAHULL_PYTHON=ON), as tests/python_sanitizer.sh asks, which preloads it.
-    message(STATUS "Python module: off in a sanitizer build (CUDAHULL_PYTHON=ON builds it)")
-  else()
-    # SKBUILD_SABI_COMPONENT: Development.SABIModule where the wheel is abi3 (pyproject's wheel.py-api), so
-    # that nanobind's STABLE_ABI builds a module every later Python loads.
-    find_package(Python 3.9 COMPONENTS Interpreter Development.Module ${SKBUILD_SABI_COMPONENT})
-    if(Python_FOUND)
-      execute_process(COMMAND "${Python_EXECUTABLE}" -m nanobind --cmake_dir
-                      OUTPUT_VARIABLE _nanobind_dir OUTPUT_STRIP_TRAILING_WHITESPACE
-                      RESULT_VARIABLE _nanobind_result ERROR_QUIET)
-      if(_nanobind_result EQUAL 0)
-        set(nanobind_ROOT "${_nanobind_dir}")
-        set(CUDAHULL_WITH_PYTHON ON)
-      endif()
+  # In a sanitizer build the module is instrumented too: it needs the runtime preloaded into the
+  # interpreter, which tests/python_sanitizer.sh does (tests/CMakeLists.txt registers no Python test there).
+  # SKBUILD_SABI_COMPONENT: Development.SABIModule where the wheel is abi3 (pyproject's wheel.py-api), so
+  # that nanobind's STABLE_ABI builds a module every later Python loads.
+  find_package(Python 3.9 COMPONENTS Interpreter Development.Module ${SKBUILD_SABI_COMPONENT})
+  if(Python_FOUND)
+    execute_process(COMMAND "${Python_EXECUTABLE}" -m nanobind --cmake_dir
+                    OUTPUT_VARIABLE _nanobind_dir OUTPUT_STRIP_TRAILING_WHITESPACE
+                    RESULT_VARIABLE _nanobind_result ERROR_QUIET)
+    if(_nanobind_result EQUAL 0)
+      set(nanobind_ROOT "${_nanobind_dir}")
+      set(CUDAHULL_WITH_PYTHON ON)
     endif()
-    if(NOT CUDAHULL_WITH_PYTHON)
-      if(CUDAHULL_PYTHON STREQUAL "ON")
-        message(FATAL_ERROR "the Python module cannot be built: ${Python_EXECUTABLE} has no nanobind (pip install "
-                            "nanobind, or -DPython_EXECUTABLE=build-venv/bin/python after scripts/setup); "
-                            "-DCUDAHULL_PYTHON=OFF builds without it")
-      endif()
-      message(STATUS "Python module: off (no nanobind for ${Python_EXECUTABLE}; scripts/setup prepares build-venv)")
+  endif()
+  if(NOT CUDAHULL_WITH_PYTHON)
+    if(CUDAHULL_PYTHON STREQUAL "ON")
+      message(FATAL_ERROR "the Python module cannot be built: ${Python_EXECUTABLE} has no nanobind (pip install "
+                          "nanobind, or -DPython_EXECUTABLE=build-venv/bin/python after scripts/setup); "
+                          "-DCUDAHULL_PYTHON=OFF builds without it")
     endif()
+    message(STATUS "Python module: off (no nanobind for ${Python_EXECUTABLE}; scripts/setup prepares build-venv)")
   endif()
 endif()
 if(CUDAHULL_WITH_PYTHON)

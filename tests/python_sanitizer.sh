@@ -7,19 +7,24 @@
 # nothing read; python/tests/test_binding_arrays.py), host arrays of every layout, the hull, 2-D, batch,
 # stepping-engine and merged (qhull_options) paths and their errors.  Any sanitizer report aborts the run.
 #
-#   tests/python_sanitizer.sh [BUILD_DIR]     BUILD_DIR: default build-asan-python
+#   tests/python_sanitizer.sh [BUILD_DIR]
 #
-# Its own build (the library and the extension only, -O1 as scripts/test's build-asan), since a build with
-# the module registers python/tests with ctest, which must not run the sanitized module without the
-# runtime preloaded.  Exit 77 (skipped) where the compiler has no ASan runtime.
+# BUILD_DIR: a sanitizer build already configured (scripts/test passes build-asan, whose libraries the
+# extension then shares), or by default a build of its own, build-asan-python (the library and the
+# extension only, -O1 as scripts/test's).  A sanitizer build registers no Python test with ctest
+# (tests/CMakeLists.txt): they run here.  Exit 77 (skipped) where the compiler has no ASan runtime.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build-asan-python}
 python=${CUDAHULL_SANITIZER_PYTHON:-$PWD/build-venv/bin/python}
 export PATH="$PATH:/usr/local/cuda/bin"
-cmake -S . -B "$build" -G Ninja -DCUDAHULL_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCUDAHULL_PYTHON=ON -DPython_EXECUTABLE="$python" \
-  -DCUDAHULL_BUILD_TESTS=OFF -DCUDAHULL_BUILD_VIEWER=OFF >/dev/null
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  cmake -S . -B "$build" -G Ninja -DCUDAHULL_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCUDAHULL_PYTHON=ON -DPython_EXECUTABLE="$python" \
+    -DCUDAHULL_BUILD_TESTS=OFF -DCUDAHULL_BUILD_VIEWER=OFF >/dev/null
+fi
+grep -q '^CUDAHULL_SANITIZE:BOOL=ON' "$build/CMakeCache.txt" ||
+  { echo "python_sanitizer: $build is not a sanitizer build (-DCUDAHULL_SANITIZE=ON)"; exit 1; }
 build=$(cd "$build" && pwd)
 cxx=$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$build/CMakeCache.txt")
 asan=$("$cxx" -print-file-name=libasan.so)
