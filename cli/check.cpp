@@ -2,7 +2,8 @@
 // PLY, Qhull's `o` output) are matched to the input points by coordinates and judged by check_hull(), the
 // checker behind `hull --verify`; a list of point ids is compared with exact_hull()'s vertex set.
 #include <algorithm>
-#include <cinttypes>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>

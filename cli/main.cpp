@@ -14,7 +14,7 @@ namespace {
 
 const char* kExitCodes =
     "Exit codes: 0 ok; 1 cannot write output; 2 usage; 3 unreadable or invalid input; 4 out of memory or\n"
-    "device failure; 5 --verify or check found the hull wrong.";
+    "device failure; 5 --verify found the hull wrong (check: HULL is not the hull).";
 
 const char* kPrecisionHelp =
     "auto (the file's: double for .xyz .txt .obj .off and ascii or double PLY, float for binary float PLY "

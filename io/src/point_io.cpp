@@ -1,4 +1,5 @@
-// Point readers: OBJ, PLY (ascii and binary), OFF, XYZ (README, "Input formats").
+// Point readers: OBJ, PLY (ascii and binary), OFF, XYZ (README, "Input formats"), and the face reader
+// (face_io.hpp), which shares their line source, number parsing and PLY header.
 //
 // Every reader is a template over the point type.  For Point3 (read_points) a text number goes straight from
 // decimal to float with std::from_chars<float> (correctly rounded), so a coordinate is rounded exactly once,
