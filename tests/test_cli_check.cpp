@@ -123,7 +123,8 @@ TEST(CliCheck, ValidHullsPass) {
   TempDir dir;
   for (const Case& c : cases()) {
     write_xyz17(dir / "p.xyz", c.points);
-    write_mesh((dir / "h.obj").string(), exact_hull(c.points));
+    const HullMeshd hull = exact_hull(c.points);
+    write_mesh((dir / "h.obj").string(), hull);
     const CliRun r = check(dir / "p.xyz", dir / "h.obj");
     EXPECT_EQ(r.exit_code, kExitOk) << c.name << describe(r);
     EXPECT_THAT(r.out, StartsWith("OK: ")) << c.name;
@@ -131,10 +132,10 @@ TEST(CliCheck, ValidHullsPass) {
     EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << c.name;
     // The same hull as OFF and PLY, and as --vertices-out's id list.
     for (const std::string ext : {".off", ".ply"}) {
-      write_mesh((dir / ("h" + ext)).string(), exact_hull(c.points));
+      write_mesh((dir / ("h" + ext)).string(), hull);
       EXPECT_EQ(check(dir / "p.xyz", dir / ("h" + ext)).exit_code, kExitOk) << c.name << ext;
     }
-    write_vertices((dir / "v.txt").string(), exact_hull(c.points));
+    write_vertices((dir / "v.txt").string(), hull);
     const CliRun v = check(dir / "p.xyz", dir / "v.txt");
     EXPECT_EQ(v.exit_code, kExitOk) << c.name << describe(v);
     EXPECT_THAT(v.out, HasSubstr("exactly the strictly extreme points"));
@@ -163,8 +164,9 @@ TEST(CliCheck, MutationsAreRejectedWithTheirReason) {
       std::vector<PointIndex> rest;
       for (PointIndex i = 0; i < c.points.size(); ++i)
         if (!(c.points[i] == c.points[gone])) rest.push_back(i);
-      expect(mesh_of(exact_hull(c.points, rest)), "point " + std::to_string(gone) + " (", "dropped vertex");
-      expect(mesh_of(exact_hull(c.points, rest)), "is above face", "dropped vertex");
+      const Mesh dropped = mesh_of(exact_hull(c.points, rest));
+      expect(dropped, "point " + std::to_string(gone) + " (", "dropped vertex");
+      expect(dropped, "is above face", "dropped vertex");
     }
     // 2. An interior point as a vertex: one face split in three at a point inside the hull.
     {
