@@ -251,15 +251,16 @@ Outcome check_faces(const std::vector<Point>& pts, const CheckOptions& o) {
   }
   bool wide = false;
   if constexpr (std::is_same_v<Point, Point3d>) wide = !in_fast_exact_range(hull.vertices);
-  const int din = affine_dimension(pts);
+  // The dimension the file claims, from its faces alone (check_hull compares it with the points'): one
+  // face is a polygon, none a segment or a point.
   std::vector<std::uint32_t> face_of;  // per triangle, the file's face
   bool split = false;
-  if (din == 2 && nf == 1) {
+  if (nf == 1) {
     hull.dimension = 2;
     for (std::size_t c = mesh.face_start[0]; c < mesh.face_start[1]; ++c)
       hull.polygon.push_back(file_to_hull[mesh.corners[c]]);
   } else if (nf == 0) {
-    hull.dimension = std::min(din, 1);
+    hull.dimension = hv.size() == 1 ? 0 : 1;
   } else {
     hull.dimension = 3;
     std::vector<std::uint32_t> poly;
@@ -290,11 +291,18 @@ Outcome check_faces(const std::vector<Point>& pts, const CheckOptions& o) {
     r.failures.push_back(split ? renumber_faces(line, face_of) : line);
   if (check.ok && r.failures.empty()) {
     char buf[512];
-    std::snprintf(
-        buf, sizeof buf,
-        "%zu vertices, %zu faces (%zu triangles): the exact hull of the %zu points (closed, outward, "
-        "convex, every vertex strictly extreme, every point inside)",
-        hv.size(), nf, hull.triangles.size(), pts.size());
+    if (hull.dimension == 3)
+      std::snprintf(
+          buf, sizeof buf,
+          "%zu vertices, %zu faces (%zu triangles): the exact hull of the %zu points (closed, outward, "
+          "convex, every vertex strictly extreme, every point inside)",
+          hv.size(), nf, hull.triangles.size(), pts.size());
+    else
+      std::snprintf(buf, sizeof buf, "%zu vertices: the exact hull of the %zu points, which are %s",
+                    hv.size(), pts.size(),
+                    hull.dimension == 2   ? "coplanar (a convex polygon)"
+                    : hull.dimension == 1 ? "collinear (a segment)"
+                                          : "one point");
     r.summary = buf;
     if (rounded > 0)
       r.summary += "; " + std::to_string(rounded) +

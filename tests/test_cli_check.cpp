@@ -374,6 +374,28 @@ TEST(CliCheck, PrecisionBadInputAndUsage) {
   EXPECT_THAT(help.out, HasSubstr("qhull o"));
 }
 
+// Coplanar points: the hull is one polygon face; collinear ones: a segment, its two ends and no face.
+TEST(CliCheck, LowerDimensions) {
+  TempDir dir;
+  write_xyz17(dir / "flat.xyz", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0.25, 0.25, 0}, {0.5, 0.5, 0}});
+  std::ofstream(dir / "flat.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const CliRun flat = check(dir / "flat.xyz", dir / "flat.off");
+  EXPECT_EQ(flat.exit_code, kExitOk) << describe(flat);
+  EXPECT_THAT(flat.out, HasSubstr("which are coplanar (a convex polygon)"));
+  std::ofstream(dir / "flat4.off") << "OFF\n4 1 0\n0 0 0\n1 0 0\n0.5 0.5 0\n0 1 0\n4 0 1 2 3\n";
+  const CliRun corner = check(dir / "flat.xyz", dir / "flat4.off");
+  EXPECT_EQ(corner.exit_code, kExitVerifyFailed) << describe(corner);
+  EXPECT_THAT(corner.err, HasSubstr("is not strictly extreme: it is collinear with its neighbours"));
+
+  write_xyz17(dir / "line.xyz", {{0, 0, 0}, {2, 2, 2}, {1, 1, 1}});
+  std::ofstream(dir / "line.obj") << "v 0 0 0\nv 2 2 2\n";
+  EXPECT_EQ(check(dir / "line.xyz", dir / "line.obj").exit_code, kExitOk);
+  std::ofstream(dir / "short.obj") << "v 0 0 0\nv 1 1 1\n";
+  const CliRun s = check(dir / "line.xyz", dir / "short.obj");
+  EXPECT_EQ(s.exit_code, kExitVerifyFailed) << describe(s);
+  EXPECT_THAT(s.err, HasSubstr("point 1 (2 2 2) lies on the line beyond the segment's ends"));
+}
+
 // The face reader itself (face_io.hpp), on what the tools write.
 FaceMesh faces_of(const std::string& text, PointFormat format) {
   std::istringstream in(text);
