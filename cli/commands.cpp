@@ -18,6 +18,7 @@
 #include "cudahull/engine.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/exact_hull.hpp"
+#include "cudahull/face_io.hpp"
 #include "cudahull/generators.hpp"
 #include "cudahull/hull_checker.hpp"
 #include "cudahull/hull_plan.hpp"
@@ -348,10 +349,7 @@ int hull_in(const HullOptions& o, const ConvexHullOptions& request) {
 
   bool verified = false;
   double verify_ms = 0;
-  if (o.verify && wide) {
-    // The checker's predicates are the fast ones: on these coordinates their answer would prove nothing.
-    if (!o.quiet) std::fprintf(stderr, "verify: not run: the checker is exact only within 2^-250..2^250\n");
-  } else if (o.verify) {
+  if (o.verify) {
     const auto t_verify = Clock::now();
     const CheckResult check = check_hull(points, hull);
     verify_ms = ms_since(t_verify);

@@ -55,4 +55,11 @@ struct BenchOptions {
 };
 int run_bench(const BenchOptions& options);
 
+struct CheckOptions {
+  std::string points;              // any point file the CLI reads
+  std::string hull;                // faces (.obj .off .ply, Qhull's `o` output) or a list of point ids
+  std::string precision = "auto";  // as for hull: "auto" is the point file's
+};
+int run_check(const CheckOptions& options);
+
 }  // namespace cudahull::cli

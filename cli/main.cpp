@@ -14,7 +14,7 @@ namespace {
 
 const char* kExitCodes =
     "Exit codes: 0 ok; 1 cannot write output; 2 usage; 3 unreadable or invalid input; 4 out of memory or\n"
-    "device failure; 5 --verify found the hull wrong.";
+    "device failure; 5 --verify found the hull wrong (check: HULL is not the hull).";
 
 const char* kPrecisionHelp =
     "auto (the file's: double for .xyz .txt .obj .off and ascii or double PLY, float for binary float PLY "
@@ -85,6 +85,25 @@ int main(int argc, char** argv) {
                      "Print the per-iteration table (cf. the paper's Fig. 9) on stdout");
   hull_cmd->add_flag("-q,--quiet", hull.quiet, "No progress or summary on stderr");
 
+  cli::CheckOptions check;
+  auto* check_cmd = app.add_subcommand(
+      "check",
+      "Check exactly that HULL, from any tool, is the convex hull of POINTS, as hull --verify does (exit 5 "
+      "and the reasons if not)");
+  check_cmd->add_option("POINTS", check.points, "The points: .ply .obj .off .xyz .txt, or - for xyz on stdin")
+      ->required();
+  check_cmd
+      ->add_option(
+          "HULL", check.hull,
+          "The hull: faces as .obj, .off or .ply (polygons allowed; Qhull's `qhull o` output as .off; "
+          "vertices matched to POINTS by exact coordinates, Qhull's within its 16 printed digits), or "
+          "any other file of 0-based point ids, one a line ('id' or 'id x y z'), compared with the "
+          "exact set of strictly extreme points")
+      ->required();
+  check_cmd->add_option("--precision", check.precision, kPrecisionHelp)
+      ->check(CLI::IsMember({"auto", "float", "double"}))
+      ->capture_default_str();
+
   cli::BenchOptions bench;
   auto* bench_cmd = app.add_subcommand(
       "bench", "Time the hull against Qhull, as in the paper's Table 1 (--batch: many clouds in one call)");
@@ -134,6 +153,7 @@ int main(int argc, char** argv) {
     if (*info_cmd) return cli::run_info(info);
     if (*gen_cmd) return cli::run_gen(gen);
     if (*hull_cmd) return cli::run_hull(hull);
+    if (*check_cmd) return cli::run_check(check);
     if (*bench_cmd) return cli::run_bench(bench);
   } catch (const InputError& e) {
     return fail(kExitBadInput, e.what());

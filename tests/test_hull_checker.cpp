@@ -381,5 +381,32 @@ TEST(HullCheckerDouble, LowerDimensionsInDouble) {
   expect_rejected(tri, exact_hull(tri, three), "is outside the polygon");
 }
 
+// Beyond the fast predicates' range the checker takes the wide ones.  On a tetrahedron of side 2^-400 the
+// fast orient3d's products underflow (alone they would find the input flat and reject the valid hull); with
+// the wide ones the hull passes, and a point 2^-453 outside a face is caught.  NaN is reported, not judged.
+TEST(HullCheckerDouble, WideCoordinatesAreCheckedExactly) {
+  std::vector<Point3d> cube = cube_with_points_just_off_its_faces();
+  for (Point3d& q : cube)
+    q = {std::ldexp(q.x, -400), std::ldexp(q.y, -400), std::ldexp(q.z, -400)};
+  expect_accepted(cube, exact_hull_any(cube));
+
+  const double s = std::ldexp(1.0, -400);
+  const std::vector<Point3d> p{
+      {0, 0, 0}, {s, 0, 0}, {0, s, 0}, {0, 0, s}, {s / 4, s / 4, s / 2 * (1 + 0x1p-52)}};
+  const HullMeshd full = exact_hull_any(p);
+  EXPECT_EQ(full.vertex_ids.size(), 5u);
+  expect_accepted(p, full);
+  const CheckResult r = check_hull(p, exact_hull_any(p, {0, 1, 2, 3}));
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(joined(r).find("point 4 ("), std::string::npos) << joined(r);
+  EXPECT_NE(joined(r).find("is above"), std::string::npos) << joined(r);
+
+  std::vector<Point3d> bad = p;
+  bad[3].y = std::nan("");
+  const CheckResult n = check_hull(bad, full);
+  EXPECT_FALSE(n.ok);
+  EXPECT_NE(joined(n).find("point 3 ("), std::string::npos) << joined(n);
+  EXPECT_NE(joined(n).find("is not finite"), std::string::npos) << joined(n);
+}
 }  // namespace
 }  // namespace cudahull

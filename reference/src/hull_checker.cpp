@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <numeric>
 #include <string>
 #include <thread>
@@ -25,6 +26,7 @@
 #include <vector>
 
 #include "cudahull/predicates.hpp"
+#include "cudahull/wide_predicates.hpp"
 
 namespace cudahull {
 namespace {
@@ -34,6 +36,8 @@ constexpr std::uint32_t kNone = 0xffffffffu;
 struct Report {
   CheckResult& result;
   std::size_t max;
+  // Some coordinate is outside the fast predicates' exact range: every test takes the wide predicates.
+  bool wide = false;
   void fail(std::string line) {
     result.ok = false;
     if (result.failures.size() < max) result.failures.push_back(std::move(line));
@@ -108,9 +112,20 @@ std::size_t parallel_failures(std::size_t n, std::size_t work, Report& rep, cons
   return total;
 }
 
+// The predicates, exact for the coordinates at hand: the fast ones inside their range, else the wide ones.
+int orient3d_any(bool wide, const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
+  return wide ? orient3d_wide(a, b, c, d) : orient3d(a, b, c, d);
+}
+bool collinear3d_any(bool wide, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  return wide ? collinear3d_wide(a, b, c) : collinear3d(a, b, c);
+}
+int orient2d_any(bool wide, double ax, double ay, double bx, double by, double cx, double cy) {
+  return wide ? orient2d_wide(ax, ay, bx, by, cx, cy) : orient2d(ax, ay, bx, by, cx, cy);
+}
+
 // Affine dimension of the input, exactly (its own small scan: the checker shares no code with exact_hull).
 template <class Point>
-int input_dimension(const std::vector<Point>& pts) {
+int input_dimension(const std::vector<Point>& pts, bool wide) {
   if (pts.empty()) return -1;
   const Vec3d a = to_vec3d(pts[0]);
   std::size_t i = 1;
@@ -118,11 +133,11 @@ int input_dimension(const std::vector<Point>& pts) {
     ++i;
   if (i == pts.size()) return 0;
   const Vec3d b = to_vec3d(pts[i]);
-  while (i < pts.size() && collinear3d(a, b, to_vec3d(pts[i])))
+  while (i < pts.size() && collinear3d_any(wide, a, b, to_vec3d(pts[i])))
     ++i;
   if (i == pts.size()) return 1;
   const Vec3d c = to_vec3d(pts[i]);
-  while (i < pts.size() && orient3d(a, b, c, to_vec3d(pts[i])) == 0)
+  while (i < pts.size() && orient3d_any(wide, a, b, c, to_vec3d(pts[i])) == 0)
     ++i;
   return i == pts.size() ? 2 : 3;
 }
@@ -328,7 +343,8 @@ void Checker<Point>::check_polygon() {
                 &c = h_.vertices[poly[(i + 2) % k]];
     for (int t = 0; t < 3 && axis < 0; ++t) {
       const int u = (t + 1) % 3, w = (t + 2) % 3;
-      if (orient2d(coord(a, u), coord(a, w), coord(b, u), coord(b, w), coord(c, u), coord(c, w)) != 0)
+      if (orient2d_any(rep_.wide, coord(a, u), coord(a, w), coord(b, u), coord(b, w), coord(c, u),
+                       coord(c, w)) != 0)
         axis = t;
     }
   }
@@ -340,8 +356,10 @@ void Checker<Point>::check_polygon() {
   std::vector<std::array<double, 2>> q(k);
   for (std::size_t i = 0; i < k; ++i)
     q[i] = {coord(h_.vertices[poly[i]], u), coord(h_.vertices[poly[i]], w)};
-  auto turn = [](const std::array<double, 2>& a, const std::array<double, 2>& b,
-                 const std::array<double, 2>& c) { return orient2d(a[0], a[1], b[0], b[1], c[0], c[1]); };
+  auto turn = [&](const std::array<double, 2>& a, const std::array<double, 2>& b,
+                  const std::array<double, 2>& c) {
+    return orient2d_any(rep_.wide, a[0], a[1], b[0], b[1], c[0], c[1]);
+  };
   // Orientation from the first strictly turning corner; every corner must turn the same way.
   int sign = 0;
   for (std::size_t i = 0; i < k && sign == 0; ++i)
@@ -417,7 +435,7 @@ class MeshChecker {
   const Vec3d& P(std::uint32_t v) const { return vp_[v]; }
   int above(std::uint32_t f, const Vec3d& q) const {
     const Triangle& t = tri_[f];
-    return orient3d(P(t[0]), P(t[1]), P(t[2]), q);
+    return orient3d_any(rep_.wide, P(t[0]), P(t[1]), P(t[2]), q);
   }
   // The corner after corner (f, k) around vertex tri_[f][k]: across the edge entering the vertex.
   std::uint32_t next_corner(std::uint32_t corner) const {
@@ -473,8 +491,8 @@ bool MeshChecker<Point>::renumber() {
     if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) {
       rep_.fail(fmt("face %" PRIu32 " repeats a vertex", f));
       ok = false;
-    } else if (collinear3d(to_vec3d(h_.vertices[t[0]]), to_vec3d(h_.vertices[t[1]]),
-                           to_vec3d(h_.vertices[t[2]]))) {
+    } else if (collinear3d_any(rep_.wide, to_vec3d(h_.vertices[t[0]]), to_vec3d(h_.vertices[t[1]]),
+                               to_vec3d(h_.vertices[t[2]]))) {
       rep_.fail(fmt("face %" PRIu32 " (ids %" PRIu32 " %" PRIu32 " %" PRIu32
                     ") is degenerate: its corners are collinear",
                     f, h_.vertex_ids[t[0]], h_.vertex_ids[t[1]], h_.vertex_ids[t[2]]));
@@ -687,7 +705,9 @@ bool MeshChecker<Point>::check_edges() {
 template <class Point>
 bool MeshChecker<Point>::find_interior_point() {
   auto strictly_inside = [&](const Vec3d& c) {
-    c_ = c;
+    // A candidate only; the fast predicates need its coordinates in their range too (or 0).
+    auto snap = [&](double x) { return rep_.wide || in_fast_exact_range(x) ? x : 0.0; };
+    c_ = {snap(c.x), snap(c.y), snap(c.z)};
     std::atomic<bool> inside{true};
     parallel_failures(nf_, 1, rep_, [&](std::size_t f, auto&, std::size_t) {
       if (inside.load(std::memory_order_relaxed) && above(static_cast<std::uint32_t>(f), c) >= 0)
@@ -701,19 +721,24 @@ bool MeshChecker<Point>::find_interior_point() {
   if (strictly_inside({static_cast<double>(s[0] / nv_), static_cast<double>(s[1] / nv_),
                        static_cast<double>(s[2] / nv_)}))
     return true;
+  // Long double: its range holds every product of three doubles, so wide coordinates neither overflow nor
+  // underflow here.
+  using L = long double;
   const Triangle& t = tri_[0];
   const Vec3d &a = P(t[0]), &b = P(t[1]), &c = P(t[2]);
-  const Vec3d u = {b.x - a.x, b.y - a.y, b.z - a.z}, w = {c.x - a.x, c.y - a.y, c.z - a.z};
-  const Vec3d nrm = {u.y * w.z - u.z * w.y, u.z * w.x - u.x * w.z, u.x * w.y - u.y * w.x};
+  const L ux = L(b.x) - a.x, uy = L(b.y) - a.y, uz = L(b.z) - a.z;
+  const L wx = L(c.x) - a.x, wy = L(c.y) - a.y, wz = L(c.z) - a.z;
+  const L nx = uy * wz - uz * wy, ny = uz * wx - ux * wz, nz = ux * wy - uy * wx;
   std::uint32_t best = 0;
-  double best_d = 0;
+  L best_d = 0;
   for (std::uint32_t v = 0; v < nv_; ++v) {
-    const double d = nrm.x * (P(v).x - a.x) + nrm.y * (P(v).y - a.y) + nrm.z * (P(v).z - a.z);
+    const L d = nx * (L(P(v).x) - a.x) + ny * (L(P(v).y) - a.y) + nz * (L(P(v).z) - a.z);
     if (d < best_d) best_d = d, best = v;
   }
   const Vec3d& d = P(best);
-  return strictly_inside(
-      {(a.x + b.x + c.x + d.x) / 4, (a.y + b.y + c.y + d.y) / 4, (a.z + b.z + c.z + d.z) / 4});
+  return strictly_inside({static_cast<double>((L(a.x) + b.x + c.x + d.x) / 4),
+                          static_cast<double>((L(a.y) + b.y + c.y + d.y) / 4),
+                          static_cast<double>((L(a.z) + b.z + c.z + d.z) / 4)});
 }
 
 // Facets: maximal sets of faces joined by flat edges.
@@ -776,7 +801,7 @@ bool MeshChecker<Point>::check_vertex_fans(bool polytope) {
         while (fct((e + 1) % n) == fct(j))
           e = (e + 1) % n;
         const std::uint32_t a = nxt(j), b = prv(e);
-        if (collinear3d(P(a), P(v), P(b))) {
+        if (collinear3d_any(rep_.wide, P(a), P(v), P(b))) {
           sink(lv2v_[v],
                fmt("vertex %s is not strictly extreme: it lies on the segment between vertices %" PRIu32
                    " and %" PRIu32 " on the boundary of a facet",
@@ -789,10 +814,10 @@ bool MeshChecker<Point>::check_vertex_fans(bool polytope) {
     // Upper half: angle in [0, pi) from w0 = next_0; lower: [pi, 2 pi).  r = prev_0 is at an angle in
     // (0, pi); a point on the plane (c, v, w0) is at angle 0 iff it is on w0's side of the plane (c, v, r).
     const Vec3d &pv = P(v), &w0 = P(nxt(0)), &r = P(prv(0));
-    const int ref = orient3d(c_, pv, r, w0);
+    const int ref = orient3d_any(rep_.wide, c_, pv, r, w0);
     auto upper = [&](const Vec3d& w) {
-      const int s = orient3d(c_, pv, w0, w);
-      return s > 0 || (s == 0 && orient3d(c_, pv, r, w) == ref);
+      const int s = orient3d_any(rep_.wide, c_, pv, w0, w);
+      return s > 0 || (s == 0 && orient3d_any(rep_.wide, c_, pv, r, w) == ref);
     };
     int crossings = 0;
     bool up = true;
@@ -824,7 +849,7 @@ std::uint32_t MeshChecker<Point>::walk(const Vec3d& q, std::uint32_t f, std::uin
     int cross = -1;
     for (int j = 0; j < 3 && cross < 0; ++j) {
       const int i = (off + j) % 3;
-      if (i != entered && orient3d(c_, P(t[i]), P(t[(i + 1) % 3]), q) < 0) cross = i;
+      if (i != entered && orient3d_any(rep_.wide, c_, P(t[i]), P(t[(i + 1) % 3]), q) < 0) cross = i;
     }
     if (cross < 0) return f;
     entered = twin_[3 * f + cross];
@@ -839,13 +864,20 @@ void MeshChecker<Point>::locate_points() {
   const std::size_t cap = static_cast<std::size_t>(4 * std::sqrt(static_cast<double>(nf_))) + 100;
   // Start faces from a cube map of directions around c, filled by one sweep of short walks.
   const int g = std::clamp(static_cast<int>(std::sqrt(nf_ / 12.0)), 1, 256);
-  double radius = 0;
+  // Directions in long double, so that wide coordinates (1e308 apart) stay finite; only the start faces
+  // depend on them, never a verdict.
+  using L = long double;
+  L radius = 0;
   for (const Vec3d& p : vp_)
-    radius = std::max({radius, std::fabs(p.x - c_.x), std::fabs(p.y - c_.y), std::fabs(p.z - c_.z)});
-  auto cell_of = [&](double dx, double dy, double dz) -> std::size_t {
-    const double ax = std::fabs(dx), ay = std::fabs(dy), az = std::fabs(dz);
+    radius = std::max({radius, std::fabs(L(p.x) - c_.x), std::fabs(L(p.y) - c_.y), std::fabs(L(p.z) - c_.z)});
+  auto clamp_double = [](L x) {
+    const L big = std::numeric_limits<double>::max();
+    return static_cast<double>(std::clamp(x, -big, big));
+  };
+  auto cell_of = [&](L dx, L dy, L dz) -> std::size_t {
+    const L ax = std::fabs(dx), ay = std::fabs(dy), az = std::fabs(dz);
     int side;
-    double s, t, m;
+    L s, t, m;
     if (ax >= ay && ax >= az)
       side = dx >= 0 ? 0 : 1, s = dy, t = dz, m = ax;
     else if (ay >= az)
@@ -871,7 +903,8 @@ void MeshChecker<Point>::locate_points() {
                           : side == 3 ? Vec3d{t, -1, s}
                           : side == 4 ? Vec3d{s, t, 1}
                                       : Vec3d{s, t, -1};
-          const Vec3d q = {c_.x + d.x * radius, c_.y + d.y * radius, c_.z + d.z * radius};
+          const Vec3d q = {clamp_double(c_.x + d.x * radius), clamp_double(c_.y + d.y * radius),
+                           clamp_double(c_.z + d.z * radius)};
           const std::uint32_t r = walk(q, f, rng, cap);
           if (r != kNone) f = r;
           cell_face[(static_cast<std::size_t>(side) * g + i) * g + j] = f;
@@ -884,7 +917,7 @@ void MeshChecker<Point>::locate_points() {
   std::vector<std::uint32_t> cell(n), order(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Point& p = pts_[i];
-    cell[i] = static_cast<std::uint32_t>(cell_of(p.x - c_.x, p.y - c_.y, p.z - c_.z));
+    cell[i] = static_cast<std::uint32_t>(cell_of(L(p.x) - c_.x, L(p.y) - c_.y, L(p.z) - c_.z));
   }
   if (nf_ > 32768) {
     std::vector<std::uint32_t> first(ncells + 1, 0);
@@ -977,7 +1010,7 @@ void Checker<Point>::run() {
     rep_.fail(fmt("invalid dimension %d", d));
     return;
   }
-  const int din = input_dimension(pts_);
+  const int din = input_dimension(pts_, rep_.wide);
   if (din != d) {
     rep_.fail(
         fmt("dimension mismatch: the hull has dimension %d but the input points have affine dimension %d", d,
@@ -1002,6 +1035,18 @@ void Checker<Point>::run() {
   if (d == 3) MeshChecker<Point>(pts_, h_, rep_).run();
 }
 
+// Whether a coordinate of p is outside the fast predicates' range; false for every float.
+bool outside_fast_range(const Point3&) {
+  return false;
+}
+bool outside_fast_range(const Point3d& p) {
+  return !in_fast_exact_range(p.x) || !in_fast_exact_range(p.y) || !in_fast_exact_range(p.z);
+}
+template <class Point>
+bool finite(const Point& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
 }  // namespace
 
 template <class Point>
@@ -1009,6 +1054,21 @@ CheckResult check_hull(const std::vector<Point>& points, const BasicHullMesh<Poi
                        std::size_t max_failures) {
   CheckResult result;
   Report rep{result, max_failures};
+  // The wide predicates take every finite double; NaN and infinity are no coordinates at all.
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!finite(points[i])) {
+      rep.fail(fmt("point %zu %s is not finite", i, coords(points[i]).c_str()));
+      return result;
+    }
+  for (std::size_t v = 0; v < hull.vertices.size(); ++v)
+    if (!finite(hull.vertices[v])) {
+      rep.fail(fmt("vertex %zu %s is not finite", v, coords(hull.vertices[v]).c_str()));
+      return result;
+    }
+  rep.wide =
+      std::any_of(points.begin(), points.end(), [](const Point& p) { return outside_fast_range(p); }) ||
+      std::any_of(hull.vertices.begin(), hull.vertices.end(),
+                  [](const Point& p) { return outside_fast_range(p); });
   Checker<Point>(points, hull, rep).run();
   return result;
 }
