@@ -453,7 +453,7 @@ TEST(ViewerHeadless, HoverAndClickNameWhatIsUnderTheMouse) {
 }
 
 // Issue 17, the input layer: the model's own surface (a PLY's face element; an OBJ's faces through
-// tinyobjloader) drawn grey under the points; a generated cloud has none, and the layer changes nothing.
+// the face reader) drawn grey under the points; a generated cloud has none, and the layer changes nothing.
 TEST(ViewerHeadless, InputLayerDrawsTheModelsOwnSurface) {
   TempDir dir;
   auto grey_fraction = [](const Image& img) {
