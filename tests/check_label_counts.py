@@ -24,7 +24,7 @@ def registered(build_dir, label, exclude):
     """The names of the tests registered under `label` in `build_dir`, less those matching `exclude`."""
     command = ["ctest", "--test-dir", build_dir, "-N", "-L", f"^{label}$"] + (["-E", exclude] if exclude else [])
     listing = subprocess.run(command, check=True, capture_output=True, text=True).stdout
-    return {m.group(1) for m in re.finditer(r"Test +#\d+: (\S+)", listing)}
+    return {m.group(1).strip() for m in re.finditer(r"^ *Test +#\d+: (.+)$", listing, re.M)}
 
 
 def main(argv):
