@@ -149,24 +149,12 @@ int main(int argc, char** argv) {
     return fail(kExitUsage, what + " (see cudahull --help)");
   }
 
-  try {
+  return run_reporting_errors("cudahull", [&] {
     if (*info_cmd) return cli::run_info(info);
     if (*gen_cmd) return cli::run_gen(gen);
     if (*hull_cmd) return cli::run_hull(hull);
     if (*check_cmd) return cli::run_check(check);
     if (*bench_cmd) return cli::run_bench(bench);
-  } catch (const InputError& e) {
-    return fail(kExitBadInput, e.what());
-  } catch (const DeviceError& e) {
-    return fail(kExitDevice, e.what());
-  } catch (const OutputError& e) {
-    return fail(kExitOutput, e.what());
-  } catch (const std::bad_alloc&) {
-    return fail(kExitDevice, "out of memory");
-  } catch (const std::invalid_argument& e) {
-    return fail(kExitUsage, e.what());
-  } catch (const std::exception& e) {
-    return fail(kExitOutput, std::string("internal error: ") + e.what());
-  }
-  return kExitUsage;
+    return static_cast<int>(kExitUsage);
+  });
 }

@@ -219,22 +219,8 @@ int main(int argc, char** argv) {
     return fail(kExitUsage, e.what());
   }
 
-  try {
+  return run_reporting_errors<ScriptError>("cudahull-viewer", [&] {
     if (!o.script_path.empty()) o.script = read_script(o.script_path);
     return o.headless ? run_headless(o) : run_window(o);
-  } catch (const ScriptError& e) {
-    return fail(kExitUsage, e.what());
-  } catch (const InputError& e) {
-    return fail(kExitBadInput, e.what());
-  } catch (const DeviceError& e) {
-    return fail(kExitDevice, e.what());
-  } catch (const OutputError& e) {
-    return fail(kExitOutput, e.what());
-  } catch (const std::bad_alloc&) {
-    return fail(kExitDevice, "out of memory");
-  } catch (const std::invalid_argument& e) {
-    return fail(kExitUsage, e.what());
-  } catch (const std::exception& e) {
-    return fail(kExitOutput, std::string("internal error: ") + e.what());
-  }
+  });
 }
