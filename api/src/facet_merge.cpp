@@ -2,6 +2,7 @@
 #include "facet_merge.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cfloat>
 #include <cmath>
 #include <cstring>
@@ -175,6 +176,22 @@ struct EdgeIndex {
     return kNone;
   }
 };
+
+// parallel_chunks() with its range dealt out in blocks of `block` items to whichever thread is free, for
+// passes whose items are independent: on a shared machine a worker the scheduler holds back takes fewer
+// blocks, where an even split left the caller waiting for that worker's half.
+template <class Body>
+void parallel_blocks(std::size_t n, unsigned workers, Body&& body, std::size_t block = 4096) {
+  const std::size_t blocks = (n + block - 1) / block;
+  std::atomic<std::size_t> next{0};
+  parallel_chunks(
+      blocks, workers,
+      [&](std::size_t, std::size_t, unsigned worker) {
+        for (std::size_t b; (b = next.fetch_add(1, std::memory_order_relaxed)) < blocks;)
+          body(b * block, std::min(n, (b + 1) * block), worker);
+      },
+      1);
+}
 
 // The vertices of `mesh` along a Morton curve of their box, and its triangles by their first corner in that
 // order.  The per-vertex, per-triangle and per-facet passes take their independent items in these orders,
@@ -382,7 +399,7 @@ EdgeIndex drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Poin
     // By position, turned back into vertex order below.
     std::vector<double> heights_at(n, kInfinity), reach_at(n, 0);
     std::vector<std::uint8_t> relinked_at(n, 0);
-    parallel_chunks(
+    parallel_blocks(
         n, hardware_workers(),
         [&](std::size_t begin, std::size_t end, unsigned) {
           std::vector<PointIndex> link;
@@ -416,7 +433,7 @@ EdgeIndex drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Poin
             heights_at[j] = cached_height[id];
           }
         },
-        256);  // a chunk of some hundreds of microseconds: a worker woken for less costs more
+        256);  // blocks of some hundreds of microseconds: a worker woken for less costs more
     std::vector<double> heights(n), reach(n);
     std::vector<std::uint8_t> relinked(n);
     for (std::uint32_t i = 0; i < n; ++i) {
@@ -505,16 +522,19 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
   std::vector<Plane> plane(nt);
   std::vector<double> twice_area(nt);
   std::vector<std::uint32_t> across(3 * nt);  // the triangle across edge k of j: the one holding its reverse
-  parallel_chunks(nt, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
-    for (std::size_t j = begin; j < end; ++j) {
-      const Vec3d a = corner(j, 0), b = corner(j, 1), c = corner(j, 2);
-      plane[j] = plane_through(a, b, c);
-      const Vec3d n = cross(sub(b, a), sub(c, a));
-      twice_area[j] = std::sqrt(dot(n, n));
-      for (int k = 0; k < 3; ++k)
-        across[3 * j + k] = holder(tri[j][(k + 1) % 3], tri[j][k]);
-    }
-  });
+  parallel_blocks(
+      nt, hardware_workers(),
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t j = begin; j < end; ++j) {
+          const Vec3d a = corner(j, 0), b = corner(j, 1), c = corner(j, 2);
+          plane[j] = plane_through(a, b, c);
+          const Vec3d n = cross(sub(b, a), sub(c, a));
+          twice_area[j] = std::sqrt(dot(n, n));
+          for (int k = 0; k < 3; ++k)
+            across[3 * j + k] = holder(tri[j][(k + 1) % 3], tri[j][k]);
+        }
+      },
+      1024);
   // Whether `vertex` (a position) fits the group of `seed`: within the tolerance of the seed's plane, or
   // exactly on it (a point exactly on it evaluates to within a few ulps of the coordinates' scale, under 28u
   // by plane.cpp's analysis; the exact orient3d decides).
@@ -547,16 +567,19 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
   // were it alone (the top of its corners).
   std::vector<std::uint8_t> joining(nt);
   std::vector<double> alone_top(nt);
-  parallel_chunks(nt, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
-    for (std::size_t j = begin; j < end; ++j) {
-      std::uint8_t bits = 0;
-      for (int k = 0; k < 3; ++k)
-        if (const std::uint32_t u = across[3 * j + k]; u != kNone && joins(j, u)) bits |= 1u << k;
-      joining[j] = bits;
-      alone_top[j] = std::max(
-          {dot3(plane[j], corner(j, 0)), dot3(plane[j], corner(j, 1)), dot3(plane[j], corner(j, 2))});
-    }
-  });
+  parallel_blocks(
+      nt, hardware_workers(),
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t j = begin; j < end; ++j) {
+          std::uint8_t bits = 0;
+          for (int k = 0; k < 3; ++k)
+            if (const std::uint32_t u = across[3 * j + k]; u != kNone && joins(j, u)) bits |= 1u << k;
+          joining[j] = bits;
+          alone_top[j] = std::max(
+              {dot3(plane[j], corner(j, 0)), dot3(plane[j], corner(j, 1)), dot3(plane[j], corner(j, 2))});
+        }
+      },
+      1024);
   // Largest first, ties by the mesh's index: sorted as (the area's bits inverted, index) keys, which order
   // as the areas do (no area is negative or NaN), without a look-up a comparison.
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(nt);
@@ -728,7 +751,7 @@ std::vector<double> kept_bounds(const Relabelled& g, const std::vector<Plane>& p
       corners[i][k] = g.rank[seed_corners[order[i]][k]];
   }
   std::vector<double> found(count, -kInfinity);
-  parallel_chunks(
+  parallel_blocks(
       count, hardware_workers(),
       [&](std::size_t begin, std::size_t end, unsigned) {
         // The ascent from v: to the neighbour of the largest value among those exactly above, until none
@@ -802,7 +825,7 @@ double thinnest(const BasicHullMesh<Point>& hull, const EdgeIndex& edges, const 
   centroid = {centroid.x / count, centroid.y / count, centroid.z / count};
   const unsigned workers = hardware_workers();
   std::vector<double> least(workers, kInfinity);
-  parallel_chunks(
+  parallel_blocks(
       planes.size(), workers,
       [&](std::size_t begin, std::size_t end, unsigned worker) {
         for (std::size_t f = begin; f < end; ++f) {
