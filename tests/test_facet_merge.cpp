@@ -416,6 +416,73 @@ TEST(FacetMerge, TinyToleranceChangesNothingOnBallsAndSpheres) {
   }
 }
 
+// Large merges (above 4096 vertices: the spatial visit order and the relabelled mesh of facet_merge.cpp)
+// give what the merge gave before those (pinned: the same vertices, triangles, planes, coplanar rows,
+// max_outside and thinnest, digested), and each triangle's neighbours are the triangles across its edges.
+std::uint64_t digest(const MergedHull& m) {
+  std::uint64_t h = 1469598103934665603ull;
+  const auto mix = [&](const void* data, std::size_t bytes) {
+    const auto* c = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i)
+      h = (h ^ c[i]) * 1099511628211ull;
+  };
+  mix(m.vertices.data(), m.vertices.size() * sizeof m.vertices[0]);
+  mix(m.faces.data(), m.faces.size() * sizeof m.faces[0]);
+  mix(m.planes.data(), m.planes.size() * sizeof m.planes[0]);
+  mix(m.facet_of_face.data(), m.facet_of_face.size() * sizeof m.facet_of_face[0]);
+  mix(m.coplanar.data(), m.coplanar.size() * sizeof m.coplanar[0]);
+  mix(&m.max_outside, sizeof m.max_outside);
+  mix(&m.thinnest, sizeof m.thinnest);
+  return h;
+}
+
+TEST(FacetMerge, LargeMergesKeepTheirResults) {
+  Rng r(17);
+  std::vector<Point3d> sphere, box;
+  for (int i = 0; i < 20000; ++i) {
+    const double z = 2 * uniform(r) - 1, phi = 2 * std::acos(-1.0) * uniform(r), s = std::sqrt(1 - z * z);
+    sphere.push_back({3 * s * std::cos(phi), 3 * s * std::sin(phi), 3 * z});
+  }
+  // A 1500-sided prism's corners and points on its sides, with noise of the order of Qhull's roundoff:
+  // thousands of vertices, and merging drops thousands.
+  const int sides = 1500;
+  for (int i = 0; i < sides; ++i)
+    for (double z : {-1.0, 1.0})
+      box.push_back(
+          {std::cos(2 * std::acos(-1.0) * i / sides), std::sin(2 * std::acos(-1.0) * i / sides), z});
+  for (int i = 0; i < 40000; ++i) {
+    const Point3d a = box[2 * (i % sides)], b = box[2 * ((i + 1) % sides)];
+    const double t = uniform(r), z = 2 * uniform(r) - 1;
+    box.push_back({(1 - t) * a.x + t * b.x + 2e-16 * (uniform(r) - 0.5),
+                   (1 - t) * a.y + t * b.y + 2e-16 * (uniform(r) - 0.5), z});
+  }
+  struct Expected {
+    const std::vector<Point3d>* points;
+    std::size_t vertices;
+    std::uint64_t digest;
+  };
+  // Pinned at d99821d (before the visit order).
+  for (const Expected& e :
+       {Expected{&sphere, 20000, 0x1a02239e440b4a27ull}, Expected{&box, 3000, 0x5196ac18ec9e7045ull}}) {
+    const HullMeshd exact = exact_hull(*e.points);
+    const MergedHull merged = merge_facets(*e.points, exact, qhull_default_tolerance(*e.points));
+    std::printf("[ large ] exact %zu  merged %zu  coplanar %zu  digest %016llx\n", exact.vertex_ids.size(),
+                merged.vertices.size(), merged.coplanar.size(),
+                static_cast<unsigned long long>(digest(merged)));
+    EXPECT_EQ(merged.vertices.size(), e.vertices);
+    EXPECT_EQ(digest(merged), e.digest);
+    std::map<std::pair<PointIndex, PointIndex>, std::int32_t> holding;  // directed edge -> triangle
+    for (std::size_t f = 0; f < merged.faces.size(); ++f)
+      for (int k = 0; k < 3; ++k)
+        holding[{merged.faces[f][k], merged.faces[f][(k + 1) % 3]}] = static_cast<std::int32_t>(f);
+    ASSERT_EQ(merged.neighbors.size(), merged.faces.size());
+    for (std::size_t f = 0; f < merged.faces.size(); ++f)
+      for (int k = 0; k < 3; ++k)
+        ASSERT_EQ(merged.neighbors[f][k],
+                  (holding[{merged.faces[f][(k + 2) % 3], merged.faces[f][(k + 1) % 3]}]));
+  }
+}
+
 // MergedHull::thinnest (Qhull's flatness test, QH6154) against the brute force, max over the merged hull's
 // vertices of -(n . p + d) per facet, min over facets: within rounding of it on slabs a few ulps to a few
 // tolerances thick; on a ball, above 4 x the tolerance and at most the brute force (a lower bound there).

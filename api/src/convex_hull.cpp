@@ -394,8 +394,8 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
     local.vertex_ids[k] = static_cast<PointIndex>(k);
   const double cosine = std::clamp(options.angle_cosine, 0.0, 1.0);
   PhaseLaps laps("describe_merged");  // CUDAHULL_PHASE_TIMES=1
-  const MergedHull merged = merge_facets(mesh.vertices, local, merge_tolerance(mesh.vertices, options),
-                                         std::sqrt(1 - cosine * cosine));
+  MergedHull merged = merge_facets(mesh.vertices, local, merge_tolerance(mesh.vertices, options),
+                                   std::sqrt(1 - cosine * cosine));
   ConvexHull hull;
   hull.dimension = 3;
   hull.precision = std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
@@ -407,13 +407,14 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
     hull.vertices.push_back(mesh.vertex_ids[v]);
   std::sort(hull.vertices.begin(), hull.vertices.end());
   // merged's indices are positions in mesh.vertices (local's ids): its faces are the mesh's triangles.
+  hull.faces.reserve(merged.faces.size());
   for (const Triangle& face : merged.faces)
     hull.faces.push_back({mesh.vertex_ids[face[0]], mesh.vertex_ids[face[1]], mesh.vertex_ids[face[2]]});
   laps.lap("merge and faces");
   measure_solid(mesh.vertices, merged.faces, hull);
   laps.lap("measures");
-  hull.planes = merged.planes;
-  hull.neighbors = face_neighbors(merged.faces, mesh.vertices.size());
+  hull.planes = std::move(merged.planes);
+  hull.neighbors = std::move(merged.neighbors);
   laps.lap("planes and neighbours");
   for (const auto& row : merged.coplanar)
     hull.coplanar.push_back({mesh.vertex_ids[row[0]], row[1], mesh.vertex_ids[row[2]]});

@@ -2,6 +2,7 @@
 #include "facet_merge.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cfloat>
 #include <cmath>
 #include <cstring>
@@ -176,6 +177,112 @@ struct EdgeIndex {
   }
 };
 
+// parallel_chunks() with its range dealt out in blocks of `block` items to whichever thread is free, for
+// passes whose items are independent: on a shared machine a worker the scheduler holds back takes fewer
+// blocks, where an even split left the caller waiting for that worker's half.
+template <class Body>
+void parallel_blocks(std::size_t n, unsigned workers, Body&& body, std::size_t block = 4096) {
+  const std::size_t blocks = (n + block - 1) / block;
+  std::atomic<std::size_t> next{0};
+  parallel_chunks(
+      blocks, workers,
+      [&](std::size_t, std::size_t, unsigned worker) {
+        for (std::size_t b; (b = next.fetch_add(1, std::memory_order_relaxed)) < blocks;)
+          body(b * block, std::min(n, (b + 1) * block), worker);
+      },
+      1);
+}
+
+// The vertices of `mesh` along a Morton curve of their box, and its triangles by their first corner in that
+// order.  The per-vertex, per-triangle and per-facet passes take their independent items in these orders,
+// so that neighbours on the hull are neighbours in time: in index order (the engine's, spatially random)
+// nearly every read of a corner, a link or a plane missed the cache, most of a 100,000-vertex sphere's
+// merge.  Only the order of independent items changes, never a result.  Small meshes keep index order.
+struct VisitOrder {
+  std::vector<std::uint32_t> vertices, triangles;
+  std::vector<std::uint32_t> triangle_rank;  // per triangle: its place in `triangles`
+};
+
+template <class Point>
+VisitOrder visit_order(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges) {
+  const std::size_t n = mesh.vertices.size();
+  VisitOrder order;
+  order.vertices.resize(n);
+  std::iota(order.vertices.begin(), order.vertices.end(), 0u);
+  if (n >= 4096) {
+    Box all;
+    for (const Point& p : mesh.vertices)
+      all.add({{double(p.x), double(p.y), double(p.z)}, {double(p.x), double(p.y), double(p.z)}});
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(n);
+    parallel_chunks(n, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const double at[3] = {double(mesh.vertices[i].x), double(mesh.vertices[i].y),
+                              double(mesh.vertices[i].z)};
+        std::uint64_t code = 0;
+        for (int k = 0; k < 3; ++k) {
+          const double width = all.hi[k] - all.lo[k];
+          double t = width > 0 ? (at[k] - all.lo[k]) / width : 0;
+          if (!(t > 0)) t = 0;  // NaN too: the order only affects speed
+          code |= spread3(static_cast<std::uint64_t>(std::min(t, 1.0) * 2097151.0)) << k;
+        }
+        keyed[i] = {code, static_cast<std::uint32_t>(i)};
+      }
+    });
+    std::sort(keyed.begin(), keyed.end());
+    for (std::size_t i = 0; i < n; ++i)
+      order.vertices[i] = keyed[i].second;
+  }
+  order.triangles.reserve(mesh.triangles.size());
+  for (std::uint32_t v : order.vertices)
+    for (std::uint32_t k = edges.start[v]; k < edges.start[v + 1]; ++k)
+      if (const std::uint32_t t = edges.out[k].second; mesh.triangles[t][0] == v)
+        order.triangles.push_back(t);
+  order.triangle_rank.resize(order.triangles.size());
+  for (std::uint32_t j = 0; j < order.triangles.size(); ++j)
+    order.triangle_rank[order.triangles[j]] = j;
+  return order;
+}
+
+// A mesh's vertices and edges relabelled by a VisitOrder: position j is vertex visit.vertices[j], at[j] its
+// coordinates, to[start[j]..start[j + 1]) its neighbours' positions in EdgeIndex's order (ascending original
+// index, so that every loop over them takes the same steps).  Built in one pass of scattered reads that
+// overlap; the passes then read their neighbours' data from the cache.
+struct Relabelled {
+  std::vector<std::uint32_t> rank, start, to;
+  std::vector<std::uint32_t> face;  // per out-edge: the place in VisitOrder::triangles of its triangle
+  std::vector<Vec3d> at;
+  bool coordinates_safe = true;  // every coordinate in compare_along()'s exact range
+};
+
+bool coordinate_safe(double x);
+
+template <class Point>
+Relabelled relabelled(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, const VisitOrder& visit) {
+  const std::size_t n = mesh.vertices.size();
+  Relabelled g;
+  g.rank.resize(n);
+  g.start.assign(n + 1, 0);
+  g.to.resize(edges.out.size());
+  g.face.resize(edges.out.size());
+  g.at.resize(n);
+  for (std::uint32_t j = 0; j < n; ++j) {
+    const std::uint32_t v = visit.vertices[j];
+    g.rank[v] = j;
+    g.at[j] = to_vec3d(mesh.vertices[v]);
+    g.start[j + 1] = g.start[j] + edges.degree(v);
+    g.coordinates_safe = g.coordinates_safe && coordinate_safe(g.at[j].x) && coordinate_safe(g.at[j].y) &&
+                         coordinate_safe(g.at[j].z);
+  }
+  for (std::uint32_t j = 0; j < n; ++j) {
+    const std::uint32_t v = visit.vertices[j];
+    for (std::uint32_t k = 0; k < edges.degree(v); ++k) {
+      g.to[g.start[j] + k] = g.rank[edges.neighbour(v, k)];
+      g.face[g.start[j] + k] = visit.triangle_rank[edges.out[edges.start[v] + k].second];
+    }
+  }
+  return g;
+}
+
 // Step 1: how far above hull(link) the vertex v stands (see facet_merge.hpp); `link` indexes `points`.
 template <class Point>
 double vertex_height(const std::vector<Point>& points, const Vec3d& v, const std::vector<PointIndex>& link) {
@@ -207,16 +314,14 @@ double vertex_height(const std::vector<Point>& points, const Vec3d& v, const std
 // bound on that distance (the determinant's error by Shewchuk's orient3d bound, the edges' lengths rounded
 // up) beyond the limit plus a margin for the height's own rounding (under 2^-46 of the largest coordinate)
 // decides.  False where no triple shows it: the exact height then decides, as it always did.
-template <class Point>
-bool clearly_above(const std::vector<Point>& points, const Vec3d& v, const std::vector<PointIndex>& link,
-                   double limit) {
-  constexpr std::size_t kMaxLink = 12;  // C(12, 3) triples at most; a larger link takes the exact height
-  const std::size_t k = link.size();
+constexpr std::size_t kMaxLink = 12;  // C(12, 3) triples at most; a larger link takes the exact height
+
+bool clearly_above(const Vec3d& v, const Vec3d* link, std::size_t k, double limit) {
   if (k < 3 || k > kMaxLink) return false;
   Vec3d q[kMaxLink];
   double scale = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
   for (std::size_t j = 0; j < k; ++j) {
-    q[j] = to_vec3d(points[link[j]]);
+    q[j] = link[j];
     scale = std::max({scale, std::fabs(q[j].x), std::fabs(q[j].y), std::fabs(q[j].z)});
   }
   // The facets of hull(link) that v stands above face about the way from the link's centroid to v: their
@@ -240,11 +345,19 @@ bool clearly_above(const std::vector<Point>& points, const Vec3d& v, const std::
         const int side = orient3d(q[a], q[b], q[c], v);
         if (side == 0) continue;
         const Vec3d &pa = q[a], &pb = side > 0 ? q[b] : q[c], &pc = side > 0 ? q[c] : q[b];
+        const detail::DoubleCross cross = detail::double_cross(pa, pb, pc);
+        // A link point certainly below by the same filter as v's test below needs no orient3d.
+        auto certainly_below = [&](const Vec3d& p) {
+          const Vec3d w = sub(p, pa);
+          const double det = w.x * cross.n[0] + w.y * cross.n[1] + w.z * cross.n[2];
+          const double permanent =
+              std::fabs(w.x) * cross.p[0] + std::fabs(w.y) * cross.p[1] + std::fabs(w.z) * cross.p[2];
+          return det + detail::kO3dErrBoundA * permanent * (1 + 0x1p-40) < 0;
+        };
         bool supports = true;
         for (std::size_t j = 0; j < k && supports; ++j)
-          supports = j == a || j == b || j == c || orient3d(pa, pb, pc, q[j]) <= 0;
+          supports = j == a || j == b || j == c || certainly_below(q[j]) || orient3d(pa, pb, pc, q[j]) <= 0;
         if (!supports) continue;
-        const detail::DoubleCross cross = detail::double_cross(pa, pb, pc);
         const Vec3d w = sub(v, pa);
         const double det = w.x * cross.n[0] + w.y * cross.n[1] + w.z * cross.n[2];
         const double permanent =
@@ -257,7 +370,7 @@ bool clearly_above(const std::vector<Point>& points, const Vec3d& v, const std::
 
 // Steps 1-2: drops the vertices of `current` (its vertex_ids index `points`) whose height is within
 // `limit`, in rounds of independent sets, until a round drops nothing or only the flat remains.  Returns
-// the final mesh's edges.
+// the final mesh's edges, its visit order and relabelled mesh into `visit` and `graph`.
 // With an angle (`angle_sine` > 0, Qhull's An), a vertex's limit grows by angle_sine times half its
 // distance r to its farthest neighbour in the exact hull (taken once, so that the drops do not compound: a
 // later, wider link would let the angle grow): a vertex h above its link makes facets that meet at about
@@ -265,7 +378,7 @@ bool clearly_above(const std::vector<Point>& points, const Vec3d& v, const std::
 // test for a pair of facets.
 template <class Point>
 EdgeIndex drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Point>& current, double limit,
-                            double angle_sine) {
+                            double angle_sine, VisitOrder& visit, Relabelled& graph) {
   // Per vertex of `points`: its link (ascending) when its height was computed, and that height; a vertex
   // whose link did not change keeps its height (it depends on nothing else).  The links lie in one pool,
   // each vertex's latest at link_at[id] (link_size[id] of them; a vertex a round did not touch keeps its
@@ -277,39 +390,56 @@ EdgeIndex drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Poin
   for (;;) {
     const std::size_t n = current.vertices.size();
     EdgeIndex edges(current);
-    std::vector<double> heights(n, kInfinity), reach(n, 0);
-    std::vector<std::uint8_t> relinked(n, 0);
-    parallel_chunks(
+    visit = visit_order(current, edges);
+    graph = relabelled(current, edges, visit);
+    const Relabelled& g = graph;
+    std::vector<PointIndex> ids(n);  // by position
+    for (std::uint32_t j = 0; j < n; ++j)
+      ids[j] = current.vertex_ids[visit.vertices[j]];
+    // By position, turned back into vertex order below.
+    std::vector<double> heights_at(n, kInfinity), reach_at(n, 0);
+    std::vector<std::uint8_t> relinked_at(n, 0);
+    parallel_blocks(
         n, hardware_workers(),
         [&](std::size_t begin, std::size_t end, unsigned) {
           std::vector<PointIndex> link;
-          for (std::size_t i = begin; i < end; ++i) {
-            const PointIndex id = current.vertex_ids[i];
+          std::vector<Vec3d> link_at_points;
+          for (std::size_t j = begin; j < end; ++j) {
+            const PointIndex id = ids[j];
+            const Vec3d v = g.at[j];
             link.clear();
-            for (std::uint32_t k = 0; k < edges.degree(i); ++k)
-              link.push_back(current.vertex_ids[edges.neighbour(i, k)]);
+            link_at_points.clear();
+            for (std::uint32_t k = g.start[j]; k < g.start[j + 1]; ++k) {
+              link.push_back(ids[g.to[k]]);
+              link_at_points.push_back(g.at[g.to[k]]);
+            }
             if (angle_sine > 0 && first_reach[id] < 0) {
-              const Vec3d v = to_vec3d(current.vertices[i]);
               first_reach[id] = 0;
-              for (PointIndex w : link) {
-                const Vec3d d = sub(to_vec3d(points[w]), v);
+              for (const Vec3d& w : link_at_points) {
+                const Vec3d d = sub(w, v);
                 first_reach[id] = std::max(first_reach[id], std::sqrt(dot(d, d)));
               }
             }
-            if (angle_sine > 0) reach[i] = first_reach[id];
+            if (angle_sine > 0) reach_at[j] = first_reach[id];
             if (link_size[id] != link.size() ||
                 !std::equal(link.begin(), link.end(), link_pool.begin() + link_at[id])) {
               // Above its limit: never dropped, whatever its exact height (infinity stands for it).
-              const Vec3d v = to_vec3d(current.vertices[i]);
-              cached_height[id] = clearly_above(points, v, link, limit + angle_sine * reach[i] / 2)
+              cached_height[id] = clearly_above(v, link_at_points.data(), link_at_points.size(),
+                                                limit + angle_sine * reach_at[j] / 2)
                                       ? kInfinity
                                       : vertex_height(points, v, link);
-              relinked[i] = 1;  // each entry is only this chunk's
+              relinked_at[j] = 1;  // each entry is only this chunk's
             }
-            heights[i] = cached_height[id];
+            heights_at[j] = cached_height[id];
           }
         },
-        64);
+        256);  // blocks of some hundreds of microseconds: a worker woken for less costs more
+    std::vector<double> heights(n), reach(n);
+    std::vector<std::uint8_t> relinked(n);
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const std::uint32_t j = g.rank[i];
+      heights[i] = heights_at[j], reach[i] = reach_at[j], relinked[i] = relinked_at[j];
+    }
     for (std::uint32_t i = 0; i < n; ++i) {
       if (!relinked[i]) continue;
       const PointIndex id = current.vertex_ids[i];
@@ -357,6 +487,7 @@ struct Facets {
   std::vector<std::uint32_t> facet_of;  // per triangle of the mesh
   std::vector<Plane> planes;            // per facet
   std::vector<std::uint32_t> seeds;     // per facet: its largest triangle
+  std::vector<std::uint32_t> across;    // per triangle t and edge k: the triangle holding its reverse
 };
 
 // Step 3: groups the triangles of `mesh` into merged facets.
@@ -364,35 +495,52 @@ struct Facets {
 // from the seed's nearest corner of the seed's plane (a tilt of at most about that angle).
 //
 // Each triangle's plane, its neighbours across its edges, which of them would join it as a seed and, for a
-// group of it alone, the plane's offset are found first, on all cores in the mesh's order: the seeds come
-// largest first, scattered over the mesh, and most of them stay alone (every one on a ball), so that the
-// sequential grouping then reads four words for such a seed, where it read both triangles' corners and
-// planes for each of its edges (a cache miss each, most of the grouping's time on a large hull).
+// group of it alone, the plane's offset are found first, on all cores: the seeds come largest first,
+// scattered over the mesh, and most of them stay alone (every one on a ball), so that the sequential
+// grouping then reads four words for such a seed, where it read both triangles' corners and planes for each
+// of its edges (a cache miss each, most of the grouping's time on a large hull).  All of it works on the
+// triangles renumbered by their visit order (position j for visit.triangles[j]) and the relabelled mesh
+// `g`, so that neighbours' data lies together; the seeds' order (largest first, ties by the mesh's index)
+// and every test are the mesh's, so the facets are too.
 template <class Point>
-Facets group_facets(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, double tolerance,
-                    double angle_sine) {
+Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const VisitOrder& visit,
+                    double tolerance, double angle_sine) {
   const std::size_t nt = mesh.triangles.size();
-  auto corner = [&](std::uint32_t t, int k) { return to_vec3d(mesh.vertices[mesh.triangles[t][k]]); };
+  const std::vector<std::uint32_t>& jrank = visit.triangle_rank;  // per mesh triangle: its position
+  std::vector<std::array<std::uint32_t, 3>> tri(nt);              // per position: its corners' positions
+  for (std::uint32_t j = 0; j < nt; ++j) {
+    const Triangle& corners = mesh.triangles[visit.triangles[j]];
+    tri[j] = {g.rank[corners[0]], g.rank[corners[1]], g.rank[corners[2]]};
+  }
+  auto corner = [&](std::uint32_t j, int k) { return g.at[tri[j][k]]; };
+  // The triangle holding the directed edge a -> b (positions), kNone if none.
+  auto holder = [&](std::uint32_t a, std::uint32_t b) {
+    for (std::uint32_t e = g.start[a]; e < g.start[a + 1]; ++e)
+      if (g.to[e] == b) return g.face[e];
+    return kNone;
+  };
   std::vector<Plane> plane(nt);
   std::vector<double> twice_area(nt);
-  std::vector<std::uint32_t> across(3 * nt);  // the triangle across edge k of t: the one holding its reverse
-  parallel_chunks(nt, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
-    for (std::size_t t = begin; t < end; ++t) {
-      const Vec3d a = corner(t, 0), b = corner(t, 1), c = corner(t, 2);
-      plane[t] = plane_through(a, b, c);
-      const Vec3d n = cross(sub(b, a), sub(c, a));
-      twice_area[t] = std::sqrt(dot(n, n));
-      const Triangle& tri = mesh.triangles[t];
-      for (int k = 0; k < 3; ++k)
-        across[3 * t + k] = edges.triangle(tri[(k + 1) % 3], tri[k]);
-    }
-  });
-  // Whether `vertex` fits the group of `seed`: within the tolerance of the seed's plane, or exactly on it (a
-  // point exactly on it evaluates to within a few ulps of the coordinates' scale, under 28u by plane.cpp's
-  // analysis; the exact orient3d decides).
+  std::vector<std::uint32_t> across(3 * nt);  // the triangle across edge k of j: the one holding its reverse
+  parallel_blocks(
+      nt, hardware_workers(),
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t j = begin; j < end; ++j) {
+          const Vec3d a = corner(j, 0), b = corner(j, 1), c = corner(j, 2);
+          plane[j] = plane_through(a, b, c);
+          const Vec3d n = cross(sub(b, a), sub(c, a));
+          twice_area[j] = std::sqrt(dot(n, n));
+          for (int k = 0; k < 3; ++k)
+            across[3 * j + k] = holder(tri[j][(k + 1) % 3], tri[j][k]);
+        }
+      },
+      1024);
+  // Whether `vertex` (a position) fits the group of `seed`: within the tolerance of the seed's plane, or
+  // exactly on it (a point exactly on it evaluates to within a few ulps of the coordinates' scale, under 28u
+  // by plane.cpp's analysis; the exact orient3d decides).
   auto fits = [&](std::uint32_t seed, std::uint32_t vertex) {
     const Vec3d sa = corner(seed, 0), sb = corner(seed, 1), sc = corner(seed, 2);
-    const Vec3d p = to_vec3d(mesh.vertices[vertex]);
+    const Vec3d p = g.at[vertex];
     const double value = std::fabs(plane_value(plane[seed], p));
     if (value <= tolerance) return true;
     if (angle_sine > 0) {
@@ -413,45 +561,47 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, do
   // fitting.
   auto joins = [&](std::uint32_t seed, std::uint32_t u) {
     if (dot3(plane[seed], {plane[u][0], plane[u][1], plane[u][2]}) <= 0) return false;
-    const Triangle& tu = mesh.triangles[u];
-    return fits(seed, tu[0]) && fits(seed, tu[1]) && fits(seed, tu[2]);
+    return fits(seed, tri[u][0]) && fits(seed, tri[u][1]) && fits(seed, tri[u][2]);
   };
   // Per triangle as a seed: which neighbours would join (bit k: across edge k), and the offset of its plane
   // were it alone (the top of its corners).
   std::vector<std::uint8_t> joining(nt);
   std::vector<double> alone_top(nt);
-  parallel_chunks(nt, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
-    for (std::size_t t = begin; t < end; ++t) {
-      std::uint8_t bits = 0;
-      for (int k = 0; k < 3; ++k)
-        if (const std::uint32_t u = across[3 * t + k]; u != kNone && joins(t, u)) bits |= 1u << k;
-      joining[t] = bits;
-      alone_top[t] = std::max(
-          {dot3(plane[t], corner(t, 0)), dot3(plane[t], corner(t, 1)), dot3(plane[t], corner(t, 2))});
-    }
-  });
-  // Largest first, ties by index: sorted as (the area's bits inverted, index) keys, which order as the
-  // areas do (no area is negative or NaN), without a look-up a comparison.
+  parallel_blocks(
+      nt, hardware_workers(),
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t j = begin; j < end; ++j) {
+          std::uint8_t bits = 0;
+          for (int k = 0; k < 3; ++k)
+            if (const std::uint32_t u = across[3 * j + k]; u != kNone && joins(j, u)) bits |= 1u << k;
+          joining[j] = bits;
+          alone_top[j] = std::max(
+              {dot3(plane[j], corner(j, 0)), dot3(plane[j], corner(j, 1)), dot3(plane[j], corner(j, 2))});
+        }
+      },
+      1024);
+  // Largest first, ties by the mesh's index: sorted as (the area's bits inverted, index) keys, which order
+  // as the areas do (no area is negative or NaN), without a look-up a comparison.
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(nt);
-  for (std::uint32_t t = 0; t < nt; ++t) {
+  for (std::uint32_t j = 0; j < nt; ++j) {
     std::uint64_t bits;
-    std::memcpy(&bits, &twice_area[t], sizeof bits);
-    keyed[t] = {~bits, t};
+    std::memcpy(&bits, &twice_area[j], sizeof bits);
+    keyed[j] = {~bits, visit.triangles[j]};
   }
   std::sort(keyed.begin(), keyed.end());
-  std::vector<std::uint32_t> order(nt);
-  for (std::size_t k = 0; k < nt; ++k)
-    order[k] = keyed[k].second;
+  std::vector<std::uint32_t> facet_of(nt, kNone), seeds;  // by position
+  seeds.reserve(nt);
   Facets facets;
-  facets.facet_of.assign(nt, kNone);
+  facets.planes.reserve(nt);
   std::vector<std::uint32_t> queue, vertices;
-  std::vector<std::uint8_t> in_group(mesh.vertices.size(), 0);
-  for (std::uint32_t seed : order) {
-    if (facets.facet_of[seed] != kNone) continue;
+  std::vector<std::uint8_t> in_group(g.at.size(), 0);
+  for (const auto& key : keyed) {
+    const std::uint32_t seed = jrank[key.second];
+    if (facet_of[seed] != kNone) continue;
     const std::uint32_t id = static_cast<std::uint32_t>(facets.planes.size());
     const Plane& seed_plane = plane[seed];
-    facets.facet_of[seed] = id;
-    facets.seeds.push_back(seed);
+    facet_of[seed] = id;
+    seeds.push_back(seed);
     if (joining[seed] == 0) {  // alone: no neighbour fits, whichever are free
       facets.planes.push_back({seed_plane[0], seed_plane[1], seed_plane[2], -alone_top[seed]});
       continue;
@@ -460,27 +610,39 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, do
     for (std::size_t q = 0; q < queue.size(); ++q) {
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t u = across[3 * queue[q] + k];
-        if (u == kNone || facets.facet_of[u] != kNone) continue;
+        if (u == kNone || facet_of[u] != kNone) continue;
         if (queue[q] == seed ? !(joining[seed] >> k & 1u) : !joins(seed, u)) continue;
-        facets.facet_of[u] = id;
+        facet_of[u] = id;
         queue.push_back(u);
       }
     }
     // The offset: every group vertex on or below the plane, as evaluated (fl(x - max) <= 0 for x <= max).
     vertices.clear();
     for (std::uint32_t t : queue)
-      for (std::uint32_t v : mesh.triangles[t])
+      for (std::uint32_t v : tri[t])
         if (!in_group[v]) {
           in_group[v] = 1;
           vertices.push_back(v);
         }
     double top = -kInfinity;
     for (std::uint32_t v : vertices) {
-      top = std::max(top, dot3(seed_plane, to_vec3d(mesh.vertices[v])));
+      top = std::max(top, dot3(seed_plane, g.at[v]));
       in_group[v] = 0;
     }
     facets.planes.push_back({seed_plane[0], seed_plane[1], seed_plane[2], -top});
   }
+  // Back to the mesh's triangles.
+  facets.facet_of.resize(nt);
+  facets.across.resize(3 * nt);
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    const std::uint32_t j = jrank[t];
+    facets.facet_of[t] = facet_of[j];
+    for (int k = 0; k < 3; ++k)
+      facets.across[3 * t + k] = across[3 * j + k] == kNone ? kNone : visit.triangles[across[3 * j + k]];
+  }
+  facets.seeds.reserve(seeds.size());
+  for (std::uint32_t j : seeds)
+    facets.seeds.push_back(visit.triangles[j]);
   return facets;
 }
 
@@ -571,47 +733,75 @@ bool coordinate_safe(double x) {
 // along its edges, which the triangulation's edges include), so an ascent from the facet's own corner along
 // hull(S)'s edges with exact comparisons finds it in a few steps; its evaluation is then bounded.  A plane or
 // coordinates outside the exact range take all vertices instead.  Per plane: the bound over S.  The planes
-// are taken in the order of their starts (`order`), neighbours on the mesh, not in the facets' (largest
-// first, scattered): the same bounds, from the cache.
-template <class Point>
-std::vector<double> kept_bounds(const BasicHullMesh<Point>& hull, const EdgeIndex& edges,
-                                const std::vector<Plane>& planes, const std::vector<std::uint32_t>& starts,
+// are taken in `order` (their starts' visit order, VisitOrder), not in the facets' (largest first,
+// scattered): the same bounds, from the cache.
+std::vector<double> kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
+                                const std::vector<Triangle>& seed_corners,
                                 const std::vector<std::uint32_t>& order) {
-  std::vector<Vec3d> at(hull.vertices.size());
-  bool coordinates_safe = true;
-  for (std::size_t i = 0; i < at.size(); ++i) {
-    at[i] = to_vec3d(hull.vertices[i]);
-    coordinates_safe =
-        coordinates_safe && coordinate_safe(at[i].x) && coordinate_safe(at[i].y) && coordinate_safe(at[i].z);
+  // The planes and starts gathered in `order` and the ascents on the relabelled mesh (each vertex's
+  // neighbours in EdgeIndex's order, so that every ascent takes the same steps): the ascents read what
+  // their neighbours read, not scattered lines.
+  const std::vector<Vec3d>& at = g.at;
+  const std::size_t count = order.size();
+  std::vector<Plane> ordered(count);
+  std::vector<Triangle> corners(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    ordered[i] = planes[order[i]];
+    for (int k = 0; k < 3; ++k)
+      corners[i][k] = g.rank[seed_corners[order[i]][k]];
   }
-  std::vector<double> bounds(planes.size(), -kInfinity);
-  parallel_chunks(
-      planes.size(), hardware_workers(),
+  std::vector<double> found(count, -kInfinity);
+  parallel_blocks(
+      count, hardware_workers(),
       [&](std::size_t begin, std::size_t end, unsigned) {
-        for (std::size_t i = begin; i < end; ++i) {
-          const std::uint32_t f = order[i];
-          const Plane& plane = planes[f];
-          if (!coordinates_safe || !plane_safe(plane)) {
-            for (const Vec3d& p : at)
-              bounds[f] = std::max(bounds[f], bound_at(plane, p));
-            continue;
-          }
-          std::uint32_t v = starts[f];
+        // The ascent from v: to the neighbour of the largest value among those exactly above, until none
+        // is; `tie` tells whether a neighbour of the end is exactly level with it.  The vertex it came from
+        // is exactly below, so it is not compared again.
+        auto ascend = [&](const Plane& plane, std::uint32_t v, bool& tie) {
+          std::uint32_t from = kNone;
           for (;;) {
             std::uint32_t next = kNone;
             double next_value = -kInfinity;
-            for (std::uint32_t k = 0; k < edges.degree(v); ++k)
-              if (const std::uint32_t q = edges.neighbour(v, k); compare_along(plane, at[q], at[v]) > 0) {
+            tie = false;
+            for (std::uint32_t k = g.start[v]; k < g.start[v + 1]; ++k) {
+              const std::uint32_t q = g.to[k];
+              if (q == from) continue;
+              const int side = compare_along(plane, at[q], at[v]);
+              tie = tie || side == 0;
+              if (side > 0) {
                 const double value = plane_value(plane, at[q]);
                 if (next == kNone || value > next_value) next = q, next_value = value;
               }
-            if (next == kNone) break;
+            }
+            if (next == kNone) return v;
+            from = v;
             v = next;  // n . p + d grows strictly, exactly: the ascent ends
           }
-          bounds[f] = bound_at(plane, at[v]);
+        };
+        for (std::size_t i = begin; i < end; ++i) {
+          const Plane& plane = ordered[i];
+          if (!g.coordinates_safe || !plane_safe(plane)) {
+            for (const Vec3d& p : at)
+              found[i] = std::max(found[i], bound_at(plane, p));
+            continue;
+          }
+          // First from the seed's corner of the largest value, where the maximum usually is: an end with
+          // every neighbour exactly below is the unique maximum, which the ascent from corner 0 (the
+          // bound's definition) also ends at.  Otherwise (a tie) that ascent itself.
+          const Triangle& c = corners[i];
+          std::uint32_t best = c[0];
+          for (int k = 1; k < 3; ++k)
+            if (plane_value(plane, at[c[k]]) > plane_value(plane, at[best])) best = c[k];
+          bool tie = false;
+          std::uint32_t v = ascend(plane, best, tie);
+          if (tie && best != c[0]) v = ascend(plane, c[0], tie);
+          found[i] = bound_at(plane, at[v]);
         }
       },
-      64);
+      256);
+  std::vector<double> bounds(planes.size(), -kInfinity);
+  for (std::size_t i = 0; i < count; ++i)
+    bounds[order[i]] = found[i];
   return bounds;
 }
 
@@ -635,7 +825,7 @@ double thinnest(const BasicHullMesh<Point>& hull, const EdgeIndex& edges, const 
   centroid = {centroid.x / count, centroid.y / count, centroid.z / count};
   const unsigned workers = hardware_workers();
   std::vector<double> least(workers, kInfinity);
-  parallel_chunks(
+  parallel_blocks(
       planes.size(), workers,
       [&](std::size_t begin, std::size_t end, unsigned worker) {
         for (std::size_t f = begin; f < end; ++f) {
@@ -660,7 +850,7 @@ double thinnest(const BasicHullMesh<Point>& hull, const EdgeIndex& edges, const 
           least[worker] = std::min(least[worker], depth);
         }
       },
-      64);
+      1024);
   return *std::min_element(least.begin(), least.end());
 }
 
@@ -754,28 +944,54 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   BasicHullMesh<Point> current = exact;
   std::iota(current.vertex_ids.begin(), current.vertex_ids.end(), PointIndex{0});
 
+  VisitOrder visit;
+  Relabelled graph;
   const EdgeIndex edges = tolerance > 0 || angle_sine > 0
-                              ? drop_low_vertices(vertices, current, tolerance, angle_sine)
+                              ? drop_low_vertices(vertices, current, tolerance, angle_sine, visit, graph)
                               : EdgeIndex(current);
+  if (visit.vertices.size() != current.vertices.size()) {
+    visit = visit_order(current, edges);
+    graph = relabelled(current, edges, visit);
+  }
   laps.lap("drop");
-  const Facets facets = group_facets(current, edges, tolerance, angle_sine);
+  const Facets facets = group_facets(current, graph, visit, tolerance, angle_sine);
   laps.lap("group");
 
   // Output: triangles grouped by facet, in input indices.
-  std::vector<std::uint32_t> by_facet(current.triangles.size());
-  std::iota(by_facet.begin(), by_facet.end(), 0u);
-  std::stable_sort(by_facet.begin(), by_facet.end(),
-                   [&](std::uint32_t a, std::uint32_t b) { return facets.facet_of[a] < facets.facet_of[b]; });
+  // By facet, each facet's triangles ascending (a counting sort: the stable sort's order).
+  const std::size_t nt = current.triangles.size();
+  std::vector<std::uint32_t> by_facet(nt), facet_start(facets.planes.size() + 1, 0), position(nt);
+  for (std::uint32_t f : facets.facet_of)
+    ++facet_start[f + 1];
+  for (std::size_t f = 0; f + 1 < facet_start.size(); ++f)
+    facet_start[f + 1] += facet_start[f];
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    position[t] = facet_start[facets.facet_of[t]]++;
+    by_facet[position[t]] = t;
+  }
+  merged.vertices.reserve(current.vertex_ids.size());
   for (PointIndex id : current.vertex_ids)
     merged.vertices.push_back(exact.vertex_ids[id]);
-  std::sort(merged.vertices.begin(), merged.vertices.end());
-  for (std::uint32_t t : by_facet) {
+  if (!std::is_sorted(merged.vertices.begin(), merged.vertices.end()))
+    std::sort(merged.vertices.begin(), merged.vertices.end());
+  merged.faces.resize(nt);
+  merged.planes.resize(nt);
+  merged.facet_of_face.resize(nt);
+  merged.neighbors.resize(nt);
+  for (std::uint32_t p = 0; p < nt; ++p) {
+    const std::uint32_t t = by_facet[p];
     const Triangle& tri = current.triangles[t];
-    merged.faces.push_back({exact.vertex_ids[current.vertex_ids[tri[0]]],
-                            exact.vertex_ids[current.vertex_ids[tri[1]]],
-                            exact.vertex_ids[current.vertex_ids[tri[2]]]});
-    merged.planes.push_back(facets.planes[facets.facet_of[t]]);
-    merged.facet_of_face.push_back(facets.facet_of[t]);
+    merged.faces[p] = {exact.vertex_ids[current.vertex_ids[tri[0]]],
+                       exact.vertex_ids[current.vertex_ids[tri[1]]],
+                       exact.vertex_ids[current.vertex_ids[tri[2]]]};
+    merged.planes[p] = facets.planes[facets.facet_of[t]];
+    merged.facet_of_face[p] = facets.facet_of[t];
+    for (int k = 0; k < 3; ++k) {
+      // The edge opposite corner k runs from corner k + 1 to corner k + 2: across[3t + k + 1] holds it.
+      const std::uint32_t u = facets.across[3 * t + (k + 1) % 3];
+      if (u == kNone) throw std::logic_error("merge_facets: the mesh is not closed");
+      merged.neighbors[p][k] = static_cast<std::int32_t>(position[u]);
+    }
   }
 
   // Coplanar: every exact-hull vertex that was dropped, with its nearest triangle and that one's nearest
@@ -846,16 +1062,22 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
           merged.coplanar[k] = {exact.vertex_ids[dropped[k]], best_face, corner};
         }
       },
-      16);
+      32);
 
   laps.lap("coplanar");
-  std::vector<std::uint32_t> starts;  // per facet: a corner of its largest triangle
-  for (std::uint32_t seed : facets.seeds)
+  std::vector<std::uint32_t> starts;   // per facet: a corner of its largest triangle
+  std::vector<Triangle> seed_corners;  // per facet: its largest triangle's corners
+  starts.reserve(facets.seeds.size());
+  seed_corners.reserve(facets.seeds.size());
+  for (std::uint32_t seed : facets.seeds) {
     starts.push_back(current.triangles[seed][0]);
-  std::vector<std::uint32_t> in_mesh_order;  // the facets by their seeds' places in the mesh
-  for (std::uint32_t t = 0; t < current.triangles.size(); ++t)
-    if (facets.seeds[facets.facet_of[t]] == t) in_mesh_order.push_back(facets.facet_of[t]);
-  const std::vector<double> kept_bound = kept_bounds(current, edges, facets.planes, starts, in_mesh_order);
+    seed_corners.push_back(current.triangles[seed]);
+  }
+  std::vector<std::uint32_t> in_visit_order;  // the facets by their seeds' places in the visit order
+  in_visit_order.reserve(facets.seeds.size());
+  for (std::uint32_t t : visit.triangles)
+    if (facets.seeds[facets.facet_of[t]] == t) in_visit_order.push_back(facets.facet_of[t]);
+  const std::vector<double> kept_bound = kept_bounds(graph, facets.planes, seed_corners, in_visit_order);
   laps.lap("kept bound");
   merged.thinnest = thinnest(current, edges, facets.planes, starts, 4 * tolerance);
   laps.lap("thinnest");

@@ -31,9 +31,10 @@
 //      the kept vertices, the maximum of a linear function is found exactly by an ascent along hull(S)'s
 //      edges with exact comparisons, from the facet's own corner (a few steps); over the dropped points, a
 //      bounding-box tree prunes all but the points near each plane.
-//   Cost: the rounds dominate (a small exact hull per vertex whose link changed, and an exact hull of S per
-//   round; a handful of rounds); on 2 cores about 0.1 s for a 20,000-vertex sphere, 1.1 s for 200,000, and
-//   milliseconds for CAD parts of a few hundred exact-hull vertices.
+//   Cost: the rounds dominate where they drop (a small exact hull per vertex whose link changed, and an
+//   exact hull of S per round; a handful of rounds).  Where nothing drops, each step is a linear pass, taken
+//   in a spatial order of the vertices so that a large hull's scattered indices read from the cache
+//   (facet_merge.cpp, VisitOrder); timings in docs/benchmarks.md.
 //   Against Qhull (scipy's default, "Qt"): on rotated CAD parts (tests/test_facet_merge.cpp) the vertex sets
 //   are Qhull's exactly.  Where points lie within a few tolerances of a face (noise of the order of Qhull's
 //   own roundoff), Qhull's choices depend on its insertion order and even keep points that are not extreme
@@ -57,6 +58,8 @@ struct MergedHull {
   // one merged facet share it.
   std::vector<std::array<double, 4>> planes;
   std::vector<std::uint32_t> facet_of_face;  // merged facet id per triangle
+  // neighbors[f][k]: the triangle across the edge opposite faces[f][k] (scipy's convention).
+  std::vector<std::array<std::int32_t, 3>> neighbors;
   // Per exact-hull vertex that merging dropped, ascending: {point, nearest triangle (Euclidean distance to
   // the triangle), nearest corner of that triangle}, as scipy's ConvexHull.coplanar.
   std::vector<std::array<PointIndex, 3>> coplanar;

@@ -457,7 +457,13 @@ class ConvexHull:
         values["good"] = None
         if good is not None and host is not None:
             values["good"] = self._good(host, values, good)
-        if options is not None and scaled:
+        if options is not None and scaled and host is None and self._kind is None and ndim == 3 and \
+                points.dtype == np.float64 and list(options.scalings) == [("box",)]:
+            # QbB alone on host double points (trimesh's every call): _box_scaled_measures, the same values
+            # as the general path below with a third of its array operations (most of a small hull's time).
+            values["volume"], values["area"] = _box_scaled_measures(
+                points, values["vertices"], coplanar[:, 0], values["simplices"], float(values["volume"]))
+        elif options is not None and scaled:
             # Qhull's map comes from the points' bounds, which the exact hull's vertices attain (each axis'
             # extreme is a face of the hull, whose corners are vertices): only those points are read, not
             # all of them (a column reduction of 523,000 points took 27 ms, a copy from the GPU more).
@@ -636,6 +642,31 @@ def _joggled(points: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
     roundoff = epsilon * (points.shape[1] * largest_sum * 1.01 + largest)
     joggle = 30000.0 * max(roundoff, epsilon)
     return points + np.random.default_rng(1).uniform(-joggle, joggle, size=points.shape)
+
+
+def _box_scaled_measures(points: npt.NDArray[np.float64], vertices: npt.NDArray[Any],
+                         merged_away: npt.NDArray[Any], simplices: npt.NDArray[Any],
+                         volume: float) -> tuple[float, float]:
+    """_scaled_measures() under QbB alone for (n, 3) double host points, bit for bit: the map's bounds
+    over the exact hull's vertices (the merged ones and those merged away), and the area from the
+    simplices' corners read in place (no gather of the extreme points and no search for their places)."""
+    corners = points[vertices]
+    low, high = corners.min(axis=0), corners.max(axis=0)
+    if merged_away.size:
+        away = points[merged_away]
+        low, high = np.minimum(low, away.min(axis=0)), np.maximum(high, away.max(axis=0))
+    # qhull_options' QbB map: each axis onto [-0.5, 0.5]; the shift cancels in the edges.
+    scale = [1.0 / width if width > 0 else 1.0 for width in (high - low).tolist()]
+    triangles = points[simplices]
+    edges = (triangles[:, 1:] - triangles[:, :1]) * np.asarray(scale)
+    # The cross product by rows of the transposed edges: the products and differences of
+    # _scaled_measures' column gathers, in fewer operations.
+    first, second = edges[:, 0].T, edges[:, 1].T
+    x = first[1] * second[2] - first[2] * second[1]
+    y = first[2] * second[0] - first[0] * second[2]
+    z = first[0] * second[1] - first[1] * second[0]
+    area = float(np.sqrt(x * x + y * y + z * z).sum() / 2)
+    return volume * (abs(scale[0]) * abs(scale[1]) * abs(scale[2])), area
 
 
 def _scaled_measures(host: npt.NDArray[np.float64], simplices: npt.NDArray[Any],
