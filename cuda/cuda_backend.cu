@@ -34,10 +34,6 @@ namespace {
 
 constexpr const char* kWho = "CUDA backend";
 
-[[noreturn]] void fail(const char* what, cudaError_t e) {
-  throw_cuda_error(kWho, what, e);
-}
-
 constexpr CudaCheck check{kWho};
 
 [[noreturn]] void fail_alloc(const char* what, std::size_t bytes, cudaError_t e, bool pinned) {
