@@ -124,11 +124,6 @@ BasicHullMesh<Point> stepped_hull(const SteppingEngine& engine, const std::vecto
   return hull;
 }
 
-template <class Point>
-constexpr Precision precision_of() {
-  return std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
-}
-
 // The points of `path` in Point's precision: float as read_points() rounds them; double as the file gives
 // them, any finite value (hull_in() takes coordinates outside the engines' exact range to exact_hull_any()).
 template <class Point>

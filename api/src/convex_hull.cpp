@@ -312,7 +312,7 @@ template <class Point>
 ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend, bool neighbors = true) {
   ConvexHull hull;
   hull.dimension = mesh.dimension;
-  hull.precision = std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
+  hull.precision = precision_of<Point>();
   hull.backend = std::move(backend);
   hull.vertices = mesh.vertex_ids;
   std::sort(hull.vertices.begin(), hull.vertices.end());
@@ -398,7 +398,7 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
                                    std::sqrt(1 - cosine * cosine));
   ConvexHull hull;
   hull.dimension = 3;
-  hull.precision = std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
+  hull.precision = precision_of<Point>();
   hull.backend = std::move(backend);
   hull.tolerance = merged.tolerance;
   hull.max_outside = merged.max_outside;
@@ -909,7 +909,7 @@ std::unique_ptr<BasicBackend<Point>> make_backend(BackendChoice choice, std::str
   request.backend = choice;
   request.engine = EngineChoice::kStepping;  // the backends are the stepping engine's
   HullInput input;
-  input.precision = std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
+  input.precision = precision_of<Point>();
   const HullPlan plan = plan_hull(request, input);
   if (!plan.unavailable.empty()) throw DeviceError(plan.unavailable);
   if (chosen_because) *chosen_because = plan.backend_reason;

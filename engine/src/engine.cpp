@@ -67,7 +67,7 @@ Vec3d BasicEngine<Point>::point(PointIndex i) const {
 
 template <class Point>
 Precision BasicEngine<Point>::precision() const {
-  return std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
+  return precision_of<Point>();
 }
 
 template <class Point>

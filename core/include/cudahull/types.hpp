@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace cudahull {
@@ -32,6 +33,12 @@ struct Point3d {
 // every coordinate as the file gives it: kFloat for binary PLY whose x, y, z are float (or 8- or 16-bit
 // integers), kDouble for text formats and for binary PLY whose x, y, z include a double or a 32-bit integer.
 enum class Precision { kAuto, kFloat, kDouble };
+
+// The precision of a point type: kFloat for Point3, kDouble for Point3d.
+template <class Point>
+constexpr Precision precision_of() {
+  return std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
+}
 
 // "auto", "float" or "double".
 inline const char* precision_name(Precision p) {

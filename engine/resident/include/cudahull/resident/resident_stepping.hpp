@@ -95,9 +95,7 @@ class ResidentStepper : public SteppingEngine {
 
   std::size_t point_count() const override { return points_->size(); }
   Vec3d point(PointIndex i) const override { return to_vec3d((*points_)[i]); }
-  Precision precision() const override {
-    return std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
-  }
+  Precision precision() const override { return precision_of<Point>(); }
   const Mesh& mesh() const override { return mesh_; }
   std::string backend_name() const override { return name_; }
   std::uint64_t bytes_from_backend() const override { return exec_.bytes_from_device; }
