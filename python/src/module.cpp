@@ -284,8 +284,9 @@ nb::dict convex_hull_cuda_pointer(std::uintptr_t pointer, std::size_t count, std
 using OffsetArray = nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
 
 // The B + 1 offsets, checked non-negative, read in place as std::size_t where that is int64's unsigned
-// counterpart (the same bits for these values, and an access the aliasing rules allow): a copy of 100,000
-// clouds' offsets into fresh pages cost a batch 0.5 ms.  Elsewhere, copied.  The caller must not write the
+// counterpart (the same bits for these values, and an access the aliasing rules allow): a copy into fresh
+// pages costs a large batch host time (docs/benchmarks.md, "The measurements behind the code's constants").
+// Elsewhere, copied.  The caller must not write the
 // array during the call (as for the points, read in place with the GIL released).
 struct Bounds {
   const std::size_t* data = nullptr;

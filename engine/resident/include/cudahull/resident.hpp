@@ -144,8 +144,8 @@ BasicHullMesh<Point> resident_hull_host(const std::vector<Point>& points, Reside
                                         bool executor_points_only = false);
 
 // The clouds small_hull_host() takes.  Its cost grows with vertices times faces: on a sphere (every point a
-// vertex) it matches the stepping engine at about 150 points and loses beyond (1.14 ms against 0.92 at 256 on
-// 2 cores); on a ball's 256 points it takes a third of the engine's time.
+// vertex) it loses to the stepping engine from about 150 points on, where on a ball it still wins
+// (docs/benchmarks.md, "The measurements behind the code's constants").
 inline constexpr std::size_t kSmallHullPoints = 128;
 
 // The exact hull of `count` points (4..kSmallHullPoints) on the calling thread by the batch warps' hull
