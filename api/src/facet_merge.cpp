@@ -80,8 +80,8 @@ double triangle_distance2(const Vec3d& p, const Vec3d& a, const Vec3d& b, const 
 }
 
 // A bounding-box tree over items (points or triangles) for the two all-pairs passes, the certificate and
-// the nearest triangles: without it they cost V x F, seconds on a sphere of 20,000 points.  Items are sorted by
-// the Morton code of their boxes' centres and split in halves down to leaves of at most kLeaf items.
+// the nearest triangles: without it they cost V x F, seconds on a sphere of 20,000 points.  Items are sorted
+// by the Morton code of their boxes' centres and split in halves down to leaves of at most kLeaf items.
 struct Box {
   double lo[3] = {kInfinity, kInfinity, kInfinity}, hi[3] = {-kInfinity, -kInfinity, -kInfinity};
   void add(const Box& b) {
