@@ -66,16 +66,6 @@ struct PointEq {
 template <class Point>
 using PointMap = std::unordered_map<Point, std::uint32_t, PointHash<Point>, PointEq<Point>>;
 
-template <class Point>
-std::vector<Point> read_input(const std::string& path);
-template <>
-std::vector<Point3> read_input<Point3>(const std::string& path) {
-  return read_points(path);
-}
-template <>
-std::vector<Point3d> read_input<Point3d>(const std::string& path) {
-  return read_points_double(path).points;
-}
 // One "x y z" as the point readers read it (float rounded once, double as given).
 Point3 parse_point(std::istream& in, const std::string& name, Point3*) {
   return read_points(in, PointFormat::kXyz, name).at(0);
@@ -402,7 +392,7 @@ Outcome check_ids(const std::vector<Point>& pts, const CheckOptions& o) {
 
 template <class Point>
 int check_in(const CheckOptions& o, Precision precision) {
-  const std::vector<Point> pts = read_input<Point>(o.points);
+  const std::vector<Point> pts = read_input<Point>(o.points, true);
   const std::string ext = [&] {
     std::string e = std::filesystem::path(o.hull).extension().string();
     std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });

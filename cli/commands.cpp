@@ -124,11 +124,9 @@ BasicHullMesh<Point> stepped_hull(const SteppingEngine& engine, const std::vecto
   return hull;
 }
 
-// The points of `path` in Point's precision: float as read_points() rounds them; double as the file gives
-// them, any finite value (hull_in() takes coordinates outside the engines' exact range to exact_hull_any()).
-template <class Point>
-std::vector<Point> read_input(const std::string& path, bool quiet);
+}  // namespace
 
+// hull_in() takes coordinates outside the engines' exact range to exact_hull_any().
 template <>
 std::vector<Point3> read_input<Point3>(const std::string& path, bool quiet) {
   return read_points(path, stderr_progress("reading " + path, quiet));
@@ -139,6 +137,8 @@ std::vector<Point3d> read_input<Point3d>(const std::string& path, bool quiet) {
   DoublePoints read = read_points_double(path, stderr_progress("reading " + path, quiet));
   return std::move(read.points);
 }
+
+namespace {
 
 // A generated distribution is float; in double its points are the same values, widened exactly.
 template <class Point>

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace cudahull::cli {
 
@@ -61,5 +62,10 @@ struct CheckOptions {
   std::string precision = "auto";  // as for hull: "auto" is the point file's
 };
 int run_check(const CheckOptions& options);
+
+// The points of `path` in Point's precision (Point3 or Point3d): float as read_points() rounds them; double
+// as the file gives them, any finite value.  `quiet`: no progress line on a terminal's stderr.
+template <class Point>
+std::vector<Point> read_input(const std::string& path, bool quiet);
 
 }  // namespace cudahull::cli
