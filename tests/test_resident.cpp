@@ -342,6 +342,51 @@ TEST(Resident, SmallHullOfOneCloudOnATeam) {
   expect_batch_exact(inside, "a tetrahedron with points inside", room_asked, false, true);
 }
 
+// HostTeam finds a step's seen faces by a walk from the furthest point's face; a team that is not in order
+// (the device's) tests every face.  A host team that scans, as they do, must build the same mesh face for
+// face on clouds full of coplanar faces, repeats and points on faces, or the CPU's batch would differ from
+// the GPU's.
+struct ScanningHostTeam : resident::HostTeam {};
+
+TEST(Resident, SmallHullWalkFindsTheFacesTheScanFinds) {
+  std::vector<std::vector<Point3>> clouds;
+  for (const char* name : {"ball", "sphere", "cube", "gauss", "grid", "cylinder"})
+    for (std::size_t n : {5, 12, 23, 40, 128})
+      for (unsigned seed = 0; seed < 6; ++seed)
+        clouds.push_back(generate_points(distribution_from_name(name), n, 1000 * seed + n));
+  std::vector<Point3> lattice;
+  for (int x = 0; x < 4; ++x)
+    for (int y = 0; y < 4; ++y)
+      for (int z = 0; z < 3; ++z)
+        lattice.push_back(Point3{static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)});
+  for (unsigned seed = 0; seed < 60; ++seed) {
+    std::vector<Point3> shuffled = lattice;
+    std::mt19937 rng(seed);
+    std::shuffle(shuffled.begin(), shuffled.end(), rng);
+    shuffled.resize(12 + seed % 37);                       // partial lattices: coplanar faces of every shape
+    shuffled.push_back(shuffled[seed % shuffled.size()]);  // and a repeat
+    clouds.push_back(shuffled);
+  }
+  int compared = 0;
+  for (std::size_t c = 0; c < clouds.size(); ++c) {
+    const std::vector<Point3d> points = widened(clouds[c]);
+    const auto n = static_cast<resident::u32>(points.size());
+    HostBatchSlot<Point3d> walked(n, n, true), scanned(n, n, true);
+    const resident::BatchResult a = walked.run(points, true);
+    const resident::BatchResult b = scanned.run(points, true, ScanningHostTeam{});
+    ASSERT_EQ(a.status, b.status) << "cloud " << c;
+    if (a.status != resident::kBatchDone) continue;
+    ASSERT_EQ(a.faces, b.faces) << "cloud " << c;
+    ASSERT_EQ(a.vertices, b.vertices) << "cloud " << c;
+    const std::size_t words = 3 * std::size_t{a.faces} + a.vertices;
+    EXPECT_TRUE(std::equal(walked.words.begin() + a.word_at, walked.words.begin() + a.word_at + words,
+                           scanned.words.begin() + b.word_at))
+        << "cloud " << c;
+    ++compared;
+  }
+  EXPECT_GT(compared, 200);
+}
+
 TEST(Resident, SharedModelsAtTheirKnownCounts) {
   const std::filesystem::path dir = testing::shared_models_dir();
   if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no models folder " << dir;

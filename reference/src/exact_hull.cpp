@@ -675,9 +675,12 @@ BasicHullMesh<Point> exact_hull(const std::vector<Point>& points, const std::vec
 }
 
 bool in_fast_exact_range(const Point3d* points, std::size_t count) {
-  return std::all_of(points, points + count, [](const Point3d& p) {
-    return in_fast_exact_range(p.x) && in_fast_exact_range(p.y) && in_fast_exact_range(p.z);
-  });
+  // Every point tested, without a branch a coordinate: a small cloud's check costs a few comparisons.
+  bool in_range = true;
+  for (std::size_t i = 0; i < count; ++i)
+    in_range &= in_fast_exact_range(points[i].x) & in_fast_exact_range(points[i].y) &
+                in_fast_exact_range(points[i].z);
+  return in_range;
 }
 
 bool in_fast_exact_range(const std::vector<Point3d>& points) {

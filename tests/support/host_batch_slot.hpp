@@ -57,8 +57,9 @@ struct HostBatchSlot {
                                &st,
                                room};
   }
-  // The cloud's hull by batch_hull(), or by small_hull() (`small`).
-  resident::BatchResult run(const std::vector<Point>& points, bool small = false) {
+  // The cloud's hull by batch_hull(), or by small_hull() (`small`), on `team`.
+  template <class Team = resident::HostTeam>
+  resident::BatchResult run(const std::vector<Point>& points, bool small = false, const Team& team = {}) {
     const std::size_t n = points.size();
     resident::u32* w = point_words.data();
     const resident::BatchCloud<Point> cloud{
@@ -69,9 +70,9 @@ struct HostBatchSlot {
                                            static_cast<resident::u32>(coordinates.size())};
     resident::BatchResult result{};
     if (small)
-      resident::small_hull(resident::HostTeam{}, slot, cloud, out, &result);
+      resident::small_hull(team, slot, cloud, out, &result);
     else
-      resident::batch_hull(resident::HostTeam{}, slot, cloud, out, &result);
+      resident::batch_hull(team, slot, cloud, out, &result);
     return result;
   }
 };

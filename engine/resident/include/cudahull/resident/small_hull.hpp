@@ -114,19 +114,57 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
       },
       [&](u32 i, u32 rank) { outside[rank] = i; });
   u32 faces = 4, free_count = 0;  // the slots in use (live or free), the free list's length: every thread's
+  // In-order teams' walk (seen_by_walk()): the last step's seen faces, the slots whose seen flag and visit
+  // stamp (seen_rank, unused until the finish) are known clear, and this step's stamp.
+  u32 last_seen = 0, clear_slots = 0, step = 0;
   while (true) {
     team.barrier();
     const u64 best = team.max_of(faces, [&](u32 f) { return h.furthest[f]; });  // a free slot's: 0
     if (best == 0) break;
     const u32 p = rank_key_index(best);
     const Vec3d pp = at(p);
-    const u32 seen = team.list(
-        faces,
-        [&](u32 f) {
-          h.seen[f] = h.live[f] && side(f, pp) >= 0;
-          return h.seen[f] != 0;
-        },
-        [&](u32 f, u32 rank) { h.seen_list[rank] = f; });
+    u32 seen = 0;
+    if constexpr (RunsInOrder<Team>::value) {
+      // The faces p is above or on are connected (those it is strictly above are, and a face whose plane
+      // holds p shares an edge with one of them or with another such face), and p is strictly above its
+      // own: a walk from there tests the seen faces and their neighbours, not every face.  Listed in slot
+      // order, the team's list below, so the mesh is the same face for face.
+      for (u32 k = 0; k < last_seen; ++k)
+        h.seen[h.seen_list[k]] = 0;
+      for (; clear_slots < faces; ++clear_slots)
+        h.seen[clear_slots] = 0, h.seen_rank[clear_slots] = 0;
+      ++step;
+      const u32 start = face_of[p];
+      h.seen[start] = 1;
+      h.seen_rank[start] = step;
+      h.seen_list[seen++] = start;
+      for (u32 k = 0; k < seen; ++k) {
+        const u32 f = h.seen_list[k];
+        for (int j = 0; j < 3; ++j) {
+          const u32 g = h.fn[3 * f + j];
+          if (h.seen_rank[g] == step) continue;
+          h.seen_rank[g] = step;
+          if (side(g, pp) < 0) continue;
+          h.seen[g] = 1;
+          h.seen_list[seen++] = g;
+        }
+      }
+      for (u32 k = 1; k < seen; ++k)  // insertion sort: a handful of faces
+        for (u32 x = k; x > 0 && h.seen_list[x - 1] > h.seen_list[x]; --x) {
+          const u32 t = h.seen_list[x];
+          h.seen_list[x] = h.seen_list[x - 1];
+          h.seen_list[x - 1] = t;
+        }
+      last_seen = seen;
+    } else {
+      seen = team.list(
+          faces,
+          [&](u32 f) {
+            h.seen[f] = h.live[f] && side(f, pp) >= 0;
+            return h.seen[f] != 0;
+          },
+          [&](u32 f, u32 rank) { h.seen_list[rank] = f; });
+    }
     // The seen faces' edges (3 a seen face, in slot order) on the horizon, read before any face is
     // rewritten: each one's start, end and outer edge, and the horizon edge each vertex starts and ends.
     const auto edge_of = [&](u32 x) { return 3 * h.seen_list[x / 3] + x % 3; };
