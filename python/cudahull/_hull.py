@@ -92,15 +92,16 @@ def _bounds_of(points: Any, tolerance: object, kind: DeviceKind | None = None) -
 
 
 def _hull_dict(points: Any, protocol: str | None, kind: DeviceKind | None, backend: str, precision: str,
-               engine: str, tolerance: object) -> dict[str, Any]:
+               engine: str, tolerance: object, box_measures: bool = False) -> dict[str, Any]:
     """The module's hull dict of (n, 2) or (n, 3) points (host points already through as_points): in GPU
-    memory through _device_hull, else the 2-D or 3-D hull on the host's array."""
+    memory through _device_hull, else the 2-D or 3-D hull on the host's array; ``box_measures``: with
+    Qhull's QbB volume and area of a 3-D host hull ("box_volume", "box_area")."""
     merge = _merge_arguments(tolerance, *_bounds_of(points, tolerance, kind))
     if protocol is not None:
         return _device_hull(points, protocol, backend, precision, merge)
     if points.shape[1] == 2:
         return _cudahull.convex_hull_2d(points, backend, precision, *merge)
-    return _cudahull.convex_hull(points, backend, precision, engine, *merge)
+    return _cudahull.convex_hull(points, backend, precision, engine, *merge, box_measures)
 
 
 def convex_hull(points: npt.ArrayLike, backend: str = "auto", precision: str = "auto", engine: str = "auto",
@@ -391,8 +392,15 @@ class ConvexHull:
             raise ValueError("No points given")  # scipy's words and type
         if int(chosen.shape[0]) <= ndim:
             raise too_few_points_error(int(chosen.shape[0]), ndim)
+        options = self._options
+        other_points = options is not None and (options.interior or options.coplanar)
+        # QbB alone on 3-D host points (trimesh's every call): the module measures the scaled hull in the same
+        # call, as the general path below does (the same bits); that path's array operations were most of a
+        # small hull's time.
+        box = options is not None and not other_points and good is None and self._kind is None and \
+            ndim == 3 and list(options.scalings) == [("box",)]
         result = _hull_dict(chosen, self._protocol, self._kind, self._backend_choice, self._precision_choice,
-                            self._engine_choice, self._tolerance_choice)
+                            self._engine_choice, self._tolerance_choice, box)
         if result["dimension"] == ndim and result["tolerance"] > 0:
             # A merged hull thinner than its tolerance in some facet's direction is flat at that
             # tolerance, as Qhull finds it (QH6154).  The 3-D module measures the thinnest direction itself
@@ -445,8 +453,6 @@ class ConvexHull:
         # The exact hull's vertices, merged away or not, are what add_points computes on next: kept as the
         # two arrays they come from and joined only when add_points asks.
         values["exact_vertices"] = (values["vertices"], coplanar[:, 0].copy() if coplanar.size else None)
-        options = self._options
-        other_points = options is not None and (options.interior or options.coplanar)
         scaled = options is not None and bool(options.scalings)
         # Qc, Qi, QG and Qhull's scaling look at the points themselves, on the host (one copy, in double).
         host: npt.NDArray[np.float64] | None = (np.ascontiguousarray(self._host(points), dtype=np.float64)
@@ -457,12 +463,8 @@ class ConvexHull:
         values["good"] = None
         if good is not None and host is not None:
             values["good"] = self._good(host, values, good)
-        if options is not None and scaled and host is None and self._kind is None and ndim == 3 and \
-                points.dtype == np.float64 and list(options.scalings) == [("box",)]:
-            # QbB alone on host double points (trimesh's every call): _box_scaled_measures, the same values
-            # as the general path below with a third of its array operations (most of a small hull's time).
-            values["volume"], values["area"] = _box_scaled_measures(
-                points, values["vertices"], coplanar[:, 0], values["simplices"], float(values["volume"]))
+        if "box_volume" in result:
+            values["volume"], values["area"] = result["box_volume"], result["box_area"]
         elif options is not None and scaled:
             # Qhull's map comes from the points' bounds, which the exact hull's vertices attain (each axis'
             # extreme is a face of the hull, whose corners are vertices): only those points are read, not
@@ -644,45 +646,20 @@ def _joggled(points: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
     return points + np.random.default_rng(1).uniform(-joggle, joggle, size=points.shape)
 
 
-def _box_scaled_measures(points: npt.NDArray[np.float64], vertices: npt.NDArray[Any],
-                         merged_away: npt.NDArray[Any], simplices: npt.NDArray[Any],
-                         volume: float) -> tuple[float, float]:
-    """_scaled_measures() under QbB alone for (n, 3) double host points, bit for bit: the map's bounds
-    over the exact hull's vertices (the merged ones and those merged away), and the area from the
-    simplices' corners read in place (no gather of the extreme points and no search for their places)."""
-    corners = points[vertices]
-    low, high = corners.min(axis=0), corners.max(axis=0)
-    if merged_away.size:
-        away = points[merged_away]
-        low, high = np.minimum(low, away.min(axis=0)), np.maximum(high, away.max(axis=0))
-    # qhull_options' QbB map: each axis onto [-0.5, 0.5]; the shift cancels in the edges.
-    scale = [1.0 / width if width > 0 else 1.0 for width in (high - low).tolist()]
-    triangles = points[simplices]
-    edges = (triangles[:, 1:] - triangles[:, :1]) * np.asarray(scale)
-    # The cross product by rows of the transposed edges: the products and differences of
-    # _scaled_measures' column gathers, in fewer operations.
-    first, second = edges[:, 0].T, edges[:, 1].T
-    x = first[1] * second[2] - first[2] * second[1]
-    y = first[2] * second[0] - first[0] * second[2]
-    z = first[0] * second[1] - first[1] * second[0]
-    area = float(np.sqrt(x * x + y * y + z * z).sum() / 2)
-    return volume * (abs(scale[0]) * abs(scale[1]) * abs(scale[2])), area
-
-
 def _scaled_measures(host: npt.NDArray[np.float64], simplices: npt.NDArray[Any],
                      scaling: tuple[Sequence[float], Sequence[float]], volume: float) -> tuple[float, float]:
     """The volume and area Qhull reports under QbB / Qbb / Qbk:n / QBk:n: those of the points mapped by
     x -> x * scale + shift per axis.  The volume is the true one times the map's determinant; the area
     (perimeter in 2-D) is summed over the simplices in the scaled coordinates."""
     scale = np.asarray(scaling[0])
-    # Edges of the scaled simplices: the map's shift cancels, so only the hull's edges are scaled.
-    corners = host[simplices]
-    edges = (corners[:, 1:] - corners[:, :1]) * scale
     if host.shape[1] == 2:
+        # Edges of the scaled simplices: the map's shift cancels, so only the hull's edges are scaled.
+        corners = host[simplices]
+        edges = (corners[:, 1:] - corners[:, :1]) * scale
         area = float(np.sqrt(np.einsum("ij,ij->i", edges[:, 0], edges[:, 0])).sum())
     else:
-        # The cross product by columns: np.cross's axis handling costs more than the products on small hulls.
-        first, second = edges[:, 0], edges[:, 1]
-        cross = first[:, [1, 2, 0]] * second[:, [2, 0, 1]] - first[:, [2, 0, 1]] * second[:, [1, 2, 0]]
-        area = float(np.sqrt(np.einsum("ij,ij->i", cross, cross)).sum() / 2)
+        # The module's sum, which the hull call's QbB shortcut also takes: the same bits either way.
+        area = float(_cudahull.scaled_area(np.ascontiguousarray(host, dtype=np.float64),
+                                           np.ascontiguousarray(simplices, dtype=np.int64),
+                                           [float(v) for v in scale]))
     return volume * float(np.prod(np.abs(scale))), area

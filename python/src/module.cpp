@@ -6,11 +6,16 @@
 // tensors or CuPy arrays that share the result's device memory).
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
+#include <nanobind/stl/array.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <type_traits>
@@ -157,16 +162,88 @@ ConvexHullOptions options_from(const std::string& backend, const std::string& pr
   return options;
 }
 
+// The area Qhull reports under QbB, Qbb, Qbk:n and QBk:n: the triangles' areas with every coordinate mapped
+// by x -> x * scale + shift per axis (the shift cancels in the edges), summed in face order.  The one
+// computation behind the package's scaled measures, with or without the hull call's QbB shortcut below, so
+// that both give the same bits.
+template <class Scalar, class Corner>
+double scaled_area(const Scalar* xyz, std::size_t faces, const Corner& corner, const double scale[3]) {
+  double sum = 0;
+  for (std::size_t f = 0; f < faces; ++f) {
+    const Scalar* a = xyz + 3 * corner(f, 0);
+    const Scalar* b = xyz + 3 * corner(f, 1);
+    const Scalar* c = xyz + 3 * corner(f, 2);
+    double u[3], v[3];
+    for (int k = 0; k < 3; ++k) {
+      u[k] = (double(b[k]) - double(a[k])) * scale[k];
+      v[k] = (double(c[k]) - double(a[k])) * scale[k];
+    }
+    const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
+    sum += std::sqrt(x * x + y * y + z * z);
+  }
+  return sum / 2;
+}
+
+double scaled_area_of(
+    nb::ndarray<const double, nb::shape<-1, 3>, nb::c_contig, nb::device::cpu> points,
+    nb::ndarray<const std::int64_t, nb::shape<-1, 3>, nb::c_contig, nb::device::cpu> simplices,
+    std::array<double, 3> scale) {
+  const std::int64_t* s = simplices.data();
+  const std::size_t n = points.shape(0), faces = simplices.shape(0);
+  for (std::size_t k = 0; k < 3 * faces; ++k)
+    if (s[k] < 0 || static_cast<std::size_t>(s[k]) >= n) throw std::invalid_argument("scaled_area: index");
+  return scaled_area(
+      points.data(), faces, [&](std::size_t f, int k) { return static_cast<std::size_t>(s[3 * f + k]); },
+      scale.data());
+}
+
+// Qhull's QbB measures of a 3-D hull of `xyz` (scipy's volume and area under trimesh's "QbB Pp Qt"): each
+// axis mapped onto [-0.5, 0.5] from the bounds of the exact hull's vertices (those merging kept and those it
+// set aside, which attain the points' bounds), as qhull_options.scaling() maps it.
+template <class Scalar>
+std::array<double, 2> box_scaled_measures(const Scalar* xyz, const ConvexHull& hull) {
+  double low[3], high[3];
+  for (int k = 0; k < 3; ++k)
+    low[k] = std::numeric_limits<double>::infinity(), high[k] = -std::numeric_limits<double>::infinity();
+  auto take = [&](PointIndex i) {
+    for (int k = 0; k < 3; ++k)
+      low[k] = std::min(low[k], double(xyz[3 * i + k])), high[k] = std::max(high[k], double(xyz[3 * i + k]));
+  };
+  for (PointIndex v : hull.vertices)
+    take(v);
+  for (const auto& row : hull.coplanar)
+    take(row[0]);
+  double scale[3];
+  for (int k = 0; k < 3; ++k) {
+    const double width = high[k] - low[k];
+    scale[k] = 1.0 / (width > 0 ? width : 1.0);
+  }
+  const double area = scaled_area(
+      xyz, hull.faces.size(), [&](std::size_t f, int k) { return std::size_t{hull.faces[f][k]}; }, scale);
+  return {hull.volume * (std::fabs(scale[0]) * std::fabs(scale[1]) * std::fabs(scale[2])), area};
+}
+
+// `box_measures`: also Qhull's QbB volume and area ("box_volume", "box_area") of a 3-D hull.
 template <class Scalar>
 nb::dict convex_hull_of(PointArray<Scalar> points, const std::string& backend, const std::string& precision,
-                        const std::string& engine, const std::string& merge, double tolerance, double angle) {
+                        const std::string& engine, const std::string& merge, double tolerance, double angle,
+                        bool box_measures) {
   const ConvexHullOptions options = options_from(backend, precision, engine, {merge, tolerance, angle});
   ConvexHull hull;
+  std::array<double, 2> box{0, 0};
+  const bool boxed = box_measures;
   {
     nb::gil_scoped_release unlocked;  // the caller's array stays alive: the call holds a reference to it
     hull = convex_hull(points.data(), points.shape(0), options);
+    if (boxed && hull.dimension == 3) box = box_scaled_measures(points.data(), hull);
   }
-  return hull_to_dict(std::move(hull));
+  const int dimension = hull.dimension;
+  nb::dict d = hull_to_dict(std::move(hull));
+  if (boxed && dimension == 3) {
+    d["box_volume"] = box[0];
+    d["box_area"] = box[1];
+  }
+  return d;
 }
 
 template <class Scalar>
@@ -597,9 +674,12 @@ NB_MODULE(_cudahull, m) {
   nb::exception<DeviceError>(m, "DeviceError", PyExc_RuntimeError);
 
   m.def("convex_hull", &convex_hull_of<float>, nb::arg("points"), nb::arg("backend"), nb::arg("precision"),
-        nb::arg("engine"), nb::arg("merge"), nb::arg("tolerance"), nb::arg("angle") = 1.0);
+        nb::arg("engine"), nb::arg("merge"), nb::arg("tolerance"), nb::arg("angle") = 1.0,
+        nb::arg("box_measures") = false);
   m.def("convex_hull", &convex_hull_of<double>, nb::arg("points"), nb::arg("backend"), nb::arg("precision"),
-        nb::arg("engine"), nb::arg("merge"), nb::arg("tolerance"), nb::arg("angle") = 1.0);
+        nb::arg("engine"), nb::arg("merge"), nb::arg("tolerance"), nb::arg("angle") = 1.0,
+        nb::arg("box_measures") = false);
+  m.def("scaled_area", &scaled_area_of, nb::arg("points"), nb::arg("simplices"), nb::arg("scale"));
   // 2-D input (issue 25): edges as simplices, lines as equations.
   m.def("convex_hull_2d", &convex_hull_2d_of<float>, nb::arg("points"), nb::arg("backend"),
         nb::arg("precision"), nb::arg("merge"), nb::arg("tolerance"), nb::arg("angle") = 1.0);
