@@ -179,9 +179,14 @@ struct EdgeIndex {
 
 // parallel_chunks() with its range dealt out in blocks of `block` items to whichever thread is free, for
 // passes whose items are independent: on a shared machine a worker the scheduler holds back takes fewer
-// blocks, where an even split left the caller waiting for that worker's half.
+// blocks, where an even split left the caller waiting for that worker's half.  `block` is the largest
+// block: a pass of few items gets at least four blocks a worker (of kLeastBlock items or more), so that a
+// hull of some thousand vertices keeps every core of a large machine busy, not as many as its blocks.
+constexpr std::size_t kLeastBlock = 48;
+
 template <class Body>
 void parallel_blocks(std::size_t n, unsigned workers, Body&& body, std::size_t block = 4096) {
+  block = std::min(block, std::max(kLeastBlock, n / (4 * std::max(1u, workers))));
   const std::size_t blocks = (n + block - 1) / block;
   std::atomic<std::size_t> next{0};
   parallel_chunks(
