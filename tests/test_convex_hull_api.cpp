@@ -102,6 +102,12 @@ TEST(ConvexHullApi, DefaultEngineIsResidentOnAGpuAndSteppingOnTheCpu) {
   const ConvexHull resident = convex_hull(points, cpu);
   EXPECT_EQ(resident.backend, "cpu-resident");
   EXPECT_EQ(resident.vertices, automatic.vertices);
+  // The result says how it ran: the plan's line, as --stats prints it.
+  EXPECT_EQ(resident.plan.rfind("resident engine (as requested); backend cpu (as requested)", 0), 0u)
+      << resident.plan;
+  EXPECT_NE(automatic.plan.find(cuda_status().usable ? "backend cuda" : "backend cpu (auto: no usable"),
+            std::string::npos)
+      << automatic.plan;
   EXPECT_EQ(engine_from_name("auto"), EngineChoice::kAuto);
   EXPECT_THROW(engine_from_name("fast"), std::invalid_argument);
 }

@@ -441,8 +441,8 @@ ConvexHull describe(const BasicHullMesh<Point>& mesh, std::string backend, const
 
 // The hull of checked points in Point, run as `plan` says (plan_hull(): engine and backend definite).
 template <class Point>
-ConvexHull hull_in(const std::vector<Point>& points, const HullPlan& plan, const ConvexHullOptions& options,
-                   bool neighbors = true) {
+ConvexHull run_planned(const std::vector<Point>& points, const HullPlan& plan,
+                       const ConvexHullOptions& options, bool neighbors) {
   if (!plan.unavailable.empty()) throw DeviceError(plan.unavailable);
   if (plan.engine == EngineChoice::kResident) {
     ResidentStats stats;
@@ -467,6 +467,15 @@ ConvexHull hull_in(const std::vector<Point>& points, const HullPlan& plan, const
   BasicEngine<Point> engine(points, std::move(backend), EngineOptions{.keep_decisions = false});
   engine.run();
   return describe(engine.result(), std::move(name), options, neighbors);
+}
+
+// run_planned(), the result saying how it ran.
+template <class Point>
+ConvexHull hull_in(const std::vector<Point>& points, const HullPlan& plan, const ConvexHullOptions& options,
+                   bool neighbors = true) {
+  ConvexHull hull = run_planned(points, plan, options, neighbors);
+  hull.plan = plan.reason;
+  return hull;
 }
 
 template <class Scalar>
@@ -496,7 +505,11 @@ ConvexHull checked_hull(std::size_t count, Coordinate coordinate, Precision own,
     const std::vector<Point3d> points = copy_checked<Point3d>(count, coordinate);
     input.outside_exact_range = !in_fast_exact_range(points);
     const HullPlan plan = plan_hull(options, input, cuda_presence);
-    if (plan.wide_range) return wide_hull(points, options);
+    if (plan.wide_range) {
+      ConvexHull hull = wide_hull(points, options);
+      hull.plan = plan.reason;
+      return hull;
+    }
     return hull_in(points, plan, options, neighbors);
   }
   return hull_in(copy_checked<Point3>(count, coordinate), plan_hull(options, input, cuda_presence), options,
@@ -561,8 +574,10 @@ ConvexHull device_hull(const Scalar* device_xyz, std::size_t count, Precision ow
                        const ConvexHullOptions& options) {
   const HullPlan plan = device_plan(count, 3, own, options);
   require_device_points(device_xyz, count, plan);
-  if (plan.precision == Precision::kDouble) return device_hull_in<Point3d>(device_xyz, count, options);
-  return device_hull_in<Point3>(device_xyz, count, options);
+  ConvexHull hull = plan.precision == Precision::kDouble ? device_hull_in<Point3d>(device_xyz, count, options)
+                                                         : device_hull_in<Point3>(device_xyz, count, options);
+  if (hull.plan.empty()) hull.plan = plan.reason;  // the wide path's host hull says its own
+  return hull;
 }
 
 // The hull of `count` x, y, z triples in host memory.  For the resident engine on the GPU they are uploaded
@@ -861,20 +876,25 @@ ConvexHull planar_hull_of(const Input* xy, std::size_t count, Precision own,
     if (plan.precision == Precision::kFloat) {
       check_planar(xy, count);  // a NaN named before a value beyond float's range, as in 3-D
       const std::vector<float> rounded = rounded_planar(xy, count);
-      return describe_planar(rounded.data(), planar_hull(rounded.data(), count), options, "cpu");
+      ConvexHull hull = describe_planar(rounded.data(), planar_hull(rounded.data(), count), options, "cpu");
+      hull.plan = plan.reason;
+      return hull;
     }
   }
   // In place: float input in double is the same points (widening is exact), and so the same hull.
   input.outside_exact_range = check_planar(xy, count);
   if constexpr (std::is_same_v<Input, double>) {
-    if (plan_hull(options, input, cuda_presence).wide_range) {
+    if (const HullPlan wide = plan_hull(options, input, cuda_presence); wide.wide_range) {
       ConvexHullOptions exact = options;
       exact.merge = MergeMode::kExact;  // the merge's heights need the exact range: the exact hull instead
-      return describe_planar(xy, wide_planar_hull(xy, count), exact, "cpu-wide");
+      ConvexHull hull = describe_planar(xy, wide_planar_hull(xy, count), exact, "cpu-wide");
+      hull.plan = wide.reason;
+      return hull;
     }
   }
   ConvexHull hull = describe_planar(xy, planar_hull(xy, count), options, "cpu");
   hull.precision = plan.precision;
+  hull.plan = plan.reason;
   return hull;
 }
 
@@ -906,6 +926,7 @@ ConvexHull device_planar_hull(const Scalar* device_xy, std::size_t count, const 
       describe_planar(candidates.xy.data(), planar_hull(candidates.xy.data(), candidates.indices.size()),
                       options, "cuda", &candidates.indices);
   hull.precision = plan.precision;
+  hull.plan = plan.reason;
   return hull;
 }
 

@@ -133,7 +133,8 @@ def convex_hull(points: npt.ArrayLike, backend: str = "auto", precision: str = "
         ``dimension`` (the hull's affine dimension: below the input's for flat input), ``input_dimension``,
         ``precision``, ``backend``, ``vertices``, ``simplices``, ``neighbors``, ``equations``, ``polygon``
         (a flat or 2-D hull's corners in order), ``coplanar``, ``volume``, ``area``, ``tolerance``,
-        ``max_outside`` (as on ``ConvexHull``; indices are uint32 here), and ``stats``: the resident
+        ``max_outside`` (as on ``ConvexHull``; indices are uint32 here), ``plan`` (as on ``ConvexHull``), and
+        ``stats``: the resident
         engine's counters (``host_syncs``, ``bytes_from_device``, ``points_read_back``, ...), None otherwise.
         2-D points in GPU memory are filtered there: only the points that can be corners come back.
 
@@ -263,6 +264,9 @@ class ConvexHull:
         What the hull was computed in and on: for the exact engines ``backend`` begins with "cpu" or "cuda"
         (and says the threads or the device, as "cpu (8 threads)"); it is "qhull" where scipy's Qhull
         computed the hull (4 or more dimensions).
+    plan : str
+        How the hull was run, in one line: the engine, backend and precision chosen, each with its reason
+        (as the command line's ``--stats`` prints it).
     stats : dict or None
         The resident engine's counters, None for the others.
 
@@ -302,6 +306,7 @@ class ConvexHull:
     dimension: int
     precision: str
     backend: str
+    plan: str
     tolerance: float
     max_outside: float
     stats: dict[str, Any] | None
@@ -362,6 +367,7 @@ class ConvexHull:
         self._bounds = (hull.min_bound, hull.max_bound)
         self.dimension = self.ndim
         self.precision, self.backend, self.stats = "double", "qhull", None
+        self.plan = _qhull.QHULL_PLAN
         self.tolerance = self.max_outside = math.nan
 
     # --- computing ------------------------------------------------------------------------------------
@@ -435,6 +441,7 @@ class ConvexHull:
             "dimension": ndim,
             "precision": result["precision"],
             "backend": result["backend"],
+            "plan": result["plan"],
             "stats": result["stats"],
             "tolerance": result["tolerance"],
             "max_outside": result["max_outside"],
@@ -525,8 +532,8 @@ class ConvexHull:
         self._bounds = None
         self.nsimplex = int(values["simplices"].shape[0])
         self._exact_vertices = values["exact_vertices"]
-        for key in ("dimension", "precision", "backend", "stats", "tolerance", "max_outside", "volume", "area",
-                    "good"):
+        for key in ("dimension", "precision", "backend", "plan", "stats", "tolerance", "max_outside", "volume",
+                    "area", "good"):
             setattr(self, key, values[key])
         for key in ("vertices", "simplices", "neighbors", "equations", "coplanar"):
             setattr(self, key, self._result_array(values[key]))

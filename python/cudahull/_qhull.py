@@ -14,6 +14,8 @@ import numpy.typing as npt
 
 from ._errors import qhull_error, value_text
 
+QHULL_PLAN = "scipy's Qhull (4 or more dimensions: the exact engines are 2-D and 3-D)"
+
 
 def check_request(ndim: int, tolerance: object, backend: str, precision: str, engine: str) -> None:
     """Refuses what Qhull cannot do for d-dimensional points, rather than silently doing something else."""
@@ -99,4 +101,5 @@ def hull_dict(points: npt.NDArray[Any]) -> dict[str, Any]:
         "tolerance": float("nan"),
         "max_outside": float("nan"),
         "stats": None,
+        "plan": QHULL_PLAN,
     }

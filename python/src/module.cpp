@@ -118,7 +118,9 @@ nb::dict hull_to_dict(ConvexHull&& hull) {
     stats["engine_ms"] = hull.engine_ms;
     stats["describe_ms"] = hull.describe_ms;
   }
+  if (!stats.is_none()) stats["plan"] = hull.plan;
   d["stats"] = stats;
+  d["plan"] = hull.plan;
   d["dimension"] = hull.dimension;
   d["precision"] = precision_name(hull.precision);
   d["backend"] = hull.backend;

@@ -88,6 +88,16 @@ def test_unit_cube():
         assert_consistent(hull)
 
 
+def test_the_hull_says_how_it_ran():
+    # The plan's line (engine, backend, precision, each with its reason), as the command line's --stats says.
+    hull = cudahull.ConvexHull(CUBE.astype(np.float32), backend="cpu", engine="resident")
+    assert hull.plan.startswith("resident engine (as requested); backend cpu (as requested); precision float")
+    assert hull.stats is not None and hull.stats["plan"] == hull.plan
+    flat = cudahull.convex_hull(CUBE[:, :2], backend="cpu", precision="double")
+    assert flat["plan"].startswith("2-D input: the planar hull") and "precision double (as requested)" in flat["plan"]
+    assert cudahull.ConvexHull(np.random.default_rng(1).normal(size=(30, 4))).plan.startswith("scipy's Qhull")
+
+
 @pytest.mark.parametrize("name", sorted(RANDOM_SETS))
 def test_random_sets_match_scipy(name):
     points = RANDOM_SETS[name]

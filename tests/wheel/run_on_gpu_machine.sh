@@ -50,7 +50,7 @@ def best(f, n=7):
         t = time.perf_counter(); out = f(); times.append(time.perf_counter() - t)
     return out, min(times)
 exact, te = best(lambda: cudahull.ConvexHull(p))
-print("plan:", (exact.stats or {}).get("plan"))
+print("plan:", exact.plan)
 q, tq = best(lambda: scipy.spatial.ConvexHull(p, qhull_options="Qt"), 3)
 for opts in ("Qt", "QbB Pp Qt"):
     merged, tm = best(lambda: cudahull.ConvexHull(p, qhull_options=opts))

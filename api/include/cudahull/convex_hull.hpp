@@ -100,6 +100,9 @@ struct ConvexHull {
   // Where convex_hull_device()'s time went (host clock, ms): the engine's run, and making this result from
   // its mesh (faces, neighbours, planes, measures).  Zero on the other paths.
   double engine_ms = 0, describe_ms = 0;
+  // How the hull was run, in one line: the engine, backend and precision plan_hull() chose, each with its
+  // reason (HullPlan::reason), as the command line's --stats prints it.
+  std::string plan;
 };
 
 // The exact convex hull of `points`.  Every finite double is taken: where a coordinate lies outside the
