@@ -14,7 +14,7 @@
 #include <functional>
 #include <string>
 
-#include "cudahull/convex_hull.hpp"
+#include "cudahull/hull_options.hpp"
 #include "cudahull/types.hpp"
 
 namespace cudahull {
