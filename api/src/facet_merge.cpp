@@ -146,6 +146,23 @@ class BoxTree {
   std::vector<Node> nodes_;
 };
 
+// Sorts (key, value) pairs by key, stably (equal keys keep their order): a least-significant-byte radix
+// sort, passing over the bytes in which every key is the same.
+void radix_sort_by_key(std::vector<std::pair<std::uint64_t, std::uint32_t>>& items) {
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> spare(items.size());
+  for (int shift = 0; shift < 64; shift += 8) {
+    std::size_t count[257] = {};
+    for (const auto& item : items)
+      ++count[((item.first >> shift) & 0xff) + 1];
+    if (!items.empty() && count[((items[0].first >> shift) & 0xff) + 1] == items.size()) continue;
+    for (int b = 0; b < 256; ++b)
+      count[b + 1] += count[b];
+    for (const auto& item : items)
+      spare[count[(item.first >> shift) & 0xff]++] = item;
+    items.swap(spare);
+  }
+}
+
 // The directed edges of a closed triangulated surface: per vertex a, its out-edges (b, the triangle holding
 // a -> b), ascending in b.  Each neighbour of a appears once (the other triangle holds b -> a).
 struct EdgeIndex {
@@ -164,8 +181,11 @@ struct EdgeIndex {
     for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
       for (int k = 0; k < 3; ++k)
         out[fill[mesh.triangles[t][k]]++] = {mesh.triangles[t][(k + 1) % 3], t};
+    // Each vertex's few out-edges by insertion (std::sort's set-up cost more than these short runs).
     for (std::size_t v = 0; v + 1 < start.size(); ++v)
-      std::sort(out.begin() + start[v], out.begin() + start[v + 1]);
+      for (std::uint32_t k = start[v] + 1; k < start[v + 1]; ++k)
+        for (std::uint32_t x = k; x > start[v] && out[x - 1].first > out[x].first; --x)
+          std::swap(out[x - 1], out[x]);
   }
   std::uint32_t degree(std::uint32_t v) const { return start[v + 1] - start[v]; }
   std::uint32_t neighbour(std::uint32_t v, std::uint32_t k) const { return out[start[v] + k].first; }
@@ -209,7 +229,7 @@ struct VisitOrder {
 };
 
 template <class Point>
-VisitOrder visit_order(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges) {
+VisitOrder visit_order(const BasicHullMesh<Point>& mesh) {
   const std::size_t n = mesh.vertices.size();
   VisitOrder order;
   order.vertices.resize(n);
@@ -237,11 +257,34 @@ VisitOrder visit_order(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges)
     for (std::size_t i = 0; i < n; ++i)
       order.vertices[i] = keyed[i].second;
   }
-  order.triangles.reserve(mesh.triangles.size());
-  for (std::uint32_t v : order.vertices)
-    for (std::uint32_t k = edges.start[v]; k < edges.start[v + 1]; ++k)
-      if (const std::uint32_t t = edges.out[k].second; mesh.triangles[t][0] == v)
-        order.triangles.push_back(t);
+  // Each vertex's triangles (those it is the first corner of) in its out-edges' order: the triangle of
+  // out-edge k of v, where that triangle's first corner is v, is the k-th place of v's run (a triangle
+  // a -> b -> c holds out-edge a -> b), counted off in one pass over the triangles instead of a scattered
+  // read of every out-edge's triangle.
+  std::vector<std::uint32_t> place(n, 0), rank_of(n);
+  for (std::uint32_t j = 0; j < n; ++j)
+    rank_of[order.vertices[j]] = j;
+  const std::size_t nt = mesh.triangles.size();
+  std::vector<std::uint32_t> first_count(n + 1, 0);
+  for (const Triangle& t : mesh.triangles)
+    ++first_count[rank_of[t[0]] + 1];
+  for (std::uint32_t j = 0; j < n; ++j)
+    first_count[j + 1] += first_count[j];
+  order.triangles.assign(nt, 0);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> by_second(nt);  // (second corner, triangle)
+  for (std::uint32_t t = 0; t < nt; ++t) {
+    const std::uint32_t j = rank_of[mesh.triangles[t][0]];
+    by_second[first_count[j] + place[j]++] = {mesh.triangles[t][1], t};
+  }
+  for (std::uint32_t j = 0; j < n; ++j) {
+    // A run is the vertex's out-edges that start its triangles, ascending in the edge's end (EdgeIndex's
+    // order): by insertion, a run being a few.
+    for (std::uint32_t k = first_count[j] + 1; k < first_count[j + 1]; ++k)
+      for (std::uint32_t x = k; x > first_count[j] && by_second[x - 1].first > by_second[x].first; --x)
+        std::swap(by_second[x - 1], by_second[x]);
+  }
+  for (std::size_t k = 0; k < nt; ++k)
+    order.triangles[k] = by_second[k].second;
   order.triangle_rank.resize(order.triangles.size());
   for (std::uint32_t j = 0; j < order.triangles.size(); ++j)
     order.triangle_rank[order.triangles[j]] = j;
@@ -392,11 +435,15 @@ EdgeIndex drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Poin
   std::vector<std::size_t> link_at(points.size(), 0);
   std::vector<std::uint32_t> link_size(points.size(), kNone);  // kNone: no height yet
   std::vector<double> cached_height(points.size(), kInfinity), first_reach(points.size(), -1);
+  PhaseLaps laps("drop_low_vertices");  // CUDAHULL_PHASE_TIMES=1
   for (;;) {
     const std::size_t n = current.vertices.size();
     EdgeIndex edges(current);
-    visit = visit_order(current, edges);
+    laps.lap("edges");
+    visit = visit_order(current);
+    laps.lap("visit order");
     graph = relabelled(current, edges, visit);
+    laps.lap("relabelled");
     const Relabelled& g = graph;
     std::vector<PointIndex> ids(n);  // by position
     for (std::uint32_t j = 0; j < n; ++j)
@@ -439,6 +486,7 @@ EdgeIndex drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Poin
           }
         },
         256);  // blocks of some hundreds of microseconds: a worker woken for less costs more
+    laps.lap("heights");
     std::vector<double> heights(n), reach(n);
     std::vector<std::uint8_t> relinked(n);
     for (std::uint32_t i = 0; i < n; ++i) {
@@ -484,6 +532,7 @@ EdgeIndex drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Poin
       }
       dropped.resize(dropped.size() / 2);
     }
+    laps.lap("round");
     if (dropped.empty()) return edges;  // the mesh's, unchanged by this round
   }
 }
@@ -510,6 +559,7 @@ struct Facets {
 template <class Point>
 Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const VisitOrder& visit,
                     double tolerance, double angle_sine) {
+  PhaseLaps laps("group_facets");  // CUDAHULL_PHASE_TIMES=1
   const std::size_t nt = mesh.triangles.size();
   const std::vector<std::uint32_t>& jrank = visit.triangle_rank;  // per mesh triangle: its position
   std::vector<std::array<std::uint32_t, 3>> tri(nt);              // per position: its corners' positions
@@ -540,6 +590,7 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
         }
       },
       1024);
+  laps.lap("planes");
   // Whether `vertex` (a position) fits the group of `seed`: within the tolerance of the seed's plane, or
   // exactly on it (a point exactly on it evaluates to within a few ulps of the coordinates' scale, under 28u
   // by plane.cpp's analysis; the exact orient3d decides).
@@ -585,15 +636,18 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
         }
       },
       1024);
-  // Largest first, ties by the mesh's index: sorted as (the area's bits inverted, index) keys, which order
-  // as the areas do (no area is negative or NaN), without a look-up a comparison.
+  laps.lap("joining");
+  // Largest first, ties by the mesh's index: (the area's bits inverted, index) keys, which order as the
+  // areas do (no area is negative or NaN), listed by index and sorted stably on the bits alone (a radix
+  // sort: std::sort's comparisons were a tenth of a large merge, on one core).
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(nt);
-  for (std::uint32_t j = 0; j < nt; ++j) {
+  for (std::uint32_t t = 0; t < nt; ++t) {
     std::uint64_t bits;
-    std::memcpy(&bits, &twice_area[j], sizeof bits);
-    keyed[j] = {~bits, visit.triangles[j]};
+    std::memcpy(&bits, &twice_area[jrank[t]], sizeof bits);
+    keyed[t] = {~bits, t};
   }
-  std::sort(keyed.begin(), keyed.end());
+  radix_sort_by_key(keyed);
+  laps.lap("sort");
   std::vector<std::uint32_t> facet_of(nt, kNone), seeds;  // by position
   seeds.reserve(nt);
   Facets facets;
@@ -636,6 +690,7 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
     }
     facets.planes.push_back({seed_plane[0], seed_plane[1], seed_plane[2], -top});
   }
+  laps.lap("grouping");
   // Back to the mesh's triangles.
   facets.facet_of.resize(nt);
   facets.across.resize(3 * nt);
@@ -955,7 +1010,7 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
                               ? drop_low_vertices(vertices, current, tolerance, angle_sine, visit, graph)
                               : EdgeIndex(current);
   if (visit.vertices.size() != current.vertices.size()) {
-    visit = visit_order(current, edges);
+    visit = visit_order(current);
     graph = relabelled(current, edges, visit);
   }
   laps.lap("drop");
