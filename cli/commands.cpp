@@ -12,7 +12,6 @@
 #include <sstream>
 #include <type_traits>
 
-#include "cuda_backend.hpp"
 #include "cudahull/convex_hull_batch.hpp"
 #include "cudahull/cpu_backend.hpp"
 #include "cudahull/engine.hpp"
@@ -22,6 +21,7 @@
 #include "cudahull/generators.hpp"
 #include "cudahull/hull_checker.hpp"
 #include "cudahull/hull_plan.hpp"
+#include "cudahull/hull_runner.hpp"
 #include "cudahull/mesh_io.hpp"
 #include "cudahull/parallel.hpp"
 #include "cudahull/phase_times.hpp"
@@ -30,7 +30,6 @@
 #include "cudahull/resident.hpp"
 #include "cudahull/trace.hpp"
 #include "qhull_reference.hpp"
-#include "resident_cuda.hpp"
 
 namespace cudahull::cli {
 
@@ -64,48 +63,21 @@ void require_runnable(const HullPlan& plan) {
   if (!plan.unavailable.empty()) throw DeviceError("--" + plan.unavailable);
 }
 
-// The stepping engine's backend that `plan` chose, said in one line with the plan's reason.
+// The stepping engine's backend that `plan` chose (hull_runner.hpp), said in one line with the plan's reason.
 template <class Point>
 std::unique_ptr<BasicBackend<Point>> planned_backend(const HullPlan& plan, bool quiet, std::string* device) {
-  const bool cuda = plan.backend == BackendChoice::kCuda;
-  auto backend = cuda ? make_cuda_backend<Point>() : make_cpu_backend<Point>();
+  auto backend = cudahull::planned_backend<Point>(plan);
   if (!quiet)
     std::fprintf(stderr, "backend: %s (%s)\n", backend->name().c_str(), plan.backend_reason.c_str());
-  *device = cuda ? plan.device : "cpu";
+  *device = plan.backend == BackendChoice::kCuda ? plan.device : "cpu";
   return backend;
 }
 
-// --engine resident (issue 15): the whole run where the points are, the GPU's when --backend allows one.
-template <class Point>
-struct ResidentRun {
-  BasicHullMesh<Point> hull;
-  ResidentStats stats;
-  std::string backend_name, device;
-  double upload_ms = 0, run_ms = 0;
-};
-
+// --engine resident (issue 15): the whole run where the points are, the GPU's when --backend allows one
+// (hull_runner.hpp), said in one line with the plan's reason.
 template <class Point>
 ResidentRun<Point> run_resident(const std::vector<Point>& points, const HullPlan& plan, bool quiet) {
-  ResidentRun<Point> r;
-  if (plan.backend == BackendChoice::kCuda) {
-    r.device = plan.device;
-    r.backend_name = "cuda-resident";
-    ResidentCudaHull<Point> resident;
-    const auto t_upload = Clock::now();
-    resident.upload(points);
-    r.upload_ms = ms_since(t_upload);
-    const auto t_run = Clock::now();
-    r.hull = resident.run(&r.stats);
-    r.run_ms = ms_since(t_run);
-    fill_floors(r.stats, device_pace());  // after the clock: no run pays for measuring the hardware
-  } else {
-    r.backend_name = "cpu-resident";
-    r.device = "cpu";
-    const auto t_run = Clock::now();
-    r.hull = resident_hull_host(points, &r.stats);
-    r.run_ms = ms_since(t_run);
-    fill_floors(r.stats, host_pace());
-  }
+  ResidentRun<Point> r = cudahull::run_resident(points, plan);
   if (!quiet) std::fprintf(stderr, "backend: %s (%s)\n", r.backend_name.c_str(), plan.backend_reason.c_str());
   if (!quiet && r.stats.exact_finish) std::fprintf(stderr, "note: exact finish: %s\n", r.stats.note.c_str());
   return r;
@@ -267,13 +239,11 @@ int hull_in(const HullOptions& o, const ConvexHullOptions& request) {
   const bool recorded_resident = resident && (!o.trace.empty() || o.table);
   std::string device, backend_name;
   std::unique_ptr<BasicBackend<Point>> backend;
-  std::unique_ptr<SteppingEngine> resident_stepper;
+  std::unique_ptr<SteppingEngine> recorded;
   if (recorded_resident) {
-    const bool on_gpu = plan.backend == BackendChoice::kCuda;
-    resident_stepper =
-        on_gpu ? make_resident_cuda_stepping_engine(points) : make_resident_stepping_engine(points);
-    device = on_gpu ? plan.device : "cpu";
-    backend_name = resident_stepper->backend_name();
+    recorded = resident_stepper(points, plan);
+    device = plan.backend == BackendChoice::kCuda ? plan.device : "cpu";
+    backend_name = recorded->backend_name();
     if (!o.quiet)
       std::fprintf(stderr, "backend: %s (%s)\n", backend_name.c_str(), plan.backend_reason.c_str());
   }
@@ -317,13 +287,13 @@ int hull_in(const HullOptions& o, const ConvexHullOptions& request) {
   };
   const auto t_run = Clock::now();
   if (recorded_resident) {
-    resident_stepper->run(on_record);
-    resident_run.hull = stepped_hull(*resident_stepper, points);
-    if (const ResidentStats* stats = resident_stepper->resident_stats()) resident_run.stats = *stats;
+    recorded->run(on_record);
+    resident_run.hull = stepped_hull(*recorded, points);
+    if (const ResidentStats* stats = recorded->resident_stats()) resident_run.stats = *stats;
   } else if (resident) {
     resident_run = run_resident(points, plan, o.quiet);
     backend_name = resident_run.backend_name;
-    device = resident_run.device;
+    device = plan.backend == BackendChoice::kCuda ? plan.device : "cpu";
     iterations = static_cast<int>(resident_run.stats.iterations);
     swaps = resident_run.stats.edits;
     repairs = resident_run.stats.faults;
@@ -432,8 +402,8 @@ int bench_in(const BenchOptions& o, const ConvexHullOptions& request) {
     // The resident engine: uploaded once per run, the upload listed apart (as below).
     ResidentRun<Point> run = run_resident(points, plan, o.json || r > 0);
     backend_name = run.backend_name;
-    device = run.device;
-    const bool on_host = run.device == "cpu";
+    const bool on_host = plan.backend != BackendChoice::kCuda;
+    device = on_host ? "cpu" : plan.device;
     total.push_back(run.run_ms);
     host.push_back(on_host ? run.run_ms : 0);
     dev.push_back(on_host ? 0 : run.run_ms);

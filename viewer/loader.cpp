@@ -2,13 +2,11 @@
 
 #include <filesystem>
 
-#include "cuda_backend.hpp"
-#include "cudahull/cpu_backend.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/generators.hpp"
 #include "cudahull/hull_plan.hpp"
+#include "cudahull/hull_runner.hpp"
 #include "cudahull/resident.hpp"
-#include "resident_cuda.hpp"
 
 namespace cudahull::viewer {
 
@@ -73,22 +71,19 @@ Scene::BackendFactory backend_factory(const std::string& requested, std::string*
   if (!plan.unavailable.empty()) throw DeviceError("--" + plan.unavailable);
   const bool resident = plan.engine == EngineChoice::kResident;
   const std::string engine_note = resident ? ", resident engine" : "";
-  if (plan.backend == BackendChoice::kCuda) {
-    *note = "cuda, " + plan.device + engine_note + " (" + plan.backend_reason + ")";
-    if (resident)
-      return {{},
-              {},
-              [](const std::vector<Point3>& p) { return make_resident_cuda_stepping_engine(p); },
-              [](const std::vector<Point3d>& p) { return make_resident_cuda_stepping_engine(p); }};
-    return {[] { return make_cuda_backend<Point3>(); }, [] { return make_cuda_backend<Point3d>(); }, {}, {}};
-  }
-  *note = "cpu" + engine_note + " (" + plan.backend_reason + ")";
+  *note = (plan.backend == BackendChoice::kCuda ? "cuda, " + plan.device : std::string("cpu")) + engine_note +
+          " (" + plan.backend_reason + ")";
+  // The engines the plan names (hull_runner.hpp): the resident one a step at a time, or the stepping
+  // engine's backend.
   if (resident)
     return {{},
             {},
-            [](const std::vector<Point3>& p) { return make_resident_stepping_engine(p); },
-            [](const std::vector<Point3d>& p) { return make_resident_stepping_engine(p); }};
-  return {[] { return make_cpu_backend<Point3>(); }, [] { return make_cpu_backend<Point3d>(); }, {}, {}};
+            [plan](const std::vector<Point3>& p) { return resident_stepper(p, plan); },
+            [plan](const std::vector<Point3d>& p) { return resident_stepper(p, plan); }};
+  return {[plan] { return planned_backend<Point3>(plan); },
+          [plan] { return planned_backend<Point3d>(plan); },
+          {},
+          {}};
 }
 
 BackgroundLoad::BackgroundLoad(PointSource source, Precision precision)
