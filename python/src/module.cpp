@@ -26,6 +26,7 @@
 #include "cudahull/engine.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/hull_plan.hpp"
+#include "cudahull/hull_runner.hpp"
 #include "cudahull/predicates.hpp"
 #include "cudahull/resident.hpp"
 #include "cudahull/wide_predicates.hpp"
@@ -545,18 +546,20 @@ class StepEngine {
     input.count = points.shape(0);
     const HullPlan plan = plan_hull(request, input);
     // The engine borrows its points: they live on the heap, owned here, for as long as it does.  The
-    // points are checked before the backend is made, which throws the plan's DeviceError where it has one.
+    // points are checked before the plan's DeviceError, where it has one; the backend is the plan's
+    // (hull_runner.hpp).
     if (plan.precision == Precision::kDouble) {
       double_points_ =
           std::make_unique<std::vector<Point3d>>(checked_points<Point3d>(points.data(), points.shape(0)));
+      if (!plan.unavailable.empty()) throw DeviceError(plan.unavailable);
       double_engine_ =
-          std::make_unique<BasicEngine<Point3d>>(*double_points_, make_backend<Point3d>(plan.backend));
+          std::make_unique<BasicEngine<Point3d>>(*double_points_, planned_backend<Point3d>(plan));
       engine_ = double_engine_.get();
     } else {
       float_points_ =
           std::make_unique<std::vector<Point3>>(checked_points<Point3>(points.data(), points.shape(0)));
-      float_engine_ =
-          std::make_unique<BasicEngine<Point3>>(*float_points_, make_backend<Point3>(plan.backend));
+      if (!plan.unavailable.empty()) throw DeviceError(plan.unavailable);
+      float_engine_ = std::make_unique<BasicEngine<Point3>>(*float_points_, planned_backend<Point3>(plan));
       engine_ = float_engine_.get();
     }
   }
