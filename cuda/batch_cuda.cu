@@ -493,7 +493,7 @@ __global__ void __launch_bounds__(kDescribeThreads) describe_kernel(DescribeArgs
       detail::facet_plane_in_range(to_vec3d(xyz[w[0]]), to_vec3d(xyz[w[1]]), to_vec3d(xyz[w[2]]),
                                    a.columns.planes + 4 * (face_at + f));
     }
-    // As convex_hull() measures a mesh (convex_hull.cpp, measure_solid; plane_impl.hpp, measure_mesh()):
+    // As convex_hull() measures a mesh (describe.cpp, measure_solid; plane_impl.hpp, measure_mesh()):
     // the faces' terms from the first face's first corner, added in the mesh's order one after another, and
     // the exact pass where the first is uncertain: the same bits.  Each lane loads (and computes the terms
     // of) its own faces, and every lane adds them all in order from the shuffles: lane 0 alone, face after

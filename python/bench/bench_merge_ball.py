@@ -1,7 +1,7 @@
 """The host merge alone for the GPU row of issue 42 ("Qt" on 523,000 ball points), measured on the CPU: the
 module's merged hull of the ball --repeat times, with the library's own phase times (CUDAHULL_PHASE_TIMES=1,
 set here) read back from its stderr; prints the best "merge and faces" (merge_facets() and the faces'
-indices, describe_merged() in api/src/convex_hull.cpp) and the best whole call.  --input sphere takes
+indices, describe_merged() in api/src/describe.cpp) and the best whole call.  --input sphere takes
 bench_merged.py's 1e5 sphere points instead (every point a vertex: the merge's largest case there).
 
     PYTHONPATH=build/python python3 python/bench/bench_merge_ball.py [--repeat 10] [--n 523000]

@@ -389,7 +389,7 @@ def test_measures_of_slivers_and_wide_ranges():
 
 def test_measures_of_a_hull_of_many_chunks():
     """A hull of more than 2^20 faces is measured on all cores, a fixed chunk of faces a task
-    (convex_hull.cpp, measure_on_cores()): its volume and area against a compensated sum of its faces' terms
+    (describe.cpp, measure_on_cores()): its volume and area against a compensated sum of its faces' terms
     (math.fsum of numpy's)."""
     import math
     rng = np.random.default_rng(11)

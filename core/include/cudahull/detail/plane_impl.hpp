@@ -5,7 +5,7 @@
 // design:
 //   facet_plane_in_range  the plane of a face whose corners are in the fast exact range: the cross product in
 //                         double where it cannot cancel (within 32 times the normal's length of its
-//                         permanents), else the exact one rounded (plane_through); see convex_hull.cpp
+//                         permanents), else the exact one rounded (plane_through); see api/src/describe.cpp
 //   plane_through         plane.cpp's exact plane: the cross product's components as exact expansions, each
 //                         rounded once (Compress's guess, corrected by exact comparisons)
 //   SolidMeasures         six times the volume and twice the area, summed face by face in the order given;

@@ -1,0 +1,369 @@
+// describe_exact() and describe() (describe.hpp): a hull's result from its exact mesh.
+#include "describe.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "cudahull/detail/plane_impl.hpp"
+#include "cudahull/exact_hull.hpp"
+#include "cudahull/parallel.hpp"
+#include "cudahull/phase_times.hpp"
+#include "cudahull/plane.hpp"
+#include "facet_merge.hpp"
+
+namespace cudahull {
+
+namespace {
+
+// neighbors[f][k] = the face holding the reverse of the edge opposite corner k (each directed edge appears
+// once in a closed 2-manifold with consistent orientation).  `triangles` index `vertex_count` vertices: the
+// directed edges are grouped by their first vertex (a counting sort), so each reverse is found among a
+// vertex's few edges; sorting all edges took most of a 28K-face hull's time outside the engine.
+std::vector<std::array<std::int32_t, 3>> face_neighbors(const std::vector<Triangle>& triangles,
+                                                        std::size_t vertex_count) {
+  std::vector<std::uint32_t> start(vertex_count + 1, 0);
+  for (const Triangle& t : triangles) {
+    for (int k = 0; k < 3; ++k)
+      ++start[t[k] + 1];
+  }
+  for (std::size_t v = 0; v < vertex_count; ++v)
+    start[v + 1] += start[v];
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1), to(3 * triangles.size()),
+      face(3 * triangles.size());
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t slot = fill[triangles[f][k]]++;
+      to[slot] = triangles[f][(k + 1) % 3];
+      face[slot] = static_cast<std::uint32_t>(f);
+    }
+  }
+  std::vector<std::array<std::int32_t, 3>> neighbors(triangles.size(), {-1, -1, -1});
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      // The edge opposite corner k runs from corner k+1 to corner k+2; its neighbour holds it reversed.
+      const std::uint32_t from = triangles[f][(k + 2) % 3], wanted = triangles[f][(k + 1) % 3];
+      for (std::uint32_t slot = start[from]; slot < start[from + 1]; ++slot) {
+        if (to[slot] == wanted) {
+          neighbors[f][k] = static_cast<std::int32_t>(face[slot]);
+          break;
+        }
+      }
+      if (neighbors[f][k] < 0) throw std::logic_error("convex_hull: the mesh is not closed");
+    }
+  }
+  return neighbors;
+}
+
+// Coordinates outside the fast exact range (the wide path's hulls) are brought into it, where a whole face
+// or solid allows, by a power of two: exact, and planes' directions and measures scale back exactly (a
+// plane's offset by 2^k, an area by 2^2k, a volume by 2^3k, to infinity where they exceed a double).
+// `scale` is 0 where every coordinate of `points` is in the range already (the device's describe computes
+// there too: the same bits), else the exponent k that brings their largest magnitude into [1, 2); false
+// where some coordinate, so scaled, would leave the range (magnitudes more than some 2^500 apart).
+template <class PointAt>
+bool fast_range_scale(std::size_t count, const PointAt& point, int* scale) {
+  double largest = 0;
+  bool in_range = true;
+  for (std::size_t k = 0; k < count; ++k) {
+    const Vec3d p = point(k);
+    in_range = in_range && in_fast_exact_range(p.x) && in_fast_exact_range(p.y) && in_fast_exact_range(p.z);
+    largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  }
+  *scale = in_range || largest == 0 ? 0 : std::ilogb(largest);
+  if (in_range) return true;
+  for (std::size_t k = 0; k < count; ++k) {
+    const Vec3d p = point(k);
+    for (const double v : {p.x, p.y, p.z}) {
+      const double scaled = std::ldexp(v, -*scale);
+      if (!in_fast_exact_range(scaled) || (scaled == 0) != (v == 0)) return false;
+    }
+  }
+  return true;
+}
+
+Vec3d scaled_by(const Vec3d& p, int scale) {
+  if (scale == 0) return p;
+  return {std::ldexp(p.x, -scale), std::ldexp(p.y, -scale), std::ldexp(p.z, -scale)};
+}
+
+// (b - a) x (c - a) in long double, whose exponent range holds every product of double differences (none
+// over- or underflows): for faces beyond the fast exact range even when scaled, accurate to the last place
+// but where the products cancel (a sliver of such coordinates: then a few ulps of the products).
+using Wide = long double;
+using WideVec = std::array<Wide, 3>;
+WideVec wide_cross(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+  const Wide ux = Wide(b.x) - a.x, uy = Wide(b.y) - a.y, uz = Wide(b.z) - a.z;
+  const Wide vx = Wide(c.x) - a.x, vy = Wide(c.y) - a.y, vz = Wide(c.z) - a.z;
+  return {uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx};
+}
+Wide wide_length(const WideVec& n) {
+  return std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+// A facet's plane, accurate on slivers too (issue 25): detail::facet_plane_in_range() (plane_impl.hpp, which
+// the batch kernel's device describe shares: the same bits on both), on the corners scaled into the fast
+// exact range where they are not in it.
+std::array<double, 4> facet_plane(Vec3d a, Vec3d b, Vec3d c) {
+  const Vec3d corners[3] = {a, b, c};
+  int scale = 0;
+  if (fast_range_scale(
+          3, [&](std::size_t k) { return corners[k]; }, &scale)) {
+    std::array<double, 4> plane;
+    detail::facet_plane_in_range(scaled_by(a, scale), scaled_by(b, scale), scaled_by(c, scale), plane.data());
+    if (scale != 0) plane[3] = std::ldexp(plane[3], scale);  // a library call a face otherwise
+    return plane;
+  }
+  // Corners more than 2^500 apart in magnitude: the cross product in long double (wide_cross()), rounded.
+  const WideVec normal = wide_cross(a, b, c);
+  const Wide length = wide_length(normal);
+  if (length == 0) return {0, 0, 0, 0};
+  const double n[3] = {static_cast<double>(normal[0] / length), static_cast<double>(normal[1] / length),
+                       static_cast<double>(normal[2] / length)};
+  auto height = [&](Vec3d p) { return Wide(n[0]) * p.x + Wide(n[1]) * p.y + Wide(n[2]) * p.z; };
+  return {n[0], n[1], n[2], static_cast<double>(-std::max({height(a), height(b), height(c)}))};
+}
+
+// detail::measure_mesh() on all cores for a mesh of more than kMeasureChunk faces: each chunk of that many
+// faces (fixed, whatever the core count) summed on its own, the chunks' sums added in order.  A mesh of one
+// chunk, as every batch cloud's, is measure_mesh()'s own order: the device describe's bits.
+constexpr std::size_t kMeasureChunk = std::size_t{1} << 20;  // a multiple of the 32 error sums
+
+template <class Corner>
+detail::SolidMeasures measure_on_cores(std::size_t faces, const Corner& corner, const Vec3d& apex) {
+  if (faces <= kMeasureChunk) return detail::measure_mesh(faces, corner, apex);
+  using detail::add_rn;
+  using detail::SolidMeasures;
+  const std::size_t chunks = (faces + kMeasureChunk - 1) / kMeasureChunk;
+  std::vector<SolidMeasures> parts(chunks);
+  std::vector<std::array<double, SolidMeasures::kErrorSums>> error_sums(chunks);
+  const auto each_chunk = [&](const auto& pass) {
+    parallel_chunks(
+        chunks, hardware_workers(),
+        [&](std::size_t begin, std::size_t end, unsigned) {
+          for (std::size_t k = begin; k < end; ++k)
+            pass(k, k * kMeasureChunk, std::min(faces, (k + 1) * kMeasureChunk));
+        },
+        1);
+  };
+  each_chunk([&](std::size_t k, std::size_t begin, std::size_t end) {
+    error_sums[k].fill(0);
+    detail::add_face_terms(begin, end, corner, apex, parts[k], error_sums[k].data());
+  });
+  SolidMeasures measures;
+  for (std::size_t k = 0; k < chunks; ++k) {
+    measures.twice_area = add_rn(measures.twice_area, parts[k].twice_area);
+    measures.six_volume = add_rn(measures.six_volume, parts[k].six_volume);
+  }
+  for (int l = 0; l < SolidMeasures::kErrorSums; ++l) {
+    double sum = 0;
+    for (std::size_t k = 0; k < chunks; ++k)
+      sum = add_rn(sum, error_sums[k][l]);
+    measures.six_volume_error = add_rn(measures.six_volume_error, sum);
+  }
+  if (measures.volume_uncertain()) {
+    each_chunk([&](std::size_t k, std::size_t begin, std::size_t end) {
+      parts[k].exact_volume_pass();
+      detail::add_exact_terms(begin, end, corner, apex, parts[k]);
+    });
+    measures.exact_volume_pass();
+    for (std::size_t k = 0; k < chunks; ++k)
+      measures.add_exact(parts[k].six_volume);
+  }
+  return measures;
+}
+
+// The solid's volume and surface area into `hull`, over `triangles` (outward, indices into `vertices`):
+// detail::measure_mesh() (plane_impl.hpp, as the batch's device describe: the same bits), its apex the first
+// triangle's first corner; scaled into the fast exact range where the vertices are not in it.
+template <class Point>
+void measure_solid(const std::vector<Point>& vertices, const std::vector<Triangle>& triangles,
+                   ConvexHull& hull) {
+  if (triangles.empty()) return;
+  const auto vertex = [&](std::size_t k) { return to_vec3d(vertices[k]); };
+  int scale = 0;
+  if (fast_range_scale(vertices.size(), vertex, &scale)) {
+    const auto corner = [&](unsigned long long f, int k) {
+      return scaled_by(vertex(triangles[f][k]), scale);
+    };
+    const detail::SolidMeasures measures =
+        measure_on_cores(triangles.size(), corner, scaled_by(vertex(triangles[0][0]), scale));
+    hull.volume = scale == 0 ? measures.volume() : std::ldexp(measures.volume(), 3 * scale);
+    hull.area = scale == 0 ? measures.area() : std::ldexp(measures.area(), 2 * scale);
+    return;
+  }
+  // Vertices more than 2^500 apart in magnitude: long double, from the same apex (no term negative).
+  const Vec3d apex = vertex(triangles[0][0]);
+  Wide six_volume = 0, twice_area = 0;
+  for (const Triangle& t : triangles) {
+    const Vec3d a = vertex(t[0]);
+    const WideVec n = wide_cross(a, vertex(t[1]), vertex(t[2]));
+    twice_area += wide_length(n);
+    six_volume += n[0] * (Wide(a.x) - apex.x) + n[1] * (Wide(a.y) - apex.y) + n[2] * (Wide(a.z) - apex.z);
+  }
+  hull.volume = static_cast<double>(six_volume / 6);
+  hull.area = static_cast<double>(twice_area / 2);
+}
+
+}  // namespace
+
+namespace detail {
+
+template <class Point>
+ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend, bool neighbors) {
+  ConvexHull hull;
+  hull.dimension = mesh.dimension;
+  hull.precision = precision_of<Point>();
+  hull.backend = std::move(backend);
+  hull.vertices = mesh.vertex_ids;
+  std::sort(hull.vertices.begin(), hull.vertices.end());
+  if (mesh.dimension == 2) {
+    for (std::uint32_t corner : mesh.polygon)
+      hull.polygon.push_back(mesh.vertex_ids[corner]);
+    // The flat solid's surface: both sides of the polygon, each a fan of triangles from corner 0 (scaled
+    // into the fast exact range as measure_solid() scales a solid).
+    const auto corner = [&](std::size_t k) { return to_vec3d(mesh.vertices[mesh.polygon[k]]); };
+    int scale = 0;
+    if (fast_range_scale(mesh.polygon.size(), corner, &scale)) {
+      // A convex polygon's fan: its triangles' normals all point one way, and their lengths add up.
+      const auto at = [&](std::size_t k) { return scaled_by(corner(k), scale); };
+      double twice_area = 0;
+      for (std::size_t k = 1; k + 1 < mesh.polygon.size(); ++k) {
+        const Vec3d o = at(0), p = at(k), q = at(k + 1);
+        twice_area += detail::twice_triangle_area(o, p, q, detail::double_cross(o, p, q));
+      }
+      hull.area = std::ldexp(twice_area, 2 * scale);
+    } else {
+      WideVec sum{0, 0, 0};
+      for (std::size_t k = 1; k + 1 < mesh.polygon.size(); ++k) {
+        const WideVec n = wide_cross(corner(0), corner(k), corner(k + 1));
+        for (int j = 0; j < 3; ++j)
+          sum[j] += n[j];
+      }
+      hull.area = static_cast<double>(wide_length(sum));
+    }
+    return hull;
+  }
+  if (mesh.dimension != 3) return hull;
+
+  hull.faces.reserve(mesh.triangles.size());
+  for (const Triangle& t : mesh.triangles)
+    hull.faces.push_back({mesh.vertex_ids[t[0]], mesh.vertex_ids[t[1]], mesh.vertex_ids[t[2]]});
+  measure_solid(mesh.vertices, mesh.triangles, hull);
+  // Each face's plane on its own (on all cores: a sliver's is exact, and a hull of millions of faces has
+  // some), so the result does not depend on the worker count.
+  hull.planes.resize(mesh.triangles.size());
+  // Vertices all in the fast exact range (every float, nearly every double): facet_plane()'s in-range path
+  // without its test a face, which cost a small cloud more than its planes.
+  bool in_range = true;
+  if constexpr (std::is_same_v<Point, Point3d>) in_range = in_fast_exact_range(mesh.vertices);
+  parallel_chunks(
+      mesh.triangles.size(), hardware_workers(),
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t f = begin; f < end; ++f) {
+          const Triangle& t = mesh.triangles[f];
+          const Vec3d a = to_vec3d(mesh.vertices[t[0]]), b = to_vec3d(mesh.vertices[t[1]]),
+                      c = to_vec3d(mesh.vertices[t[2]]);
+          if (in_range)
+            detail::facet_plane_in_range(a, b, c, hull.planes[f].data());
+          else
+            hull.planes[f] = facet_plane(a, b, c);
+        }
+      },
+      std::size_t{1} << 12);
+  if (neighbors) hull.neighbors = face_neighbors(mesh.triangles, mesh.vertices.size());
+  return hull;
+}
+
+}  // namespace detail
+
+namespace {
+
+using detail::describe_exact;
+
+// The absolute merge tolerance that `options` ask for, from the exact hull's vertices (the input's bounding
+// box and largest magnitudes are its vertices').
+template <class Point>
+double merge_tolerance(const std::vector<Point>& vertices, const ConvexHullOptions& options) {
+  if (options.merge == MergeMode::kQhull) return qhull_default_tolerance(vertices);
+  double largest_side = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    double low = INFINITY, high = -INFINITY;
+    for (const Point& p : vertices) {
+      const double x = axis == 0 ? p.x : axis == 1 ? p.y : p.z;
+      low = std::min(low, x);
+      high = std::max(high, x);
+    }
+    largest_side = std::max(largest_side, high - low);
+  }
+  return options.tolerance * largest_side;
+}
+
+// A merged hull (issue 25) from the exact one: merge_facets() works on the exact hull's vertices alone,
+// since every input point is a convex combination of them, and its indices are mapped back to the input's.
+template <class Point>
+ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend,
+                           const ConvexHullOptions& options) {
+  BasicHullMesh<Point> local = mesh;
+  for (std::size_t k = 0; k < local.vertex_ids.size(); ++k)
+    local.vertex_ids[k] = static_cast<PointIndex>(k);
+  const double cosine = std::clamp(options.angle_cosine, 0.0, 1.0);
+  PhaseLaps laps("describe_merged");  // CUDAHULL_PHASE_TIMES=1
+  MergedHull merged = merge_facets(mesh.vertices, local, merge_tolerance(mesh.vertices, options),
+                                   std::sqrt(1 - cosine * cosine));
+  ConvexHull hull;
+  hull.dimension = 3;
+  hull.precision = precision_of<Point>();
+  hull.backend = std::move(backend);
+  hull.tolerance = merged.tolerance;
+  hull.max_outside = merged.max_outside;
+  hull.thinnest = merged.thinnest;
+  for (PointIndex v : merged.vertices)
+    hull.vertices.push_back(mesh.vertex_ids[v]);
+  std::sort(hull.vertices.begin(), hull.vertices.end());
+  // merged's indices are positions in mesh.vertices (local's ids): its faces are the mesh's triangles.
+  hull.faces.reserve(merged.faces.size());
+  for (const Triangle& face : merged.faces)
+    hull.faces.push_back({mesh.vertex_ids[face[0]], mesh.vertex_ids[face[1]], mesh.vertex_ids[face[2]]});
+  laps.lap("merge and faces");
+  measure_solid(mesh.vertices, merged.faces, hull);
+  laps.lap("measures");
+  hull.planes = std::move(merged.planes);
+  hull.neighbors = std::move(merged.neighbors);
+  laps.lap("planes and neighbours");
+  for (const auto& row : merged.coplanar)
+    hull.coplanar.push_back({mesh.vertex_ids[row[0]], row[1], mesh.vertex_ids[row[2]]});
+  return hull;
+}
+
+}  // namespace
+
+namespace detail {
+
+template <class Point>
+ConvexHull describe(const BasicHullMesh<Point>& mesh, std::string backend, const ConvexHullOptions& options,
+                    bool neighbors) {
+  if (options.merge == MergeMode::kExact || mesh.dimension != 3)
+    return describe_exact(mesh, std::move(backend), neighbors);
+  return describe_merged(mesh, std::move(backend), options);
+}
+
+template ConvexHull describe_exact(const HullMesh&, std::string, bool);
+template ConvexHull describe_exact(const HullMeshd&, std::string, bool);
+template ConvexHull describe(const HullMesh&, std::string, const ConvexHullOptions&, bool);
+template ConvexHull describe(const HullMeshd&, std::string, const ConvexHullOptions&, bool);
+
+}  // namespace detail
+
+template <class Point>
+ConvexHull hull_from_mesh(const BasicHullMesh<Point>& mesh, std::string backend,
+                          const ConvexHullOptions& options, bool neighbors) {
+  if (!neighbors && options.merge == MergeMode::kExact)
+    return detail::describe_exact(mesh, std::move(backend), false);
+  return detail::describe(mesh, std::move(backend), options);
+}
+
+template ConvexHull hull_from_mesh(const HullMesh&, std::string, const ConvexHullOptions&, bool);
+template ConvexHull hull_from_mesh(const HullMeshd&, std::string, const ConvexHullOptions&, bool);
+
+}  // namespace cudahull
