@@ -198,10 +198,13 @@ ConvexHull array_hull(const Scalar* xyz, std::size_t count, Precision own, const
   HullInput input;
   input.precision = own;
   input.count = count;
-  if (plan_hull(options, input, cuda_presence).upload_first) {
+  if (const HullPlan plan = plan_hull(options, input, cuda_presence); plan.upload_first) {
     check_count(count);
     const std::shared_ptr<void> copy = upload_to_device(xyz, count * 3 * sizeof(Scalar));
-    return device_hull(static_cast<const Scalar*>(copy.get()), count, own, options);
+    ConvexHull hull = device_hull(static_cast<const Scalar*>(copy.get()), count, own, options);
+    // The host points' plan, not the uploaded copy's ("points in GPU memory"), unless the wide path ran.
+    if (hull.backend != "cpu-wide") hull.plan = plan.reason;
+    return hull;
   }
   return checked_hull(count, array_coordinate(xyz), own, options, neighbors);
 }

@@ -103,6 +103,10 @@ def test_same_hull_as_numpy(lib, name, dtype):
     # general position; the grid's and the duplicates' 8 corners can be the first hull's).
     host = cudahull.ConvexHull(points, engine="resident")
     assert got.backend == host.backend == "cuda-resident"
+    # Each says how it ran: the device array as points in GPU memory, the host array as the plan for host
+    # points (uploaded, then read in place), not as its uploaded copy.
+    assert "backend cuda (points in GPU memory)" in got.plan and got.stats["plan"] == got.plan
+    assert host.plan.startswith("resident engine (as requested); backend cuda (auto: a usable CUDA device)")
     assert got.stats["iterations"] == host.stats["iterations"]
     assert got.stats["iterations"] > 0 or name not in GENERAL_POSITION
     assert_same_hull(got, host)
