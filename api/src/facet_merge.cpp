@@ -181,17 +181,11 @@ struct EdgeIndex {
     for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
       for (int k = 0; k < 3; ++k)
         out[fill[mesh.triangles[t][k]]++] = {mesh.triangles[t][(k + 1) % 3], t};
-    // Each vertex's few out-edges by insertion (std::sort's set-up cost more than these short runs), on all
-    // cores: their mispredicted branches were most of the index's time.
-    parallel_chunks(
-        start.size() - 1, hardware_workers(),
-        [&](std::size_t begin, std::size_t end, unsigned) {
-          for (std::size_t v = begin; v < end; ++v)
-            for (std::uint32_t k = start[v] + 1; k < start[v + 1]; ++k)
-              for (std::uint32_t x = k; x > start[v] && out[x - 1].first > out[x].first; --x)
-                std::swap(out[x - 1], out[x]);
-        },
-        512);
+    // Each vertex's few out-edges by insertion (std::sort's set-up cost more than these short runs).
+    for (std::size_t v = 0; v + 1 < start.size(); ++v)
+      for (std::uint32_t k = start[v] + 1; k < start[v + 1]; ++k)
+        for (std::uint32_t x = k; x > start[v] && out[x - 1].first > out[x].first; --x)
+          std::swap(out[x - 1], out[x]);
   }
   std::uint32_t degree(std::uint32_t v) const { return start[v + 1] - start[v]; }
   std::uint32_t neighbour(std::uint32_t v, std::uint32_t k) const { return out[start[v] + k].first; }
@@ -327,18 +321,13 @@ Relabelled relabelled(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, 
     g.coordinates_safe = g.coordinates_safe && coordinate_safe(g.at[j].x) && coordinate_safe(g.at[j].y) &&
                          coordinate_safe(g.at[j].z);
   }
-  parallel_chunks(
-      n, hardware_workers(),
-      [&](std::size_t begin, std::size_t end, unsigned) {
-        for (std::size_t j = begin; j < end; ++j) {
-          const std::uint32_t v = visit.vertices[j];
-          for (std::uint32_t k = 0; k < edges.degree(v); ++k) {
-            g.to[g.start[j] + k] = g.rank[edges.neighbour(v, k)];
-            g.face[g.start[j] + k] = visit.triangle_rank[edges.out[edges.start[v] + k].second];
-          }
-        }
-      },
-      512);
+  for (std::uint32_t j = 0; j < n; ++j) {
+    const std::uint32_t v = visit.vertices[j];
+    for (std::uint32_t k = 0; k < edges.degree(v); ++k) {
+      g.to[g.start[j] + k] = g.rank[edges.neighbour(v, k)];
+      g.face[g.start[j] + k] = visit.triangle_rank[edges.out[edges.start[v] + k].second];
+    }
+  }
   return g;
 }
 
