@@ -163,6 +163,16 @@ void radix_sort_by_key(std::vector<std::pair<std::uint64_t, std::uint32_t>>& ite
   }
 }
 
+// Sorts each run [start[r], start[r + 1]) of `items` by .first, by insertion: the runs here are a vertex's
+// few edges or triangles, where std::sort's set-up costs more than the sort.
+void sort_runs_by_first(std::vector<std::pair<std::uint32_t, std::uint32_t>>& items,
+                        const std::vector<std::uint32_t>& start) {
+  for (std::size_t r = 0; r + 1 < start.size(); ++r)
+    for (std::uint32_t k = start[r] + 1; k < start[r + 1]; ++k)
+      for (std::uint32_t x = k; x > start[r] && items[x - 1].first > items[x].first; --x)
+        std::swap(items[x - 1], items[x]);
+}
+
 // The directed edges of a closed triangulated surface: per vertex a, its out-edges (b, the triangle holding
 // a -> b), ascending in b.  Each neighbour of a appears once (the other triangle holds b -> a).
 struct EdgeIndex {
@@ -181,11 +191,7 @@ struct EdgeIndex {
     for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
       for (int k = 0; k < 3; ++k)
         out[fill[mesh.triangles[t][k]]++] = {mesh.triangles[t][(k + 1) % 3], t};
-    // Each vertex's few out-edges by insertion (std::sort's set-up cost more than these short runs).
-    for (std::size_t v = 0; v + 1 < start.size(); ++v)
-      for (std::uint32_t k = start[v] + 1; k < start[v + 1]; ++k)
-        for (std::uint32_t x = k; x > start[v] && out[x - 1].first > out[x].first; --x)
-          std::swap(out[x - 1], out[x]);
+    sort_runs_by_first(out, start);
   }
   std::uint32_t degree(std::uint32_t v) const { return start[v + 1] - start[v]; }
   std::uint32_t neighbour(std::uint32_t v, std::uint32_t k) const { return out[start[v] + k].first; }
@@ -276,13 +282,8 @@ VisitOrder visit_order(const BasicHullMesh<Point>& mesh) {
     const std::uint32_t j = rank_of[mesh.triangles[t][0]];
     by_second[first_count[j] + place[j]++] = {mesh.triangles[t][1], t};
   }
-  for (std::uint32_t j = 0; j < n; ++j) {
-    // A run is the vertex's out-edges that start its triangles, ascending in the edge's end (EdgeIndex's
-    // order): by insertion, a run being a few.
-    for (std::uint32_t k = first_count[j] + 1; k < first_count[j + 1]; ++k)
-      for (std::uint32_t x = k; x > first_count[j] && by_second[x - 1].first > by_second[x].first; --x)
-        std::swap(by_second[x - 1], by_second[x]);
-  }
+  // A run's triangles ascending in their out-edge's end: EdgeIndex's order.
+  sort_runs_by_first(by_second, first_count);
   for (std::size_t k = 0; k < nt; ++k)
     order.triangles[k] = by_second[k].second;
   order.triangle_rank.resize(order.triangles.size());
@@ -302,8 +303,6 @@ struct Relabelled {
   bool coordinates_safe = true;  // every coordinate in compare_along()'s exact range
 };
 
-bool coordinate_safe(double x);
-
 template <class Point>
 Relabelled relabelled(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, const VisitOrder& visit) {
   const std::size_t n = mesh.vertices.size();
@@ -318,8 +317,8 @@ Relabelled relabelled(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, 
     g.rank[v] = j;
     g.at[j] = to_vec3d(mesh.vertices[v]);
     g.start[j + 1] = g.start[j] + edges.degree(v);
-    g.coordinates_safe = g.coordinates_safe && coordinate_safe(g.at[j].x) && coordinate_safe(g.at[j].y) &&
-                         coordinate_safe(g.at[j].z);
+    g.coordinates_safe = g.coordinates_safe && in_fast_exact_range(g.at[j].x) &&
+                         in_fast_exact_range(g.at[j].y) && in_fast_exact_range(g.at[j].z);
   }
   for (std::uint32_t j = 0; j < n; ++j) {
     const std::uint32_t v = visit.vertices[j];
@@ -726,7 +725,7 @@ double bound_at(const Plane& plane, const Vec3d& p) {
 // Sign of n . (q - p), exactly.  A filter first (each of the three terms is within gamma_4 of its value: the
 // difference, the product and two sums; 6u of the computed magnitudes covers that), then expansion
 // arithmetic: the differences are exact pairs, their products with n exact expansions, whose sum's sign is
-// exact (where plane_safe() and coordinate_safe() hold: no underflow).
+// exact (where plane_safe() and in_fast_exact_range() hold: no underflow).
 int compare_along(const Plane& n, const Vec3d& q, const Vec3d& p) {
   const double d0 = q.x - p.x, d1 = q.y - p.y, d2 = q.z - p.z;
   const double value = n[0] * d0 + n[1] * d1 + n[2] * d2;
@@ -782,10 +781,6 @@ bool plane_safe(const Plane& plane) {
   for (int k = 0; k < 3; ++k)
     if (plane[k] != 0 && std::fabs(plane[k]) < 0x1p-600) return false;
   return true;
-}
-bool coordinate_safe(double x) {
-  const double a = std::fabs(x);
-  return a == 0 || (a >= 0x1p-250 && a <= 0x1p+250);
 }
 
 // The kept vertices: the maximum of the exact linear function n . p + d over the vertices of hull(S) is at
@@ -878,8 +873,8 @@ double thinnest(const BasicHullMesh<Point>& hull, const EdgeIndex& edges, const 
   for (std::size_t i = 0; i < at.size(); ++i) {
     at[i] = to_vec3d(hull.vertices[i]);
     centroid = {centroid.x + at[i].x, centroid.y + at[i].y, centroid.z + at[i].z};
-    coordinates_safe =
-        coordinates_safe && coordinate_safe(at[i].x) && coordinate_safe(at[i].y) && coordinate_safe(at[i].z);
+    coordinates_safe = coordinates_safe && in_fast_exact_range(at[i].x) && in_fast_exact_range(at[i].y) &&
+                       in_fast_exact_range(at[i].z);
   }
   const double count = static_cast<double>(at.size());
   centroid = {centroid.x / count, centroid.y / count, centroid.z / count};

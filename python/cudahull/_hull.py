@@ -134,8 +134,8 @@ def convex_hull(points: npt.ArrayLike, backend: str = "auto", precision: str = "
         ``precision``, ``backend``, ``vertices``, ``simplices``, ``neighbors``, ``equations``, ``polygon``
         (a flat or 2-D hull's corners in order), ``coplanar``, ``volume``, ``area``, ``tolerance``,
         ``max_outside`` (as on ``ConvexHull``; indices are uint32 here), ``plan`` (as on ``ConvexHull``), and
-        ``stats``: the resident
-        engine's counters (``host_syncs``, ``bytes_from_device``, ``points_read_back``, ...), None otherwise.
+        ``stats``: the resident engine's counters (``host_syncs``, ``bytes_from_device``,
+        ``points_read_back``, ...), None otherwise.
         2-D points in GPU memory are filtered there: only the points that can be corners come back.
 
     Raises

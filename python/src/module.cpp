@@ -234,15 +234,14 @@ nb::dict convex_hull_of(PointArray<Scalar> points, const std::string& backend, c
   const ConvexHullOptions options = options_from(backend, precision, engine, {merge, tolerance, angle});
   ConvexHull hull;
   std::array<double, 2> box{0, 0};
-  const bool boxed = box_measures;
   {
     nb::gil_scoped_release unlocked;  // the caller's array stays alive: the call holds a reference to it
     hull = convex_hull(points.data(), points.shape(0), options);
-    if (boxed && hull.dimension == 3) box = box_scaled_measures(points.data(), hull);
+    if (box_measures && hull.dimension == 3) box = box_scaled_measures(points.data(), hull);
   }
   const int dimension = hull.dimension;
   nb::dict d = hull_to_dict(std::move(hull));
-  if (boxed && dimension == 3) {
+  if (box_measures && dimension == 3) {
     d["box_volume"] = box[0];
     d["box_area"] = box[1];
   }

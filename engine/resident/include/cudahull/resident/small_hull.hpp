@@ -114,8 +114,8 @@ CUDAHULL_HD void small_hull(const Team& team, const BatchSlot& slot, const Batch
       },
       [&](u32 i, u32 rank) { outside[rank] = i; });
   u32 faces = 4, free_count = 0;  // the slots in use (live or free), the free list's length: every thread's
-  // In-order teams' walk (seen_by_walk()): the last step's seen faces, the slots whose seen flag and visit
-  // stamp (seen_rank, unused until the finish) are known clear, and this step's stamp.
+  // In-order teams' walk to the seen faces (below): the last step's seen faces, the slots whose seen flag and
+  // visit stamp (seen_rank, unused until the finish) are known clear, and this step's stamp.
   u32 last_seen = 0, clear_slots = 0, step = 0;
   while (true) {
     team.barrier();
