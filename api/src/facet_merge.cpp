@@ -146,31 +146,32 @@ class BoxTree {
   std::vector<Node> nodes_;
 };
 
-// Sorts (key, value) pairs by key, stably (equal keys keep their order): a least-significant-byte radix
-// sort, passing over the bytes in which every key is the same.
+// Sorts (key, value) pairs by key, stably (equal keys keep their order): a least-significant-digit radix
+// sort of the keys' high halves in 11-bit digits (passing over digits in which every key is the same), then
+// each run of equal high halves by insertion on the low half.  The keys here are doubles' bits, whose high
+// halves (sign, exponent and 20 bits of mantissa) rarely tie: half the passes of a sort on all 64 bits.
 void radix_sort_by_key(std::vector<std::pair<std::uint64_t, std::uint32_t>>& items) {
+  constexpr int kDigit = 11;
+  constexpr std::size_t kBuckets = std::size_t{1} << kDigit;
   std::vector<std::pair<std::uint64_t, std::uint32_t>> spare(items.size());
-  for (int shift = 0; shift < 64; shift += 8) {
-    std::size_t count[257] = {};
+  std::vector<std::size_t> count(kBuckets + 1);
+  for (int shift = 32; shift < 64; shift += kDigit) {
+    std::fill(count.begin(), count.end(), 0);
+    auto digit = [shift](std::uint64_t key) { return (key >> shift) & (kBuckets - 1); };
     for (const auto& item : items)
-      ++count[((item.first >> shift) & 0xff) + 1];
-    if (!items.empty() && count[((items[0].first >> shift) & 0xff) + 1] == items.size()) continue;
-    for (int b = 0; b < 256; ++b)
+      ++count[digit(item.first) + 1];
+    if (!items.empty() && count[digit(items[0].first) + 1] == items.size()) continue;
+    for (std::size_t b = 0; b < kBuckets; ++b)
       count[b + 1] += count[b];
     for (const auto& item : items)
-      spare[count[(item.first >> shift) & 0xff]++] = item;
+      spare[count[digit(item.first)]++] = item;
     items.swap(spare);
   }
-}
-
-// Sorts each run [start[r], start[r + 1]) of `items` by .first, by insertion: the runs here are a vertex's
-// few edges or triangles, where std::sort's set-up costs more than the sort.
-void sort_runs_by_first(std::vector<std::pair<std::uint32_t, std::uint32_t>>& items,
-                        const std::vector<std::uint32_t>& start) {
-  for (std::size_t r = 0; r + 1 < start.size(); ++r)
-    for (std::uint32_t k = start[r] + 1; k < start[r + 1]; ++k)
-      for (std::uint32_t x = k; x > start[r] && items[x - 1].first > items[x].first; --x)
-        std::swap(items[x - 1], items[x]);
+  for (std::size_t k = 1; k < items.size(); ++k)
+    for (std::size_t x = k; x > 0 && (items[x - 1].first >> 32) == (items[x].first >> 32) &&
+                            items[x - 1].first > items[x].first;
+         --x)
+      std::swap(items[x - 1], items[x]);
 }
 
 // The directed edges of a closed triangulated surface: per vertex a, its out-edges (b, the triangle holding
@@ -186,12 +187,27 @@ struct EdgeIndex {
         ++start[v + 1];
     for (std::size_t v = 0; v + 1 < start.size(); ++v)
       start[v + 1] += start[v];
+    // Two stable counting sorts, by end, then by start: every run ascending in its end, and equal ends in
+    // triangle order (an insertion sort of each run mispredicted about once an edge).
+    std::vector<std::uint32_t> end_start(start.size(), 0);
+    for (const Triangle& t : mesh.triangles)
+      for (std::uint32_t v : t)
+        ++end_start[v + 1];
+    for (std::size_t v = 0; v + 1 < end_start.size(); ++v)
+      end_start[v + 1] += end_start[v];
+    struct HalfEdge {
+      std::uint32_t from, to, triangle;
+    };
+    std::vector<HalfEdge> by_end(start.back());
+    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t to = mesh.triangles[t][(k + 1) % 3];
+        by_end[end_start[to]++] = {mesh.triangles[t][k], to, t};
+      }
     out.resize(start.back());
     std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
-      for (int k = 0; k < 3; ++k)
-        out[fill[mesh.triangles[t][k]]++] = {mesh.triangles[t][(k + 1) % 3], t};
-    sort_runs_by_first(out, start);
+    for (const HalfEdge& e : by_end)
+      out[fill[e.from]++] = {e.to, e.triangle};
   }
   std::uint32_t degree(std::uint32_t v) const { return start[v + 1] - start[v]; }
   std::uint32_t neighbour(std::uint32_t v, std::uint32_t k) const { return out[start[v] + k].first; }
@@ -263,29 +279,24 @@ VisitOrder visit_order(const BasicHullMesh<Point>& mesh) {
     for (std::size_t i = 0; i < n; ++i)
       order.vertices[i] = keyed[i].second;
   }
-  // Each vertex's triangles (those it is the first corner of) in its out-edges' order: the triangle of
-  // out-edge k of v, where that triangle's first corner is v, is the k-th place of v's run (a triangle
-  // a -> b -> c holds out-edge a -> b), counted off in one pass over the triangles instead of a scattered
-  // read of every out-edge's triangle.
-  std::vector<std::uint32_t> place(n, 0), rank_of(n);
+  // Each vertex's triangles (those it is the first corner of) in its out-edges' order (a triangle a -> b -> c
+  // holds out-edge a -> b): by their second corner, then stably by their first corner's place, two counting
+  // sorts.
+  std::vector<std::uint32_t> rank_of(n);
   for (std::uint32_t j = 0; j < n; ++j)
     rank_of[order.vertices[j]] = j;
   const std::size_t nt = mesh.triangles.size();
-  std::vector<std::uint32_t> first_count(n + 1, 0);
+  std::vector<std::uint32_t> second_start(n + 1, 0), first_start(n + 1, 0);
   for (const Triangle& t : mesh.triangles)
-    ++first_count[rank_of[t[0]] + 1];
+    ++second_start[t[1] + 1], ++first_start[rank_of[t[0]] + 1];
   for (std::uint32_t j = 0; j < n; ++j)
-    first_count[j + 1] += first_count[j];
-  order.triangles.assign(nt, 0);
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> by_second(nt);  // (second corner, triangle)
-  for (std::uint32_t t = 0; t < nt; ++t) {
-    const std::uint32_t j = rank_of[mesh.triangles[t][0]];
-    by_second[first_count[j] + place[j]++] = {mesh.triangles[t][1], t};
-  }
-  // A run's triangles ascending in their out-edge's end: EdgeIndex's order.
-  sort_runs_by_first(by_second, first_count);
-  for (std::size_t k = 0; k < nt; ++k)
-    order.triangles[k] = by_second[k].second;
+    second_start[j + 1] += second_start[j], first_start[j + 1] += first_start[j];
+  std::vector<std::uint32_t> by_second(nt);
+  for (std::uint32_t t = 0; t < nt; ++t)
+    by_second[second_start[mesh.triangles[t][1]]++] = t;
+  order.triangles.resize(nt);
+  for (std::uint32_t t : by_second)
+    order.triangles[first_start[rank_of[mesh.triangles[t][0]]]++] = t;
   order.triangle_rank.resize(order.triangles.size());
   for (std::uint32_t j = 0; j < order.triangles.size(); ++j)
     order.triangle_rank[order.triangles[j]] = j;
@@ -389,10 +400,19 @@ bool clearly_above(const Vec3d& v, const Vec3d* link, std::size_t k, double limi
   for (std::size_t a = 0; a < k; ++a)
     for (std::size_t b = a + 1; b < k; ++b)
       for (std::size_t c = b + 1; c < k; ++c) {
-        const int side = orient3d(q[a], q[b], q[c], v);
+        // v's side of a, b, c: the filter below where it decides (as exact as orient3d), else orient3d.
+        const detail::DoubleCross abc = detail::double_cross(q[a], q[b], q[c]);
+        int side;
+        {
+          const Vec3d w = sub(v, q[a]);
+          const double det = w.x * abc.n[0] + w.y * abc.n[1] + w.z * abc.n[2];
+          const double error = detail::kO3dErrBoundA * (1 + 0x1p-40) *
+                               (std::fabs(w.x) * abc.p[0] + std::fabs(w.y) * abc.p[1] + std::fabs(w.z) * abc.p[2]);
+          side = det > error ? 1 : det < -error ? -1 : orient3d(q[a], q[b], q[c], v);
+        }
         if (side == 0) continue;
         const Vec3d &pa = q[a], &pb = side > 0 ? q[b] : q[c], &pc = side > 0 ? q[c] : q[b];
-        const detail::DoubleCross cross = detail::double_cross(pa, pb, pc);
+        const detail::DoubleCross cross = side > 0 ? abc : detail::double_cross(pa, pb, pc);
         // A link point certainly below by the same filter as v's test below needs no orient3d.
         auto certainly_below = [&](const Vec3d& p) {
           const Vec3d w = sub(p, pa);
@@ -486,6 +506,14 @@ EdgeIndex drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Poin
         },
         256);  // blocks of some hundreds of microseconds: a worker woken for less costs more
     laps.lap("heights");
+    // Nothing low enough (most hulls' first round): done, with no bookkeeping for a next round.
+    bool any_low = false;
+    for (std::uint32_t j = 0; j < n && !any_low; ++j)
+      any_low = heights_at[j] <= limit + angle_sine * reach_at[j] / 2;
+    if (!any_low) {
+      laps.lap("round");
+      return edges;
+    }
     std::vector<double> heights(n), reach(n);
     std::vector<std::uint8_t> relinked(n);
     for (std::uint32_t i = 0; i < n; ++i) {
@@ -562,10 +590,6 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
   const std::size_t nt = mesh.triangles.size();
   const std::vector<std::uint32_t>& jrank = visit.triangle_rank;  // per mesh triangle: its position
   std::vector<std::array<std::uint32_t, 3>> tri(nt);              // per position: its corners' positions
-  for (std::uint32_t j = 0; j < nt; ++j) {
-    const Triangle& corners = mesh.triangles[visit.triangles[j]];
-    tri[j] = {g.rank[corners[0]], g.rank[corners[1]], g.rank[corners[2]]};
-  }
   auto corner = [&](std::uint32_t j, int k) { return g.at[tri[j][k]]; };
   // The triangle holding the directed edge a -> b (positions), kNone if none.
   auto holder = [&](std::uint32_t a, std::uint32_t b) {
@@ -580,6 +604,8 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
       nt, hardware_workers(),
       [&](std::size_t begin, std::size_t end, unsigned) {
         for (std::size_t j = begin; j < end; ++j) {
+          const Triangle& corners = mesh.triangles[visit.triangles[j]];
+          tri[j] = {g.rank[corners[0]], g.rank[corners[1]], g.rank[corners[2]]};
           const Vec3d a = corner(j, 0), b = corner(j, 1), c = corner(j, 2);
           plane[j] = plane_through(a, b, c);
           const Vec3d n = cross(sub(b, a), sub(c, a));
@@ -620,8 +646,12 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
   };
   // Per triangle as a seed: which neighbours would join (bit k: across edge k), and the offset of its plane
   // were it alone (the top of its corners).
+  // Largest first, ties by the mesh's index: (the area's bits inverted, index) keys, which order as the
+  // areas do (no area is negative or NaN), listed by index and sorted stably on the bits alone (a radix
+  // sort: std::sort's comparisons were a tenth of a large merge, on one core).
   std::vector<std::uint8_t> joining(nt);
   std::vector<double> alone_top(nt);
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(nt);
   parallel_blocks(
       nt, hardware_workers(),
       [&](std::size_t begin, std::size_t end, unsigned) {
@@ -632,19 +662,13 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
           joining[j] = bits;
           alone_top[j] = std::max(
               {dot3(plane[j], corner(j, 0)), dot3(plane[j], corner(j, 1)), dot3(plane[j], corner(j, 2))});
+          std::uint64_t area_bits;
+          std::memcpy(&area_bits, &twice_area[j], sizeof area_bits);
+          keyed[visit.triangles[j]] = {~area_bits, visit.triangles[j]};
         }
       },
       1024);
   laps.lap("joining");
-  // Largest first, ties by the mesh's index: (the area's bits inverted, index) keys, which order as the
-  // areas do (no area is negative or NaN), listed by index and sorted stably on the bits alone (a radix
-  // sort: std::sort's comparisons were a tenth of a large merge, on one core).
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(nt);
-  for (std::uint32_t t = 0; t < nt; ++t) {
-    std::uint64_t bits;
-    std::memcpy(&bits, &twice_area[jrank[t]], sizeof bits);
-    keyed[t] = {~bits, t};
-  }
   radix_sort_by_key(keyed);
   laps.lap("sort");
   std::vector<std::uint32_t> facet_of(nt, kNone), seeds;  // by position
@@ -693,12 +717,14 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
   // Back to the mesh's triangles.
   facets.facet_of.resize(nt);
   facets.across.resize(3 * nt);
-  for (std::uint32_t t = 0; t < nt; ++t) {
-    const std::uint32_t j = jrank[t];
-    facets.facet_of[t] = facet_of[j];
-    for (int k = 0; k < 3; ++k)
-      facets.across[3 * t + k] = across[3 * j + k] == kNone ? kNone : visit.triangles[across[3 * j + k]];
-  }
+  parallel_blocks(nt, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
+    for (std::size_t t = begin; t < end; ++t) {
+      const std::uint32_t j = jrank[t];
+      facets.facet_of[t] = facet_of[j];
+      for (int k = 0; k < 3; ++k)
+        facets.across[3 * t + k] = across[3 * j + k] == kNone ? kNone : visit.triangles[across[3 * j + k]];
+    }
+  });
   facets.seeds.reserve(seeds.size());
   for (std::uint32_t j : seeds)
     facets.seeds.push_back(visit.triangles[j]);
@@ -726,7 +752,9 @@ double bound_at(const Plane& plane, const Vec3d& p) {
 // difference, the product and two sums; 6u of the computed magnitudes covers that), then expansion
 // arithmetic: the differences are exact pairs, their products with n exact expansions, whose sum's sign is
 // exact (where plane_safe() and in_fast_exact_range() hold: no underflow).
-int compare_along(const Plane& n, const Vec3d& q, const Vec3d& p) {
+[[gnu::noinline]] int compare_along_closely(const Plane& n, const Vec3d& q, const Vec3d& p);
+
+inline int compare_along(const Plane& n, const Vec3d& q, const Vec3d& p) {
   const double d0 = q.x - p.x, d1 = q.y - p.y, d2 = q.z - p.z;
   const double value = n[0] * d0 + n[1] * d1 + n[2] * d2;
   const double magnitude = std::fabs(n[0] * d0) + std::fabs(n[1] * d1) + std::fabs(n[2] * d2);
@@ -735,6 +763,11 @@ int compare_along(const Plane& n, const Vec3d& q, const Vec3d& p) {
     if (value > bound) return 1;
     if (value < -bound) return -1;
   }
+  return compare_along_closely(n, q, p);
+}
+
+// compare_along() where its filter cannot tell: the points about level along n.
+int compare_along_closely(const Plane& n, const Vec3d& q, const Vec3d& p) {
   // A second filter, in about double-double (a facet's own corners always reach it: their n . (q - p) is
   // of the order of the normal's rounding): the differences as exact pairs h + l, n h exact as P + e, so
   // that the value is P0 + P1 + P2 (summed into s with its errors exactly) plus a tail of terms each within
@@ -1033,21 +1066,23 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   merged.planes.resize(nt);
   merged.facet_of_face.resize(nt);
   merged.neighbors.resize(nt);
-  for (std::uint32_t p = 0; p < nt; ++p) {
-    const std::uint32_t t = by_facet[p];
-    const Triangle& tri = current.triangles[t];
-    merged.faces[p] = {exact.vertex_ids[current.vertex_ids[tri[0]]],
-                       exact.vertex_ids[current.vertex_ids[tri[1]]],
-                       exact.vertex_ids[current.vertex_ids[tri[2]]]};
-    merged.planes[p] = facets.planes[facets.facet_of[t]];
-    merged.facet_of_face[p] = facets.facet_of[t];
-    for (int k = 0; k < 3; ++k) {
-      // The edge opposite corner k runs from corner k + 1 to corner k + 2: across[3t + k + 1] holds it.
-      const std::uint32_t u = facets.across[3 * t + (k + 1) % 3];
-      if (u == kNone) throw std::logic_error("merge_facets: the mesh is not closed");
-      merged.neighbors[p][k] = static_cast<std::int32_t>(position[u]);
+  parallel_blocks(nt, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
+    for (std::size_t p = begin; p < end; ++p) {
+      const std::uint32_t t = by_facet[p];
+      const Triangle& tri = current.triangles[t];
+      merged.faces[p] = {exact.vertex_ids[current.vertex_ids[tri[0]]],
+                         exact.vertex_ids[current.vertex_ids[tri[1]]],
+                         exact.vertex_ids[current.vertex_ids[tri[2]]]};
+      merged.planes[p] = facets.planes[facets.facet_of[t]];
+      merged.facet_of_face[p] = facets.facet_of[t];
+      for (int k = 0; k < 3; ++k) {
+        // The edge opposite corner k runs from corner k + 1 to corner k + 2: across[3t + k + 1] holds it.
+        const std::uint32_t u = facets.across[3 * t + (k + 1) % 3];
+        if (u == kNone) throw std::logic_error("merge_facets: the mesh is not closed");
+        merged.neighbors[p][k] = static_cast<std::int32_t>(position[u]);
+      }
     }
-  }
+  });
 
   // Coplanar: every exact-hull vertex that was dropped, with its nearest triangle and that one's nearest
   // corner.
