@@ -10,6 +10,7 @@
 #include "cudahull/parallel.hpp"
 #include "cudahull/phase_times.hpp"
 #include "cudahull/plane.hpp"
+#include "cudahull/qhull_scaling.hpp"
 #include "facet_merge.hpp"
 
 namespace cudahull {
@@ -299,6 +300,25 @@ double merge_tolerance(const std::vector<Point>& vertices, const ConvexHullOptio
   return options.tolerance * largest_side;
 }
 
+// ConvexHullOptions::box_measures: Qhull's QbB volume and area of the 3-D hull whose faces are `faces`
+// (positions in `vertices`, the exact hull's vertices, which attain the points' bounds), summed in the
+// result's face order as the Python module's general path sums them (qhull_scaling.hpp).
+template <class Point>
+void measure_box(const std::vector<Point>& vertices, const std::vector<Triangle>& faces, ConvexHull& hull) {
+  double low[3] = {INFINITY, INFINITY, INFINITY}, high[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (const Point& p : vertices) {
+    const double at[3] = {double(p.x), double(p.y), double(p.z)};
+    for (int k = 0; k < 3; ++k)
+      low[k] = std::min(low[k], at[k]), high[k] = std::max(high[k], at[k]);
+  }
+  double scale[3];
+  box_scale(low, high, scale);
+  static_assert(sizeof(Point) == 3 * sizeof(Point::x), "a point is its three coordinates");
+  hull.box_area = scaled_area(
+      &vertices.data()->x, faces.size(), [&](std::size_t f, int k) { return std::size_t{faces[f][k]}; }, scale);
+  hull.box_volume = hull.volume * (std::fabs(scale[0]) * std::fabs(scale[1]) * std::fabs(scale[2]));
+}
+
 // A merged hull (issue 25) from the exact one: merge_facets() works on the exact hull's vertices alone,
 // since every input point is a convex combination of them, and its indices are mapped back to the input's.
 template <class Point>
@@ -327,6 +347,7 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
     hull.faces.push_back({mesh.vertex_ids[face[0]], mesh.vertex_ids[face[1]], mesh.vertex_ids[face[2]]});
   laps.lap("merge and faces");
   measure_solid(mesh.vertices, merged.faces, hull);
+  if (options.box_measures) measure_box(mesh.vertices, merged.faces, hull);
   laps.lap("measures");
   hull.planes = std::move(merged.planes);
   hull.neighbors = std::move(merged.neighbors);
@@ -343,8 +364,11 @@ namespace detail {
 template <class Point>
 ConvexHull describe(const BasicHullMesh<Point>& mesh, std::string backend, const ConvexHullOptions& options,
                     bool neighbors) {
-  if (options.merge == MergeMode::kExact || mesh.dimension != 3)
-    return describe_exact(mesh, std::move(backend), neighbors);
+  if (options.merge == MergeMode::kExact || mesh.dimension != 3) {
+    ConvexHull hull = describe_exact(mesh, std::move(backend), neighbors);
+    if (options.box_measures && mesh.dimension == 3) measure_box(mesh.vertices, mesh.triangles, hull);
+    return hull;
+  }
   return describe_merged(mesh, std::move(backend), options);
 }
 

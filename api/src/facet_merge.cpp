@@ -226,18 +226,29 @@ struct EdgeIndex {
 // hull of some thousand vertices keeps every core of a large machine busy, not as many as its blocks.
 constexpr std::size_t kLeastBlock = 48;
 
-template <class Body>
-void parallel_blocks(std::size_t n, unsigned workers, Body&& body, std::size_t block = 4096) {
+// parallel_blocks() with `side()` run once, by the first thread to start, while the others take the blocks:
+// a one-core step overlapped with a pass it does not depend on.
+template <class Body, class Side>
+void parallel_blocks_beside(std::size_t n, unsigned workers, Body&& body, Side&& side, std::size_t block = 4096) {
   block = std::min(block, std::max(kLeastBlock, n / (4 * std::max(1u, workers))));
   const std::size_t blocks = (n + block - 1) / block;
   std::atomic<std::size_t> next{0};
+  std::atomic<bool> side_taken{false};
+  // One more chunk than blocks, so that the side task has a worker even for a single block.
   parallel_chunks(
-      blocks, workers,
+      blocks + 1, workers,
       [&](std::size_t, std::size_t, unsigned worker) {
+        if (!side_taken.exchange(true, std::memory_order_relaxed)) side();
         for (std::size_t b; (b = next.fetch_add(1, std::memory_order_relaxed)) < blocks;)
           body(b * block, std::min(n, (b + 1) * block), worker);
       },
       1);
+}
+
+// parallel_blocks() beside nothing.
+template <class Body>
+void parallel_blocks(std::size_t n, unsigned workers, Body&& body, std::size_t block = 4096) {
+  parallel_blocks_beside(n, workers, std::forward<Body>(body), [] {}, block);
 }
 
 // The vertices of `mesh` along a Morton curve of their box, and its triangles by their first corner in that
@@ -326,18 +337,24 @@ Relabelled relabelled(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, 
   for (std::uint32_t j = 0; j < n; ++j) {
     const std::uint32_t v = visit.vertices[j];
     g.rank[v] = j;
-    g.at[j] = to_vec3d(mesh.vertices[v]);
     g.start[j + 1] = g.start[j] + edges.degree(v);
-    g.coordinates_safe = g.coordinates_safe && in_fast_exact_range(g.at[j].x) &&
-                         in_fast_exact_range(g.at[j].y) && in_fast_exact_range(g.at[j].z);
   }
-  for (std::uint32_t j = 0; j < n; ++j) {
-    const std::uint32_t v = visit.vertices[j];
-    for (std::uint32_t k = 0; k < edges.degree(v); ++k) {
-      g.to[g.start[j] + k] = g.rank[edges.neighbour(v, k)];
-      g.face[g.start[j] + k] = visit.triangle_rank[edges.out[edges.start[v] + k].second];
+  std::atomic<bool> safe{true};
+  parallel_blocks(n, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
+    bool block_safe = true;
+    for (std::size_t j = begin; j < end; ++j) {
+      const std::uint32_t v = visit.vertices[j];
+      g.at[j] = to_vec3d(mesh.vertices[v]);
+      block_safe = block_safe && in_fast_exact_range(g.at[j].x) && in_fast_exact_range(g.at[j].y) &&
+                   in_fast_exact_range(g.at[j].z);
+      for (std::uint32_t k = 0; k < edges.degree(v); ++k) {
+        g.to[g.start[j] + k] = g.rank[edges.neighbour(v, k)];
+        g.face[g.start[j] + k] = visit.triangle_rank[edges.out[edges.start[v] + k].second];
+      }
     }
-  }
+    if (!block_safe) safe.store(false, std::memory_order_relaxed);
+  });
+  g.coordinates_safe = safe.load();
   return g;
 }
 
@@ -599,6 +616,10 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
   };
   std::vector<Plane> plane(nt);
   std::vector<double> twice_area(nt);
+  // Largest first, ties by the mesh's index: (the area's bits inverted, index) keys, which order as the
+  // areas do (no area is negative or NaN), listed by index and sorted stably on the bits alone (a radix
+  // sort, beside the joining pass below).
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(nt);
   std::vector<std::uint32_t> across(3 * nt);  // the triangle across edge k of j: the one holding its reverse
   parallel_blocks(
       nt, hardware_workers(),
@@ -610,6 +631,9 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
           plane[j] = plane_through(a, b, c);
           const Vec3d n = cross(sub(b, a), sub(c, a));
           twice_area[j] = std::sqrt(dot(n, n));
+          std::uint64_t area_bits;
+          std::memcpy(&area_bits, &twice_area[j], sizeof area_bits);
+          keyed[visit.triangles[j]] = {~area_bits, visit.triangles[j]};
           for (int k = 0; k < 3; ++k)
             across[3 * j + k] = holder(tri[j][(k + 1) % 3], tri[j][k]);
         }
@@ -646,13 +670,9 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
   };
   // Per triangle as a seed: which neighbours would join (bit k: across edge k), and the offset of its plane
   // were it alone (the top of its corners).
-  // Largest first, ties by the mesh's index: (the area's bits inverted, index) keys, which order as the
-  // areas do (no area is negative or NaN), listed by index and sorted stably on the bits alone (a radix
-  // sort: std::sort's comparisons were a tenth of a large merge, on one core).
   std::vector<std::uint8_t> joining(nt);
   std::vector<double> alone_top(nt);
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(nt);
-  parallel_blocks(
+  parallel_blocks_beside(
       nt, hardware_workers(),
       [&](std::size_t begin, std::size_t end, unsigned) {
         for (std::size_t j = begin; j < end; ++j) {
@@ -662,15 +682,10 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
           joining[j] = bits;
           alone_top[j] = std::max(
               {dot3(plane[j], corner(j, 0)), dot3(plane[j], corner(j, 1)), dot3(plane[j], corner(j, 2))});
-          std::uint64_t area_bits;
-          std::memcpy(&area_bits, &twice_area[j], sizeof area_bits);
-          keyed[visit.triangles[j]] = {~area_bits, visit.triangles[j]};
         }
       },
-      1024);
-  laps.lap("joining");
-  radix_sort_by_key(keyed);
-  laps.lap("sort");
+      [&] { radix_sort_by_key(keyed); }, 1024);
+  laps.lap("joining and sort");
   std::vector<std::uint32_t> facet_of(nt, kNone), seeds;  // by position
   seeds.reserve(nt);
   Facets facets;
@@ -822,10 +837,11 @@ bool plane_safe(const Plane& plane) {
 // hull(S)'s edges with exact comparisons finds it in a few steps; its evaluation is then bounded.  A plane or
 // coordinates outside the exact range take all vertices instead.  Per plane: the bound over S.  The planes
 // are taken in `order` (their starts' visit order, VisitOrder), not in the facets' (largest first,
-// scattered): the same bounds, from the cache.
+// scattered): the same bounds, from the cache.  `side()` runs beside them on one core.
+template <class Side>
 std::vector<double> kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
-                                const std::vector<Triangle>& seed_corners,
-                                const std::vector<std::uint32_t>& order) {
+                                const std::vector<Triangle>& seed_corners, const std::vector<std::uint32_t>& order,
+                                Side&& side) {
   // The planes and starts gathered in `order` and the ascents on the relabelled mesh (each vertex's
   // neighbours in EdgeIndex's order, so that every ascent takes the same steps): the ascents read what
   // their neighbours read, not scattered lines.
@@ -839,7 +855,7 @@ std::vector<double> kept_bounds(const Relabelled& g, const std::vector<Plane>& p
       corners[i][k] = g.rank[seed_corners[order[i]][k]];
   }
   std::vector<double> found(count, -kInfinity);
-  parallel_blocks(
+  parallel_blocks_beside(
       count, hardware_workers(),
       [&](std::size_t begin, std::size_t end, unsigned) {
         // The ascent from v: to the neighbour of the largest value among those exactly above, until none
@@ -886,7 +902,7 @@ std::vector<double> kept_bounds(const Relabelled& g, const std::vector<Plane>& p
           found[i] = bound_at(plane, at[v]);
         }
       },
-      256);
+      side, 256);
   std::vector<double> bounds(planes.size(), -kInfinity);
   for (std::size_t i = 0; i < count; ++i)
     bounds[order[i]] = found[i];
@@ -1045,10 +1061,14 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   const Facets facets = group_facets(current, graph, visit, tolerance, angle_sine);
   laps.lap("group");
 
-  // Output: triangles grouped by facet, in input indices.
+  // Output: triangles grouped by facet, in input indices, on one core beside the kept vertices' bounds
+  // (below), which do not depend on it.
   // By facet, each facet's triangles ascending (a counting sort: the stable sort's order).
   const std::size_t nt = current.triangles.size();
-  std::vector<std::uint32_t> by_facet(nt), facet_start(facets.planes.size() + 1, 0), position(nt);
+  std::vector<std::uint32_t> by_facet(nt), position(nt);
+  std::vector<std::uint32_t> dropped;
+  auto output = [&] {
+  std::vector<std::uint32_t> facet_start(facets.planes.size() + 1, 0);
   for (std::uint32_t f : facets.facet_of)
     ++facet_start[f + 1];
   for (std::size_t f = 0; f + 1 < facet_start.size(); ++f)
@@ -1066,35 +1086,46 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   merged.planes.resize(nt);
   merged.facet_of_face.resize(nt);
   merged.neighbors.resize(nt);
-  parallel_blocks(nt, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
-    for (std::size_t p = begin; p < end; ++p) {
-      const std::uint32_t t = by_facet[p];
-      const Triangle& tri = current.triangles[t];
-      merged.faces[p] = {exact.vertex_ids[current.vertex_ids[tri[0]]],
-                         exact.vertex_ids[current.vertex_ids[tri[1]]],
-                         exact.vertex_ids[current.vertex_ids[tri[2]]]};
-      merged.planes[p] = facets.planes[facets.facet_of[t]];
-      merged.facet_of_face[p] = facets.facet_of[t];
-      for (int k = 0; k < 3; ++k) {
-        // The edge opposite corner k runs from corner k + 1 to corner k + 2: across[3t + k + 1] holds it.
-        const std::uint32_t u = facets.across[3 * t + (k + 1) % 3];
-        if (u == kNone) throw std::logic_error("merge_facets: the mesh is not closed");
-        merged.neighbors[p][k] = static_cast<std::int32_t>(position[u]);
-      }
+  for (std::size_t p = 0; p < nt; ++p) {
+    const std::uint32_t t = by_facet[p];
+    const Triangle& tri = current.triangles[t];
+    merged.faces[p] = {exact.vertex_ids[current.vertex_ids[tri[0]]],
+                       exact.vertex_ids[current.vertex_ids[tri[1]]],
+                       exact.vertex_ids[current.vertex_ids[tri[2]]]};
+    merged.planes[p] = facets.planes[facets.facet_of[t]];
+    merged.facet_of_face[p] = facets.facet_of[t];
+    for (int k = 0; k < 3; ++k) {
+      // The edge opposite corner k runs from corner k + 1 to corner k + 2: across[3t + k + 1] holds it.
+      const std::uint32_t u = facets.across[3 * t + (k + 1) % 3];
+      if (u == kNone) throw std::logic_error("merge_facets: the mesh is not closed");
+      merged.neighbors[p][k] = static_cast<std::int32_t>(position[u]);
     }
-  });
+  }
 
   // Coplanar: every exact-hull vertex that was dropped, with its nearest triangle and that one's nearest
   // corner.
   std::vector<std::uint8_t> kept(m, 0);
   for (PointIndex id : current.vertex_ids)
     kept[id] = 1;
-  std::vector<std::uint32_t> dropped;
   for (std::uint32_t i = 0; i < m; ++i)
     if (!kept[i]) dropped.push_back(i);
   std::sort(dropped.begin(), dropped.end(),
             [&](std::uint32_t a, std::uint32_t b) { return exact.vertex_ids[a] < exact.vertex_ids[b]; });
-  laps.lap("output");
+  };
+  std::vector<std::uint32_t> starts;   // per facet: a corner of its largest triangle
+  std::vector<Triangle> seed_corners;  // per facet: its largest triangle's corners
+  starts.reserve(facets.seeds.size());
+  seed_corners.reserve(facets.seeds.size());
+  for (std::uint32_t seed : facets.seeds) {
+    starts.push_back(current.triangles[seed][0]);
+    seed_corners.push_back(current.triangles[seed]);
+  }
+  std::vector<std::uint32_t> in_visit_order;  // the facets by their seeds' places in the visit order
+  in_visit_order.reserve(facets.seeds.size());
+  for (std::uint32_t t : visit.triangles)
+    if (facets.seeds[facets.facet_of[t]] == t) in_visit_order.push_back(facets.facet_of[t]);
+  const std::vector<double> kept_bound = kept_bounds(graph, facets.planes, seed_corners, in_visit_order, output);
+  laps.lap("kept bound and output");
   merged.coplanar.resize(dropped.size());
   auto face_corner = [&](std::uint32_t f, int k) {
     return to_vec3d(current.vertices[current.triangles[by_facet[f]][k]]);
@@ -1155,20 +1186,6 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
       32);
 
   laps.lap("coplanar");
-  std::vector<std::uint32_t> starts;   // per facet: a corner of its largest triangle
-  std::vector<Triangle> seed_corners;  // per facet: its largest triangle's corners
-  starts.reserve(facets.seeds.size());
-  seed_corners.reserve(facets.seeds.size());
-  for (std::uint32_t seed : facets.seeds) {
-    starts.push_back(current.triangles[seed][0]);
-    seed_corners.push_back(current.triangles[seed]);
-  }
-  std::vector<std::uint32_t> in_visit_order;  // the facets by their seeds' places in the visit order
-  in_visit_order.reserve(facets.seeds.size());
-  for (std::uint32_t t : visit.triangles)
-    if (facets.seeds[facets.facet_of[t]] == t) in_visit_order.push_back(facets.facet_of[t]);
-  const std::vector<double> kept_bound = kept_bounds(graph, facets.planes, seed_corners, in_visit_order);
-  laps.lap("kept bound");
   merged.thinnest = thinnest(current, edges, facets.planes, starts, 4 * tolerance);
   laps.lap("thinnest");
   std::vector<Vec3d> dropped_points;

@@ -28,6 +28,7 @@
 #include "cudahull/hull_plan.hpp"
 #include "cudahull/hull_runner.hpp"
 #include "cudahull/predicates.hpp"
+#include "cudahull/qhull_scaling.hpp"
 #include "cudahull/resident.hpp"
 #include "cudahull/wide_predicates.hpp"
 
@@ -165,28 +166,6 @@ ConvexHullOptions options_from(const std::string& backend, const std::string& pr
   return options;
 }
 
-// The area Qhull reports under QbB, Qbb, Qbk:n and QBk:n: the triangles' areas with every coordinate mapped
-// by x -> x * scale + shift per axis (the shift cancels in the edges), summed in face order.  The one
-// computation behind the package's scaled measures, with or without the hull call's QbB shortcut below, so
-// that both give the same bits.
-template <class Scalar, class Corner>
-double scaled_area(const Scalar* xyz, std::size_t faces, const Corner& corner, const double scale[3]) {
-  double sum = 0;
-  for (std::size_t f = 0; f < faces; ++f) {
-    const Scalar* a = xyz + 3 * corner(f, 0);
-    const Scalar* b = xyz + 3 * corner(f, 1);
-    const Scalar* c = xyz + 3 * corner(f, 2);
-    double u[3], v[3];
-    for (int k = 0; k < 3; ++k) {
-      u[k] = (double(b[k]) - double(a[k])) * scale[k];
-      v[k] = (double(c[k]) - double(a[k])) * scale[k];
-    }
-    const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
-    sum += std::sqrt(x * x + y * y + z * z);
-  }
-  return sum / 2;
-}
-
 double scaled_area_of(
     nb::ndarray<const double, nb::shape<-1, 3>, nb::c_contig, nb::device::cpu> points,
     nb::ndarray<const std::int64_t, nb::shape<-1, 3>, nb::c_contig, nb::device::cpu> simplices,
@@ -202,7 +181,9 @@ double scaled_area_of(
 
 // Qhull's QbB measures of a 3-D hull of `xyz` (scipy's volume and area under trimesh's "QbB Pp Qt"): each
 // axis mapped onto [-0.5, 0.5] from the bounds of the exact hull's vertices (those merging kept and those it
-// set aside, which attain the points' bounds), as qhull_options.scaling() maps it.
+// set aside, which attain the points' bounds), as qhull_options.scaling() maps it.  For hulls computed on
+// rounded coordinates (double points in float precision); the others measure it in the call
+// (ConvexHullOptions::box_measures), from the hull's own copy of its vertices.
 template <class Scalar>
 std::array<double, 2> box_scaled_measures(const Scalar* xyz, const ConvexHull& hull) {
   double low[3], high[3];
@@ -217,10 +198,7 @@ std::array<double, 2> box_scaled_measures(const Scalar* xyz, const ConvexHull& h
   for (const auto& row : hull.coplanar)
     take(row[0]);
   double scale[3];
-  for (int k = 0; k < 3; ++k) {
-    const double width = high[k] - low[k];
-    scale[k] = 1.0 / (width > 0 ? width : 1.0);
-  }
+  box_scale(low, high, scale);
   const double area = scaled_area(
       xyz, hull.faces.size(), [&](std::size_t f, int k) { return std::size_t{hull.faces[f][k]}; }, scale);
   return {hull.volume * (std::fabs(scale[0]) * std::fabs(scale[1]) * std::fabs(scale[2])), area};
@@ -231,13 +209,17 @@ template <class Scalar>
 nb::dict convex_hull_of(PointArray<Scalar> points, const std::string& backend, const std::string& precision,
                         const std::string& engine, const std::string& merge, double tolerance, double angle,
                         bool box_measures) {
-  const ConvexHullOptions options = options_from(backend, precision, engine, {merge, tolerance, angle});
+  ConvexHullOptions options = options_from(backend, precision, engine, {merge, tolerance, angle});
+  // Measured in the call where the hull's coordinates are the points' own (not double points rounded).
+  options.box_measures = box_measures && !(std::is_same_v<Scalar, double> && options.precision == Precision::kFloat);
   ConvexHull hull;
   std::array<double, 2> box{0, 0};
   {
     nb::gil_scoped_release unlocked;  // the caller's array stays alive: the call holds a reference to it
     hull = convex_hull(points.data(), points.shape(0), options);
-    if (box_measures && hull.dimension == 3) box = box_scaled_measures(points.data(), hull);
+    if (box_measures && hull.dimension == 3)
+      box = std::isnan(hull.box_volume) ? box_scaled_measures(points.data(), hull)
+                                        : std::array<double, 2>{hull.box_volume, hull.box_area};
   }
   const int dimension = hull.dimension;
   nb::dict d = hull_to_dict(std::move(hull));

@@ -56,6 +56,10 @@ struct ConvexHull {
   // of the polygon (the surface area of the flat solid, twice the polygon's area).  2-D input: volume is the
   // polygon's area and area its perimeter, as scipy's.  Lower: 0 and 0.
   double volume = 0, area = 0;
+  // With ConvexHullOptions::box_measures, for dimension 3: Qhull's QbB volume and area, every axis mapped
+  // onto [-0.5, 0.5] by the exact hull's vertices' bounds (qhull_scaling.hpp; scipy's under "QbB").  NaN
+  // otherwise.
+  double box_volume = std::numeric_limits<double>::quiet_NaN(), box_area = std::numeric_limits<double>::quiet_NaN();
   // A merged hull (ConvexHullOptions::merge): the points merging left out that the exact hull had as
   // vertices, each as {point, nearest face (or edge), nearest vertex}, as scipy's `coplanar`; the absolute
   // tolerance used; and a proven bound: every input point p lies within max_outside of every face's plane

@@ -34,6 +34,9 @@ struct ConvexHullOptions {
   // (1: no angle).  A vertex is then dropped within the tolerance plus sqrt(1 - cos^2) times half its
   // distance to its farthest neighbour (facet_merge.cpp).
   double angle_cosine = 1;
+  // Also Qhull's QbB volume and area of a 3-D hull (ConvexHull::box_volume, box_area), from the hull's own
+  // copy of its vertices: what the drop-in reports under qhull_options "QbB".
+  bool box_measures = false;
 };
 
 // Whether this process has a usable CUDA device (what backend auto looks for): its name, or why not.

@@ -1,0 +1,40 @@
+// Qhull's scaled measures (scipy's `volume` and `area` under qhull_options "QbB", "Qbb", "Qbk:n" and
+// "QBk:n"): the hull's triangles with every coordinate mapped by x -> x * scale + shift per axis.  The one
+// summation behind the drop-in's scaled measures, in the library (ConvexHullOptions::box_measures) and in the
+// Python module, so that every path gives the same bits.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+
+namespace cudahull {
+
+// Half the sum, in face order, of the lengths of the scaled triangles' cross products; corner(f, k) is the
+// index into `xyz` (x, y, z a point) of face f's corner k.  The shift cancels in the edges.
+template <class Scalar, class Corner>
+double scaled_area(const Scalar* xyz, std::size_t faces, const Corner& corner, const double scale[3]) {
+  double sum = 0;
+  for (std::size_t f = 0; f < faces; ++f) {
+    const Scalar* a = xyz + 3 * corner(f, 0);
+    const Scalar* b = xyz + 3 * corner(f, 1);
+    const Scalar* c = xyz + 3 * corner(f, 2);
+    double u[3], v[3];
+    for (int k = 0; k < 3; ++k) {
+      u[k] = (double(b[k]) - double(a[k])) * scale[k];
+      v[k] = (double(c[k]) - double(a[k])) * scale[k];
+    }
+    const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
+    sum += std::sqrt(x * x + y * y + z * z);
+  }
+  return sum / 2;
+}
+
+// QbB's scale per axis: 1 / width of [low, high] (1 for a flat axis), mapping the axis onto [-0.5, 0.5].
+inline void box_scale(const double low[3], const double high[3], double scale[3]) {
+  for (int k = 0; k < 3; ++k) {
+    const double width = high[k] - low[k];
+    scale[k] = 1.0 / (width > 0 ? width : 1.0);
+  }
+}
+
+}  // namespace cudahull
