@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -29,6 +30,7 @@
 #include "cudahull/point_writer.hpp"
 #include "cudahull/resident.hpp"
 #include "cudahull/trace.hpp"
+#include "cudahull/tuning.hpp"
 #include "qhull_reference.hpp"
 
 namespace cudahull::cli {
@@ -55,6 +57,40 @@ ConvexHullOptions request_of(const std::string& backend, const std::string& engi
   request.engine = engine_from_name(engine);
   request.precision = precision_from_name_strict(precision);
   return request;
+}
+
+// The library's thresholds as this process's environment sets them, for A/B runs (docs/cli.md, "Environment
+// variables"): the command line is the one place that reads them, the library never does.  A variable
+// that is not set leaves the default (cudahull/tuning.hpp, EngineOptions); a set one is read as
+// strtoull() reads it.  The library caps the batch's block and warp sizes as it always did.
+struct Tuning {
+  ResidentTuning resident;
+  BatchTuning batch;
+  std::size_t batched_swaps_from = EngineOptions{}.batched_swaps_from;
+};
+
+Tuning tuning_from_environment() {
+  const auto read = [](const char* name, std::size_t& value) {
+    if (const char* text = std::getenv(name)) value = std::strtoull(text, nullptr, 10);
+  };
+  Tuning t;
+  read("CUDAHULL_LOOP_POINTS", t.resident.loop_points);
+  read("CUDAHULL_LOOP_FACES", t.resident.loop_faces);
+  read("CUDAHULL_LOOP_FEW_POINTS_FACES", t.resident.loop_few_points_faces);
+  read("CUDAHULL_ONE_BLOCK_FACES", t.resident.one_block_faces);
+  read("CUDAHULL_BATCH_BLOCK_POINTS", t.batch.block_points);
+  read("CUDAHULL_BATCH_LARGE_BLOCK_POINTS", t.batch.large_block_points);
+  read("CUDAHULL_BATCH_MID_BLOCK_POINTS", t.batch.mid_block_points);
+  read("CUDAHULL_BATCH_WARP_POINTS", t.batch.warp_points);
+  read("CUDAHULL_BATCHED_SWAPS_FROM", t.batched_swaps_from);
+  return t;
+}
+
+// plan_hull()'s plan for the request, with the resident engine's thresholds from the environment.
+HullPlan plan_with_tuning(const ConvexHullOptions& request, const HullInput& input, const Tuning& tuning) {
+  HullPlan plan = plan_hull(request, input);
+  plan.resident_tuning = tuning.resident;
+  return plan;
 }
 
 // A request this machine cannot meet (`--backend cuda` without a usable device) is a device failure (exit 4),
@@ -229,7 +265,8 @@ int hull_in(const HullOptions& o, const ConvexHullOptions& request) {
   // Coordinates outside the engines' exact range (a subnormal, 1e300): exact_hull_any() on the host, exact
   // for every finite double (exponent scaling, else GMP), with no iterations to record.
   if constexpr (std::is_same_v<Point, Point3d>) input.outside_exact_range = !in_fast_exact_range(points);
-  const HullPlan plan = plan_hull(request, input);
+  const Tuning tuning = tuning_from_environment();
+  const HullPlan plan = plan_with_tuning(request, input, tuning);
   const bool wide = plan.wide_range;
   if (wide && !o.quiet) std::fprintf(stderr, "note: %s\n", plan.backend_reason.c_str());
   require_runnable(plan);
@@ -255,7 +292,9 @@ int hull_in(const HullOptions& o, const ConvexHullOptions& request) {
   const std::size_t point_count = points.size();
 
   std::optional<BasicEngine<Point>> engine;
-  if (!resident && !wide) engine.emplace(points, std::move(backend));  // borrows the points
+  if (!resident && !wide)  // borrows the points
+    engine.emplace(points, std::move(backend),
+                   EngineOptions{.batched_swaps_from = tuning.batched_swaps_from});
   ResidentRun<Point> resident_run;
   std::ostringstream trace;
   double host_ms = 0, backend_ms = 0;
@@ -388,7 +427,8 @@ int bench_in(const BenchOptions& o, const ConvexHullOptions& request) {
   HullInput input;
   input.precision = precision;
   input.count = points.size();
-  const HullPlan plan = plan_hull(request, input);
+  const Tuning tuning = tuning_from_environment();
+  const HullPlan plan = plan_with_tuning(request, input, tuning);
   require_runnable(plan);
   const bool resident = plan.engine == EngineChoice::kResident;
   const std::string label = o.input.empty() ? o.distribution + " " + std::to_string(points.size()) : o.input;
@@ -417,7 +457,9 @@ int bench_in(const BenchOptions& o, const ConvexHullOptions& request) {
   for (int r = 0; r < o.repeat && !resident; ++r) {
     auto backend = planned_backend<Point>(plan, o.json || r > 0, &device);
     backend_name = backend->name();
-    BasicEngine<Point> engine(points, std::move(backend), EngineOptions{false});
+    BasicEngine<Point> engine(
+        points, std::move(backend),
+        EngineOptions{.keep_decisions = false, .batched_swaps_from = tuning.batched_swaps_from});
     double h = 0, d = 0, u = 0;
     const auto t0 = Clock::now();
     std::uint64_t from = 0;
@@ -525,6 +567,7 @@ int bench_batch(const BenchOptions& o, const ConvexHullOptions& request) {
   require_runnable(plan);
   ConvexHullBatchOptions options;
   options.hull = request;
+  options.tuning = tuning_from_environment().batch;
   std::vector<double> total;
   ConvexHullBatch hulls;
   for (int r = 0; r < o.repeat; ++r) {

@@ -1,14 +1,15 @@
 // Batched hulls on the device (batch_cuda.hpp).
 //
 // design:
-//   the clouds the kernel takes: 4 .. block_points() points (fewer: the single-cloud path's lower-dimensional
-//     answer; more: the single-cloud path's grid, which a large cloud fills better)
-//   teams: a cloud of at most kWarpPoints points on a warp, a furthest point at a time (resident::
+//   the clouds the kernel takes: 4 .. BatchTuning::block_points points (cudahull/tuning.hpp; fewer: the
+//     single-cloud path's lower-dimensional answer; more: the single-cloud path's grid, which a large cloud
+//     fills better)
+//   teams: a cloud of at most warp_points points on a warp, a furthest point at a time (resident::
 //     small_hull(), QuickHull's own step: a short loop, which many warps run from the instruction cache at
-//     once); a cloud of more than kLargeBlockPoints points on a block of kLargeThreads (its points' phases
+//     once); a cloud of more than large_block_points points on a block of kLargeThreads (its points' phases
 //     are the work), the rest on a block of kThreads (a small hull's phases have a few dozen items: the
 //     latency of its barriers, not the threads, sets its time), five blocks an SM, or four for clouds of
-//     more than kMidBlockPoints; the resident engine's iteration on each block (resident::batch_hull())
+//     more than mid_block_points; the resident engine's iteration on each block (resident::batch_hull())
 //   pass 1: a launch a kind of team, as many blocks as fit at once, each team with a slot of face room for
 //     the largest hull its launch expects (batch_vertices(); a warp's: every point); a team takes clouds one
 //     after another from a counter (a large one does not hold the others up).  Per point, the iteration's own
@@ -31,7 +32,6 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <cstdlib>
 #include <cub/device/device_scan.cuh>
 #include <string>
 #include <type_traits>
@@ -60,23 +60,17 @@ constexpr const char* kWho = "batched hulls";
 constexpr int kThreads = 128;       // a block a cloud: most small clouds' phases have fewer items than this
 constexpr int kLargeThreads = 512;  // a block a large cloud: its points' phases are the work
 constexpr u32 kSecondPassPoints = 16384;  // the largest cloud the second launch takes
-// The clouds of more than this many points take a block of kLargeThreads (CUDAHULL_BATCH_LARGE_BLOCK_POINTS),
-// the rest a block of kThreads: 100 clouds of 100,000 points ran three times faster; 10,000 of 1,000 on 512
-// threads 1.8 times slower (docs/benchmarks.md, "Batched hulls").
-constexpr std::size_t kLargeBlockPoints = 16384;
-// The clouds of more than this many points (and up to kLargeBlockPoints) take the blocks of four an SM
-// (TeamKind::kMidBlock; CUDAHULL_BATCH_MID_BLOCK_POINTS): from 300 points on they ran 4-13% faster than
-// at five, the same at 200 (docs/benchmarks.md, "Batched hulls").
-constexpr std::size_t kMidBlockPoints = 256;
-// The clouds of at most this many points take a warp each (TeamKind::kWarp; CUDAHULL_BATCH_WARP_POINTS, up
-// to kRetryOnWarpPoints; 0: no cloud on a warp, no retry either).  small_hull() tests every face and point at
-// each step, so warps win on small clouds and lose above a few hundred points (docs/benchmarks.md, "The
-// measurements behind the code's constants").
-constexpr std::size_t kWarpPoints = 256;
+// Which clouds take which kind of team (a warp, a block of four or five an SM, a large block): BatchTuning
+// (cudahull/tuning.hpp), whose defaults docs/benchmarks.md, "Tuning (ResidentTuning, BatchTuning)", explains.
+// A warp's pass whose clouds have at most this many points stages them in shared memory (batch_warp_kernel,
+// kStaged): BatchTuning::warp_points' default, so that every cloud a warp takes by default is staged.
+constexpr std::size_t kStagedWarpPoints = 256;
 // The clouds of at most this many points that a block sent to the single-cloud path take a warp first
 // (small_hull(), with room for every point), hundreds of times quicker than the single-cloud path, one
 // cloud after another (docs/benchmarks.md, "The measurements behind the code's constants").
 constexpr u32 kRetryOnWarpPoints = 4096;
+// The largest cloud a team can take: a block's room, batch_room(), counts its face slots in 32 bits.
+constexpr std::size_t kMaxBlockPoints = std::size_t{1} << 20;
 
 constexpr CudaCheck check{kWho};
 
@@ -112,19 +106,6 @@ class EventTimer {
 // the batch used alone left the next result's columns to map again (docs/benchmarks.md, "The measurements
 // behind the code's constants"). cudahull::release_device_memory() hands it back at once.
 constexpr std::size_t kBatchKeepShare = 16;
-
-// The clouds with more points than this take the single-cloud path (or CUDAHULL_BATCH_BLOCK_POINTS, up to
-// 2^20: a block's room, batch_room(), counts its face slots in 32 bits).
-// A size from the environment variable `name`, or `fallback`.
-std::size_t env_points(const char* name, std::size_t fallback) {
-  const char* env = std::getenv(name);
-  return env ? std::strtoull(env, nullptr, 10) : fallback;
-}
-
-std::size_t block_points() {
-  return std::min<std::size_t>(env_points("CUDAHULL_BATCH_BLOCK_POINTS", std::size_t{1} << 17),
-                               std::size_t{1} << 20);
-}
 
 // The batch's device arrays (device_memory.hpp, on the default stream), given back with their owner, and
 // the bytes held at once counted (`held`, `peak`: the batch's, across its passes).
@@ -216,7 +197,7 @@ __device__ void hull_listed(const Team& team, const BatchSlot& slot, const PassA
 }
 
 // Listed cloud k's hull on a warp, a furthest point at a time (small_hull()): its points copied to `staged`
-// first, in double (kStaged: every cloud of the pass has at most kWarpPoints), or read where they are.
+// first, in double (kStaged: every cloud of the pass has at most kStagedWarpPoints), or read where they are.
 template <bool kStaged, class Team, class Point>
 __device__ void small_hull_listed(const Team& team, const BatchSlot& slot, const PassArgs<Point>& a, u32 k,
                                   Point3d* staged) {
@@ -259,14 +240,14 @@ __global__ void __launch_bounds__(Block, kMinBlocks) batch_kernel(PassArgs<Point
 
 // The warps' kernel (WarpTeam): each warp a team with a slot of its own, taking clouds from the counter
 // until none is left; kWarps a block, kMinBlocks blocks an SM (the registers, as batch_kernel's).  kStaged:
-// every cloud of the pass has at most kWarpPoints points, staged in the SM's own memory.
+// every cloud of the pass has at most kStagedWarpPoints points, staged in the SM's own memory.
 template <class Point, int kWarps, int kMinBlocks, bool kStaged>
 __global__ void __launch_bounds__(32 * kWarps, kMinBlocks) batch_warp_kernel(PassArgs<Point> a) {
   __shared__ resident::RoundsState states[kWarps];  // as batch_kernel's: the SM's own memory
   // Each warp's cloud in the SM's own memory, in double: every step reads the corners of every face (ncu:
   // the loads' latency, a third of the stall samples from global memory), and a float cloud converted at
   // each test cost 4% of the kernel's instructions.
-  __shared__ Point3d staged[kStaged ? kWarps : 1][kStaged ? kWarpPoints : 1];
+  __shared__ Point3d staged[kStaged ? kWarps : 1][kStaged ? kStagedWarpPoints : 1];
   const u32 warp = threadIdx.x / 32, lane = threadIdx.x % 32;
   BatchSlot slot = slot_of(a, blockIdx.x * kWarps + warp);
   slot.st = &states[warp];
@@ -281,10 +262,10 @@ __global__ void __launch_bounds__(32 * kWarps, kMinBlocks) batch_warp_kernel(Pas
 }
 
 // The kinds of team a pass runs its clouds on: a block of kThreads (five an SM, or four above
-// kMidBlockPoints), or of kLargeThreads.  The small blocks are held to the registers of five blocks an SM:
-// at the 168 a thread the iteration would take, three fit, and the SM waits on memory with nothing to
-// issue.  Clouds of more than kMidBlockPoints take four an SM: 128 registers a thread spill less, and their
-// longer phases wait on memory more than on the barriers.
+// BatchTuning::mid_block_points), or of kLargeThreads.  The small blocks are held to the registers of five
+// blocks an SM: at the 168 a thread the iteration would take, three fit, and the SM waits on memory with
+// nothing to issue.  Clouds of more than mid_block_points take four an SM: 128 registers a thread spill
+// less, and their longer phases wait on memory more than on the barriers.
 // The smallest clouds take a warp each (kWarp: kWarpsPerBlock warps a block, small_hull()), four blocks an
 // SM: small_hull() at 128 registers a thread spills less than at five's 96; three and two blocks were
 // slower.  The resident iteration on a warp a cloud lost to blocks: twenty warps an SM, each in a phase of
@@ -358,7 +339,7 @@ std::vector<Unfinished> run_pass(const Point* points, std::size_t count, const s
   BatchMemory memory(held, run.device_bytes);
   constexpr int kBlock = kBlockThreads<kKind>;
   constexpr u32 kTeams = kTeamsPerBlock<kKind>;
-  void (*kernel)(PassArgs<Point>) = pass_kernel<kKind, Point>(listed.points <= kWarpPoints);
+  void (*kernel)(PassArgs<Point>) = pass_kernel<kKind, Point>(listed.points <= kStagedWarpPoints);
   // A slot a team, for every team of the blocks launched.
   const u32 blocks = static_cast<u32>(std::min<std::size_t>((listed.size() + kTeams - 1) / kTeams,
                                                             resident::blocks_that_fit(kernel, kBlock, kWho)));
@@ -549,12 +530,12 @@ struct BatchRun<Point>::PassOutput {
 
 template <class Point>
 BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, const std::size_t* offsets,
-                               std::size_t clouds, const std::uint8_t* skip) {
+                               std::size_t clouds, const std::uint8_t* skip, const BatchTuning& tuning) {
   PhaseLaps laps("batch run");
   BatchRun<Point> run(clouds);
   // Indices are 32 bits on the device: a larger batch takes the single-cloud path cloud by cloud.
   if (count >= 0xffffffffu / 8 || clouds >= 0xffffffffu / 8) return run;
-  const std::size_t largest = block_points();
+  const std::size_t largest = std::min(tuning.block_points, kMaxBlockPoints);
   // Pass 1's clouds by the kind of block that takes them (TeamKind), each group with room for its
   // largest hull.
   struct Group {
@@ -582,11 +563,10 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
     }
   };
   Group groups[4];  // TeamKind's order
-  const std::size_t large_points = env_points("CUDAHULL_BATCH_LARGE_BLOCK_POINTS", kLargeBlockPoints);
-  const std::size_t mid_points = env_points("CUDAHULL_BATCH_MID_BLOCK_POINTS", kMidBlockPoints);
+  const std::size_t large_points = tuning.large_block_points;
+  const std::size_t mid_points = tuning.mid_block_points;
   // Above kRetryOnWarpPoints a warp's steps are too long (and its pairs of points and faces past 32 bits).
-  const std::size_t warp_points =
-      std::min<std::size_t>(env_points("CUDAHULL_BATCH_WARP_POINTS", kWarpPoints), kRetryOnWarpPoints);
+  const std::size_t warp_points = std::min<std::size_t>(tuning.warp_points, kRetryOnWarpPoints);
   // The kind of team for a cloud of n points (-1: none, the single-cloud path's): one interval of sizes a
   // kind.  Cloud c's, unless `skip` sends it to the single-cloud path.
   const auto kind_of_size = [&](std::size_t n) {
@@ -680,7 +660,8 @@ BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, co
   pass_and_route(std::integral_constant<TeamKind, TeamKind::kMidBlock>{}, groups[2], true);
   pass_and_route(std::integral_constant<TeamKind, TeamKind::kLargeBlock>{}, groups[3], true);
   run.clouds_in_second_pass = again.clouds.size();
-  // Room for every point: the blocks of the largest of its clouds' kind (below kLargeBlockPoints).
+  // Room for every point: the blocks of the largest of its clouds' kind (at most kSecondPassPoints points:
+  // never a large block).
   if (again.vertices > mid_points)
     pass_and_route(std::integral_constant<TeamKind, TeamKind::kMidBlock>{}, again, false);
   else
@@ -876,9 +857,9 @@ int current_cuda_device() {
 template struct BatchRun<Point3>;
 template struct BatchRun<Point3d>;
 template BatchRun<Point3> batch_run_cuda(const Point3*, std::size_t, const std::size_t*, std::size_t,
-                                         const std::uint8_t*);
+                                         const std::uint8_t*, const BatchTuning&);
 template BatchRun<Point3d> batch_run_cuda(const Point3d*, std::size_t, const std::size_t*, std::size_t,
-                                          const std::uint8_t*);
+                                          const std::uint8_t*, const BatchTuning&);
 template BatchTotals lay_out_batch_offsets(const BatchRun<Point3>&, const std::vector<HostedSizes>&,
                                            std::size_t, std::int64_t*, std::int64_t*, std::int64_t*);
 template BatchTotals lay_out_batch_offsets(const BatchRun<Point3d>&, const std::vector<HostedSizes>&,

@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "cudahull/tuning.hpp"
 #include "cudahull/types.hpp"
 
 namespace cudahull {
@@ -36,11 +37,13 @@ struct BatchRun {
 };
 
 // The clouds of `count` points at `device_points` (the current device's memory), bounded by `offsets`
-// (B + 1 of them, in host memory), each on one team, but those `skip` marks (when given: B flags).
+// (B + 1 of them, in host memory), each on one team, but those `skip` marks (when given: B flags); which
+// clouds a team takes, and which kind of team, as `tuning` says (cudahull/tuning.hpp).
 // Throws DeviceError (OutOfDeviceMemory where the device has no room for the batch).
 template <class Point>
 BatchRun<Point> batch_run_cuda(const Point* device_points, std::size_t count, const std::size_t* offsets,
-                               std::size_t clouds, const std::uint8_t* skip = nullptr);
+                               std::size_t clouds, const std::uint8_t* skip = nullptr,
+                               const BatchTuning& tuning = {});
 
 // Where describe_batch_cuda() writes, in the current device's memory: the packed result's columns
 // (convex_hull_batch.hpp's DeviceConvexHullBatch), the offsets already there.

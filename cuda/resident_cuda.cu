@@ -8,7 +8,6 @@
 
 #include <thrust/iterator/counting_iterator.h>
 #include <chrono>
-#include <cstdlib>
 #include <cstring>
 #include <cub/block/block_radix_sort.cuh>
 #include <cub/block/block_scan.cuh>
@@ -259,13 +258,8 @@ __global__ void __launch_bounds__(Block)
 
 }  // namespace
 
-// A size threshold of the executor, or the environment's value for it (for tuning runs).
-std::size_t tuning(const char* name, std::size_t value) {
-  const char* env = std::getenv(name);
-  return env ? std::strtoull(env, nullptr, 10) : value;
-}
-
 struct CudaExec {
+  explicit CudaExec(const ResidentTuning& tuning = {}) : tuning(tuning) {}
   // A buffer on the default stream (device_memory.hpp: a cached block, or the pool's, which keeps freed
   // memory): growing between iterations neither waits for the device nor returns memory to the driver.
   template <class T>
@@ -458,14 +452,11 @@ struct CudaExec {
   }
 
   static constexpr bool kDeviceLoop = true;  // whole iterations of a small mesh in one launch
-  // Up to this many points left on a mesh of up to this many faces, the driver runs the iterations as a
-  // device loop (one block: each pass takes the points and faces a few at a time per thread).  Past 512
-  // faces the grid's launches are faster while many points are left (ball 1M), but not with few (cube
-  // 10M): docs/benchmarks.md, "The device loop's face limit".
-  std::size_t loop_points = tuning("CUDAHULL_LOOP_POINTS", 16384);
-  std::size_t loop_faces = tuning("CUDAHULL_LOOP_FACES", 512);
-  // And on a mesh of up to this many faces with no more points left than faces (loop_goes_on()).
-  std::size_t loop_few_points_faces = tuning("CUDAHULL_LOOP_FEW_POINTS_FACES", 4096);
+  // Up to tuning.loop_points points left on a mesh of up to tuning.loop_faces faces (or loop_few_points_faces
+  // with no more points left than faces: loop_goes_on()), the driver runs the iterations as a device loop
+  // (one block: each pass takes the points and faces a few at a time per thread); meshes of up to
+  // tuning.one_block_faces faces run their rounds in one block (cudahull/tuning.hpp).
+  ResidentTuning tuning;
 
   // The iteration's phases (iteration.hpp): a device loop in one block; otherwise a cooperative grid for
   // each range of phases (the marks; the split and the rounds, in one block for a small mesh; the routing
@@ -488,7 +479,7 @@ struct CudaExec {
     for_each_phase_range(launch, [&](auto range, const IterationLaunch& part) {
       using Range = decltype(range);
       if constexpr (std::is_same_v<Range, RoundPhases>) {
-        if (faces <= one_block_faces_) {
+        if (faces <= tuning.one_block_faces) {
           launch_phases<Point, Log, Range, kOneBlockThreads, true>(b, part, 1);
         } else {
           launch_phases<Point, Log, Range, kBlock, false>(b, part, blocks_for(faces));
@@ -604,13 +595,13 @@ struct CudaExec {
   Buffer<u32> block_offset_, win_mask_;
   Buffer<unsigned char> select_flags_;
   std::unordered_map<const void*, unsigned> resident_blocks_;  // per cooperative kernel: the blocks that fit
-  std::size_t one_block_faces_ = tuning("CUDAHULL_ONE_BLOCK_FACES", 4096);  // meshes with rounds in one block
 };
 
 }  // namespace resident
 
 template <class Point>
 struct ResidentCudaHull<Point>::Impl {
+  explicit Impl(const ResidentTuning& tuning) : exec(tuning) {}
   resident::CudaExec exec;
   resident::CudaExec::Buffer<Point> points;
   const std::vector<Point>* host = nullptr;
@@ -620,7 +611,8 @@ struct ResidentCudaHull<Point>::Impl {
 };
 
 template <class Point>
-ResidentCudaHull<Point>::ResidentCudaHull() : impl_(std::make_unique<Impl>()) {}
+ResidentCudaHull<Point>::ResidentCudaHull(const ResidentTuning& tuning)
+    : impl_(std::make_unique<Impl>(tuning)) {}
 template <class Point>
 ResidentCudaHull<Point>::~ResidentCudaHull() = default;
 
@@ -676,7 +668,8 @@ class CudaResidentStepper final : public resident::ResidentStepper<Point, reside
   using Base = resident::ResidentStepper<Point, resident::CudaExec>;
 
  public:
-  explicit CudaResidentStepper(const std::vector<Point>& points) : Base(points, "cuda-resident", true) {}
+  CudaResidentStepper(const std::vector<Point>& points, const ResidentTuning& tuning)
+      : Base(points, "cuda-resident", true, tuning) {}
 
  protected:
   const Point* upload_points() override {
@@ -696,9 +689,10 @@ class CudaResidentStepper final : public resident::ResidentStepper<Point, reside
 }  // namespace
 
 template <class Point>
-std::unique_ptr<SteppingEngine> make_resident_cuda_stepping_engine(const std::vector<Point>& points) {
+std::unique_ptr<SteppingEngine> make_resident_cuda_stepping_engine(const std::vector<Point>& points,
+                                                                   const ResidentTuning& tuning) {
   if (points.size() >= 0xffffffffu) throw std::invalid_argument("too many points (at most 2^32 - 2)");
-  return std::make_unique<CudaResidentStepper<Point>>(points);
+  return std::make_unique<CudaResidentStepper<Point>>(points, tuning);
 }
 
 HardwarePace device_pace() {
@@ -708,7 +702,9 @@ HardwarePace device_pace() {
 // The two coordinate types (README, "Precision").
 template class ResidentCudaHull<Point3>;
 template class ResidentCudaHull<Point3d>;
-template std::unique_ptr<SteppingEngine> make_resident_cuda_stepping_engine(const std::vector<Point3>&);
-template std::unique_ptr<SteppingEngine> make_resident_cuda_stepping_engine(const std::vector<Point3d>&);
+template std::unique_ptr<SteppingEngine> make_resident_cuda_stepping_engine(const std::vector<Point3>&,
+                                                                            const ResidentTuning&);
+template std::unique_ptr<SteppingEngine> make_resident_cuda_stepping_engine(const std::vector<Point3d>&,
+                                                                            const ResidentTuning&);
 
 }  // namespace cudahull

@@ -6,13 +6,15 @@
 #include <vector>
 
 #include "cudahull/resident.hpp"
+#include "cudahull/tuning.hpp"
 
 namespace cudahull {
 
 template <class Point>
 class ResidentCudaHull {
  public:
-  ResidentCudaHull();
+  // `tuning`: where the runs leave the grid's launches for one block (cudahull/tuning.hpp).
+  explicit ResidentCudaHull(const ResidentTuning& tuning = {});
   ~ResidentCudaHull();
   ResidentCudaHull(const ResidentCudaHull&) = delete;
   ResidentCudaHull& operator=(const ResidentCudaHull&) = delete;
@@ -36,7 +38,8 @@ class ResidentCudaHull {
 // entry for entry): the viewer's, `--trace`'s and `--table`'s CUDA engine.  Uploads `points`, and borrows
 // them for the exact checks.  Throws DeviceError.
 template <class Point>
-std::unique_ptr<SteppingEngine> make_resident_cuda_stepping_engine(const std::vector<Point>& points);
+std::unique_ptr<SteppingEngine> make_resident_cuda_stepping_engine(const std::vector<Point>& points,
+                                                                   const ResidentTuning& tuning = {});
 
 // The current device's pace for a run's floors (fill_floors(), resident.hpp): its peak memory bandwidth from
 // its attributes, and a launch's and a wait's host time measured with empty kernels, once a process.

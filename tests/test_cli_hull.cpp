@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -427,6 +428,42 @@ TEST(CliHull, ThreadCountFromTheEnvironmentChangesNothingButTheThreads) {
   EXPECT_NE(hardware, "(none)");
   EXPECT_EQ(backend_line(run_with("zero", "z").err), hardware);
   EXPECT_EQ(slurp(dir / "vz"), vertices);
+}
+
+// The command line reads the library's thresholds from its environment for A/B runs (docs/cli.md), the
+// library itself none: CUDAHULL_BATCHED_SWAPS_FROM turns the stepping engine's batched swap rounds on (8) or
+// off (SIZE_MAX), as scripts/compare-traces counts them (CUDAHULL_PHASE_TIMES=1), for `hull` and `bench`
+// alike, and the vertices stay the same.
+TEST(CliHull, BatchedSwapsFromTheEnvironmentReachTheEngine) {
+  TempDir dir;
+  write_points((dir / "in.xyz").string(), generate_points(Distribution::kSphere, 20000, 5));
+  auto rounds_with = [&](const char* from, const std::vector<std::string>& args) {
+    ::setenv("CUDAHULL_PHASE_TIMES", "1", 1);
+    ::setenv("CUDAHULL_BATCHED_SWAPS_FROM", from, 1);
+    const CliRun r = run_cli(args);
+    ::unsetenv("CUDAHULL_BATCHED_SWAPS_FROM");
+    ::unsetenv("CUDAHULL_PHASE_TIMES");
+    EXPECT_EQ(r.exit_code, kExitOk) << describe(r);
+    int rounds = 0;
+    for (std::size_t at = r.err.find("batched swaps: "); at != std::string::npos;
+         at = r.err.find("batched swaps: ", at + 1))
+      rounds += std::atoi(r.err.c_str() + at + std::strlen("batched swaps: "));
+    return rounds;
+  };
+  const std::string input = (dir / "in.xyz").string();
+  const std::string never = std::to_string(std::numeric_limits<std::size_t>::max());
+  auto hull = [&](const std::string& out) {
+    return std::vector<std::string>{"hull", input, "--backend", "cpu", "-q", "--vertices-out", out};
+  };
+  const std::string v8 = (dir / "v8").string(), vnever = (dir / "vnever").string();
+  EXPECT_GT(rounds_with("8", hull(v8)), 0);
+  EXPECT_EQ(rounds_with(never.c_str(), hull(vnever)), 0);
+  const std::string vertices = slurp(v8);
+  ASSERT_FALSE(vertices.empty());
+  EXPECT_EQ(slurp(vnever), vertices);
+  const std::vector<std::string> bench{"bench", input, "--backend", "cpu", "--engine", "stepping", "--json"};
+  EXPECT_GT(rounds_with("8", bench), 0);
+  EXPECT_EQ(rounds_with(never.c_str(), bench), 0);
 }
 
 // Every resident run reports its distance to the hardware: `bench --json` lists the phases (setup, refine,

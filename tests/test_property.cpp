@@ -42,6 +42,16 @@ using testing::make_case;
 using testing::make_double_case;
 using testing::Rng;
 
+// The stepping engine's options: CUDAHULL_BATCHED_SWAPS_FROM=N runs the cases with batched swap rounds from
+// N candidates on (1: every iteration, docs/reliability.md), read here as the command line reads it (the
+// library reads no environment for it).
+EngineOptions engine_options() {
+  EngineOptions options;
+  if (const char* from = std::getenv("CUDAHULL_BATCHED_SWAPS_FROM"))
+    options.batched_swaps_from = std::strtoull(from, nullptr, 10);
+  return options;
+}
+
 // One case: the engine against exact_hull and the checker, in the points' own precision.  Returns "" or
 // what went wrong.
 template <class Point>
@@ -52,7 +62,7 @@ std::string check_case(std::uint64_t id, const char* kind, const std::vector<Poi
     // Odd cases take the GPU executor's paths on the host (the device loop, its room checks and regrowth).
     hull = resident_hull_host(points, nullptr, id % 2 ? ResidentPath::kDevice : ResidentPath::kHost);
   } else {
-    BasicEngine<Point> engine(points, make_cpu_backend<Point>(1));
+    BasicEngine<Point> engine(points, make_cpu_backend<Point>(1), engine_options());
     engine.run();
     hull = engine.result();
   }
@@ -82,9 +92,9 @@ std::string run_double_case(std::uint64_t id) {
   std::string failure = check_case(id, c.kind, c.points);
   if (failure.empty() && (id / 8) % 4 == 0) {
     const Case f = make_case(id);
-    Engine engine(f.points, make_cpu_backend(1));
+    Engine engine(f.points, make_cpu_backend(1), engine_options());
     engine.run();
-    BasicEngine<Point3d> wide(c.points, make_cpu_backend<Point3d>(1));
+    BasicEngine<Point3d> wide(c.points, make_cpu_backend<Point3d>(1), engine_options());
     wide.run();
     if (engine.result().vertex_ids != wide.result().vertex_ids)
       failure = "case " + std::to_string(id) + ": exact floats in double give other vertices than in float";

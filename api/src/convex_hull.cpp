@@ -80,7 +80,7 @@ ConvexHull run_planned(const std::vector<Point>& points, const HullPlan& plan,
     ResidentStats stats;
     ConvexHull hull;
     if (plan.backend == BackendChoice::kCuda) {
-      ResidentCudaHull<Point> resident;
+      ResidentCudaHull<Point> resident(plan.resident_tuning);
       resident.upload(points);
       hull = describe(resident.run(&stats), "cuda-resident", options);
     } else {
@@ -144,9 +144,10 @@ ConvexHull checked_hull(std::size_t count, Coordinate coordinate, Precision own,
 }
 
 // The hull of points that only the current device holds, in Point: checked (and converted) there, then
-// borrowed by the resident engine.
+// borrowed by the resident engine (with `tuning`, the plan's).
 template <class Point, class Scalar>
-ConvexHull device_hull_in(const Scalar* device_xyz, std::size_t count, const ConvexHullOptions& options) {
+ConvexHull device_hull_in(const Scalar* device_xyz, std::size_t count, const ConvexHullOptions& options,
+                          const ResidentTuning& tuning) {
   CheckedDevicePoints<Point> checked = check_device_points<Point>(device_xyz, count);
   if (checked.first_bad != count) {
     // Named from its own coordinates by the host path's check, so the message is the same word for word.
@@ -162,7 +163,7 @@ ConvexHull device_hull_in(const Scalar* device_xyz, std::size_t count, const Con
     throw std::logic_error("convex_hull_device: point " + std::to_string(checked.first_bad) +
                            " failed the device's check but passes the host's");
   }
-  ResidentCudaHull<Point> resident;
+  ResidentCudaHull<Point> resident(tuning);
   resident.use_device_points(checked.points, count);
   ResidentStats stats;
   const Clock::time_point run_start = Clock::now();
@@ -182,8 +183,9 @@ ConvexHull device_hull(const Scalar* device_xyz, std::size_t count, Precision ow
                        const ConvexHullOptions& options) {
   const HullPlan plan = device_plan(count, 3, own, options);
   require_device_points(device_xyz, count, plan);
-  ConvexHull hull = plan.precision == Precision::kDouble ? device_hull_in<Point3d>(device_xyz, count, options)
-                                                         : device_hull_in<Point3>(device_xyz, count, options);
+  ConvexHull hull = plan.precision == Precision::kDouble
+                        ? device_hull_in<Point3d>(device_xyz, count, options, plan.resident_tuning)
+                        : device_hull_in<Point3>(device_xyz, count, options, plan.resident_tuning);
   if (hull.plan.empty()) hull.plan = plan.reason;  // the wide path's host hull says its own
   return hull;
 }

@@ -283,16 +283,18 @@ DeviceConvexHullBatch assemble_on_device(const BatchRun<Point>& run, HostedHulls
 // block takes, in a launch a kind of team (batch_run_cuda(), and the later passes: room on blocks, a
 // block's leftovers on warps); the rest (too small or too large for a team, flat, or with a defect the
 // single-cloud path repairs) and those `single` marks through `hull_of(c)`, in cloud order; the result
-// assembled on the device (assemble_on_device()).
+// assembled on the device (assemble_on_device()).  `tuning`: which clouds take which kind of team.
 template <class Point, class HullOf>
 DeviceConvexHullBatch run_batch_on_device(const Point* device_points, std::size_t count,
-                                          const std::size_t* offsets, std::size_t clouds, HullOf hull_of,
+                                          const std::size_t* offsets, std::size_t clouds,
+                                          const BatchTuning& tuning, HullOf hull_of,
                                           const std::vector<std::uint8_t>& single = {}) {
   const Clock::time_point start = Clock::now();
   PhaseLaps laps("batch on the device");
   BatchRun<Point> run;
   try {
-    run = batch_run_cuda(device_points, count, offsets, clouds, single.empty() ? nullptr : single.data());
+    run = batch_run_cuda(device_points, count, offsets, clouds, single.empty() ? nullptr : single.data(),
+                         tuning);
   } catch (const OutOfDeviceMemory&) {
     // No room for the batch: every cloud through the single-cloud path, which grows its room as it goes.
     run = BatchRun<Point>(clouds);
@@ -341,7 +343,8 @@ std::vector<std::uint8_t> clouds_with_bad_points(const Scalar* device_xyz, std::
 // `upload`: host points' copy, let go once converted (the batch reads the converted points).
 template <class Point, class Scalar, class HullOf>
 DeviceConvexHullBatch checked_batch_on_device(const Scalar* device_xyz, std::size_t count,
-                                              const std::size_t* offsets, std::size_t clouds, HullOf hull_of,
+                                              const std::size_t* offsets, std::size_t clouds,
+                                              const BatchTuning& tuning, HullOf hull_of,
                                               std::shared_ptr<void> upload = nullptr) {
   PhaseLaps laps("batch check");
   const CheckedDevicePoints<Point> checked = check_device_points<Point>(device_xyz, count);
@@ -350,7 +353,7 @@ DeviceConvexHullBatch checked_batch_on_device(const Scalar* device_xyz, std::siz
       clouds_with_bad_points<Point>(device_xyz, count, offsets, clouds, checked.first_bad);
   laps.lap("clouds");
   if (checked.converted) upload.reset();
-  return run_batch_on_device(checked.points, count, offsets, clouds, hull_of, single);
+  return run_batch_on_device(checked.points, count, offsets, clouds, tuning, hull_of, single);
 }
 
 // Host points for the device: uploaded as given and checked on the device, as device input is (the host's
@@ -359,14 +362,14 @@ DeviceConvexHullBatch checked_batch_on_device(const Scalar* device_xyz, std::siz
 template <class Point, class Scalar, class HullOf>
 DeviceConvexHullBatch run_host_batch_on_device(const Scalar* xyz, std::size_t count,
                                                const std::size_t* offsets, std::size_t clouds,
-                                               HullOf hull_of) {
+                                               const BatchTuning& tuning, HullOf hull_of) {
   // A column of the batch's (no trim of the pool when it goes: the batch's own keeps what the next batch of
   // its size needs, where upload_to_device()'s handed it all back and the next batch mapped it again).
   std::shared_ptr<void> upload = batch_column(3 * count * sizeof(Scalar), "the points");
   copy_to_device(upload.get(), xyz, 3 * count * sizeof(Scalar));
   const auto* device_xyz = static_cast<const Scalar*>(upload.get());
   DeviceConvexHullBatch batch =
-      checked_batch_on_device<Point>(device_xyz, count, offsets, clouds, hull_of, std::move(upload));
+      checked_batch_on_device<Point>(device_xyz, count, offsets, clouds, tuning, hull_of, std::move(upload));
   trim_batch_pool();  // the upload is back in the pool: what is beyond the batch's share goes to the driver
   return batch;
 }
@@ -446,8 +449,8 @@ ConvexHullBatch host_batch(const Scalar* xyz, std::size_t count, const std::size
       each.merge == MergeMode::kExact) {
     ConvexHullBatch batch =
         plan.precision == Precision::kDouble
-            ? run_host_batch_on_device<Point3d>(xyz, count, offsets, clouds, cloud).to_host()
-            : run_host_batch_on_device<Point3>(xyz, count, offsets, clouds, cloud).to_host();
+            ? run_host_batch_on_device<Point3d>(xyz, count, offsets, clouds, options.tuning, cloud).to_host()
+            : run_host_batch_on_device<Point3>(xyz, count, offsets, clouds, options.tuning, cloud).to_host();
     batch.precision = plan.precision;
     return batch;
   }
@@ -522,7 +525,7 @@ DeviceConvexHullBatch device_batch(const Scalar* device_xyz, std::size_t count, 
     // cloud.
     if (plan.engine == EngineChoice::kStepping || each.merge != MergeMode::kExact)
       return run_each_into_device(offsets, clouds, cloud);
-    return checked_batch_on_device<Point>(device_xyz, count, offsets, clouds, cloud);
+    return checked_batch_on_device<Point>(device_xyz, count, offsets, clouds, options.tuning, cloud);
   };
   DeviceConvexHullBatch batch =
       plan.precision == Precision::kDouble ? on_device(Point3d{}) : on_device(Point3{});

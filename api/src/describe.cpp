@@ -315,7 +315,8 @@ void measure_box(const std::vector<Point>& vertices, const std::vector<Triangle>
   box_scale(low, high, scale);
   static_assert(sizeof(Point) == 3 * sizeof(Point::x), "a point is its three coordinates");
   hull.box_area = scaled_area(
-      &vertices.data()->x, faces.size(), [&](std::size_t f, int k) { return std::size_t{faces[f][k]}; }, scale);
+      &vertices.data()->x, faces.size(), [&](std::size_t f, int k) { return std::size_t{faces[f][k]}; },
+      scale);
   hull.box_volume = hull.volume * (std::fabs(scale[0]) * std::fabs(scale[1]) * std::fabs(scale[2]));
 }
 

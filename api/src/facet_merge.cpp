@@ -168,8 +168,8 @@ void radix_sort_by_key(std::vector<std::pair<std::uint64_t, std::uint32_t>>& ite
     items.swap(spare);
   }
   for (std::size_t k = 1; k < items.size(); ++k)
-    for (std::size_t x = k; x > 0 && (items[x - 1].first >> 32) == (items[x].first >> 32) &&
-                            items[x - 1].first > items[x].first;
+    for (std::size_t x = k;
+         x > 0 && (items[x - 1].first >> 32) == (items[x].first >> 32) && items[x - 1].first > items[x].first;
          --x)
       std::swap(items[x - 1], items[x]);
 }
@@ -229,7 +229,8 @@ constexpr std::size_t kLeastBlock = 48;
 // parallel_blocks() with `side()` run once, by the first thread to start, while the others take the blocks:
 // a one-core step overlapped with a pass it does not depend on.
 template <class Body, class Side>
-void parallel_blocks_beside(std::size_t n, unsigned workers, Body&& body, Side&& side, std::size_t block = 4096) {
+void parallel_blocks_beside(std::size_t n, unsigned workers, Body&& body, Side&& side,
+                            std::size_t block = 4096) {
   block = std::min(block, std::max(kLeastBlock, n / (4 * std::max(1u, workers))));
   const std::size_t blocks = (n + block - 1) / block;
   std::atomic<std::size_t> next{0};
@@ -248,7 +249,8 @@ void parallel_blocks_beside(std::size_t n, unsigned workers, Body&& body, Side&&
 // parallel_blocks() beside nothing.
 template <class Body>
 void parallel_blocks(std::size_t n, unsigned workers, Body&& body, std::size_t block = 4096) {
-  parallel_blocks_beside(n, workers, std::forward<Body>(body), [] {}, block);
+  parallel_blocks_beside(
+      n, workers, std::forward<Body>(body), [] {}, block);
 }
 
 // The vertices of `mesh` along a Morton curve of their box, and its triangles by their first corner in that
@@ -423,8 +425,9 @@ bool clearly_above(const Vec3d& v, const Vec3d* link, std::size_t k, double limi
         {
           const Vec3d w = sub(v, q[a]);
           const double det = w.x * abc.n[0] + w.y * abc.n[1] + w.z * abc.n[2];
-          const double error = detail::kO3dErrBoundA * (1 + 0x1p-40) *
-                               (std::fabs(w.x) * abc.p[0] + std::fabs(w.y) * abc.p[1] + std::fabs(w.z) * abc.p[2]);
+          const double error =
+              detail::kO3dErrBoundA * (1 + 0x1p-40) *
+              (std::fabs(w.x) * abc.p[0] + std::fabs(w.y) * abc.p[1] + std::fabs(w.z) * abc.p[2]);
           side = det > error ? 1 : det < -error ? -1 : orient3d(q[a], q[b], q[c], v);
         }
         if (side == 0) continue;
@@ -840,8 +843,8 @@ bool plane_safe(const Plane& plane) {
 // scattered): the same bounds, from the cache.  `side()` runs beside them on one core.
 template <class Side>
 std::vector<double> kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
-                                const std::vector<Triangle>& seed_corners, const std::vector<std::uint32_t>& order,
-                                Side&& side) {
+                                const std::vector<Triangle>& seed_corners,
+                                const std::vector<std::uint32_t>& order, Side&& side) {
   // The planes and starts gathered in `order` and the ascents on the relabelled mesh (each vertex's
   // neighbours in EdgeIndex's order, so that every ascent takes the same steps): the ascents read what
   // their neighbours read, not scattered lines.
@@ -1068,49 +1071,49 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   std::vector<std::uint32_t> by_facet(nt), position(nt);
   std::vector<std::uint32_t> dropped;
   auto output = [&] {
-  std::vector<std::uint32_t> facet_start(facets.planes.size() + 1, 0);
-  for (std::uint32_t f : facets.facet_of)
-    ++facet_start[f + 1];
-  for (std::size_t f = 0; f + 1 < facet_start.size(); ++f)
-    facet_start[f + 1] += facet_start[f];
-  for (std::uint32_t t = 0; t < nt; ++t) {
-    position[t] = facet_start[facets.facet_of[t]]++;
-    by_facet[position[t]] = t;
-  }
-  merged.vertices.reserve(current.vertex_ids.size());
-  for (PointIndex id : current.vertex_ids)
-    merged.vertices.push_back(exact.vertex_ids[id]);
-  if (!std::is_sorted(merged.vertices.begin(), merged.vertices.end()))
-    std::sort(merged.vertices.begin(), merged.vertices.end());
-  merged.faces.resize(nt);
-  merged.planes.resize(nt);
-  merged.facet_of_face.resize(nt);
-  merged.neighbors.resize(nt);
-  for (std::size_t p = 0; p < nt; ++p) {
-    const std::uint32_t t = by_facet[p];
-    const Triangle& tri = current.triangles[t];
-    merged.faces[p] = {exact.vertex_ids[current.vertex_ids[tri[0]]],
-                       exact.vertex_ids[current.vertex_ids[tri[1]]],
-                       exact.vertex_ids[current.vertex_ids[tri[2]]]};
-    merged.planes[p] = facets.planes[facets.facet_of[t]];
-    merged.facet_of_face[p] = facets.facet_of[t];
-    for (int k = 0; k < 3; ++k) {
-      // The edge opposite corner k runs from corner k + 1 to corner k + 2: across[3t + k + 1] holds it.
-      const std::uint32_t u = facets.across[3 * t + (k + 1) % 3];
-      if (u == kNone) throw std::logic_error("merge_facets: the mesh is not closed");
-      merged.neighbors[p][k] = static_cast<std::int32_t>(position[u]);
+    std::vector<std::uint32_t> facet_start(facets.planes.size() + 1, 0);
+    for (std::uint32_t f : facets.facet_of)
+      ++facet_start[f + 1];
+    for (std::size_t f = 0; f + 1 < facet_start.size(); ++f)
+      facet_start[f + 1] += facet_start[f];
+    for (std::uint32_t t = 0; t < nt; ++t) {
+      position[t] = facet_start[facets.facet_of[t]]++;
+      by_facet[position[t]] = t;
     }
-  }
+    merged.vertices.reserve(current.vertex_ids.size());
+    for (PointIndex id : current.vertex_ids)
+      merged.vertices.push_back(exact.vertex_ids[id]);
+    if (!std::is_sorted(merged.vertices.begin(), merged.vertices.end()))
+      std::sort(merged.vertices.begin(), merged.vertices.end());
+    merged.faces.resize(nt);
+    merged.planes.resize(nt);
+    merged.facet_of_face.resize(nt);
+    merged.neighbors.resize(nt);
+    for (std::size_t p = 0; p < nt; ++p) {
+      const std::uint32_t t = by_facet[p];
+      const Triangle& tri = current.triangles[t];
+      merged.faces[p] = {exact.vertex_ids[current.vertex_ids[tri[0]]],
+                         exact.vertex_ids[current.vertex_ids[tri[1]]],
+                         exact.vertex_ids[current.vertex_ids[tri[2]]]};
+      merged.planes[p] = facets.planes[facets.facet_of[t]];
+      merged.facet_of_face[p] = facets.facet_of[t];
+      for (int k = 0; k < 3; ++k) {
+        // The edge opposite corner k runs from corner k + 1 to corner k + 2: across[3t + k + 1] holds it.
+        const std::uint32_t u = facets.across[3 * t + (k + 1) % 3];
+        if (u == kNone) throw std::logic_error("merge_facets: the mesh is not closed");
+        merged.neighbors[p][k] = static_cast<std::int32_t>(position[u]);
+      }
+    }
 
-  // Coplanar: every exact-hull vertex that was dropped, with its nearest triangle and that one's nearest
-  // corner.
-  std::vector<std::uint8_t> kept(m, 0);
-  for (PointIndex id : current.vertex_ids)
-    kept[id] = 1;
-  for (std::uint32_t i = 0; i < m; ++i)
-    if (!kept[i]) dropped.push_back(i);
-  std::sort(dropped.begin(), dropped.end(),
-            [&](std::uint32_t a, std::uint32_t b) { return exact.vertex_ids[a] < exact.vertex_ids[b]; });
+    // Coplanar: every exact-hull vertex that was dropped, with its nearest triangle and that one's nearest
+    // corner.
+    std::vector<std::uint8_t> kept(m, 0);
+    for (PointIndex id : current.vertex_ids)
+      kept[id] = 1;
+    for (std::uint32_t i = 0; i < m; ++i)
+      if (!kept[i]) dropped.push_back(i);
+    std::sort(dropped.begin(), dropped.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return exact.vertex_ids[a] < exact.vertex_ids[b]; });
   };
   std::vector<std::uint32_t> starts;   // per facet: a corner of its largest triangle
   std::vector<Triangle> seed_corners;  // per facet: its largest triangle's corners
@@ -1124,7 +1127,8 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   in_visit_order.reserve(facets.seeds.size());
   for (std::uint32_t t : visit.triangles)
     if (facets.seeds[facets.facet_of[t]] == t) in_visit_order.push_back(facets.facet_of[t]);
-  const std::vector<double> kept_bound = kept_bounds(graph, facets.planes, seed_corners, in_visit_order, output);
+  const std::vector<double> kept_bound =
+      kept_bounds(graph, facets.planes, seed_corners, in_visit_order, output);
   laps.lap("kept bound and output");
   merged.coplanar.resize(dropped.size());
   auto face_corner = [&](std::uint32_t f, int k) {

@@ -19,7 +19,7 @@ ResidentRun<Point> run_resident(const std::vector<Point>& points, const HullPlan
   ResidentRun<Point> r;
   if (plan.backend == BackendChoice::kCuda) {
     r.backend_name = "cuda-resident";
-    ResidentCudaHull<Point> resident;
+    ResidentCudaHull<Point> resident(plan.resident_tuning);
     const auto t_upload = Clock::now();
     resident.upload(points);
     r.upload_ms = ms_since(t_upload);
@@ -39,7 +39,8 @@ ResidentRun<Point> run_resident(const std::vector<Point>& points, const HullPlan
 
 template <class Point>
 std::unique_ptr<SteppingEngine> resident_stepper(const std::vector<Point>& points, const HullPlan& plan) {
-  if (plan.backend == BackendChoice::kCuda) return make_resident_cuda_stepping_engine(points);
+  if (plan.backend == BackendChoice::kCuda)
+    return make_resident_cuda_stepping_engine(points, plan.resident_tuning);
   return make_resident_stepping_engine(points);
 }
 

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <stdexcept>
 #include <type_traits>
 
@@ -47,8 +46,6 @@ BasicEngine<Point>::BasicEngine(const std::vector<Point>& points,
                                 std::unique_ptr<BasicBackend<Point>> backend, EngineOptions options)
     : points_(&points), backend_(std::move(backend)), options_(options) {
   if (!backend_) throw std::invalid_argument("Engine needs a backend");
-  if (const char* from = std::getenv("CUDAHULL_BATCHED_SWAPS_FROM"))
-    options_.batched_swaps_from = std::strtoull(from, nullptr, 10);
   if (points_->size() >= 0xffffffffu) throw std::invalid_argument("too many points (at most 2^32 - 2)");
 }
 

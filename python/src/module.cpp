@@ -211,7 +211,8 @@ nb::dict convex_hull_of(PointArray<Scalar> points, const std::string& backend, c
                         bool box_measures) {
   ConvexHullOptions options = options_from(backend, precision, engine, {merge, tolerance, angle});
   // Measured in the call where the hull's coordinates are the points' own (not double points rounded).
-  options.box_measures = box_measures && !(std::is_same_v<Scalar, double> && options.precision == Precision::kFloat);
+  options.box_measures =
+      box_measures && !(std::is_same_v<Scalar, double> && options.precision == Precision::kFloat);
   ConvexHull hull;
   std::array<double, 2> box{0, 0};
   {

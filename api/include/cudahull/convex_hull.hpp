@@ -59,7 +59,8 @@ struct ConvexHull {
   // With ConvexHullOptions::box_measures, for dimension 3: Qhull's QbB volume and area, every axis mapped
   // onto [-0.5, 0.5] by the exact hull's vertices' bounds (qhull_scaling.hpp; scipy's under "QbB").  NaN
   // otherwise.
-  double box_volume = std::numeric_limits<double>::quiet_NaN(), box_area = std::numeric_limits<double>::quiet_NaN();
+  double box_volume = std::numeric_limits<double>::quiet_NaN(),
+         box_area = std::numeric_limits<double>::quiet_NaN();
   // A merged hull (ConvexHullOptions::merge): the points merging left out that the exact hull had as
   // vertices, each as {point, nearest face (or edge), nearest vertex}, as scipy's `coplanar`; the absolute
   // tolerance used; and a proven bound: every input point p lies within max_outside of every face's plane

@@ -22,13 +22,14 @@
 //     small_hull() on the host, small_hull_host()) read in place, with no plan, copy or neighbours
 //   CUDA: the points checked once and on the device (host points uploaded once, as given); a launch of the
 //     batch kernel (cuda/batch_cuda.hpp: a block a cloud, the resident engine's iteration) a kind of block
-//     for the clouds of 4 to 131,072 points (128 threads; four blocks an SM above 256 points; 512 threads
-//     above 16,384), one more for those whose hulls outgrew the first's room; flat, tiny and larger clouds,
-//     and those with defects, through the single-cloud path (convex_hull(), convex_hull_device()); then the
-//     result laid out on the device (offsets from every cloud's sizes), the kernel's meshes described there
-//     as convex_hull() describes one (the same code: cudahull/detail/plane_impl.hpp), the other clouds' hulls
-//     copied up into place; read back only for a host result.  Merged facets (ConvexHullOptions::merge other
-//     than exact) and the stepping engine run cloud by cloud through the single-cloud path
+//     for the clouds of 4 to 131,072 points (BatchTuning's defaults: 128 threads; four blocks an SM above 256
+//     points; 512 threads above 16,384), one more for those whose hulls outgrew the first's room; flat, tiny
+//     and larger clouds, and those with defects, through the single-cloud path (convex_hull(),
+//     convex_hull_device()); then the result laid out on the device (offsets from every cloud's sizes), the
+//     kernel's meshes described there as convex_hull() describes one (the same code:
+//     cudahull/detail/plane_impl.hpp), the other clouds' hulls copied up into place; read back only for a
+//     host result.  Merged facets (ConvexHullOptions::merge other than exact) and the stepping engine run
+//     cloud by cloud through the single-cloud path
 //   errors: the first bad point in packed order raises, named by its cloud, its index in the cloud and its
 //     row in the packed array; clouds after a failed one are not started
 //   the per-cloud hulls packed into flat arrays with offsets, in cloud order
@@ -42,6 +43,7 @@
 #include <vector>
 
 #include "cudahull/convex_hull.hpp"
+#include "cudahull/tuning.hpp"
 #include "cudahull/types.hpp"
 
 namespace cudahull {
@@ -54,6 +56,10 @@ struct ConvexHullBatchOptions {
   // CPU backend: how many clouds are hulled at once (0: every core, hardware_workers()).  With 1 every
   // cloud's hull runs on the calling thread.  The result is the same for every value.
   unsigned threads = 0;
+  // CUDA backend: which clouds the batch kernel takes, and on which kind of team (cudahull/tuning.hpp; the
+  // defaults unless set, as the command line does from its environment for A/B runs).  Each cloud's hull
+  // is convex_hull()'s for every value.
+  BatchTuning tuning;
 };
 
 // What ran, for both kinds of result.

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "cudahull/hull_options.hpp"
+#include "cudahull/tuning.hpp"
 #include "cudahull/types.hpp"
 
 namespace cudahull {
@@ -57,6 +58,10 @@ struct HullPlan {
   // cost is microseconds where the engine's is a hundred; the engine still takes a flat cloud.
   bool small_cloud = false;
   std::string device;  // the CUDA device's name where backend is kCuda and the status named it
+  // The resident engine's thresholds on the GPU (cudahull/tuning.hpp): plan_hull() gives the defaults; the
+  // runners (hull_runner.hpp, convex_hull()) build the engine with them.  The command line sets them from
+  // its environment for A/B runs.
+  ResidentTuning resident_tuning;
   // Non-empty where the request cannot be met here, and why, as the error's one line (e.g. "backend cuda:
   // no usable CUDA device: ..."): the plan is otherwise the one that would run.
   std::string unavailable;

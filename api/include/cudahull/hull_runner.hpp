@@ -4,10 +4,11 @@
 // design:
 //   planned_backend   the stepping engine's backend on the plan's backend: the CPU's threads or the GPU
 //   run_resident      the resident engine's whole run on the plan's backend (every phase where the points
-//                     are), with its counters, the hardware's floor for each phase (fill_floors(), measured
-//                     after the run's clock) and the upload's and the run's times
+//                     are; on the GPU with the plan's ResidentTuning), with its counters, the hardware's
+//                     floor for each phase (fill_floors(), measured after the run's clock) and the upload's
+//                     and the run's times
 //   resident_stepper  the resident engine an iteration a step, with records (the viewer's and --trace's),
-//                     on the plan's backend
+//                     on the plan's backend (on the GPU with the plan's ResidentTuning)
 // convex_hull() (convex_hull.hpp) runs the same engines for a one-call result.
 #pragma once
 

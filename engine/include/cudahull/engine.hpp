@@ -36,8 +36,8 @@ struct EngineOptions {
   bool keep_decisions = true;  // copy the decision array into each IterationRecord
   // Swap candidates from this many on are tried in batched rounds on all cores (phases/swaps.cpp,
   // swap_edges()); fewer go one at a time.  Either way the hull is the same; the order of the edits, and so
-  // the intermediate meshes, can differ.  SIZE_MAX: never batch.  The environment variable
-  // CUDAHULL_BATCHED_SWAPS_FROM overrides it (for A/B benchmarks).
+  // the intermediate meshes, can differ.  SIZE_MAX: never batch.  The command line sets it from
+  // CUDAHULL_BATCHED_SWAPS_FROM for A/B runs (docs/cli.md); the library reads no environment for it.
   std::size_t batched_swaps_from = 4096;
 };
 

@@ -13,6 +13,7 @@
 
 #include "cudahull/resident/iteration.hpp"
 #include "cudahull/resident/resident_ops.hpp"
+#include "cudahull/tuning.hpp"
 
 namespace cudahull::resident {
 
@@ -171,7 +172,8 @@ struct HostExec {
 // compare its mesh with HostExec's and so check the driver's device paths without a GPU.
 struct DevicePathHostExec : HostExec {
   static constexpr bool kDeviceLoop = true;
-  std::size_t loop_points = 16384, loop_faces = 512, loop_few_points_faces = 4096;  // as CudaExec's
+  explicit DevicePathHostExec(const ResidentTuning& tuning = {}) : tuning(tuning) {}
+  ResidentTuning tuning;  // the device loop's limits, as CudaExec's (one_block_faces: the device's alone)
   static constexpr std::size_t kFinishFaces = kSmallFinishFaces;
 
   // As the GPU's finish_small_kernel: out = [faults, vertices, the corners renumbered, the vertex list].

@@ -423,7 +423,7 @@ class ResidentHull {
   // The largest mesh a device loop runs on (one block: past it the grid's launches are faster).
   std::size_t loop_faces() const {
     if constexpr (Exec::kDeviceLoop) {
-      return exec_.loop_faces;
+      return exec_.tuning.loop_faces;
     } else {
       return 0;
     }
@@ -431,7 +431,7 @@ class ResidentHull {
   // The largest mesh it runs on with no more points left than faces (loop_goes_on()).
   std::size_t loop_few_points_faces() const {
     if constexpr (Exec::kDeviceLoop) {
-      return exec_.loop_few_points_faces;
+      return exec_.tuning.loop_few_points_faces;
     } else {
       return 0;
     }
@@ -893,7 +893,7 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
   // count, and waits for it.
   const bool small = faces_ <= kSpeculateFaces;
   bool loop = false;
-  if constexpr (Exec::kDeviceLoop) loop = !out && loop_goes_on_here() && active_ <= exec_.loop_points;
+  if constexpr (Exec::kDeviceLoop) loop = !out && loop_goes_on_here() && active_ <= exec_.tuning.loop_points;
   const bool wait_for_refined = out || !small;
   if (!wait_for_refined) grow_for_iteration(loop ? 2 * faces_ : faces_, true, loop);
   if (out) {

@@ -41,9 +41,14 @@ template <class Point, class Exec>
 class ResidentStepper : public SteppingEngine {
  public:
   // Borrows `points` (the host copy, for coordinates and exact checks); upload_points() says where the
-  // executor reads them.
-  ResidentStepper(const std::vector<Point>& points, std::string backend_name, bool device_point_states)
-      : points_(&points), name_(std::move(backend_name)), device_states_(device_point_states) {}
+  // executor reads them.  `exec_args` construct the executor (CudaExec's: a ResidentTuning).
+  template <class... ExecArgs>
+  ResidentStepper(const std::vector<Point>& points, std::string backend_name, bool device_point_states,
+                  const ExecArgs&... exec_args)
+      : exec_(exec_args...),
+        points_(&points),
+        name_(std::move(backend_name)),
+        device_states_(device_point_states) {}
 
   bool done() const override { return done_; }
   void restart() override {
