@@ -9,6 +9,7 @@
 // --table` measure them (docs/benchmarks.md).
 #include <gtest/gtest.h>
 
+#include "support/dist_cases.hpp"
 #include "support/point_sets.hpp"
 
 #include <chrono>
@@ -35,6 +36,7 @@
 namespace cudahull {
 namespace {
 
+using testing::DistCase;
 using testing::grid;
 using testing::scaled;
 
@@ -178,6 +180,18 @@ TEST_F(Cuda, BackendNameAndBadDevice) {
   }
 }
 
+// The furthest point from the line and the plane through five random pairs and triples of the `size`
+// points, the same on both backends.
+template <class Cpu, class Gpu>
+void expect_same_random_queries(Cpu& cpu, Gpu& gpu, std::size_t size, std::mt19937& rng, int trial) {
+  for (int k = 0; k < 5; ++k) {
+    std::uniform_int_distribution<PointIndex> pick(0, static_cast<PointIndex>(size - 1));
+    const PointIndex a = pick(rng), b = pick(rng), c = pick(rng);
+    EXPECT_EQ(gpu.furthest_from_line(a, b), cpu.furthest_from_line(a, b)) << "trial " << trial;
+    EXPECT_EQ(gpu.furthest_from_plane(a, b, c), cpu.furthest_from_plane(a, b, c)) << "trial " << trial;
+  }
+}
+
 TEST_F(Cuda, QueriesMatchTheCpuWithTies) {
   std::mt19937 rng(3);
   for (int trial = 0; trial < 12; ++trial) {
@@ -198,46 +212,43 @@ TEST_F(Cuda, QueriesMatchTheCpuWithTies) {
     gpu->upload_points(p);
     const auto cx = cpu->extremes_x(), gx = gpu->extremes_x();
     EXPECT_EQ(gx, cx) << "trial " << trial;
-    for (int k = 0; k < 5; ++k) {
-      std::uniform_int_distribution<PointIndex> pick(0, static_cast<PointIndex>(p.size() - 1));
-      const PointIndex a = pick(rng), b = pick(rng), c = pick(rng);
-      EXPECT_EQ(gpu->furthest_from_line(a, b), cpu->furthest_from_line(a, b)) << "trial " << trial;
-      EXPECT_EQ(gpu->furthest_from_plane(a, b, c), cpu->furthest_from_plane(a, b, c)) << "trial " << trial;
-    }
+    expect_same_random_queries(*cpu, *gpu, p.size(), rng, trial);
   }
 }
 
 // --- Whole runs: identical on both backends -------------------------------------------------------------
 
-struct DistCase {
-  Distribution dist;
-  std::size_t n;
-};
-
 class CudaGeneral : public Cuda, public ::testing::WithParamInterface<DistCase> {};
 
-TEST_P(CudaGeneral, SameAsCpu) {
-  const auto [dist, n] = GetParam();
-  const auto points = generate_points(dist, n, 20261122 + n);
+// A case's whole run, the same on both backends (restarted too in double): every point's face and the
+// checker up to 100000 points, and no external point left at the end.
+template <class Point>
+void expect_same_whole_run(const std::vector<Point>& points, const DistCase& c) {
   CompareOptions options;
-  options.point_faces = n <= 100000;
-  options.check_hull = n <= 100000;
-  const auto records = compare_backends(points, distribution_name(dist) + " " + std::to_string(n), options);
+  options.point_faces = c.n <= 100000;
+  options.check_hull = c.n <= 100000;
+  options.restart = std::is_same_v<Point, Point3d>;
+  const auto records =
+      compare_backends(points, distribution_name(c.dist) + " " + std::to_string(c.n), options);
   ASSERT_FALSE(records.empty());
   EXPECT_EQ(records.back().external_after, 0u);
 }
 
+TEST_P(CudaGeneral, SameAsCpu) {
+  const DistCase c = GetParam();
+  expect_same_whole_run(generate_points(c.dist, c.n, 20261122 + c.n), c);
+}
+
 INSTANTIATE_TEST_SUITE_P(
     Engine, CudaGeneral,
-    ::testing::Values(DistCase{Distribution::kCube, 1000}, DistCase{Distribution::kCube, 100000},
-                      DistCase{Distribution::kCube, 1000000}, DistCase{Distribution::kBall, 1000},
-                      DistCase{Distribution::kBall, 100000}, DistCase{Distribution::kBall, 1000000},
-                      DistCase{Distribution::kSphere, 1000}, DistCase{Distribution::kSphere, 100000},
-                      DistCase{Distribution::kSphere, 1000000}, DistCase{Distribution::kGauss, 1000},
-                      DistCase{Distribution::kGauss, 100000}, DistCase{Distribution::kGauss, 1000000},
-                      DistCase{Distribution::kParaboloid, 20000}, DistCase{Distribution::kCylinder, 20000},
-                      DistCase{Distribution::kGrid, 27000}),
-    [](const auto& info) { return distribution_name(info.param.dist) + "_" + std::to_string(info.param.n); });
+    ::testing::ValuesIn(testing::dist_cases({{Distribution::kCube, {1000, 100000, 1000000}},
+                                             {Distribution::kBall, {1000, 100000, 1000000}},
+                                             {Distribution::kSphere, {1000, 100000, 1000000}},
+                                             {Distribution::kGauss, {1000, 100000, 1000000}},
+                                             {Distribution::kParaboloid, {20000}},
+                                             {Distribution::kCylinder, {20000}},
+                                             {Distribution::kGrid, {27000}}})),
+    testing::dist_case_name);
 
 TEST_F(Cuda, ManySmallSeeds) {
   for (Distribution dist : {Distribution::kCube, Distribution::kBall, Distribution::kGauss}) {
@@ -263,11 +274,7 @@ TEST_F(Cuda, DegenerateInputs) {
     tripled.insert(tripled.end(), base.begin(), base.end());
   compare_backends(tripled, "tripled ball", {true, true});
 
-  std::vector<Point3> paraboloid;
-  for (int x = -20; x <= 20; ++x)
-    for (int y = -20; y <= 20; ++y)
-      paraboloid.push_back({float(x), float(y), float(x * x + y * y)});
-  compare_backends(paraboloid, "integer paraboloid", {true, true});
+  compare_backends(testing::integer_paraboloid(20), "integer paraboloid", {true, true});
 
   auto slab = generate_points(Distribution::kCube, 50000, 11);
   for (auto& p : slab)
@@ -461,12 +468,7 @@ TEST_F(Cuda, DoubleQueriesMatchTheCpuWhereFloatWouldTie) {
     EXPECT_EQ(gpu->furthest_from_line(cx[0], cx[1]), c) << "trial " << trial;
     EXPECT_EQ(gpu->furthest_from_plane(cx[0], cx[1], c), cpu->furthest_from_plane(cx[0], cx[1], c))
         << "trial " << trial;
-    for (int k = 0; k < 5; ++k) {
-      std::uniform_int_distribution<PointIndex> pick(0, static_cast<PointIndex>(p.size() - 1));
-      const PointIndex a = pick(rng), b = pick(rng), d = pick(rng);
-      EXPECT_EQ(gpu->furthest_from_line(a, b), cpu->furthest_from_line(a, b)) << "trial " << trial;
-      EXPECT_EQ(gpu->furthest_from_plane(a, b, d), cpu->furthest_from_plane(a, b, d)) << "trial " << trial;
-    }
+    expect_same_random_queries(*cpu, *gpu, p.size(), rng, trial);
   }
 }
 
@@ -474,22 +476,16 @@ TEST_F(Cuda, DoubleQueriesMatchTheCpuWhereFloatWouldTie) {
 class CudaDouble : public Cuda, public ::testing::WithParamInterface<DistCase> {};
 
 TEST_P(CudaDouble, SameAsCpu) {
-  const auto [dist, n] = GetParam();
-  CompareOptions options;
-  options.point_faces = n <= 100000;
-  options.check_hull = n <= 100000;
-  const auto records = compare_double_backends(to_double(generate_points(dist, n, 31)),
-                                               distribution_name(dist) + " " + std::to_string(n), options);
-  ASSERT_FALSE(records.empty());
-  EXPECT_EQ(records.back().external_after, 0u);
+  const DistCase c = GetParam();
+  expect_same_whole_run(to_double(generate_points(c.dist, c.n, 31)), c);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Engine, CudaDouble,
-    ::testing::Values(DistCase{Distribution::kCube, 100000}, DistCase{Distribution::kCube, 1000000},
-                      DistCase{Distribution::kBall, 100000}, DistCase{Distribution::kSphere, 100000},
-                      DistCase{Distribution::kGauss, 100000}),
-    [](const auto& info) { return distribution_name(info.param.dist) + "_" + std::to_string(info.param.n); });
+INSTANTIATE_TEST_SUITE_P(Engine, CudaDouble,
+                         ::testing::ValuesIn(testing::dist_cases({{Distribution::kCube, {100000, 1000000}},
+                                                                  {Distribution::kBall, {100000}},
+                                                                  {Distribution::kSphere, {100000}},
+                                                                  {Distribution::kGauss, {100000}}})),
+                         testing::dist_case_name);
 
 TEST_F(Cuda, DoubleDegenerateAndBeyondFloatRange) {
   compare_double_backends(to_double(grid(6)), "integer grid 6x6x6", {true, true});

@@ -18,6 +18,7 @@
 #include "cudahull/parallel.hpp"
 #include "cudahull/point_io.hpp"
 #include "qhull_reference.hpp"
+#include "support/dist_cases.hpp"
 #include "support/mesh_faces.hpp"
 #include "support/oracles.hpp"
 #include "support/point_sets.hpp"
@@ -25,6 +26,7 @@
 namespace cudahull {
 namespace {
 
+using testing::DistCase;
 using testing::grid;
 using testing::scaled;
 
@@ -52,11 +54,6 @@ void expect_exact(const std::vector<Point3>& points, const HullMesh& hull) {
 
 // --- General position: Qhull and the checker agree, the engine needs no repair -------------------------
 
-struct DistCase {
-  Distribution dist;
-  std::size_t n;
-};
-
 class GeneralPosition : public ::testing::TestWithParam<DistCase> {};
 
 TEST_P(GeneralPosition, MatchesQhullExactlyWithoutRepair) {
@@ -79,12 +76,11 @@ TEST_P(GeneralPosition, MatchesQhullExactlyWithoutRepair) {
 
 INSTANTIATE_TEST_SUITE_P(
     Engine, GeneralPosition,
-    ::testing::Values(DistCase{Distribution::kCube, 1000}, DistCase{Distribution::kCube, 100000},
-                      DistCase{Distribution::kCube, 1000000}, DistCase{Distribution::kBall, 1000},
-                      DistCase{Distribution::kBall, 100000}, DistCase{Distribution::kBall, 1000000},
-                      DistCase{Distribution::kGauss, 1000}, DistCase{Distribution::kGauss, 200000},
-                      DistCase{Distribution::kSphere, 1000}, DistCase{Distribution::kSphere, 100000}),
-    [](const auto& info) { return distribution_name(info.param.dist) + "_" + std::to_string(info.param.n); });
+    ::testing::ValuesIn(testing::dist_cases({{Distribution::kCube, {1000, 100000, 1000000}},
+                                             {Distribution::kBall, {1000, 100000, 1000000}},
+                                             {Distribution::kGauss, {1000, 200000}},
+                                             {Distribution::kSphere, {1000, 100000}}})),
+    testing::dist_case_name);
 
 // In general position the paper's local procedure (swaps, complementary swaps, removals) must reach the
 // exact hull by itself: the exact finish repairs nothing.
@@ -159,10 +155,7 @@ TEST(EngineDegenerate, CylinderRings) {
 }
 
 TEST(EngineDegenerate, IntegerParaboloidIsAllExtreme) {
-  std::vector<Point3> points;
-  for (int x = -20; x <= 20; ++x)
-    for (int y = -20; y <= 20; ++y)
-      points.push_back({float(x), float(y), float(x * x + y * y)});
+  const std::vector<Point3> points = testing::integer_paraboloid(20);
   const RunResult r = run_engine(points);
   EXPECT_EQ(r.hull.vertex_ids.size(), points.size());  // every lifted lattice point is strictly extreme
   expect_exact(points, r.hull);

@@ -26,6 +26,8 @@
 namespace cudahull {
 namespace {
 
+using testing::integer_paraboloid;
+using testing::lattice;
 using testing::Rng;
 std::vector<Point3> ball(std::size_t n, std::uint64_t seed) {
   return testing::dyadic_ball(n, seed);
@@ -110,15 +112,6 @@ TEST(ExactHull, SpherePointsAreNearlyAllExtreme) {
   EXPECT_GT(h.vertex_ids.size(), 19000u);  // nearly all on the hull; float rounding pushes a few inside
 }
 
-std::vector<Point3> grid(int side) {
-  std::vector<Point3> p;
-  for (int x = 0; x < side; ++x)
-    for (int y = 0; y < side; ++y)
-      for (int z = 0; z < side; ++z)
-        p.push_back({float(x), float(y), float(z)});
-  return p;
-}
-
 std::set<std::array<float, 3>> coordinate_set(const HullMesh& h) {
   std::set<std::array<float, 3>> s;
   for (const Point3& v : h.vertices)
@@ -136,7 +129,7 @@ std::set<std::array<float, 3>> cube_corners(float lo, float hi) {
 }
 
 TEST(ExactHull, IntegerGridHasOnlyCorners) {
-  std::vector<Point3> p = grid(6);
+  std::vector<Point3> p = lattice(6, 6, 6);
   Rng r(3);
   for (std::size_t i = p.size(); i > 1; --i)
     std::swap(p[i - 1], p[r.below(i)]);
@@ -150,7 +143,7 @@ TEST(ExactHull, IntegerGridHasOnlyCorners) {
 
 TEST(ExactHull, CubeSurfaceGridHasOnlyCorners) {
   std::vector<Point3> p;
-  for (const Point3& q : grid(11))
+  for (const Point3& q : lattice(11, 11, 11))
     if (q.x == 0 || q.x == 10 || q.y == 0 || q.y == 10 || q.z == 0 || q.z == 10) p.push_back(q);
   const HullMesh h = exact_hull(p);
   EXPECT_EQ(h.vertex_ids.size(), 8u);
@@ -191,10 +184,7 @@ TEST(ExactHull, TripledPointsKeepLowestIndex) {
 }
 
 TEST(ExactHull, ParaboloidPointsAreAllExtreme) {
-  std::vector<Point3> p;
-  for (int x = -12; x <= 12; ++x)
-    for (int y = -12; y <= 12; ++y)
-      p.push_back({float(x), float(y), float(x * x + y * y)});
+  const std::vector<Point3> p = integer_paraboloid(12);
   const HullMesh h = exact_hull(p);
   EXPECT_EQ(h.vertex_ids.size(), p.size());
   expect_valid(p, h);
@@ -328,7 +318,7 @@ TEST(ExactHull, PowerOfTwoScalingKeepsCombinatorics) {
     expect_valid(q, hq);
   }
   // Also for a degenerate input: the scaled grid still has only its corners.
-  std::vector<Point3> g = grid(5);
+  std::vector<Point3> g = lattice(5, 5, 5);
   for (Point3& v : g)
     v = {std::ldexp(v.x, -100), std::ldexp(v.y, -100), std::ldexp(v.z, -100)};
   EXPECT_EQ(exact_hull(g).vertex_ids.size(), 8u);

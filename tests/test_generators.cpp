@@ -12,16 +12,11 @@
 
 #include "cudahull/generators.hpp"
 
-using cudahull::Distribution;
-using cudahull::distribution_from_name;
-using cudahull::distribution_name;
-using cudahull::distribution_names;
-using cudahull::generate_points;
-using cudahull::Point3;
+namespace cudahull {
+namespace {
+
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
-
-namespace {
 
 const Distribution kAll[] = {Distribution::kCube,  Distribution::kBall,       Distribution::kSphere,
                              Distribution::kGauss, Distribution::kParaboloid, Distribution::kCylinder,
@@ -199,3 +194,4 @@ TEST(Names, KnownAndUnknown) {
 }
 
 }  // namespace
+}  // namespace cudahull

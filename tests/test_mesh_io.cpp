@@ -21,61 +21,17 @@
 #include "cudahull/errors.hpp"
 #include "cudahull/mesh_io.hpp"
 #include "cudahull/point_io.hpp"
+#include "support/temp_dir.hpp"
 
-namespace fs = std::filesystem;
-using cudahull::HullMesh;
-using cudahull::OutputError;
-using cudahull::Point3;
-using cudahull::read_points;
-using cudahull::write_file_atomically;
-using cudahull::write_mesh;
-using cudahull::write_vertices;
-using ::testing::ElementsAre;
-using ::testing::HasSubstr;
-
+namespace cudahull {
 namespace {
 
-class TempDir {
- public:
-  TempDir() {
-    static int counter = 0;
-    path_ = fs::temp_directory_path() /
-            ("cudahull_mesh_io_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  fs::path operator/(const std::string& name) const { return path_ / name; }
-  const fs::path& path() const { return path_; }
-  // Every file name in the directory.
-  std::vector<std::string> files() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(path_))
-      names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-
- private:
-  fs::path path_;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);)
-    lines.push_back(line);
-  return lines;
-}
+namespace fs = std::filesystem;
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+using testing::lines_of;
+using testing::slurp;
+using testing::TempDir;
 
 // Lines that start with `prefix`.
 std::vector<std::string> lines_starting(const std::string& text, const std::string& prefix) {
@@ -401,3 +357,4 @@ TEST(AtomicWrite, LeavesIgnoredSignalsIgnored) {
 }
 
 }  // namespace
+}  // namespace cudahull

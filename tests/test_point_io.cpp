@@ -21,38 +21,18 @@
 
 #include "cudahull/errors.hpp"
 #include "cudahull/point_io.hpp"
+#include "support/temp_dir.hpp"
 
-namespace fs = std::filesystem;
-using cudahull::InputError;
-using cudahull::Point3;
-using cudahull::PointFormat;
-using cudahull::read_points;
-using ::testing::HasSubstr;
-using ::testing::StartsWith;
-
+namespace cudahull {
 namespace {
 
+namespace fs = std::filesystem;
 const fs::path kModels = CUDAHULL_MODELS_DIR;
 const fs::path kData = CUDAHULL_TEST_DATA_DIR;
 
-// A fresh directory per test, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    static int counter = 0;
-    path_ = fs::temp_directory_path() /
-            ("cudahull_point_io_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  fs::path operator/(const std::string& name) const { return path_ / name; }
-
- private:
-  fs::path path_;
-};
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+using testing::TempDir;
 
 void write_file(const fs::path& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary);
@@ -60,26 +40,26 @@ void write_file(const fs::path& path, const std::string& bytes) {
   ASSERT_TRUE(out.good()) << path;
 }
 
-// The message of the InputError that reading `path` throws ("" and a test failure if none is thrown).
-std::string read_error(const std::string& path) {
+// The message of the InputError that `read()` throws ("" and the test failure `failure` if none is thrown).
+template <class Read>
+std::string input_error(Read read, const std::string& failure) {
   try {
-    read_points(path);
+    read();
   } catch (const InputError& e) {
     return e.what();
   }
-  ADD_FAILURE() << path << ": no InputError";
+  ADD_FAILURE() << failure;
   return "";
+}
+
+// The message of the InputError that reading `path` throws.
+std::string read_error(const std::string& path) {
+  return input_error([&] { read_points(path); }, path + ": no InputError");
 }
 
 std::string read_error_text(const std::string& text, PointFormat format) {
   std::istringstream in(text);
-  try {
-    read_points(in, format, "mem");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError for:\n" << text;
-  return "";
+  return input_error([&] { read_points(in, format, "mem"); }, "no InputError for:\n" + text);
 }
 
 // A gtest name from a file name.
@@ -134,31 +114,23 @@ TEST_P(SharedModels, DoubleReaderAgreesWithTheFloatReader) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Models, SharedModels,
-    ::testing::Values(ModelCase{"bun_zipper.ply",
-                                35947,
-                                {-0.0378297f, 0.12794f, 0.00447467f},
-                                {-0.0400442f, 0.15362f, -0.00816685f}},
-                      ModelCase{"stanford-bunny.obj",
-                                35947,
-                                {-0.037830f, 0.127940f, 0.004475f},
-                                {-0.040044f, 0.153620f, -0.008167f}},
-                      ModelCase{"dragonStandRight_0.ply",
-                                41841,
-                                {-0.0570643f, 0.0534662f, 0.0326335f},
-                                {-0.0330614f, 0.197932f, -0.0201442f}},
-                      // Binary: %.9g of the stored floats, which reads back as the same floats.
-                      ModelCase{"dragon_scans.ply",
-                                469193,
-                                {-0.0574304536f, 0.0534693226f, 0.0317070112f},
-                                {-0.0359619223f, 0.197838485f, 0.00969995931f}},
-                      ModelCase{"teapot.obj", 3644, {-3.0f, 1.8f, 0.0f}, {3.434f, 2.4729f, 0.0f}},
-                      ModelCase{"spot.obj",
-                                2930,
-                                {0.348799f, -0.334989f, -0.0832331f},
-                                {-0.0137291f, -0.0795664f, 1.04692f}}),
-    [](const auto& info) { return test_name(info.param.file); });
+const ModelCase kModelCases[] = {
+    {"bun_zipper.ply", 35947, {-0.0378297f, 0.12794f, 0.00447467f}, {-0.0400442f, 0.15362f, -0.00816685f}},
+    {"stanford-bunny.obj", 35947, {-0.037830f, 0.127940f, 0.004475f}, {-0.040044f, 0.153620f, -0.008167f}},
+    {"dragonStandRight_0.ply",
+     41841,
+     {-0.0570643f, 0.0534662f, 0.0326335f},
+     {-0.0330614f, 0.197932f, -0.0201442f}},
+    // Binary: %.9g of the stored floats, which reads back as the same floats.
+    {"dragon_scans.ply",
+     469193,
+     {-0.0574304536f, 0.0534693226f, 0.0317070112f},
+     {-0.0359619223f, 0.197838485f, 0.00969995931f}},
+    {"teapot.obj", 3644, {-3.0f, 1.8f, 0.0f}, {3.434f, 2.4729f, 0.0f}},
+    {"spot.obj", 2930, {0.348799f, -0.334989f, -0.0832331f}, {-0.0137291f, -0.0795664f, 1.04692f}}};
+
+INSTANTIATE_TEST_SUITE_P(Models, SharedModels, ::testing::ValuesIn(kModelCases),
+                         [](const auto& info) { return test_name(info.param.file); });
 
 // ------------------------------------------------------------------------------------------ PLY round trips
 
@@ -584,12 +556,8 @@ class PipeBuf : public std::streambuf {
 TEST(MalformedBinary, AbsurdCountOnUnseekableStreamStillFailsCleanly) {
   PipeBuf buf(binary_header("binary_little_endian", 4'000'000'000ULL, kXyzFloat) + std::string(30, 'A'));
   std::istream in(&buf);
-  try {
-    read_points(in, PointFormat::kPly, "pipe");
-    FAIL() << "no InputError";
-  } catch (const InputError& e) {
-    EXPECT_THAT(std::string(e.what()), HasSubstr("pipe: vertex 2: truncated binary data"));
-  }
+  EXPECT_THAT(input_error([&] { read_points(in, PointFormat::kPly, "pipe"); }, "no InputError"),
+              HasSubstr("pipe: vertex 2: truncated binary data"));
   PipeBuf text("ply\nformat ascii 1.0\nelement vertex 4000000000\n" + kXyzFloat + "end_header\n1 2 3\n");
   std::istream in2(&text);
   EXPECT_THROW(read_points(in2, PointFormat::kPly, "pipe"), InputError);
@@ -652,18 +620,27 @@ TEST(Paths, MissingFileDirectoryAndExtensions) {
   EXPECT_THROW(cudahull::point_format_from_path("points.stl"), InputError);
 }
 
-TEST(Stdin, DashReadsXyzFromStandardInput) {
+// `read_dash()` (a read of "-") with standard input from a file holding `text`, in a child process (so that
+// this process's standard input is left alone): the child must exit 0, which it does when `read_dash()`
+// returns true.
+template <class ReadDash>
+void expect_stdin_read(const std::string& text, ReadDash read_dash) {
   TempDir dir;
-  write_file(dir / "in.xyz", "1 2 3\n# c\n4 5 6\n");
+  write_file(dir / "in.xyz", text);
   const std::string path = (dir / "in.xyz").string();
-  // In a child process, so that this process's standard input is left alone.
   const auto child = [&] {
     if (std::freopen(path.c_str(), "r", stdin) == nullptr) std::_Exit(2);
-    const auto p = read_points("-");
-    const std::vector<Point3> expected = {{1, 2, 3}, {4, 5, 6}};
-    std::_Exit(p == expected ? 0 : 1);
+    std::_Exit(read_dash() ? 0 : 1);
   };
   EXPECT_EXIT(child(), ::testing::ExitedWithCode(0), "");
+}
+
+TEST(Stdin, DashReadsXyzFromStandardInput) {
+  expect_stdin_read("1 2 3\n# c\n4 5 6\n", [] {
+    const auto p = read_points("-");
+    const std::vector<Point3> expected = {{1, 2, 3}, {4, 5, 6}};
+    return p == expected;
+  });
 }
 
 TEST(Progress, TextReaderReportsOccasionallyAndEndsAtOne) {
@@ -689,13 +666,6 @@ TEST(Progress, TextReaderReportsOccasionallyAndEndsAtOne) {
 // says which precision `auto` picks.  Expected values come from strtod/strtof of the same text, or from the
 // doubles written into the binary files.
 
-using cudahull::auto_precision;
-using cudahull::DoublePoints;
-using cudahull::Point3d;
-using cudahull::Precision;
-using cudahull::precision_name;
-using cudahull::read_points_double;
-
 DoublePoints read_text_double(const std::string& text, PointFormat format) {
   std::istringstream in(text);
   return read_points_double(in, format, "mem");
@@ -703,13 +673,7 @@ DoublePoints read_text_double(const std::string& text, PointFormat format) {
 
 std::string read_error_text_double(const std::string& text, PointFormat format) {
   std::istringstream in(text);
-  try {
-    read_points_double(in, format, "mem");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError for:\n" << text;
-  return "";
+  return input_error([&] { read_points_double(in, format, "mem"); }, "no InputError for:\n" + text);
 }
 
 double strtod_of(const std::string& s) {
@@ -844,13 +808,7 @@ TEST(DoubleMalformed, SameErrorsAsTheFloatReader) {
       EXPECT_EQ(d.points[1], (Point3d{1e39, 0, 0}));
       continue;
     }
-    const std::string float_error = read_error(path);
-    try {
-      read_points_double(path);
-      ADD_FAILURE() << "no InputError";
-    } catch (const InputError& e) {
-      EXPECT_EQ(std::string(e.what()), float_error);
-    }
+    EXPECT_EQ(input_error([&] { read_points_double(path); }, "no InputError"), read_error(path));
   }
   EXPECT_EQ(n, 20u);
 }
@@ -1008,12 +966,8 @@ TEST(DoublePly, BinaryRangeIsDoubleRange) {
   write_file(dir / "r.ply", ply);
   EXPECT_THAT(read_error((dir / "r.ply").string()),
               HasSubstr(": vertex 0: x coordinate is beyond float range"));
-  try {
-    read_points_double((dir / "r.ply").string());
-    FAIL() << "no InputError";
-  } catch (const InputError& e) {
-    EXPECT_THAT(std::string(e.what()), HasSubstr(": vertex 1: NaN y coordinate"));
-  }
+  EXPECT_THAT(input_error([&] { read_points_double((dir / "r.ply").string()); }, "no InputError"),
+              HasSubstr(": vertex 1: NaN y coordinate"));
 }
 
 TEST(AutoPrecision, FromTheFormatAndThePlyHeaderAlone) {
@@ -1049,16 +1003,12 @@ TEST(AutoPrecision, Names) {
 }
 
 TEST(Stdin, DashReadsDoublesFromStandardInput) {
-  TempDir dir;
-  write_file(dir / "in.xyz", "0.1 2 3\n1.000000000001 5 6\n");
-  const std::string path = (dir / "in.xyz").string();
-  const auto child = [&] {
-    if (std::freopen(path.c_str(), "r", stdin) == nullptr) std::_Exit(2);
+  expect_stdin_read("0.1 2 3\n1.000000000001 5 6\n", [] {
     const auto d = read_points_double("-");
     const std::vector<Point3d> expected = {{0.1, 2, 3}, {strtod_of("1.000000000001"), 5, 6}};
-    std::_Exit(d.points == expected && d.precision == Precision::kDouble ? 0 : 1);
-  };
-  EXPECT_EXIT(child(), ::testing::ExitedWithCode(0), "");
+    return d.points == expected && d.precision == Precision::kDouble;
+  });
 }
 
 }  // namespace
+}  // namespace cudahull

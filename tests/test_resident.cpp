@@ -187,21 +187,15 @@ TEST(Resident, DuplicatesKeepTheLowestIndex) {
 
 // Seeded random sets of every kind the property test has, small enough for a quick loop.
 TEST(Resident, SeededClustersJitterAndRanges) {
+  using testing::SeededKind;
+  const SeededKind kinds[] = {SeededKind::kCube, SeededKind::kLattice, SeededKind::kFarJitter,
+                              SeededKind::kScales};
   testing::Rng r(99);
   for (int t = 0; t < 60; ++t) {
     const std::size_t n = 4 + r.below(3000);
-    std::vector<Point3d> p(n);
     const int kind = t % 4;
-    for (auto& q : p) {
-      if (kind == 0) q = {r.unit(), r.unit(), r.unit()};
-      if (kind == 1) q = {double(int(r.below(5))), double(int(r.below(5))), double(int(r.below(5)))};
-      if (kind == 2) q = {1e9 + r.unit() * 1e-3, -2e9 + r.unit() * 1e-3, 3e9 + r.unit() * 1e-3};
-      if (kind == 3) {
-        const double s = r.below(2) ? 1e-6 : 1;
-        q = {s * r.unit(), s * r.unit(), (r.below(2) ? 1e6 : 0) + s * r.unit()};
-      }
-    }
-    expect_exact(p, "case " + std::to_string(t) + " kind " + std::to_string(kind));
+    expect_exact(testing::seeded_set(r, n, kinds[kind], 5),
+                 "case " + std::to_string(t) + " kind " + std::to_string(kind));
   }
 }
 
@@ -327,11 +321,7 @@ TEST(Resident, SmallHullOfOneCloudOnATeam) {
   expect_batch_exact(repeats, "sphere with repeats", room_asked, false, true);
   // A cube's corners, its edges' and faces' midpoints and its centre, in every order the seeds give: the
   // points on faces and edges taken first must leave the mesh when the corners come.
-  std::vector<Point3> lattice;
-  for (int x = 0; x < 3; ++x)
-    for (int y = 0; y < 3; ++y)
-      for (int z = 0; z < 3; ++z)
-        lattice.push_back(Point3{static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)});
+  const std::vector<Point3> lattice = testing::lattice(3, 3, 3);
   for (unsigned seed = 0; seed < 40; ++seed) {
     std::vector<Point3> shuffled = lattice;
     std::mt19937 rng(seed);
@@ -354,11 +344,7 @@ TEST(Resident, SmallHullWalkFindsTheFacesTheScanFinds) {
     for (std::size_t n : {5, 12, 23, 40, 128})
       for (unsigned seed = 0; seed < 6; ++seed)
         clouds.push_back(generate_points(distribution_from_name(name), n, 1000 * seed + n));
-  std::vector<Point3> lattice;
-  for (int x = 0; x < 4; ++x)
-    for (int y = 0; y < 4; ++y)
-      for (int z = 0; z < 3; ++z)
-        lattice.push_back(Point3{static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)});
+  const std::vector<Point3> lattice = testing::lattice(4, 4, 3);
   for (unsigned seed = 0; seed < 60; ++seed) {
     std::vector<Point3> shuffled = lattice;
     std::mt19937 rng(seed);
@@ -388,16 +374,13 @@ TEST(Resident, SmallHullWalkFindsTheFacesTheScanFinds) {
 }
 
 TEST(Resident, SharedModelsAtTheirKnownCounts) {
-  const std::filesystem::path dir = testing::shared_models_dir();
-  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no models folder " << dir;
-  for (const auto& [name, count] : testing::kSharedModelCounts) {
-    const std::vector<Point3> points = read_points((dir / name).string());
+  testing::for_each_shared_model([](const char* name, const std::vector<Point3>& points, std::size_t count) {
     ResidentStats stats;
     const HullMesh hull = resident_hull_host(points, &stats);
     EXPECT_EQ(hull.vertex_ids.size(), count) << name << " (" << stats.note << ")";
     const CheckResult check = check_hull(points, hull, 3);
     EXPECT_TRUE(check.ok) << name << ": " << (check.failures.empty() ? "" : check.failures.front());
-  }
+  });
 }
 
 }  // namespace

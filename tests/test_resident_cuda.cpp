@@ -239,20 +239,13 @@ TEST_F(ResidentCuda, GeneratedDistributionsMatchTheHostExecutor) {
 }
 
 TEST_F(ResidentCuda, SeededSetsMatchTheHostExecutor) {
+  using testing::SeededKind;
+  const SeededKind kinds[] = {SeededKind::kCube, SeededKind::kLattice, SeededKind::kFarJitter,
+                              SeededKind::kFlat, SeededKind::kRepeats};
   testing::Rng r(2026);
   for (int t = 0; t < 200; ++t) {
     const std::size_t n = 4 + r.below(5000);
-    std::vector<Point3d> p(n);
-    const int kind = t % 5;
-    for (auto& q : p) {
-      if (kind == 0) q = {r.unit(), r.unit(), r.unit()};
-      if (kind == 1) q = {double(int(r.below(6))), double(int(r.below(6))), double(int(r.below(6)))};
-      if (kind == 2) q = {1e9 + r.unit() * 1e-3, -2e9 + r.unit() * 1e-3, 3e9 + r.unit() * 1e-3};
-      if (kind == 3) q = {r.unit(), r.unit(), r.below(3) ? 0.0 : r.unit()};
-      if (kind == 4) q = p[r.below(static_cast<std::size_t>(&q - p.data()) + 1)];
-    }
-    if (kind == 4) p[0] = {0, 0, 0}, p.push_back({1, 0, 0}), p.push_back({0, 1, 0}), p.push_back({0, 0, 1});
-    expect_same_as_host(p, "seeded case " + std::to_string(t));
+    expect_same_as_host(testing::seeded_set(r, n, kinds[t % 5], 6), "seeded case " + std::to_string(t));
   }
 }
 
@@ -306,15 +299,12 @@ TEST_F(ResidentCuda, PropertyCasesMatchTheHostExecutorAndTheExactHull) {
 }
 
 TEST_F(ResidentCuda, SharedModelsAtTheirKnownCounts) {
-  const std::filesystem::path dir = testing::shared_models_dir();
-  if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << "no models folder " << dir;
-  for (const auto& [name, count] : testing::kSharedModelCounts) {
-    const std::vector<Point3> points = read_points((dir / name).string());
+  testing::for_each_shared_model([](const char* name, const std::vector<Point3>& points, std::size_t count) {
     ResidentStats stats;
     const HullMesh hull = on_device(points, &stats);
     EXPECT_EQ(hull.vertex_ids.size(), count) << name;
     expect_same_as_host(points, name, false);
-  }
+  });
 }
 
 // A record without what depends on the machine (times, bytes): what the records compare on.

@@ -33,6 +33,8 @@
 #include "png.hpp"
 #include "renderer.hpp"
 #include "script.hpp"
+#include "support/shell_run.hpp"
+#include "support/temp_dir.hpp"
 #include "ui_layout.hpp"
 
 namespace cudahull::viewer {
@@ -44,56 +46,25 @@ using ::testing::HasSubstr;
 const std::string kViewer = CUDAHULL_VIEWER_PATH;
 const std::string kBunny = std::string(CUDAHULL_ASSETS_DIR) + "/bun_zipper.ply";
 
-class TempDir {
+// The viewer's arguments and scripts are strings: a TempDir whose names are strings, and that writes files.
+class TempDir : public testing::TempDir {
  public:
-  TempDir() {
-    static int counter = 0;
-    path_ = fs::temp_directory_path() /
-            ("cudahull_viewer_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path_ / name).string(); }
+  std::string operator/(const std::string& name) const { return (path() / name).string(); }
   std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(path_ / name) << text;
+    std::ofstream(path() / name) << text;
     return *this / name;
   }
-
- private:
-  fs::path path_;
 };
 
-std::string quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s)
-    out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-struct ViewerRun {
-  int exit_code = -1;
-  std::string err;
-};
+using ViewerRun = testing::CommandRun;
+using testing::describe;
+using testing::shell_quote;
 
 // Runs the viewer, in folder `cwd` when given.
 ViewerRun run_viewer(const std::vector<std::string>& args, const std::string& cwd = "") {
-  TempDir dir;
-  const std::string err_path = dir / "stderr.txt";
-  std::string cmd = (cwd.empty() ? "" : "cd " + quote(cwd) + " && ") + quote(kViewer);
-  for (const auto& a : args)
-    cmd += " " + quote(a);
-  cmd += " 2>" + quote(err_path) + " >/dev/null </dev/null";
-  ViewerRun r;
-  const int status = std::system(cmd.c_str());
-  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-  std::ifstream in(err_path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.err = ss.str();
-  return r;
+  std::vector<std::string> argv{kViewer};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return testing::run_command(argv, cwd);
 }
 
 bool has_display() {
@@ -171,10 +142,6 @@ double differing_fraction(const Image& a, const Image& b) {
     differ += d > 0.1f ? 1 : 0;
   }
   return static_cast<double>(differ) / static_cast<double>(a.rgb.size());
-}
-
-std::string describe(const ViewerRun& r) {
-  return "exit " + std::to_string(r.exit_code) + "\n--- stderr:\n" + r.err;
 }
 
 // Only the polyhedron, opaque: what the hull checks look at.
@@ -310,12 +277,9 @@ TEST(ViewerHeadless, SelectedFaceCellAndEdgeNormalsChangeThePicture) {
   EXPECT_LT(differing_fraction(normals, out_of_range), 0.001);  // an unknown face id draws no cell
 }
 
+// A file's lines.
 std::vector<std::string> lines_of(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);)
-    lines.push_back(line);
-  return lines;
+  return testing::lines_of(testing::slurp(path));
 }
 
 bool rgba_near(const std::array<float, 3>& p, std::uint32_t rgba) {
@@ -371,7 +335,7 @@ int decoded_frames(const std::string& path) {
   const std::string cmd =
       "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
       "stream=nb_read_frames -of csv=p=0 " +
-      quote(path) + " 2>&1";
+      shell_quote(path) + " 2>&1";
   std::FILE* pipe = popen(cmd.c_str(), "r");
   if (pipe == nullptr) return -1;
   char line[256] = {};

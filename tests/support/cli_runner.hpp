@@ -1,5 +1,5 @@
-// Running the `cudahull` binary from tests: a temporary folder, a run that captures stdout, stderr and the
-// exit code, and a process started without a shell that a test can signal and time.
+// Running the `cudahull` binary from tests: a run that captures stdout, stderr and the exit code
+// (shell_run.hpp), and a process started without a shell that a test can signal and time.
 #pragma once
 
 #include <fcntl.h>
@@ -21,82 +21,25 @@
 #include <string>
 #include <vector>
 
+#include "shell_run.hpp"
+#include "temp_dir.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 const std::string kCli = CUDAHULL_CLI_PATH;
 
-class TempDir {
- public:
-  TempDir() {
-    static int counter = 0;
-    path_ = fs::temp_directory_path() /
-            ("cudahull_cli_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  fs::path operator/(const std::string& name) const { return path_ / name; }
-  std::vector<std::string> files() const { return files_in(path_); }
-  // The names in a folder, sorted.
-  static std::vector<std::string> files_in(const fs::path& folder) {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(folder))
-      names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
-
- private:
-  fs::path path_;
-};
-
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s)
-    out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-struct CliRun {
-  int exit_code = -1;  // -1 when the process did not exit normally
-  std::string out, err;
-};
+using cudahull::testing::describe;
+using cudahull::testing::shell_quote;
+using cudahull::testing::slurp;
+using cudahull::testing::TempDir;
+using CliRun = cudahull::testing::CommandRun;
 
 // Runs the CLI with `args` (each quoted for the shell), capturing stdout, stderr and the exit code.
 CliRun run_cli(const std::vector<std::string>& args) {
-  TempDir dir;
-  const fs::path err_path = dir / "stderr.txt";
-  std::string cmd = shell_quote(kCli);
-  for (const auto& a : args)
-    cmd += " " + shell_quote(a);
-  cmd += " 2>" + shell_quote(err_path.string()) + " </dev/null";
-  CliRun r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (pipe == nullptr) {
-    ADD_FAILURE() << "popen failed: " << cmd;
-    return r;
-  }
-  char buf[4096];
-  for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, pipe)) > 0;)
-    r.out.append(buf, n);
-  const int status = ::pclose(pipe);
-  if (WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
-  r.err = slurp(err_path);
-  return r;
-}
-
-std::string describe(const CliRun& r) {
-  return "exit " + std::to_string(r.exit_code) + "\n--- stdout:\n" + r.out + "\n--- stderr:\n" + r.err;
+  std::vector<std::string> argv{kCli};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return cudahull::testing::run_command(argv);
 }
 
 // A `cudahull` process started with posix_spawn (no shell in between, so its pid is the CLI's own), with

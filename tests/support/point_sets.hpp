@@ -12,13 +12,30 @@
 
 namespace cudahull::testing {
 
+// The integer lattice {0..nx-1} x {0..ny-1} x {0..nz-1}, z fastest.
+inline std::vector<Point3> lattice(int nx, int ny, int nz) {
+  std::vector<Point3> p;
+  for (int x = 0; x < nx; ++x)
+    for (int y = 0; y < ny; ++y)
+      for (int z = 0; z < nz; ++z)
+        p.push_back({float(x), float(y), float(z)});
+  return p;
+}
+
 // The integer lattice {0..side-1}^3, x fastest.
 inline std::vector<Point3> grid(int side) {
+  std::vector<Point3> p = lattice(side, side, side);
+  for (auto& q : p)
+    q = {q.z, q.y, q.x};
+  return p;
+}
+
+// The lifted integer points (x, y, x^2 + y^2) for -r <= x, y <= r, y fastest: every one strictly extreme.
+inline std::vector<Point3> integer_paraboloid(int r) {
   std::vector<Point3> p;
-  for (int z = 0; z < side; ++z)
-    for (int y = 0; y < side; ++y)
-      for (int x = 0; x < side; ++x)
-        p.push_back({float(x), float(y), float(z)});
+  for (int x = -r; x <= r; ++x)
+    for (int y = -r; y <= r; ++y)
+      p.push_back({float(x), float(y), float(x * x + y * y)});
   return p;
 }
 
@@ -52,6 +69,48 @@ inline std::vector<std::vector<Point3>> small_integer_sets(int count) {
     sets.push_back(std::move(points));
   }
   return sets;
+}
+
+// The kinds of seeded_set().
+enum class SeededKind {
+  kCube,       // general position in [-1, 1]^3
+  kLattice,    // integer points in [0, side)^3: repeats, coplanar faces, collinear edges
+  kFarJitter,  // a cloud 1e-3 across about (1e9, -2e9, 3e9)
+  kScales,     // points 1e-6 or 1 from the origin, some lifted by 1e6 in z: wide ranges of scale
+  kFlat,       // two thirds on the plane z = 0
+  kRepeats,    // each point a copy of an earlier one, then a tetrahedron's three other corners
+};
+
+// `n` seeded points of one kind (`n` + 3 for kRepeats), drawn from `r`; `side` is kLattice's.
+inline std::vector<Point3d> seeded_set(Rng& r, std::size_t n, SeededKind kind, int side) {
+  std::vector<Point3d> p(n);
+  for (auto& q : p) {
+    switch (kind) {
+      case SeededKind::kCube:
+        q = {r.unit(), r.unit(), r.unit()};
+        break;
+      case SeededKind::kLattice:
+        q = {double(int(r.below(side))), double(int(r.below(side))), double(int(r.below(side)))};
+        break;
+      case SeededKind::kFarJitter:
+        q = {1e9 + r.unit() * 1e-3, -2e9 + r.unit() * 1e-3, 3e9 + r.unit() * 1e-3};
+        break;
+      case SeededKind::kScales: {
+        const double s = r.below(2) ? 1e-6 : 1;
+        q = {s * r.unit(), s * r.unit(), (r.below(2) ? 1e6 : 0) + s * r.unit()};
+        break;
+      }
+      case SeededKind::kFlat:
+        q = {r.unit(), r.unit(), r.below(3) ? 0.0 : r.unit()};
+        break;
+      case SeededKind::kRepeats:
+        q = p[r.below(static_cast<std::size_t>(&q - p.data()) + 1)];
+        break;
+    }
+  }
+  if (kind == SeededKind::kRepeats)
+    p[0] = {0, 0, 0}, p.push_back({1, 0, 0}), p.push_back({0, 1, 0}), p.push_back({0, 0, 1});
+  return p;
 }
 
 // A dense cap of float points on the unit sphere: n on the cap of angular radius `angle` (radians) around
