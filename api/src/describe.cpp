@@ -2,6 +2,7 @@
 #include "describe.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -325,6 +326,9 @@ void measure_box(const std::vector<Point>& vertices, const std::vector<Triangle>
 template <class Point>
 ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend,
                            const ConvexHullOptions& options) {
+  // The merge's passes follow one another closely; its first would otherwise wait for every worker to wake
+  // (after a device's hull they have slept for milliseconds).
+  wake_workers(std::chrono::microseconds(1000));
   BasicHullMesh<Point> local = mesh;
   for (std::size_t k = 0; k < local.vertex_ids.size(); ++k)
     local.vertex_ids[k] = static_cast<PointIndex>(k);

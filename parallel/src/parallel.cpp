@@ -55,6 +55,15 @@ class WorkerPool {
       std::thread([this, w] { work(w); }).detach();
   }
 
+  // Wakes the workers without a job, each to watch for one until `until`: worker 1 is woken here, and
+  // wakes the others (one futex wake on the caller's thread, not one a worker).
+  void wake(std::chrono::steady_clock::time_point until) {
+    if (size_ == 0) return;
+    watch_until_.store(until.time_since_epoch().count(), std::memory_order_relaxed);
+    waking_.store(true, std::memory_order_release);
+    wake_[1]->release();
+  }
+
   bool try_run(std::size_t n, unsigned workers, ChunkCall call, void* body) {
     if (on_pool_worker || workers > size_ + 1) return false;
     std::unique_lock caller(run_mutex_, std::try_to_lock);
@@ -90,7 +99,10 @@ class WorkerPool {
     for (;;) {
       if (!watch(w)) {
         wake_[w]->acquire();
-        // A count left by a job that was taken while watching: no job now, sleep again.
+        if (w == 1 && waking_.exchange(false, std::memory_order_acq_rel))
+          for (unsigned u = 2; u <= size_; ++u)
+            wake_[u]->release();
+        // No job: a wake() (watch for one), or a count left by a job that was taken while watching.
         if (!ready_[w]->exchange(false, std::memory_order_acquire)) continue;
       }
       const std::size_t size = chunk(n_, workers_);
@@ -108,10 +120,14 @@ class WorkerPool {
     }
   }
 
-  // Polls `ready()` with a pause instruction between tries for up to watch_time(); true once it holds.
+  // Polls `ready()` with a pause instruction between tries for up to watch_time() (or until a wake()'s
+  // time); true once it holds.
   template <class Ready>
-  static bool watch_for(Ready&& ready) {
-    const auto until = std::chrono::steady_clock::now() + watch_time();
+  bool watch_for(Ready&& ready) {
+    const auto now = std::chrono::steady_clock::now();
+    const auto until = std::max(now + watch_time(),
+                                std::chrono::steady_clock::time_point(std::chrono::steady_clock::duration(
+                                    watch_until_.load(std::memory_order_relaxed))));
     for (int spins = 0;; ++spins) {
       if (ready()) return true;
       cpu_pause();
@@ -138,6 +154,8 @@ class WorkerPool {
   std::vector<std::unique_ptr<std::counting_semaphore<>>> wake_;  // per worker (index 0 unused: the caller)
   std::vector<std::unique_ptr<std::atomic<bool>>> ready_;         // per worker: a job is waiting for it
   std::atomic<bool> finished_{false};                             // set by the last worker to finish
+  std::atomic<bool> waking_{false};                               // a wake() for worker 1 to pass on
+  std::atomic<std::chrono::steady_clock::rep> watch_until_{0};    // a wake()'s watch, on the steady clock
   std::atomic<unsigned> pending_{0};
   std::size_t n_ = 0;
   unsigned workers_ = 0;
@@ -147,12 +165,26 @@ class WorkerPool {
   std::exception_ptr error_;
 };
 
+WorkerPool& worker_pool() {
+  // Never destroyed: detached workers may still be asleep in it while the process exits.
+  static WorkerPool* pool = new WorkerPool(hardware_workers() - 1);
+  return *pool;
+}
+
 }  // namespace
 
 bool run_on_worker_pool(std::size_t n, unsigned workers, ChunkCall call, void* body) {
-  // Never destroyed: detached workers may still be asleep in it while the process exits.
-  static WorkerPool* pool = new WorkerPool(hardware_workers() - 1);
-  return pool->try_run(n, workers, call, body);
+  return worker_pool().try_run(n, workers, call, body);
 }
 
 }  // namespace cudahull::detail
+
+namespace cudahull {
+
+void wake_workers(std::chrono::microseconds watch) {
+  // Not from a worker, nor under a SerialScope: those run their passes on their own thread.
+  if (hardware_workers() <= 1 || detail::on_pool_worker || detail::serial_scopes > 0) return;
+  detail::worker_pool().wake(std::chrono::steady_clock::now() + watch);
+}
+
+}  // namespace cudahull

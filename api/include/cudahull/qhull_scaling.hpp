@@ -6,15 +6,18 @@
 
 #include <cmath>
 #include <cstddef>
+#include <vector>
+
+#include "cudahull/parallel.hpp"
 
 namespace cudahull {
 
 // Half the sum, in face order, of the lengths of the scaled triangles' cross products; corner(f, k) is the
-// index into `xyz` (x, y, z a point) of face f's corner k.  The shift cancels in the edges.
+// index into `xyz` (x, y, z a point) of face f's corner k.  The shift cancels in the edges.  The lengths on
+// all cores, their sum on one: the same bits on any number of cores.
 template <class Scalar, class Corner>
 double scaled_area(const Scalar* xyz, std::size_t faces, const Corner& corner, const double scale[3]) {
-  double sum = 0;
-  for (std::size_t f = 0; f < faces; ++f) {
+  const auto twice_area = [&](std::size_t f) {
     const Scalar* a = xyz + 3 * corner(f, 0);
     const Scalar* b = xyz + 3 * corner(f, 1);
     const Scalar* c = xyz + 3 * corner(f, 2);
@@ -24,8 +27,19 @@ double scaled_area(const Scalar* xyz, std::size_t faces, const Corner& corner, c
       v[k] = (double(c[k]) - double(a[k])) * scale[k];
     }
     const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
-    sum += std::sqrt(x * x + y * y + z * z);
-  }
+    return std::sqrt(x * x + y * y + z * z);
+  };
+  std::vector<double> lengths(faces);
+  parallel_chunks(
+      faces, hardware_workers(),
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t f = begin; f < end; ++f)
+          lengths[f] = twice_area(f);
+      },
+      2048);
+  double sum = 0;
+  for (const double length : lengths)
+    sum += length;
   return sum / 2;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <cstddef>
 #include <cstdlib>
 #include <cstring>
@@ -42,6 +43,12 @@ class SerialScope {
   SerialScope(const SerialScope&) = delete;
   SerialScope& operator=(const SerialScope&) = delete;
 };
+
+// Wakes the worker threads that parallel_chunks() hands its jobs to, so that they watch for one for the
+// next `watch` instead of sleeping: for a caller about to run short passes after a long wait (the merge
+// after the device's hull), whose first job would otherwise wait for every worker to be woken.  Returns at
+// once; the caller pays one wake-up, the first worker wakes the rest.
+void wake_workers(std::chrono::microseconds watch);
 
 namespace detail {
 using ChunkCall = void (*)(void* body, std::size_t begin, std::size_t end, unsigned worker);
