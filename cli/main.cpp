@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <exception>
 #include <new>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "cudahull/convex_hull.hpp"
@@ -26,6 +28,16 @@ const char* kEngineHelp =
     "edits the mesh, the backend moves the points) or resident (the whole iteration where the points are: "
     "on the GPU with a CUDA backend, else one host thread; with --trace or --table it steps an iteration at "
     "a time and reads back its records)";
+
+const std::vector<std::string> kBackends = {"auto", "cuda", "cpu"};
+const std::vector<std::string> kEngines = {"auto", "stepping", "resident"};
+const std::vector<std::string> kPrecisions = {"auto", "float", "double"};
+
+// An option that takes one of `choices`, its default shown in --help.
+void add_choice(CLI::App* command, const std::string& name, std::string& value, const std::string& help,
+                const std::vector<std::string>& choices) {
+  command->add_option(name, value, help)->check(CLI::IsMember(choices))->capture_default_str();
+}
 
 int fail(int code, const std::string& message) {
   return cudahull::report_error("cudahull", code, message);
@@ -68,15 +80,10 @@ int main(int argc, char** argv) {
   hull_cmd->add_option(
       "--vertices-out", hull.vertices_out,
       "Write the hull vertices, one 'index x y z' line each (0-based input indices, sorted)");
-  hull_cmd->add_option("--backend", hull.backend, "auto (CUDA when a GPU is usable, else CPU), cuda or cpu")
-      ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
-      ->capture_default_str();
-  hull_cmd->add_option("--engine", hull.engine, kEngineHelp)
-      ->check(CLI::IsMember({"auto", "stepping", "resident"}))
-      ->capture_default_str();
-  hull_cmd->add_option("--precision", hull.precision, kPrecisionHelp)
-      ->check(CLI::IsMember({"auto", "float", "double"}))
-      ->capture_default_str();
+  add_choice(hull_cmd, "--backend", hull.backend, "auto (CUDA when a GPU is usable, else CPU), cuda or cpu",
+             kBackends);
+  add_choice(hull_cmd, "--engine", hull.engine, kEngineHelp, kEngines);
+  add_choice(hull_cmd, "--precision", hull.precision, kPrecisionHelp, kPrecisions);
   hull_cmd->add_flag("--verify", hull.verify,
                      "Check the result with the independent exact checker (exit 5 if wrong)");
   hull_cmd->add_option("--stats", hull.stats, "Write counts and times as JSON to FILE, or - for stdout");
@@ -101,9 +108,7 @@ int main(int argc, char** argv) {
           "any other file of 0-based point ids, one a line ('id' or 'id x y z'), compared with the "
           "exact set of strictly extreme points")
       ->required();
-  check_cmd->add_option("--precision", check.precision, kPrecisionHelp)
-      ->check(CLI::IsMember({"auto", "float", "double"}))
-      ->capture_default_str();
+  add_choice(check_cmd, "--precision", check.precision, kPrecisionHelp, kPrecisions);
 
   cli::BenchOptions bench;
   auto* bench_cmd = app.add_subcommand(
@@ -112,15 +117,9 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("--dist", bench.distribution, dist_help)->capture_default_str();
   bench_cmd->add_option("--n", bench.count, "Number of generated points")->capture_default_str();
   bench_cmd->add_option("--seed", bench.seed, "Random seed")->capture_default_str();
-  bench_cmd->add_option("--backend", bench.backend, "auto, cuda or cpu")
-      ->check(CLI::IsMember({"auto", "cuda", "cpu"}))
-      ->capture_default_str();
-  bench_cmd->add_option("--engine", bench.engine, kEngineHelp)
-      ->check(CLI::IsMember({"auto", "stepping", "resident"}))
-      ->capture_default_str();
-  bench_cmd->add_option("--precision", bench.precision, kPrecisionHelp)
-      ->check(CLI::IsMember({"auto", "float", "double"}))
-      ->capture_default_str();
+  add_choice(bench_cmd, "--backend", bench.backend, "auto, cuda or cpu", kBackends);
+  add_choice(bench_cmd, "--engine", bench.engine, kEngineHelp, kEngines);
+  add_choice(bench_cmd, "--precision", bench.precision, kPrecisionHelp, kPrecisions);
   bench_cmd->add_option("--repeat", bench.repeat, "Runs to take the median of")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();

@@ -23,6 +23,20 @@ constexpr const char* kLayerNames[kLayerCount] = {"hull",       "wireframe", "in
                                                   "vertices",   "cells",     "swaps",    "normals",
                                                   "refinement", "labels",    "input"};
 
+// Throws DeviceError with `message` and the driver's log when `object` (a shader or a program, with its
+// glGet*iv, glGet*InfoLog and glDelete*) failed `status`, deleting it first.
+template <class GetIv, class GetLog, class Delete>
+void check_built(GLuint object, GLenum status, GetIv get_iv, GetLog get_log, Delete destroy,
+                 const std::string& message) {
+  GLint ok = 0;
+  get_iv(object, status, &ok);
+  if (ok) return;
+  char log[2048] = {};
+  get_log(object, sizeof log, nullptr, log);
+  destroy(object);
+  throw DeviceError(message + log);
+}
+
 // Compiles `source` with shaders/colors.glsl (hsv_to_rgb, face_color) after its #version line: GLSL has
 // no #include.  `#line 2` keeps the driver's line numbers those of the file.
 unsigned compile(GLenum type, const char* source, const char* name) {
@@ -34,14 +48,8 @@ unsigned compile(GLenum type, const char* source, const char* name) {
   const GLuint shader = glCreateShader(type);
   glShaderSource(shader, 3, parts, nullptr);
   glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    glDeleteShader(shader);
-    throw DeviceError(std::string("OpenGL: shader ") + name + " does not compile: " + log);
-  }
+  check_built(shader, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog, glDeleteShader,
+              std::string("OpenGL: shader ") + name + " does not compile: ");
   return shader;
 }
 
@@ -53,14 +61,8 @@ unsigned link_shaders(std::initializer_list<GLuint> shaders, const char* name) {
   glLinkProgram(program);
   for (GLuint shader : shaders)
     glDeleteShader(shader);
-  GLint ok = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetProgramInfoLog(program, sizeof log, nullptr, log);
-    glDeleteProgram(program);
-    throw DeviceError(std::string("OpenGL: program ") + name + " does not link: " + log);
-  }
+  check_built(program, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog, glDeleteProgram,
+              std::string("OpenGL: program ") + name + " does not link: ");
   return program;
 }
 
@@ -81,19 +83,51 @@ unsigned link_compute(const char* source, const char* name) {
   return link_shaders({compile(GL_COMPUTE_SHADER, source, name)}, name);
 }
 
+// Enables attribute `attribute` of `vao`: `size` values of `type` at `offset` in the vertices of binding
+// `binding`, read as floats (`normalized`: RGBA8 colours to 0..1).
+void float_attribute(GLuint vao, GLuint attribute, GLuint binding, GLint size, GLenum type,
+                     GLboolean normalized, GLuint offset) {
+  glVertexArrayAttribFormat(vao, attribute, size, type, normalized, offset);
+  glVertexArrayAttribBinding(vao, attribute, binding);
+  glEnableVertexArrayAttrib(vao, attribute);
+}
+
+// The same, read as integers.
+void int_attribute(GLuint vao, GLuint attribute, GLuint binding, GLint size, GLenum type, GLuint offset) {
+  glVertexArrayAttribIFormat(vao, attribute, size, type, offset);
+  glVertexArrayAttribBinding(vao, attribute, binding);
+  glEnableVertexArrayAttrib(vao, attribute);
+}
+
+// Creates one GL object a name in `names` with one call of `create` (glCreateBuffers, glCreateVertexArrays).
+template <class Create>
+void create_objects(Create create, std::initializer_list<GLuint*> names) {
+  std::vector<GLuint> ids(names.size());
+  create(static_cast<GLsizei>(ids.size()), ids.data());
+  const GLuint* id = ids.data();
+  for (GLuint* name : names)
+    *name = *id++;
+}
+
 // Position + RGBA8 colour per vertex (OverlayVertex), from `buffer`: the overlay and the labels.
 void bind_overlay_layout(GLuint vao, GLuint buffer) {
   glVertexArrayVertexBuffer(vao, 0, buffer, 0, sizeof(OverlayVertex));
-  glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, offsetof(OverlayVertex, x));
-  glVertexArrayAttribBinding(vao, 0, 0);
-  glEnableVertexArrayAttrib(vao, 0);
-  glVertexArrayAttribFormat(vao, 1, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(OverlayVertex, rgba));
-  glVertexArrayAttribBinding(vao, 1, 0);
-  glEnableVertexArrayAttrib(vao, 1);
+  float_attribute(vao, 0, 0, 3, GL_FLOAT, GL_FALSE, offsetof(OverlayVertex, x));
+  float_attribute(vao, 1, 0, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(OverlayVertex, rgba));
 }
 
 GLint loc(unsigned program, const char* name) {
   return glGetUniformLocation(program, name);
+}
+
+// The points' colouring, which the GL points and the compute splats share: by state or face, the layers
+// shown.
+void set_point_color_uniforms(GLuint program, const RenderSettings& s) {
+  glUniform1i(loc(program, "u_color_mode"), s.point_colors == PointColors::kFace ? 1 : 0);
+  glUniform1i(loc(program, "u_show_internal"), s.shown(Layer::kInternal));
+  glUniform1i(loc(program, "u_show_external"), s.shown(Layer::kExternal));
+  glUniform3fv(loc(program, "u_internal_color"), 1, glm::value_ptr(kInternalColor));
+  glUniform3fv(loc(program, "u_external_color"), 1, glm::value_ptr(kExternalColor));
 }
 
 // Grows a buffer to at least `bytes` (doubling), so per-step hull uploads rarely reallocate.
@@ -150,33 +184,17 @@ Renderer::Renderer() {
   bind_overlay_layout(label_vao_, label_buffer_);
   text_ = std::make_unique<TextRenderer>(kTextPixels);
 
-  GLuint splat_buffers[2];
-  glCreateBuffers(2, splat_buffers);
-  splat_depth_buffer_ = splat_buffers[0];
-  splat_color_buffer_ = splat_buffers[1];
+  create_objects(glCreateBuffers, {&splat_depth_buffer_, &splat_color_buffer_});
 
-  GLuint buffers[4];
-  glCreateBuffers(4, buffers);
-  position_buffer_ = buffers[0];
-  state_buffer_ = buffers[1];
-  vertex_id_buffer_ = buffers[2];
-  hull_buffer_ = buffers[3];
-  GLuint vaos[3];
-  glCreateVertexArrays(3, vaos);
-  points_vao_ = vaos[0];
-  vertices_vao_ = vaos[1];
-  hull_vao_ = vaos[2];
+  create_objects(glCreateBuffers, {&position_buffer_, &state_buffer_, &vertex_id_buffer_, &hull_buffer_});
+  create_objects(glCreateVertexArrays, {&points_vao_, &vertices_vao_, &hull_vao_});
 
   // The cloud and the vertex highlight read the same two point buffers; the latter through vertex ids.
   for (GLuint vao : {points_vao_, vertices_vao_}) {
     glVertexArrayVertexBuffer(vao, 0, position_buffer_, 0, sizeof(Point3));
-    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(vao, 0, 0);
-    glEnableVertexArrayAttrib(vao, 0);
+    float_attribute(vao, 0, 0, 3, GL_FLOAT, GL_FALSE, 0);
     glVertexArrayVertexBuffer(vao, 1, state_buffer_, 0, sizeof(std::int32_t));
-    glVertexArrayAttribIFormat(vao, 1, 1, GL_INT, 0);
-    glVertexArrayAttribBinding(vao, 1, 1);
-    glEnableVertexArrayAttrib(vao, 1);
+    int_attribute(vao, 1, 1, 1, GL_INT, 0);
   }
   glVertexArrayElementBuffer(vertices_vao_, vertex_id_buffer_);
 
@@ -185,18 +203,12 @@ Renderer::Renderer() {
   glCreateVertexArrays(1, &input_vao_);
   glCreateBuffers(1, &input_index_buffer_);
   glVertexArrayVertexBuffer(input_vao_, 0, position_buffer_, 0, sizeof(Point3));
-  glVertexArrayAttribFormat(input_vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribBinding(input_vao_, 0, 0);
-  glEnableVertexArrayAttrib(input_vao_, 0);
+  float_attribute(input_vao_, 0, 0, 3, GL_FLOAT, GL_FALSE, 0);
   glVertexArrayElementBuffer(input_vao_, input_index_buffer_);
 
   glVertexArrayVertexBuffer(hull_vao_, 0, hull_buffer_, 0, sizeof(HullCorner));
-  glVertexArrayAttribFormat(hull_vao_, 0, 3, GL_FLOAT, GL_FALSE, offsetof(HullCorner, x));
-  glVertexArrayAttribBinding(hull_vao_, 0, 0);
-  glEnableVertexArrayAttrib(hull_vao_, 0);
-  glVertexArrayAttribIFormat(hull_vao_, 1, 1, GL_UNSIGNED_INT, offsetof(HullCorner, info));
-  glVertexArrayAttribBinding(hull_vao_, 1, 0);
-  glEnableVertexArrayAttrib(hull_vao_, 1);
+  float_attribute(hull_vao_, 0, 0, 3, GL_FLOAT, GL_FALSE, offsetof(HullCorner, x));
+  int_attribute(hull_vao_, 1, 0, 1, GL_UNSIGNED_INT, offsetof(HullCorner, info));
 
   // Empty but valid stores, so a draw before the first upload is harmless.
   glNamedBufferData(position_buffer_, 16, nullptr, GL_STATIC_DRAW);
@@ -408,11 +420,7 @@ void Renderer::draw_splats(const ViewParams& view, const glm::mat4& view_proj,
   glUniform1ui(loc(splat_program_, "u_count"), static_cast<GLuint>(point_count_));
   glUniform2i(loc(splat_program_, "u_size"), view.width, view.height);
   glUniform1f(loc(splat_program_, "u_point_size"), point_pixels(view, s));
-  glUniform1i(loc(splat_program_, "u_color_mode"), s.point_colors == PointColors::kFace ? 1 : 0);
-  glUniform1i(loc(splat_program_, "u_show_internal"), s.shown(Layer::kInternal));
-  glUniform1i(loc(splat_program_, "u_show_external"), s.shown(Layer::kExternal));
-  glUniform3fv(loc(splat_program_, "u_internal_color"), 1, glm::value_ptr(kInternalColor));
-  glUniform3fv(loc(splat_program_, "u_external_color"), 1, glm::value_ptr(kExternalColor));
+  set_point_color_uniforms(splat_program_, s);
   glUniform1i(loc(splat_program_, "u_selected_face"),
               s.shown(Layer::kCells) ? static_cast<int>(view.selected_face) : -1);
   glUniform3fv(loc(splat_program_, "u_selected_color"), 1, glm::value_ptr(kSelectedColor));
@@ -474,11 +482,7 @@ void Renderer::draw(const ViewParams& view, const RenderSettings& s) const {
     glUseProgram(points_program_);
     glUniformMatrix4fv(loc(points_program_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
     glUniform1f(loc(points_program_, "u_point_size"), point_pixels(view, s));
-    glUniform1i(loc(points_program_, "u_color_mode"), s.point_colors == PointColors::kFace ? 1 : 0);
-    glUniform1i(loc(points_program_, "u_show_internal"), s.shown(Layer::kInternal));
-    glUniform1i(loc(points_program_, "u_show_external"), s.shown(Layer::kExternal));
-    glUniform3fv(loc(points_program_, "u_internal_color"), 1, glm::value_ptr(kInternalColor));
-    glUniform3fv(loc(points_program_, "u_external_color"), 1, glm::value_ptr(kExternalColor));
+    set_point_color_uniforms(points_program_, s);
     glUniform3fv(loc(points_program_, "u_vertex_color"), 1, glm::value_ptr(kVertexColor));
     glUniform1i(loc(points_program_, "u_selected_face"),
                 s.shown(Layer::kCells) ? static_cast<int>(view.selected_face) : -1);

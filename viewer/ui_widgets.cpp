@@ -32,4 +32,26 @@ void same_line_if_fits(float width) {
   if (right <= ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x) ImGui::SameLine();
 }
 
+int radio_row(const char* label, int value, std::initializer_list<const char*> choices) {
+  ImGui::Text("%s", label);
+  int i = 0;
+  for (const char* choice : choices) {
+    ImGui::SameLine();
+    ImGui::RadioButton(choice, &value, i++);
+  }
+  return value;
+}
+
+bool begin_table_with_headers(const char* id, std::initializer_list<const char*> columns) {
+  // Columns as wide as their contents, scrolling sideways where the strip is narrower: nothing cut.
+  if (!ImGui::BeginTable(id, static_cast<int>(columns.size()),
+                         ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX | ImGuiTableFlags_RowBg |
+                             ImGuiTableFlags_SizingFixedFit))
+    return false;
+  for (const char* column : columns)
+    ImGui::TableSetupColumn(column);
+  ImGui::TableHeadersRow();
+  return true;
+}
+
 }  // namespace cudahull::viewer

@@ -1,8 +1,9 @@
 // Small Dear ImGui helpers the viewer's window and panels share: the shortcut list (the help overlay), sizes
-// of buttons and checkboxes, and rows that wrap in a narrow panel.
+// of buttons and checkboxes, rows that wrap in a narrow panel, radio rows and tables.
 #pragma once
 
 #include <cstdint>
+#include <initializer_list>
 #include <string>
 
 namespace cudahull::viewer {
@@ -46,5 +47,10 @@ float checkbox_width(const char* label);
 // Puts the next item (`width` wide) beside the last one when it fits, else on a new line: rows of buttons
 // and checkboxes wrap in a narrow panel instead of running past its edge.
 void same_line_if_fits(float width);
+// "label:" and a radio button a choice on one line; returns the index of the chosen one (`value` if none
+// is clicked).
+int radio_row(const char* label, int value, std::initializer_list<const char*> choices);
+// BeginTable with one header a column, as wide as their contents; EndTable when it returns true.
+bool begin_table_with_headers(const char* id, std::initializer_list<const char*> columns);
 
 }  // namespace cudahull::viewer

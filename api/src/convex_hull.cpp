@@ -124,14 +124,20 @@ ConvexHull wide_hull(const std::vector<Point3d>& points, const ConvexHullOptions
 // plan's precision, then planned with their range known.
 template <class Coordinate>
 ConvexHull checked_hull(std::size_t count, Coordinate coordinate, Precision own,
-                        const ConvexHullOptions& options, bool neighbors = true) {
+                        const ConvexHullOptions& options, bool neighbors = true,
+                        const HullPlan* in_range_plan = nullptr) {
   HullInput input;
   input.precision = own;
   input.count = count;
+  // `in_range_plan`: the caller's plan for this input in the exact range, kept unless the points are not.
+  const auto planned = [&] {
+    return in_range_plan && !input.outside_exact_range ? *in_range_plan
+                                                       : plan_hull(options, input, cuda_presence);
+  };
   if (plan_precision(options.precision, own).precision == Precision::kDouble) {
     const std::vector<Point3d> points = copy_checked<Point3d>(count, coordinate);
     input.outside_exact_range = !in_fast_exact_range(points);
-    const HullPlan plan = plan_hull(options, input, cuda_presence);
+    const HullPlan plan = planned();
     if (plan.wide_range) {
       ConvexHull hull = wide_hull(points, options);
       hull.plan = plan.reason;
@@ -139,8 +145,7 @@ ConvexHull checked_hull(std::size_t count, Coordinate coordinate, Precision own,
     }
     return hull_in(points, plan, options, neighbors);
   }
-  return hull_in(copy_checked<Point3>(count, coordinate), plan_hull(options, input, cuda_presence), options,
-                 neighbors);
+  return hull_in(copy_checked<Point3>(count, coordinate), planned(), options, neighbors);
 }
 
 // The hull of points that only the current device holds, in Point: checked (and converted) there, then
@@ -200,7 +205,8 @@ ConvexHull array_hull(const Scalar* xyz, std::size_t count, Precision own, const
   HullInput input;
   input.precision = own;
   input.count = count;
-  if (const HullPlan plan = plan_hull(options, input, cuda_presence); plan.upload_first) {
+  const HullPlan plan = plan_hull(options, input, cuda_presence);
+  if (plan.upload_first) {
     check_count(count);
     const std::shared_ptr<void> copy = upload_to_device(xyz, count * 3 * sizeof(Scalar));
     ConvexHull hull = device_hull(static_cast<const Scalar*>(copy.get()), count, own, options);
@@ -208,7 +214,8 @@ ConvexHull array_hull(const Scalar* xyz, std::size_t count, Precision own, const
     if (hull.backend != "cpu-wide") hull.plan = plan.reason;
     return hull;
   }
-  return checked_hull(count, array_coordinate(xyz), own, options, neighbors);
+  // Planned once: checked_hull() plans again only for points outside the exact range.
+  return checked_hull(count, array_coordinate(xyz), own, options, neighbors, &plan);
 }
 
 template <class Point>

@@ -2,6 +2,7 @@
 #include "cudahull/hull_options.hpp"
 
 #include <stdexcept>
+#include <string>
 
 #include "cudahull/convex_hull.hpp"
 #include "device_info.hpp"
@@ -25,18 +26,36 @@ void release_device_memory() {
   release_device_memory_now();  // no device, or none cudahull allocated on: nothing
 }
 
+namespace {
+
+template <class Choice>
+struct Named {
+  const char* name;
+  Choice choice;
+};
+
+// The choice called `name` among three; else std::invalid_argument "WHAT must be a, b or c, not 'NAME'".
+template <class Choice>
+Choice from_name(const std::string& name, const char* what, const Named<Choice> (&choices)[3]) {
+  for (const Named<Choice>& c : choices)
+    if (name == c.name) return c.choice;
+  throw std::invalid_argument(std::string(what) + " must be " + choices[0].name + ", " + choices[1].name +
+                              " or " + choices[2].name + ", not '" + name + "'");
+}
+
+}  // namespace
+
 BackendChoice backend_from_name(const std::string& name) {
-  if (name == "auto") return BackendChoice::kAuto;
-  if (name == "cpu") return BackendChoice::kCpu;
-  if (name == "cuda") return BackendChoice::kCuda;
-  throw std::invalid_argument("backend must be auto, cpu or cuda, not '" + name + "'");
+  return from_name<BackendChoice>(
+      name, "backend",
+      {{"auto", BackendChoice::kAuto}, {"cpu", BackendChoice::kCpu}, {"cuda", BackendChoice::kCuda}});
 }
 
 EngineChoice engine_from_name(const std::string& name) {
-  if (name == "auto") return EngineChoice::kAuto;
-  if (name == "stepping") return EngineChoice::kStepping;
-  if (name == "resident") return EngineChoice::kResident;
-  throw std::invalid_argument("engine must be auto, stepping or resident, not '" + name + "'");
+  return from_name<EngineChoice>(name, "engine",
+                                 {{"auto", EngineChoice::kAuto},
+                                  {"stepping", EngineChoice::kStepping},
+                                  {"resident", EngineChoice::kResident}});
 }
 
 const char* choice_name(BackendChoice choice) {
@@ -50,10 +69,9 @@ const char* choice_name(EngineChoice choice) {
 }
 
 MergeMode merge_from_name(const std::string& name) {
-  if (name == "exact") return MergeMode::kExact;
-  if (name == "qhull") return MergeMode::kQhull;
-  if (name == "relative") return MergeMode::kRelative;
-  throw std::invalid_argument("merge must be exact, qhull or relative, not '" + name + "'");
+  return from_name<MergeMode>(
+      name, "merge",
+      {{"exact", MergeMode::kExact}, {"qhull", MergeMode::kQhull}, {"relative", MergeMode::kRelative}});
 }
 
 Precision precision_from_name_strict(const std::string& name) {

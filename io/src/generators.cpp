@@ -135,12 +135,16 @@ std::vector<Point3> generate_points(Distribution dist, std::size_t count, std::u
   Rng rng(seed);
   std::vector<Point3> points;
   points.reserve(count);
+  // `count` points of x, y, z drawn in that order from `draw`.
+  auto independent_coordinates = [&](auto draw) {
+    for (std::size_t i = 0; i < count; ++i) {
+      const double x = draw(), y = draw(), z = draw();
+      points.push_back(to_point(x, y, z));
+    }
+  };
   switch (dist) {
     case Distribution::kCube:
-      for (std::size_t i = 0; i < count; ++i) {
-        const double x = rng.symmetric(), y = rng.symmetric(), z = rng.symmetric();
-        points.push_back(to_point(x, y, z));
-      }
+      independent_coordinates([&] { return rng.symmetric(); });
       break;
     case Distribution::kBall:
       while (points.size() < count) {
@@ -157,10 +161,7 @@ std::vector<Point3> generate_points(Distribution dist, std::size_t count, std::u
       }
       break;
     case Distribution::kGauss:
-      for (std::size_t i = 0; i < count; ++i) {
-        const double x = rng.normal(), y = rng.normal(), z = rng.normal();
-        points.push_back(to_point(x, y, z));
-      }
+      independent_coordinates([&] { return rng.normal(); });
       break;
     case Distribution::kParaboloid:
       while (points.size() < count) {

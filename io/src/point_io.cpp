@@ -21,6 +21,25 @@ namespace {
 
 using namespace reading;
 
+// The points of a text format with at most one a line (xyz, OBJ): `split(line, tokens)` puts a line's 3
+// coordinates in `tokens` and returns true, returns false for a line with no point, or fails.  `none` is
+// the error for a file without points.
+template <typename P, class Split>
+std::vector<P> read_point_lines(Source& src, const std::string& name, const Progress& progress,
+                                const char* none, Split split) {
+  std::vector<P> points;
+  std::string_view line;
+  std::string_view tokens[3];
+  while (src.next_line(line)) {
+    if (!split(line, tokens)) continue;
+    check_not_too_many(points, name, src.line_number());
+    points.push_back(parse_xyz_tokens<P>(tokens, name, src.line_number()));
+    if (progress.due(points.size())) progress.report(src.fraction());
+  }
+  finish(points, src, name, none, progress);
+  return points;
+}
+
 // ---------------------------------------------------------------------------------------------- XYZ
 
 // One point per line, "x y z".  Columns after the third (normals, colours, intensities) are allowed and
@@ -28,19 +47,13 @@ using namespace reading;
 // anywhere on a line; blank lines are skipped.
 template <typename P>
 std::vector<P> read_xyz(Source& src, const std::string& name, const Progress& progress) {
-  std::vector<P> points;
-  std::string_view line;
-  std::string_view tokens[3];
-  while (src.next_line(line)) {
-    const std::size_t n = tokenize(strip_comment(line), tokens, 3);
-    if (n == 0) continue;
-    if (n < 3) fail_line(name, src.line_number(), "expected 3 coordinates, found " + std::to_string(n));
-    check_not_too_many(points, name, src.line_number());
-    points.push_back(parse_xyz_tokens<P>(tokens, name, src.line_number()));
-    if (progress.due(points.size())) progress.report(src.fraction());
-  }
-  finish(points, src, name, "no points", progress);
-  return points;
+  return read_point_lines<P>(
+      src, name, progress, "no points", [&](std::string_view line, std::string_view* tokens) {
+        const std::size_t n = tokenize(strip_comment(line), tokens, 3);
+        if (n > 0 && n < 3)
+          fail_line(name, src.line_number(), "expected 3 coordinates, found " + std::to_string(n));
+        return n > 0;
+      });
 }
 
 // ---------------------------------------------------------------------------------------------- OBJ
@@ -49,24 +62,19 @@ std::vector<P> read_xyz(Source& src, const std::string& name, const Progress& pr
 // ignored, as OBJ readers do.
 template <typename P>
 std::vector<P> read_obj(Source& src, const std::string& name, const Progress& progress) {
-  std::vector<P> points;
-  std::string_view line;
-  std::string_view tokens[4];
-  while (src.next_line(line)) {
-    std::size_t i = 0;
-    while (i < line.size() && is_space(line[i]))
-      ++i;
-    if (i == line.size() || line[i] != 'v' || (i + 1 < line.size() && !is_space(line[i + 1]))) continue;
-    const std::size_t n = tokenize(strip_comment(line.substr(i + 1)), tokens, 3);
-    if (n < 3) {
-      fail_line(name, src.line_number(), "vertex needs 3 coordinates, found " + std::to_string(n));
-    }
-    check_not_too_many(points, name, src.line_number());
-    points.push_back(parse_xyz_tokens<P>(tokens, name, src.line_number()));
-    if (progress.due(points.size())) progress.report(src.fraction());
-  }
-  finish(points, src, name, "no vertices", progress);
-  return points;
+  return read_point_lines<P>(
+      src, name, progress, "no vertices", [&](std::string_view line, std::string_view* tokens) {
+        std::size_t i = 0;
+        while (i < line.size() && is_space(line[i]))
+          ++i;
+        if (i == line.size() || line[i] != 'v' || (i + 1 < line.size() && !is_space(line[i + 1])))
+          return false;
+        const std::size_t n = tokenize(strip_comment(line.substr(i + 1)), tokens, 3);
+        if (n < 3) {
+          fail_line(name, src.line_number(), "vertex needs 3 coordinates, found " + std::to_string(n));
+        }
+        return true;
+      });
 }
 
 template <typename P>

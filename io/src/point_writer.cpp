@@ -15,20 +15,19 @@ namespace {
 
 // The text and PLY spelling of a coordinate type: float as today (%.9g, `float`), double with 17 digits.
 template <class Point>
-struct Coordinate;
-template <>
-struct Coordinate<Point3> {
-  using Bits = std::uint32_t;
-  static constexpr const char* kLine = "%s%.9g %.9g %.9g\n";
-  static constexpr const char* kPlyType = "float";
-  static Bits swapped(float v) { return __builtin_bswap32(std::bit_cast<Bits>(v)); }
-};
-template <>
-struct Coordinate<Point3d> {
-  using Bits = std::uint64_t;
-  static constexpr const char* kLine = "%s%.17g %.17g %.17g\n";
-  static constexpr const char* kPlyType = "double";
-  static Bits swapped(double v) { return __builtin_bswap64(std::bit_cast<Bits>(v)); }
+struct Coordinate {
+  using Scalar = decltype(Point{}.x);
+  static constexpr bool kDouble = std::is_same_v<Scalar, double>;
+  using Bits = std::conditional_t<kDouble, std::uint64_t, std::uint32_t>;
+  static constexpr const char* kLine = kDouble ? "%s%.17g %.17g %.17g\n" : "%s%.9g %.9g %.9g\n";
+  static constexpr const char* kPlyType = kDouble ? "double" : "float";
+  static Bits swapped(Scalar v) {
+    const Bits bits = std::bit_cast<Bits>(v);
+    if constexpr (kDouble)
+      return __builtin_bswap64(bits);
+    else
+      return __builtin_bswap32(bits);
+  }
 };
 
 }  // namespace
@@ -36,7 +35,7 @@ struct Coordinate<Point3d> {
 template <class Point>
 void write_points(const std::string& path, const std::vector<Point>& points) {
   using C = Coordinate<Point>;
-  using Scalar = decltype(Point{}.x);
+  using Scalar = typename C::Scalar;
   PointFormat format;
   try {
     format = point_format_from_path(path);

@@ -42,17 +42,7 @@ void AppWindow::panel_debugger() {
       if (ImGui::Checkbox("refinement layer", &on)) s.show(Layer::kRefinement, on);
       static bool rejected_only = false;
       ImGui::Checkbox("rejected only", &rejected_only);
-      // Columns as wide as their contents, scrolling sideways where the strip is narrower: nothing cut.
-      if (ImGui::BeginTable("swaps", 5,
-                            ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX | ImGuiTableFlags_RowBg |
-                                ImGuiTableFlags_SizingFixedFit,
-                            ImVec2(0, 0))) {
-        ImGui::TableSetupColumn("#");
-        ImGui::TableSetupColumn("kind");
-        ImGui::TableSetupColumn("old -> new edge");
-        ImGui::TableSetupColumn("why / now");
-        ImGui::TableSetupColumn("");
-        ImGui::TableHeadersRow();
+      if (begin_table_with_headers("swaps", {"#", "kind", "old -> new edge", "why / now", ""})) {
         const Mesh& mesh = scene->engine().mesh();
         for (const SwapRecord& w : r->swaps) {
           const bool done = w.kind == SwapKind::kRegular || w.kind == SwapKind::kComplementary;
@@ -112,15 +102,7 @@ void AppWindow::panel_debugger() {
     if (ImGui::BeginTabItem("Decision array")) {
       ImGui::TextDisabled(
           "Fig. 7: a point of a swapped face goes 'above' or 'below' the plane; codes >= 0 are faces");
-      if (ImGui::BeginTable("decisions", 5,
-                            ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX | ImGuiTableFlags_RowBg |
-                                ImGuiTableFlags_SizingFixedFit)) {
-        ImGui::TableSetupColumn("index");
-        ImGui::TableSetupColumn("separating plane");
-        ImGui::TableSetupColumn("above");
-        ImGui::TableSetupColumn("below");
-        ImGui::TableSetupColumn("");
-        ImGui::TableHeadersRow();
+      if (begin_table_with_headers("decisions", {"index", "separating plane", "above", "below", ""})) {
         auto code = [](std::int32_t c) {
           return c == kRouteInternal ? std::string("internal")
                  : c < 0             ? "entry " + std::to_string(-c - 1)

@@ -106,30 +106,13 @@ void AppWindow::panel_main() {
     ImGui::SliderFloat("point opacity", &s.point_opacity, 0.05f, 1.0f, "%.2f");
     ImGui::SliderFloat("hull opacity", &s.hull_opacity, 0.0f, 1.0f, "%.2f");
     ImGui::SliderFloat("wire width", &s.wire_width, 0.5f, 4.0f, "%.1f");
-    int pc = static_cast<int>(s.point_colors);
-    ImGui::Text("points:");
-    ImGui::SameLine();
-    ImGui::RadioButton("state##p", &pc, 0);
-    ImGui::SameLine();
-    ImGui::RadioButton("face##p", &pc, 1);
-    s.point_colors = static_cast<PointColors>(pc);
-    int pm = static_cast<int>(s.point_mode);
-    ImGui::Text("draw:");
-    ImGui::SameLine();
-    ImGui::RadioButton("auto##m", &pm, 0);
-    ImGui::SameLine();
-    ImGui::RadioButton("GL points##m", &pm, 1);
-    ImGui::SameLine();
-    ImGui::RadioButton("splats##m", &pm, 2);
-    s.point_mode = static_cast<PointMode>(pm);
+    s.point_colors = static_cast<PointColors>(
+        radio_row("points:", static_cast<int>(s.point_colors), {"state##p", "face##p"}));
+    s.point_mode = static_cast<PointMode>(
+        radio_row("draw:", static_cast<int>(s.point_mode), {"auto##m", "GL points##m", "splats##m"}));
     ImGui::TextDisabled("(now %s)", session_->renderer().uses_splats(s) ? "compute splats" : "GL points");
-    int fc = static_cast<int>(s.face_colors);
-    ImGui::Text("faces:");
-    ImGui::SameLine();
-    ImGui::RadioButton("last step##f", &fc, 0);
-    ImGui::SameLine();
-    ImGui::RadioButton("age##f", &fc, 1);
-    s.face_colors = static_cast<FaceColors>(fc);
+    s.face_colors = static_cast<FaceColors>(
+        radio_row("faces:", static_cast<int>(s.face_colors), {"last step##f", "age##f"}));
     // Fig. 2: a face's cell.  Double-click a face, or type its id.
     int face = static_cast<int>(session_->selected_face());
     ImGui::SetNextItemWidth(120);
