@@ -180,7 +180,6 @@ struct EdgeIndex {
   std::vector<std::uint32_t> start;                          // per vertex, into `out`; one more at the end
   std::vector<std::pair<std::uint32_t, std::uint32_t>> out;  // (to, triangle)
 
-  EdgeIndex() = default;
   template <class Point>
   explicit EdgeIndex(const BasicHullMesh<Point>& mesh) : start(mesh.vertices.size() + 1, 0) {
     for (const Triangle& t : mesh.triangles)
@@ -478,22 +477,10 @@ EdgeIndex drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Poin
   PhaseLaps laps("drop_low_vertices");  // CUDAHULL_PHASE_TIMES=1
   for (;;) {
     const std::size_t n = current.vertices.size();
-    // The edge index and the visit order (which does not need it) at once, one on each of two cores.
-    EdgeIndex edges;
-    parallel_chunks(
-        2, hardware_workers(),
-        [&](std::size_t begin, std::size_t end, unsigned) {
-          for (std::size_t task = begin; task < end; ++task) {
-            if (task == 0) {
-              edges = EdgeIndex(current);
-            } else {
-              const SerialScope one_core;  // a pool worker: its own passes stay on it
-              visit = visit_order(current);
-            }
-          }
-        },
-        1);
-    laps.lap("edges and visit order");
+    EdgeIndex edges(current);
+    laps.lap("edges");
+    visit = visit_order(current);
+    laps.lap("visit order");
     graph = relabelled(current, edges, visit);
     laps.lap("relabelled");
     const Relabelled& g = graph;
