@@ -312,13 +312,12 @@ void measure_box(const std::vector<Point>& vertices, const std::vector<Triangle>
     for (int k = 0; k < 3; ++k)
       low[k] = std::min(low[k], at[k]), high[k] = std::max(high[k], at[k]);
   }
-  double scale[3];
-  box_scale(low, high, scale);
   static_assert(sizeof(Point) == 3 * sizeof(Point::x), "a point is its three coordinates");
-  hull.box_area = scaled_area(
-      &vertices.data()->x, faces.size(), [&](std::size_t f, int k) { return std::size_t{faces[f][k]}; },
-      scale);
-  hull.box_volume = hull.volume * (std::fabs(scale[0]) * std::fabs(scale[1]) * std::fabs(scale[2]));
+  const std::array<double, 2> box = box_scaled_measures(
+      &vertices.data()->x, faces.size(), [&](std::size_t f, int k) { return std::size_t{faces[f][k]}; }, low,
+      high, hull.volume);
+  hull.box_volume = box[0];
+  hull.box_area = box[1];
 }
 
 // A merged hull (issue 25) from the exact one: merge_facets() works on the exact hull's vertices alone,

@@ -188,13 +188,9 @@ struct EdgeIndex {
     for (std::size_t v = 0; v + 1 < start.size(); ++v)
       start[v + 1] += start[v];
     // Two stable counting sorts, by end, then by start: every run ascending in its end, and equal ends in
-    // triangle order (an insertion sort of each run mispredicted about once an edge).
-    std::vector<std::uint32_t> end_start(start.size(), 0);
-    for (const Triangle& t : mesh.triangles)
-      for (std::uint32_t v : t)
-        ++end_start[v + 1];
-    for (std::size_t v = 0; v + 1 < end_start.size(); ++v)
-      end_start[v + 1] += end_start[v];
+    // triangle order (an insertion sort of each run mispredicted about once an edge).  A vertex ends as many
+    // half-edges as it starts (one each a triangle it is in), so both sorts place from `start`.
+    std::vector<std::uint32_t> end_fill(start.begin(), start.end() - 1);
     struct HalfEdge {
       std::uint32_t from, to, triangle;
     };
@@ -202,7 +198,7 @@ struct EdgeIndex {
     for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t to = mesh.triangles[t][(k + 1) % 3];
-        by_end[end_start[to]++] = {mesh.triangles[t][k], to, t};
+        by_end[end_fill[to]++] = {mesh.triangles[t][k], to, t};
       }
     out.resize(start.back());
     std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);

@@ -99,9 +99,7 @@ class WorkerPool {
     for (;;) {
       if (!watch(w)) {
         wake_[w]->acquire();
-        if (w == 1 && waking_.exchange(false, std::memory_order_acq_rel))
-          for (unsigned u = 2; u <= size_; ++u)
-            wake_[u]->release();
+        if (w == 1) pass_on_wake();
         // No job: a wake() (watch for one), or a count left by a job that was taken while watching.
         if (!ready_[w]->exchange(false, std::memory_order_acquire)) continue;
       }
@@ -141,9 +139,17 @@ class WorkerPool {
       finished_.wait(false, std::memory_order_acquire);
   }
 
+  // Worker 1: a wake() asked for the others too (whether it found 1 asleep or awake).
+  void pass_on_wake() {
+    if (waking_.load(std::memory_order_relaxed) && waking_.exchange(false, std::memory_order_acq_rel))
+      for (unsigned u = 2; u <= size_; ++u)
+        wake_[u]->release();
+  }
+
   // Watches worker w's ready flag for watch_time(); true (and the flag taken) when a job came.
   bool watch(unsigned w) {
     return watch_for([&] {
+      if (w == 1) pass_on_wake();
       return ready_[w]->load(std::memory_order_relaxed) &&
              ready_[w]->exchange(false, std::memory_order_acquire);
     });

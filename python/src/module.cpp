@@ -185,7 +185,7 @@ double scaled_area_of(
 // rounded coordinates (double points in float precision); the others measure it in the call
 // (ConvexHullOptions::box_measures), from the hull's own copy of its vertices.
 template <class Scalar>
-std::array<double, 2> box_scaled_measures(const Scalar* xyz, const ConvexHull& hull) {
+std::array<double, 2> box_measures_of_points(const Scalar* xyz, const ConvexHull& hull) {
   double low[3], high[3];
   for (int k = 0; k < 3; ++k)
     low[k] = std::numeric_limits<double>::infinity(), high[k] = -std::numeric_limits<double>::infinity();
@@ -197,11 +197,9 @@ std::array<double, 2> box_scaled_measures(const Scalar* xyz, const ConvexHull& h
     take(v);
   for (const auto& row : hull.coplanar)
     take(row[0]);
-  double scale[3];
-  box_scale(low, high, scale);
-  const double area = scaled_area(
-      xyz, hull.faces.size(), [&](std::size_t f, int k) { return std::size_t{hull.faces[f][k]}; }, scale);
-  return {hull.volume * (std::fabs(scale[0]) * std::fabs(scale[1]) * std::fabs(scale[2])), area};
+  return box_scaled_measures(
+      xyz, hull.faces.size(), [&](std::size_t f, int k) { return std::size_t{hull.faces[f][k]}; }, low, high,
+      hull.volume);
 }
 
 // `box_measures`: also Qhull's QbB volume and area ("box_volume", "box_area") of a 3-D hull.
@@ -219,7 +217,7 @@ nb::dict convex_hull_of(PointArray<Scalar> points, const std::string& backend, c
     nb::gil_scoped_release unlocked;  // the caller's array stays alive: the call holds a reference to it
     hull = convex_hull(points.data(), points.shape(0), options);
     if (box_measures && hull.dimension == 3)
-      box = std::isnan(hull.box_volume) ? box_scaled_measures(points.data(), hull)
+      box = std::isnan(hull.box_volume) ? box_measures_of_points(points.data(), hull)
                                         : std::array<double, 2>{hull.box_volume, hull.box_area};
   }
   const int dimension = hull.dimension;

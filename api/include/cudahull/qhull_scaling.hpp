@@ -4,6 +4,7 @@
 // Python module, so that every path gives the same bits.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <vector>
@@ -43,12 +44,18 @@ double scaled_area(const Scalar* xyz, std::size_t faces, const Corner& corner, c
   return sum / 2;
 }
 
-// QbB's scale per axis: 1 / width of [low, high] (1 for a flat axis), mapping the axis onto [-0.5, 0.5].
-inline void box_scale(const double low[3], const double high[3], double scale[3]) {
+// Qhull's QbB volume and area of a hull of volume `volume` whose faces' corners corner(f, k) index `xyz`:
+// each axis mapped onto [-0.5, 0.5] from [low, high] (a flat axis kept), as qhull_options.scaling() maps it.
+template <class Scalar, class Corner>
+std::array<double, 2> box_scaled_measures(const Scalar* xyz, std::size_t faces, const Corner& corner,
+                                          const double low[3], const double high[3], double volume) {
+  double scale[3];
   for (int k = 0; k < 3; ++k) {
     const double width = high[k] - low[k];
     scale[k] = 1.0 / (width > 0 ? width : 1.0);
   }
+  return {volume * (std::fabs(scale[0]) * std::fabs(scale[1]) * std::fabs(scale[2])),
+          scaled_area(xyz, faces, corner, scale)};
 }
 
 }  // namespace cudahull
