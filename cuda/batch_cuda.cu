@@ -64,7 +64,7 @@ constexpr u32 kSecondPassPoints = 16384;  // the largest cloud the second launch
 // (cudahull/tuning.hpp), whose defaults docs/benchmarks.md, "Tuning (ResidentTuning, BatchTuning)", explains.
 // A warp's pass whose clouds have at most this many points stages them in shared memory (batch_warp_kernel,
 // kStaged): BatchTuning::warp_points' default, so that every cloud a warp takes by default is staged.
-constexpr std::size_t kStagedWarpPoints = 256;
+constexpr std::size_t kStagedWarpPoints = BatchTuning{}.warp_points;
 // The clouds of at most this many points that a block sent to the single-cloud path take a warp first
 // (small_hull(), with room for every point), hundreds of times quicker than the single-cloud path, one
 // cloud after another (docs/benchmarks.md, "The measurements behind the code's constants").
