@@ -175,36 +175,58 @@ void radix_sort_by_key(std::vector<std::pair<std::uint64_t, std::uint32_t>>& ite
 }
 
 // The directed edges of a closed triangulated surface: per vertex a, its out-edges (b, the triangle holding
-// a -> b), ascending in b.  Each neighbour of a appears once (the other triangle holds b -> a).
+// a -> b), ascending in b (and in the triangle for equal b, on a surface that is not a manifold).  Each
+// neighbour of a appears once (the other triangle holds b -> a).
 struct EdgeIndex {
   std::vector<std::uint32_t> start;                          // per vertex, into `out`; one more at the end
   std::vector<std::pair<std::uint32_t, std::uint32_t>> out;  // (to, triangle)
 
+  // Two stable counting sorts, by end, then by start: every vertex's run ascending in its end, equal ends in
+  // triangle order.  Each worker owns a range of vertices, whose entries it places reading every item, so
+  // that no two write one place: the counts (a vertex ends as many half-edges as it starts, one each a
+  // triangle it is in, so both sorts place from `start`), the starts on one core, the half-edges ending in
+  // the range, then those starting in it.
   template <class Point>
   explicit EdgeIndex(const BasicHullMesh<Point>& mesh) : start(mesh.vertices.size() + 1, 0) {
-    for (const Triangle& t : mesh.triangles)
-      for (std::uint32_t v : t)
-        ++start[v + 1];
-    for (std::size_t v = 0; v + 1 < start.size(); ++v)
+    const std::size_t n = mesh.vertices.size();
+    const unsigned workers =
+        static_cast<unsigned>(std::clamp<std::size_t>(n / kVerticesAWorker, 1, hardware_workers()));
+    auto each_range = [&](auto&& body) {
+      parallel_chunks(
+          workers, workers,
+          [&](std::size_t begin, std::size_t end, unsigned) {
+            for (std::size_t w = begin; w < end; ++w)
+              body(static_cast<std::uint32_t>(n * w / workers),
+                   static_cast<std::uint32_t>(n * (w + 1) / workers));
+          },
+          1);
+    };
+    each_range([&](std::uint32_t low, std::uint32_t high) {
+      for (const Triangle& t : mesh.triangles)
+        for (std::uint32_t v : t)
+          if (v - low < high - low) ++start[v + 1];
+    });
+    for (std::size_t v = 0; v < n; ++v)
       start[v + 1] += start[v];
-    // Two stable counting sorts, by end, then by start: every run ascending in its end, and equal ends in
-    // triangle order (an insertion sort of each run mispredicted about once an edge).  A vertex ends as many
-    // half-edges as it starts (one each a triangle it is in), so both sorts place from `start`.
-    std::vector<std::uint32_t> end_fill(start.begin(), start.end() - 1);
     struct HalfEdge {
       std::uint32_t from, to, triangle;
     };
     std::vector<HalfEdge> by_end(start.back());
-    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t to = mesh.triangles[t][(k + 1) % 3];
-        by_end[end_fill[to]++] = {mesh.triangles[t][k], to, t};
-      }
+    each_range([&](std::uint32_t low, std::uint32_t high) {
+      std::vector<std::uint32_t> fill(start.begin() + low, start.begin() + high);
+      for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k)
+          if (const std::uint32_t to = mesh.triangles[t][(k + 1) % 3]; to - low < high - low)
+            by_end[fill[to - low]++] = {mesh.triangles[t][k], to, t};
+    });
     out.resize(start.back());
-    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (const HalfEdge& e : by_end)
-      out[fill[e.from]++] = {e.to, e.triangle};
+    each_range([&](std::uint32_t low, std::uint32_t high) {
+      std::vector<std::uint32_t> fill(start.begin() + low, start.begin() + high);
+      for (const HalfEdge& e : by_end)
+        if (e.from - low < high - low) out[fill[e.from - low]++] = {e.to, e.triangle};
+    });
   }
+  static constexpr std::size_t kVerticesAWorker = 256;  // fewer: a worker's wake-up costs more than its share
   std::uint32_t degree(std::uint32_t v) const { return start[v + 1] - start[v]; }
   std::uint32_t neighbour(std::uint32_t v, std::uint32_t k) const { return out[start[v] + k].first; }
   // The triangle holding the directed edge a -> b, kNone if none.
@@ -685,9 +707,29 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
       },
       [&] { radix_sort_by_key(keyed); }, 1024);
   laps.lap("joining and sort");
+  Facets facets;
+  if (std::none_of(joining.begin(), joining.end(), [](std::uint8_t bits) { return bits != 0; })) {
+    // No triangle joins another (a ball's hull): every seed is a facet alone, numbered in the seeds' order,
+    // placed on all cores, where the grouping below would take them one by one.
+    facets.facet_of.resize(nt);
+    facets.seeds.resize(nt);
+    facets.planes.resize(nt);
+    facets.across.resize(3 * nt);
+    parallel_blocks(nt, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
+      for (std::size_t id = begin; id < end; ++id) {
+        const std::uint32_t t = keyed[id].second, j = jrank[t];
+        facets.facet_of[t] = static_cast<std::uint32_t>(id);
+        facets.seeds[id] = t;
+        facets.planes[id] = {plane[j][0], plane[j][1], plane[j][2], -alone_top[j]};
+        for (int k = 0; k < 3; ++k)
+          facets.across[3 * t + k] = across[3 * j + k] == kNone ? kNone : visit.triangles[across[3 * j + k]];
+      }
+    });
+    laps.lap("alone");
+    return facets;
+  }
   std::vector<std::uint32_t> facet_of(nt, kNone), seeds;  // by position
   seeds.reserve(nt);
-  Facets facets;
   facets.planes.reserve(nt);
   std::vector<std::uint32_t> queue, vertices;
   std::vector<std::uint8_t> in_group(g.at.size(), 0);
@@ -834,13 +876,24 @@ bool plane_safe(const Plane& plane) {
 // a vertex that no neighbour exceeds (every vertex of a convex polytope lies in the cone from any vertex
 // along its edges, which the triangulation's edges include), so an ascent from the facet's own corner along
 // hull(S)'s edges with exact comparisons finds it in a few steps; its evaluation is then bounded.  A plane or
-// coordinates outside the exact range take all vertices instead.  Per plane: the bound over S.  The planes
-// are taken in `order` (their starts' visit order, VisitOrder), not in the facets' (largest first,
-// scattered): the same bounds, from the cache.  `side()` runs beside them on one core.
+// coordinates outside the exact range take all vertices instead.  Per plane: the bound over S.
+//
+// MergedHull::thinnest, in the same pass (it reads the same planes and mesh): per facet, the depth of the
+// vertices' centroid below its plane, which no vertex falls short of; within `near` of the plane (a thin
+// hull), the deepest vertex itself, by a descent from the facet's start (its seed's corner 0) along the
+// edges against the plane's normal, with exact comparisons, to the first neighbour found deeper.
+//
+// The planes are taken in `order` (their starts' visit order, VisitOrder), not in the facets' (largest
+// first, scattered): the same results, from the cache.  `side()` runs beside them on one core.
+struct KeptBounds {
+  std::vector<double> bounds;  // per plane
+  double thinnest = kInfinity;
+};
+
 template <class Side>
-std::vector<double> kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
-                                const std::vector<Triangle>& seed_corners,
-                                const std::vector<std::uint32_t>& order, Side&& side) {
+KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
+                       const std::vector<Triangle>& seed_corners, const std::vector<std::uint32_t>& order,
+                       const Vec3d& centroid, double near, Side&& side) {
   // The planes and starts gathered in `order` and the ascents on the relabelled mesh (each vertex's
   // neighbours in EdgeIndex's order, so that every ascent takes the same steps): the ascents read what
   // their neighbours read, not scattered lines.
@@ -854,9 +907,11 @@ std::vector<double> kept_bounds(const Relabelled& g, const std::vector<Plane>& p
       corners[i][k] = g.rank[seed_corners[order[i]][k]];
   }
   std::vector<double> found(count, -kInfinity);
+  const unsigned workers = hardware_workers();
+  std::vector<double> least(workers, kInfinity);
   parallel_blocks_beside(
-      count, hardware_workers(),
-      [&](std::size_t begin, std::size_t end, unsigned) {
+      count, workers,
+      [&](std::size_t begin, std::size_t end, unsigned worker) {
         // The ascent from v: to the neighbour of the largest value among those exactly above, until none
         // is; `tie` tells whether a neighbour of the end is exactly level with it.  The vertex it came from
         // is exactly below, so it is not compared again.
@@ -883,9 +938,15 @@ std::vector<double> kept_bounds(const Relabelled& g, const std::vector<Plane>& p
         };
         for (std::size_t i = begin; i < end; ++i) {
           const Plane& plane = ordered[i];
-          if (!g.coordinates_safe || !plane_safe(plane)) {
-            for (const Vec3d& p : at)
+          const bool exact = g.coordinates_safe && plane_safe(plane);
+          double depth = -plane_value(plane, centroid);
+          if (!exact) {
+            const bool thin = depth <= near;
+            for (const Vec3d& p : at) {
               found[i] = std::max(found[i], bound_at(plane, p));
+              if (thin) depth = std::max(depth, -plane_value(plane, p));
+            }
+            least[worker] = std::min(least[worker], depth);
             continue;
           }
           // First from the seed's corner of the largest value, where the maximum usually is: an end with
@@ -899,62 +960,27 @@ std::vector<double> kept_bounds(const Relabelled& g, const std::vector<Plane>& p
           std::uint32_t v = ascend(plane, best, tie);
           if (tie && best != c[0]) v = ascend(plane, c[0], tie);
           found[i] = bound_at(plane, at[v]);
-        }
-      },
-      side, 256);
-  std::vector<double> bounds(planes.size(), -kInfinity);
-  for (std::size_t i = 0; i < count; ++i)
-    bounds[order[i]] = found[i];
-  return bounds;
-}
-
-// MergedHull::thinnest: per facet, the depth of the vertices' centroid below its plane, which no vertex
-// falls short of; within `near` of the plane (a thin hull), the deepest vertex itself, by an ascent along
-// hull(S)'s edges against the plane's normal with exact comparisons (as kept_bounds()).
-template <class Point>
-double thinnest(const BasicHullMesh<Point>& hull, const EdgeIndex& edges, const std::vector<Plane>& planes,
-                const std::vector<std::uint32_t>& starts, double near) {
-  if (planes.empty()) return kInfinity;
-  std::vector<Vec3d> at(hull.vertices.size());
-  Vec3d centroid{0, 0, 0};
-  bool coordinates_safe = true;
-  for (std::size_t i = 0; i < at.size(); ++i) {
-    at[i] = to_vec3d(hull.vertices[i]);
-    centroid = {centroid.x + at[i].x, centroid.y + at[i].y, centroid.z + at[i].z};
-    coordinates_safe = coordinates_safe && in_fast_exact_range(at[i].x) && in_fast_exact_range(at[i].y) &&
-                       in_fast_exact_range(at[i].z);
-  }
-  const double count = static_cast<double>(at.size());
-  centroid = {centroid.x / count, centroid.y / count, centroid.z / count};
-  const unsigned workers = hardware_workers();
-  std::vector<double> least(workers, kInfinity);
-  parallel_blocks(
-      planes.size(), workers,
-      [&](std::size_t begin, std::size_t end, unsigned worker) {
-        for (std::size_t f = begin; f < end; ++f) {
-          const Plane& plane = planes[f];
-          double depth = -plane_value(plane, centroid);
           if (depth <= near) {
             const Plane against{-plane[0], -plane[1], -plane[2], plane[3]};
-            if (!coordinates_safe || !plane_safe(plane)) {
-              for (const Vec3d& p : at)
-                depth = std::max(depth, -plane_value(plane, p));
-            } else {
-              std::uint32_t v = starts[f];
-              for (bool moved = true; moved;) {
-                moved = false;
-                for (std::uint32_t k = 0; k < edges.degree(v) && !moved; ++k)
-                  if (const std::uint32_t q = edges.neighbour(v, k); compare_along(against, at[q], at[v]) > 0)
-                    v = q, moved = true;  // deeper, exactly: the descent ends
-              }
-              depth = -plane_value(plane, at[v]);
+            std::uint32_t u = c[0];
+            for (bool moved = true; moved;) {
+              moved = false;
+              for (std::uint32_t k = g.start[u]; k < g.start[u + 1] && !moved; ++k)
+                if (const std::uint32_t q = g.to[k]; compare_along(against, at[q], at[u]) > 0)
+                  u = q, moved = true;  // deeper, exactly: the descent ends
             }
+            depth = -plane_value(plane, at[u]);
           }
           least[worker] = std::min(least[worker], depth);
         }
       },
-      1024);
-  return *std::min_element(least.begin(), least.end());
+      side, 256);
+  KeptBounds kept;
+  kept.bounds.assign(planes.size(), -kInfinity);
+  for (std::size_t i = 0; i < count; ++i)
+    kept.bounds[order[i]] = found[i];
+  kept.thinnest = *std::min_element(least.begin(), least.end());
+  return kept;
 }
 
 // The dropped points: a bounding-box tree over them, searched per plane from the kept vertices' bound.  A
@@ -1111,20 +1137,26 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
     std::sort(dropped.begin(), dropped.end(),
               [&](std::uint32_t a, std::uint32_t b) { return exact.vertex_ids[a] < exact.vertex_ids[b]; });
   };
-  std::vector<std::uint32_t> starts;   // per facet: a corner of its largest triangle
   std::vector<Triangle> seed_corners;  // per facet: its largest triangle's corners
-  starts.reserve(facets.seeds.size());
   seed_corners.reserve(facets.seeds.size());
   for (std::uint32_t seed : facets.seeds) {
-    starts.push_back(current.triangles[seed][0]);
     seed_corners.push_back(current.triangles[seed]);
   }
   std::vector<std::uint32_t> in_visit_order;  // the facets by their seeds' places in the visit order
   in_visit_order.reserve(facets.seeds.size());
   for (std::uint32_t t : visit.triangles)
     if (facets.seeds[facets.facet_of[t]] == t) in_visit_order.push_back(facets.facet_of[t]);
-  const std::vector<double> kept_bound =
-      kept_bounds(graph, facets.planes, seed_corners, in_visit_order, output);
+  // The vertices' centroid for the thinnest depth, summed in the mesh's order.
+  Vec3d centroid{0, 0, 0};
+  for (const Point& p : current.vertices) {
+    const Vec3d q = to_vec3d(p);
+    centroid = {centroid.x + q.x, centroid.y + q.y, centroid.z + q.z};
+  }
+  const double vertex_count = static_cast<double>(current.vertices.size());
+  centroid = {centroid.x / vertex_count, centroid.y / vertex_count, centroid.z / vertex_count};
+  const KeptBounds kept =
+      kept_bounds(graph, facets.planes, seed_corners, in_visit_order, centroid, 4 * tolerance, output);
+  const std::vector<double>& kept_bound = kept.bounds;
   laps.lap("kept bound and output");
   merged.coplanar.resize(dropped.size());
   auto face_corner = [&](std::uint32_t f, int k) {
@@ -1186,8 +1218,7 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
       32);
 
   laps.lap("coplanar");
-  merged.thinnest = thinnest(current, edges, facets.planes, starts, 4 * tolerance);
-  laps.lap("thinnest");
+  merged.thinnest = facets.planes.empty() ? kInfinity : kept.thinnest;
   std::vector<Vec3d> dropped_points;
   for (std::uint32_t i : dropped)
     dropped_points.push_back(to_vec3d(vertices[i]));
