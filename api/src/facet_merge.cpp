@@ -80,8 +80,9 @@ double triangle_distance2(const Vec3d& p, const Vec3d& a, const Vec3d& b, const 
 }
 
 // A bounding-box tree over items (points or triangles) for the two all-pairs passes, the certificate and
-// the nearest triangles: without it they cost V x F, seconds on a sphere of 20,000 points.  Items are sorted
-// by the Morton code of their boxes' centres and split in halves down to leaves of at most kLeaf items.
+// the nearest triangles: without it they cost V x F (docs/benchmarks.md, "The measurements behind the code's
+// constants").  Items are sorted by the Morton code of their boxes' centres and split in halves down to
+// leaves of at most kLeaf items.
 struct Box {
   double lo[3] = {kInfinity, kInfinity, kInfinity}, hi[3] = {-kInfinity, -kInfinity, -kInfinity};
   void add(const Box& b) {
@@ -1240,9 +1241,8 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
 //   qh_findbest / qh_partitionpoint (geom_r.c, libqhull_r.c): a point is outside a facet, so that it can
 //   become a vertex, only if its distance is at least qh.MINoutside; otherwise it stays a coplanar point.
 // The tolerance returned is qh.MINoutside: merge_facets() drops a vertex when it stands within the tolerance
-// of the hull of the others, which is that test.  (Measured on rotated CAD parts with noise of the order of
-// DISTround added, 4 x DISTround matched Qhull's vertex counts far better than 2 x DISTround, which kept
-// up to 2 times more vertices; with 1e-16 noise, all tolerances from 2 to 7 x DISTround give Qhull's count.)
+// of the hull of the others, which is that test (4 x DISTround, not 2, matches Qhull's vertex counts:
+// docs/benchmarks.md, "The measurements behind the code's constants").
 // Qhull's options 'Qbb' (scale the last coordinate, Delaunay only) and 'Qt' do not change it.
 template <class Point>
 double qhull_default_tolerance(const std::vector<Point>& points) {

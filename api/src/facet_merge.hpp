@@ -27,7 +27,7 @@
 //   4. Certificate.  Later rounds can leave an early-dropped point further out than its h, so nothing above
 //      is trusted for the bound: max_outside = the largest n . p + d over every exact-hull vertex p (every
 //      input point is a convex combination of them) and every merged facet's plane, plus a rigorous bound
-//      on the rounding of that evaluation.  Not by V x F evaluations (seconds on a 20,000-point sphere): over
+//      on the rounding of that evaluation.  Not by V x F evaluations (quadratic in the hull's size): over
 //      the kept vertices, the maximum of a linear function is found exactly by an ascent along hull(S)'s
 //      edges with exact comparisons, from the facet's own corner (a few steps); over the dropped points, a
 //      bounding-box tree prunes all but the points near each plane.

@@ -131,8 +131,9 @@ def _batch_layout(shape: Sequence[int], offsets: object,
             if not np.all(sizes == slab):
                 bounds = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
                 return True, bounds, sizes, int(sizes.max(initial=0))
-        # Every cloud fills its slab: the offsets are multiples of M, and the points need no packing (PyTorch,
-        # 100,000 clouds: NumPy's lengths, sums and checks cost some 0.3 ms a call).
+        # Every cloud fills its slab: the offsets are multiples of M, and the points need no packing (no
+        # lengths, sums and checks per cloud: docs/benchmarks.md, "The measurements behind the code's
+        # constants").
         return True, np.arange(clouds + 1, dtype=np.int64) * slab, None, slab
     raise ValueError(f"points must be a packed (N, 3) array with offsets, a padded (B, M, 3) array with "
                      f"lengths, or a list of (n, 3) arrays, not one of shape {tuple(shape)}")

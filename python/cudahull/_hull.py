@@ -475,7 +475,7 @@ class ConvexHull:
         elif options is not None and scaled:
             # Qhull's map comes from the points' bounds, which the exact hull's vertices attain (each axis'
             # extreme is a face of the hull, whose corners are vertices): only those points are read, not
-            # all of them (a column reduction of 523,000 points took 27 ms, a copy from the GPU more).
+            # all of them (docs/benchmarks.md, "The measurements behind the code's constants").
             extreme = np.unique(np.concatenate([values["vertices"], coplanar[:, 0]]))
             corners = (host[extreme] if host is not None else
                        np.asarray(self._host(self._kind.take(points, extreme)) if self._kind is not None
