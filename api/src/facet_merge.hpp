@@ -34,7 +34,9 @@
 //   Cost: the rounds dominate where they drop (a small exact hull per vertex whose link changed, and an
 //   exact hull of S per round; a handful of rounds).  Where nothing drops, each step is a linear pass, taken
 //   in a spatial order of the vertices so that a large hull's scattered indices read from the cache
-//   (facet_merge.cpp, VisitOrder); timings in docs/benchmarks.md.
+//   (merge/mesh_order.hpp, VisitOrder); timings in docs/benchmarks.md.
+//   Where: steps 1-2 in merge/low_vertices.hpp, 3 in merge/grouping.hpp, 4 in merge/certificate.hpp, the
+//   mesh's views they share in merge/mesh_order.hpp, and the steps in order in facet_merge.cpp.
 //   Against Qhull (scipy's default, "Qt"): on rotated CAD parts (tests/test_facet_merge.cpp) the vertex sets
 //   are Qhull's exactly.  Where points lie within a few tolerances of a face (noise of the order of Qhull's
 //   own roundoff), Qhull's choices depend on its insertion order and even keep points that are not extreme

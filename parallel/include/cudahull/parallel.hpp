@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <cstdlib>
@@ -90,6 +91,40 @@ void parallel_chunks(std::size_t n, unsigned workers, Body&& body, std::size_t g
   body(std::size_t{0}, std::min(n, chunk), 0u);
   for (auto& t : threads)
     t.join();
+}
+
+// parallel_chunks() with its range dealt out in blocks of `block` items to whichever thread is free, for
+// passes whose items are independent: on a shared machine a worker the scheduler holds back takes fewer
+// blocks, where an even split left the caller waiting for that worker's half.  `block` is the largest
+// block: a pass of few items gets at least four blocks a worker (of kLeastBlock items or more), so that a
+// hull of some thousand vertices keeps every core of a large machine busy, not as many as its blocks.
+constexpr std::size_t kLeastBlock = 48;
+
+// parallel_blocks() with `side()` run once, by the first thread to start, while the others take the blocks:
+// a one-core step overlapped with a pass it does not depend on.
+template <class Body, class Side>
+void parallel_blocks_beside(std::size_t n, unsigned workers, Body&& body, Side&& side,
+                            std::size_t block = 4096) {
+  block = std::min(block, std::max(kLeastBlock, n / (4 * std::max(1u, workers))));
+  const std::size_t blocks = (n + block - 1) / block;
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> side_taken{false};
+  // One more chunk than blocks, so that the side task has a worker even for a single block.
+  parallel_chunks(
+      blocks + 1, workers,
+      [&](std::size_t, std::size_t, unsigned worker) {
+        if (!side_taken.exchange(true, std::memory_order_relaxed)) side();
+        for (std::size_t b; (b = next.fetch_add(1, std::memory_order_relaxed)) < blocks;)
+          body(b * block, std::min(n, (b + 1) * block), worker);
+      },
+      1);
+}
+
+// parallel_blocks() beside nothing.
+template <class Body>
+void parallel_blocks(std::size_t n, unsigned workers, Body&& body, std::size_t block = 4096) {
+  parallel_blocks_beside(
+      n, workers, std::forward<Body>(body), [] {}, block);
 }
 
 // memcpy on all cores, in blocks of `block` bytes: one core copies the CUDA backend's per-iteration tables

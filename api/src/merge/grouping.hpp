@@ -1,0 +1,204 @@
+// Step 3 of the merge (design: facet_merge.hpp): the triangles grouped into merged facets, largest first.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <vector>
+
+#include "cudahull/parallel.hpp"
+#include "cudahull/phase_times.hpp"
+#include "cudahull/plane.hpp"
+#include "cudahull/predicates.hpp"
+#include "geometry.hpp"
+#include "mesh_order.hpp"
+
+namespace cudahull::merge {
+
+struct Facets {
+  std::vector<std::uint32_t> facet_of;  // per triangle of the mesh
+  std::vector<Plane> planes;            // per facet
+  std::vector<std::uint32_t> seeds;     // per facet: its largest triangle
+  std::vector<std::uint32_t> across;    // per triangle t and edge k: the triangle holding its reverse
+};
+
+// Step 3: groups the triangles of `mesh` into merged facets.
+// With an angle (`angle_sine` > 0), a corner also fits where it lies within angle_sine times its distance
+// from the seed's nearest corner of the seed's plane (a tilt of at most about that angle).
+//
+// Each triangle's plane, its neighbours across its edges, which of them would join it as a seed and, for a
+// group of it alone, the plane's offset are found first, on all cores: the seeds come largest first,
+// scattered over the mesh, and most of them stay alone (every one on a ball), so that the sequential
+// grouping then reads four words for such a seed, where it read both triangles' corners and planes for each
+// of its edges (a cache miss each, most of the grouping's time on a large hull).  All of it works on the
+// triangles renumbered by their visit order (position j for visit.triangles[j]) and the relabelled mesh
+// `g`, so that neighbours' data lies together; the seeds' order (largest first, ties by the mesh's index)
+// and every test are the mesh's, so the facets are too.
+template <class Point>
+Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const VisitOrder& visit,
+                    double tolerance, double angle_sine) {
+  PhaseLaps laps("group_facets");  // CUDAHULL_PHASE_TIMES=1
+  const std::size_t nt = mesh.triangles.size();
+  const std::vector<std::uint32_t>& jrank = visit.triangle_rank;  // per mesh triangle: its position
+  std::vector<std::array<std::uint32_t, 3>> tri(nt);              // per position: its corners' positions
+  auto corner = [&](std::uint32_t j, int k) { return g.at[tri[j][k]]; };
+  // The triangle holding the directed edge a -> b (positions), kNone if none.
+  auto holder = [&](std::uint32_t a, std::uint32_t b) {
+    for (std::uint32_t e = g.start[a]; e < g.start[a + 1]; ++e)
+      if (g.to[e] == b) return g.face[e];
+    return kNone;
+  };
+  std::vector<Plane> plane(nt);
+  std::vector<double> twice_area(nt);
+  // Largest first, ties by the mesh's index: (the area's bits inverted, index) keys, which order as the
+  // areas do (no area is negative or NaN), listed by index and sorted stably on the bits alone (a radix
+  // sort, beside the joining pass below).
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(nt);
+  std::vector<std::uint32_t> across(3 * nt);  // the triangle across edge k of j: the one holding its reverse
+  parallel_blocks(
+      nt, hardware_workers(),
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t j = begin; j < end; ++j) {
+          const Triangle& corners = mesh.triangles[visit.triangles[j]];
+          tri[j] = {g.rank[corners[0]], g.rank[corners[1]], g.rank[corners[2]]};
+          const Vec3d a = corner(j, 0), b = corner(j, 1), c = corner(j, 2);
+          plane[j] = plane_through(a, b, c);
+          const Vec3d n = cross(sub(b, a), sub(c, a));
+          twice_area[j] = std::sqrt(dot(n, n));
+          std::uint64_t area_bits;
+          std::memcpy(&area_bits, &twice_area[j], sizeof area_bits);
+          keyed[visit.triangles[j]] = {~area_bits, visit.triangles[j]};
+          for (int k = 0; k < 3; ++k)
+            across[3 * j + k] = holder(tri[j][(k + 1) % 3], tri[j][k]);
+        }
+      },
+      1024);
+  laps.lap("planes");
+  // Whether `vertex` (a position) fits the group of `seed`: within the tolerance of the seed's plane, or
+  // exactly on it (a point exactly on it evaluates to within a few ulps of the coordinates' scale, under 28u
+  // by plane.cpp's analysis; the exact orient3d decides).
+  auto fits = [&](std::uint32_t seed, std::uint32_t vertex) {
+    const Vec3d sa = corner(seed, 0), sb = corner(seed, 1), sc = corner(seed, 2);
+    const Vec3d p = g.at[vertex];
+    const double value = std::fabs(plane_value(plane[seed], p));
+    if (value <= tolerance) return true;
+    if (angle_sine > 0) {
+      double nearest = kInfinity;
+      for (const Vec3d& s : {sa, sb, sc}) {
+        const Vec3d d = sub(p, s);
+        nearest = std::min(nearest, std::sqrt(dot(d, d)));
+      }
+      if (value <= tolerance + angle_sine * nearest) return true;
+    }
+    const double scale = std::max({std::fabs(sa.x), std::fabs(sa.y), std::fabs(sa.z), std::fabs(sb.x),
+                                   std::fabs(sb.y), std::fabs(sb.z), std::fabs(sc.x), std::fabs(sc.y),
+                                   std::fabs(sc.z), std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+    return value <= 64 * kUnitRoundoff * scale && orient3d(sa, sb, sc, p) == 0;
+  };
+  // Whether triangle u joins the group of `seed` across an edge: facing the group's way too (across a body
+  // thinner than the tolerance, the far side's triangles fit the plane but face away from it), every corner
+  // fitting.
+  auto joins = [&](std::uint32_t seed, std::uint32_t u) {
+    if (dot3(plane[seed], {plane[u][0], plane[u][1], plane[u][2]}) <= 0) return false;
+    return fits(seed, tri[u][0]) && fits(seed, tri[u][1]) && fits(seed, tri[u][2]);
+  };
+  // Per triangle as a seed: which neighbours would join (bit k: across edge k), and the offset of its plane
+  // were it alone (the top of its corners).
+  std::vector<std::uint8_t> joining(nt);
+  std::vector<double> alone_top(nt);
+  parallel_blocks_beside(
+      nt, hardware_workers(),
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t j = begin; j < end; ++j) {
+          std::uint8_t bits = 0;
+          for (int k = 0; k < 3; ++k)
+            if (const std::uint32_t u = across[3 * j + k]; u != kNone && joins(j, u)) bits |= 1u << k;
+          joining[j] = bits;
+          alone_top[j] = std::max(
+              {dot3(plane[j], corner(j, 0)), dot3(plane[j], corner(j, 1)), dot3(plane[j], corner(j, 2))});
+        }
+      },
+      [&] { radix_sort_by_key(keyed); }, 1024);
+  laps.lap("joining and sort");
+  Facets facets;
+  if (std::none_of(joining.begin(), joining.end(), [](std::uint8_t bits) { return bits != 0; })) {
+    // No triangle joins another (a ball's hull): every seed is a facet alone, numbered in the seeds' order,
+    // placed on all cores, where the grouping below would take them one by one.
+    facets.facet_of.resize(nt);
+    facets.seeds.resize(nt);
+    facets.planes.resize(nt);
+    facets.across.resize(3 * nt);
+    parallel_blocks(nt, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
+      for (std::size_t id = begin; id < end; ++id) {
+        const std::uint32_t t = keyed[id].second, j = jrank[t];
+        facets.facet_of[t] = static_cast<std::uint32_t>(id);
+        facets.seeds[id] = t;
+        facets.planes[id] = {plane[j][0], plane[j][1], plane[j][2], -alone_top[j]};
+        for (int k = 0; k < 3; ++k)
+          facets.across[3 * t + k] = across[3 * j + k] == kNone ? kNone : visit.triangles[across[3 * j + k]];
+      }
+    });
+    laps.lap("alone");
+    return facets;
+  }
+  std::vector<std::uint32_t> facet_of(nt, kNone), seeds;  // by position
+  seeds.reserve(nt);
+  facets.planes.reserve(nt);
+  std::vector<std::uint32_t> queue, vertices;
+  std::vector<std::uint8_t> in_group(g.at.size(), 0);
+  for (const auto& key : keyed) {
+    const std::uint32_t seed = jrank[key.second];
+    if (facet_of[seed] != kNone) continue;
+    const std::uint32_t id = static_cast<std::uint32_t>(facets.planes.size());
+    const Plane& seed_plane = plane[seed];
+    facet_of[seed] = id;
+    seeds.push_back(seed);
+    if (joining[seed] == 0) {  // alone: no neighbour fits, whichever are free
+      facets.planes.push_back({seed_plane[0], seed_plane[1], seed_plane[2], -alone_top[seed]});
+      continue;
+    }
+    queue.assign(1, seed);
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t u = across[3 * queue[q] + k];
+        if (u == kNone || facet_of[u] != kNone) continue;
+        if (queue[q] == seed ? !(joining[seed] >> k & 1u) : !joins(seed, u)) continue;
+        facet_of[u] = id;
+        queue.push_back(u);
+      }
+    }
+    // The offset: every group vertex on or below the plane, as evaluated (fl(x - max) <= 0 for x <= max).
+    vertices.clear();
+    for (std::uint32_t t : queue)
+      for (std::uint32_t v : tri[t])
+        if (!in_group[v]) {
+          in_group[v] = 1;
+          vertices.push_back(v);
+        }
+    double top = -kInfinity;
+    for (std::uint32_t v : vertices) {
+      top = std::max(top, dot3(seed_plane, g.at[v]));
+      in_group[v] = 0;
+    }
+    facets.planes.push_back({seed_plane[0], seed_plane[1], seed_plane[2], -top});
+  }
+  laps.lap("grouping");
+  // Back to the mesh's triangles.
+  facets.facet_of.resize(nt);
+  facets.across.resize(3 * nt);
+  parallel_blocks(nt, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
+    for (std::size_t t = begin; t < end; ++t) {
+      const std::uint32_t j = jrank[t];
+      facets.facet_of[t] = facet_of[j];
+      for (int k = 0; k < 3; ++k)
+        facets.across[3 * t + k] = across[3 * j + k] == kNone ? kNone : visit.triangles[across[3 * j + k]];
+    }
+  });
+  facets.seeds.reserve(seeds.size());
+  for (std::uint32_t j : seeds)
+    facets.seeds.push_back(visit.triangles[j]);
+  return facets;
+}
+
+}  // namespace cudahull::merge

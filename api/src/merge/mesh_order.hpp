@@ -1,0 +1,219 @@
+// The merge's views of a triangle mesh: its directed edges (EdgeIndex), an order of its vertices and
+// triangles that keeps neighbours together (VisitOrder), and the mesh relabelled in that order (Relabelled);
+// and a stable radix sort of (key, value) pairs, for the facets' seeds.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstdint>
+#include <numeric>
+#include <utility>
+#include <vector>
+
+#include "box_tree.hpp"
+#include "cudahull/morton.hpp"
+#include "cudahull/parallel.hpp"
+#include "cudahull/predicates.hpp"
+#include "cudahull/types.hpp"
+
+namespace cudahull::merge {
+
+// Sorts (key, value) pairs by key, stably (equal keys keep their order): a least-significant-digit radix
+// sort of the keys' high halves in 11-bit digits (passing over digits in which every key is the same), then
+// each run of equal high halves by insertion on the low half.  The keys here are doubles' bits, whose high
+// halves (sign, exponent and 20 bits of mantissa) rarely tie: half the passes of a sort on all 64 bits.
+inline void radix_sort_by_key(std::vector<std::pair<std::uint64_t, std::uint32_t>>& items) {
+  constexpr int kDigit = 11;
+  constexpr std::size_t kBuckets = std::size_t{1} << kDigit;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> spare(items.size());
+  std::vector<std::size_t> count(kBuckets + 1);
+  for (int shift = 32; shift < 64; shift += kDigit) {
+    std::fill(count.begin(), count.end(), 0);
+    auto digit = [shift](std::uint64_t key) { return (key >> shift) & (kBuckets - 1); };
+    for (const auto& item : items)
+      ++count[digit(item.first) + 1];
+    if (!items.empty() && count[digit(items[0].first) + 1] == items.size()) continue;
+    for (std::size_t b = 0; b < kBuckets; ++b)
+      count[b + 1] += count[b];
+    for (const auto& item : items)
+      spare[count[digit(item.first)]++] = item;
+    items.swap(spare);
+  }
+  for (std::size_t k = 1; k < items.size(); ++k)
+    for (std::size_t x = k;
+         x > 0 && (items[x - 1].first >> 32) == (items[x].first >> 32) && items[x - 1].first > items[x].first;
+         --x)
+      std::swap(items[x - 1], items[x]);
+}
+
+// The directed edges of a closed triangulated surface: per vertex a, its out-edges (b, the triangle holding
+// a -> b), ascending in b (and in the triangle for equal b, on a surface that is not a manifold).  Each
+// neighbour of a appears once (the other triangle holds b -> a).
+struct EdgeIndex {
+  std::vector<std::uint32_t> start;                          // per vertex, into `out`; one more at the end
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out;  // (to, triangle)
+
+  // Two stable counting sorts, by end, then by start: every vertex's run ascending in its end, equal ends in
+  // triangle order.  Each worker owns a range of vertices, whose entries it places reading every item, so
+  // that no two write one place: the counts (a vertex ends as many half-edges as it starts, one each a
+  // triangle it is in, so both sorts place from `start`), the starts on one core, the half-edges ending in
+  // the range, then those starting in it.
+  template <class Point>
+  explicit EdgeIndex(const BasicHullMesh<Point>& mesh) : start(mesh.vertices.size() + 1, 0) {
+    const std::size_t n = mesh.vertices.size();
+    const unsigned workers =
+        static_cast<unsigned>(std::clamp<std::size_t>(n / kVerticesAWorker, 1, hardware_workers()));
+    auto each_range = [&](auto&& body) {
+      parallel_chunks(
+          workers, workers,
+          [&](std::size_t begin, std::size_t end, unsigned) {
+            for (std::size_t w = begin; w < end; ++w)
+              body(static_cast<std::uint32_t>(n * w / workers),
+                   static_cast<std::uint32_t>(n * (w + 1) / workers));
+          },
+          1);
+    };
+    each_range([&](std::uint32_t low, std::uint32_t high) {
+      for (const Triangle& t : mesh.triangles)
+        for (std::uint32_t v : t)
+          if (v - low < high - low) ++start[v + 1];
+    });
+    for (std::size_t v = 0; v < n; ++v)
+      start[v + 1] += start[v];
+    struct HalfEdge {
+      std::uint32_t from, to, triangle;
+    };
+    std::vector<HalfEdge> by_end(start.back());
+    each_range([&](std::uint32_t low, std::uint32_t high) {
+      std::vector<std::uint32_t> fill(start.begin() + low, start.begin() + high);
+      for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k)
+          if (const std::uint32_t to = mesh.triangles[t][(k + 1) % 3]; to - low < high - low)
+            by_end[fill[to - low]++] = {mesh.triangles[t][k], to, t};
+    });
+    out.resize(start.back());
+    each_range([&](std::uint32_t low, std::uint32_t high) {
+      std::vector<std::uint32_t> fill(start.begin() + low, start.begin() + high);
+      for (const HalfEdge& e : by_end)
+        if (e.from - low < high - low) out[fill[e.from - low]++] = {e.to, e.triangle};
+    });
+  }
+  static constexpr std::size_t kVerticesAWorker = 256;  // fewer: a worker's wake-up costs more than its share
+  std::uint32_t degree(std::uint32_t v) const { return start[v + 1] - start[v]; }
+  std::uint32_t neighbour(std::uint32_t v, std::uint32_t k) const { return out[start[v] + k].first; }
+  // The triangle holding the directed edge a -> b, kNone if none.
+  std::uint32_t triangle(std::uint32_t a, std::uint32_t b) const {
+    for (std::uint32_t k = start[a]; k < start[a + 1]; ++k)
+      if (out[k].first == b) return out[k].second;
+    return kNone;
+  }
+};
+
+// The vertices of `mesh` along a Morton curve of their box, and its triangles by their first corner in that
+// order.  The per-vertex, per-triangle and per-facet passes take their independent items in these orders,
+// so that neighbours on the hull are neighbours in time: in index order (the engine's, spatially random)
+// nearly every read of a corner, a link or a plane missed the cache, most of a 100,000-vertex sphere's
+// merge.  Only the order of independent items changes, never a result.  Small meshes keep index order.
+struct VisitOrder {
+  std::vector<std::uint32_t> vertices, triangles;
+  std::vector<std::uint32_t> triangle_rank;  // per triangle: its place in `triangles`
+};
+
+template <class Point>
+VisitOrder visit_order(const BasicHullMesh<Point>& mesh) {
+  const std::size_t n = mesh.vertices.size();
+  VisitOrder order;
+  order.vertices.resize(n);
+  std::iota(order.vertices.begin(), order.vertices.end(), 0u);
+  if (n >= 4096) {
+    Box all;
+    for (const Point& p : mesh.vertices)
+      all.add({{double(p.x), double(p.y), double(p.z)}, {double(p.x), double(p.y), double(p.z)}});
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(n);
+    parallel_chunks(n, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const double at[3] = {double(mesh.vertices[i].x), double(mesh.vertices[i].y),
+                              double(mesh.vertices[i].z)};
+        std::uint64_t code = 0;
+        for (int k = 0; k < 3; ++k) {
+          const double width = all.hi[k] - all.lo[k];
+          double t = width > 0 ? (at[k] - all.lo[k]) / width : 0;
+          if (!(t > 0)) t = 0;  // NaN too: the order only affects speed
+          code |= spread3(static_cast<std::uint64_t>(std::min(t, 1.0) * 2097151.0)) << k;
+        }
+        keyed[i] = {code, static_cast<std::uint32_t>(i)};
+      }
+    });
+    std::sort(keyed.begin(), keyed.end());
+    for (std::size_t i = 0; i < n; ++i)
+      order.vertices[i] = keyed[i].second;
+  }
+  // Each vertex's triangles (those it is the first corner of) in its out-edges' order (a triangle a -> b -> c
+  // holds out-edge a -> b): by their second corner, then stably by their first corner's place, two counting
+  // sorts.
+  std::vector<std::uint32_t> rank_of(n);
+  for (std::uint32_t j = 0; j < n; ++j)
+    rank_of[order.vertices[j]] = j;
+  const std::size_t nt = mesh.triangles.size();
+  std::vector<std::uint32_t> second_start(n + 1, 0), first_start(n + 1, 0);
+  for (const Triangle& t : mesh.triangles)
+    ++second_start[t[1] + 1], ++first_start[rank_of[t[0]] + 1];
+  for (std::uint32_t j = 0; j < n; ++j)
+    second_start[j + 1] += second_start[j], first_start[j + 1] += first_start[j];
+  std::vector<std::uint32_t> by_second(nt);
+  for (std::uint32_t t = 0; t < nt; ++t)
+    by_second[second_start[mesh.triangles[t][1]]++] = t;
+  order.triangles.resize(nt);
+  for (std::uint32_t t : by_second)
+    order.triangles[first_start[rank_of[mesh.triangles[t][0]]]++] = t;
+  order.triangle_rank.resize(order.triangles.size());
+  for (std::uint32_t j = 0; j < order.triangles.size(); ++j)
+    order.triangle_rank[order.triangles[j]] = j;
+  return order;
+}
+
+// A mesh's vertices and edges relabelled by a VisitOrder: position j is vertex visit.vertices[j], at[j] its
+// coordinates, to[start[j]..start[j + 1]) its neighbours' positions in EdgeIndex's order (ascending original
+// index, so that every loop over them takes the same steps).  Built in one pass of scattered reads that
+// overlap; the passes then read their neighbours' data from the cache.
+struct Relabelled {
+  std::vector<std::uint32_t> rank, start, to;
+  std::vector<std::uint32_t> face;  // per out-edge: the place in VisitOrder::triangles of its triangle
+  std::vector<Vec3d> at;
+  bool coordinates_safe = true;  // every coordinate in compare_along()'s exact range
+};
+
+template <class Point>
+Relabelled relabelled(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, const VisitOrder& visit) {
+  const std::size_t n = mesh.vertices.size();
+  Relabelled g;
+  g.rank.resize(n);
+  g.start.assign(n + 1, 0);
+  g.to.resize(edges.out.size());
+  g.face.resize(edges.out.size());
+  g.at.resize(n);
+  for (std::uint32_t j = 0; j < n; ++j) {
+    const std::uint32_t v = visit.vertices[j];
+    g.rank[v] = j;
+    g.start[j + 1] = g.start[j] + edges.degree(v);
+  }
+  std::atomic<bool> safe{true};
+  parallel_blocks(n, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
+    bool block_safe = true;
+    for (std::size_t j = begin; j < end; ++j) {
+      const std::uint32_t v = visit.vertices[j];
+      g.at[j] = to_vec3d(mesh.vertices[v]);
+      block_safe = block_safe && in_fast_exact_range(g.at[j].x) && in_fast_exact_range(g.at[j].y) &&
+                   in_fast_exact_range(g.at[j].z);
+      for (std::uint32_t k = 0; k < edges.degree(v); ++k) {
+        g.to[g.start[j] + k] = g.rank[edges.neighbour(v, k)];
+        g.face[g.start[j] + k] = visit.triangle_rank[edges.out[edges.start[v] + k].second];
+      }
+    }
+    if (!block_safe) safe.store(false, std::memory_order_relaxed);
+  });
+  g.coordinates_safe = safe.load();
+  return g;
+}
+
+}  // namespace cudahull::merge
