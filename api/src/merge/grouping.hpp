@@ -99,9 +99,11 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
   // Whether triangle u joins the group of `seed` across an edge: facing the group's way too (across a body
   // thinner than the tolerance, the far side's triangles fit the plane but face away from it), every corner
   // fitting.
-  auto joins = [&](std::uint32_t seed, std::uint32_t u) {
+  // Corner `first` is tested first: across an edge, the far corner, which alone usually fails.
+  auto joins = [&](std::uint32_t seed, std::uint32_t u, int first = 0) {
     if (dot3(plane[seed], {plane[u][0], plane[u][1], plane[u][2]}) <= 0) return false;
-    return fits(seed, tri[u][0]) && fits(seed, tri[u][1]) && fits(seed, tri[u][2]);
+    return fits(seed, tri[u][first]) && fits(seed, tri[u][(first + 1) % 3]) &&
+           fits(seed, tri[u][(first + 2) % 3]);
   };
   // Per triangle as a seed: which neighbours would join (bit k: across edge k), and the offset of its plane
   // were it alone (the top of its corners).
@@ -112,8 +114,14 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
       [&](std::size_t begin, std::size_t end, unsigned) {
         for (std::size_t j = begin; j < end; ++j) {
           std::uint8_t bits = 0;
-          for (int k = 0; k < 3; ++k)
-            if (const std::uint32_t u = across[3 * j + k]; u != kNone && joins(j, u)) bits |= 1u << k;
+          for (int k = 0; k < 3; ++k) {
+            const std::uint32_t u = across[3 * j + k];
+            if (u == kNone) continue;
+            // u holds the edge's reverse, tri[j][k + 1] -> tri[j][k]: its corner after that is the far one.
+            const std::uint32_t back = tri[j][(k + 1) % 3];
+            const int far = tri[u][0] == back ? 2 : tri[u][1] == back ? 0 : 1;
+            if (joins(j, u, far)) bits |= 1u << k;
+          }
           joining[j] = bits;
           alone_top[j] = std::max(
               {dot3(plane[j], corner(j, 0)), dot3(plane[j], corner(j, 1)), dot3(plane[j], corner(j, 2))});
