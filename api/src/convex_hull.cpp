@@ -183,16 +183,23 @@ ConvexHull device_hull_in(const Scalar* device_xyz, std::size_t count, const Con
   return hull;
 }
 
+// Points in GPU memory, run as `plan` (the resident engine on the device) says.
 template <class Scalar>
-ConvexHull device_hull(const Scalar* device_xyz, std::size_t count, Precision own,
-                       const ConvexHullOptions& options) {
-  const HullPlan plan = device_plan(count, 3, own, options);
-  require_device_points(device_xyz, count, plan);
+ConvexHull planned_device_hull(const Scalar* device_xyz, std::size_t count, const ConvexHullOptions& options,
+                               const HullPlan& plan) {
   ConvexHull hull = plan.precision == Precision::kDouble
                         ? device_hull_in<Point3d>(device_xyz, count, options, plan.resident_tuning)
                         : device_hull_in<Point3>(device_xyz, count, options, plan.resident_tuning);
   if (hull.plan.empty()) hull.plan = plan.reason;  // the wide path's host hull says its own
   return hull;
+}
+
+template <class Scalar>
+ConvexHull device_hull(const Scalar* device_xyz, std::size_t count, Precision own,
+                       const ConvexHullOptions& options) {
+  const HullPlan plan = device_plan(count, 3, own, options);
+  require_device_points(device_xyz, count, plan);
+  return planned_device_hull(device_xyz, count, options, plan);
 }
 
 // The hull of `count` x, y, z triples in host memory.  For the resident engine on the GPU they are uploaded
@@ -208,11 +215,10 @@ ConvexHull array_hull(const Scalar* xyz, std::size_t count, Precision own, const
   const HullPlan plan = plan_hull(options, input, cuda_presence);
   if (plan.upload_first) {
     check_count(count);
+    // The host points' plan serves their uploaded copy: it chose the resident engine on a usable device,
+    // as a plan for the copy would, and the copy is that device's memory.
     const std::shared_ptr<void> copy = upload_to_device(xyz, count * 3 * sizeof(Scalar));
-    ConvexHull hull = device_hull(static_cast<const Scalar*>(copy.get()), count, own, options);
-    // The host points' plan, not the uploaded copy's ("points in GPU memory"), unless the wide path ran.
-    if (hull.backend != "cpu-wide") hull.plan = plan.reason;
-    return hull;
+    return planned_device_hull(static_cast<const Scalar*>(copy.get()), count, options, plan);
   }
   // Planned once: checked_hull() plans again only for points outside the exact range.
   return checked_hull(count, array_coordinate(xyz), own, options, neighbors, &plan);
