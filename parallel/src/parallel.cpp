@@ -9,6 +9,7 @@
 // edits between jobs.
 #include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <cstdlib>
 #include <exception>
 #include <memory>
@@ -68,15 +69,17 @@ class WorkerPool {
     if (on_pool_worker || workers > size_ + 1) return false;
     std::unique_lock caller(run_mutex_, std::try_to_lock);
     if (!caller.owns_lock()) return false;
-    n_ = n;
-    workers_ = workers;
-    call_ = call;
-    body_ = body;
+    n_.store(n, std::memory_order_relaxed);
+    workers_.store(workers, std::memory_order_relaxed);
+    call_.store(call, std::memory_order_relaxed);
+    body_.store(body, std::memory_order_relaxed);
     error_ = nullptr;
-    pending_.store(workers - 1, std::memory_order_relaxed);
-    finished_.store(false, std::memory_order_relaxed);
+    remaining_.store(workers, std::memory_order_relaxed);
+    ++job_;
+    // Publishes the fields above with the job's chunks; chunk 0 is the caller's.
+    claims_.store(std::uint64_t{job_} << 32 | 1, std::memory_order_release);
     for (unsigned w = 1; w < workers; ++w) {
-      ready_[w]->store(true, std::memory_order_release);  // publishes the job fields above to worker w
+      ready_[w]->store(true, std::memory_order_release);
       wake_[w]->release();  // in case it sleeps; a watching worker leaves this count behind (see work())
     }
     std::exception_ptr mine;
@@ -85,7 +88,11 @@ class WorkerPool {
     } catch (...) {
       mine = std::current_exception();
     }
-    if (workers > 1) wait_for_workers();
+    finish_chunk();
+    // Then the chunks no worker has taken yet: a worker still waking (milliseconds after a long sleep, or
+    // held back by the scheduler) leaves its chunk to the caller, who would otherwise wait for it.
+    run_claimed_chunks();
+    wait_for_chunks();
     if (mine) std::rethrow_exception(mine);
     if (error_) std::rethrow_exception(error_);
     return true;
@@ -103,19 +110,38 @@ class WorkerPool {
         // No job: a wake() (watch for one), or a count left by a job that was taken while watching.
         if (!ready_[w]->exchange(false, std::memory_order_acquire)) continue;
       }
-      const std::size_t size = chunk(n_, workers_);
-      const std::size_t begin = std::min(n_, w * size), end = std::min(n_, begin + size);
+      run_claimed_chunks();
+    }
+  }
+
+  // Takes the current job's chunks one at a time until none is left (each chunk, and its number as the
+  // body's worker, taken by one thread only): none at all for a worker that comes after its job ended.
+  void run_claimed_chunks() {
+    for (;;) {
+      std::uint64_t claims = claims_.load(std::memory_order_acquire);
+      const unsigned next = static_cast<std::uint32_t>(claims);
+      // The fields as published with `claims`' job; a later job rewrites them only after every chunk of
+      // this one is taken, which the exchange below would see.
+      const unsigned workers = workers_.load(std::memory_order_relaxed);
+      if (next >= workers) return;
+      const std::size_t n = n_.load(std::memory_order_relaxed);
+      const ChunkCall call = call_.load(std::memory_order_relaxed);
+      void* const body = body_.load(std::memory_order_relaxed);
+      if (!claims_.compare_exchange_weak(claims, claims + 1, std::memory_order_acq_rel)) continue;
+      const std::size_t size = chunk(n, workers);
+      const std::size_t begin = std::min(n, next * size), end = std::min(n, begin + size);
       try {
-        call_(body_, begin, end, w);
+        call(body, begin, end, next);
       } catch (...) {
         std::lock_guard lock(error_mutex_);
         if (!error_) error_ = std::current_exception();
       }
-      if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
-        finished_.store(true, std::memory_order_release);
-        finished_.notify_one();
-      }
+      finish_chunk();
     }
+  }
+
+  void finish_chunk() {
+    if (remaining_.fetch_sub(1, std::memory_order_acq_rel) == 1) remaining_.notify_one();
   }
 
   // Polls `ready()` with a pause instruction between tries for up to watch_time() (or until a wake()'s
@@ -133,10 +159,12 @@ class WorkerPool {
     }
   }
 
-  // The caller, for the last worker of its job: watched, as the workers watch for jobs, then asleep.
-  void wait_for_workers() {
-    if (!watch_for([&] { return finished_.load(std::memory_order_acquire); }))
-      finished_.wait(false, std::memory_order_acquire);
+  // The caller, for the chunks still running on workers: watched, as the workers watch for jobs, then
+  // asleep.
+  void wait_for_chunks() {
+    if (watch_for([&] { return remaining_.load(std::memory_order_acquire) == 0; })) return;
+    for (unsigned left; (left = remaining_.load(std::memory_order_acquire)) != 0;)
+      remaining_.wait(left, std::memory_order_acquire);
   }
 
   // Worker 1: a wake() asked for the others too (whether it found 1 asleep or awake).
@@ -159,14 +187,17 @@ class WorkerPool {
   std::mutex run_mutex_;                                          // one job at a time
   std::vector<std::unique_ptr<std::counting_semaphore<>>> wake_;  // per worker (index 0 unused: the caller)
   std::vector<std::unique_ptr<std::atomic<bool>>> ready_;         // per worker: a job is waiting for it
-  std::atomic<bool> finished_{false};                             // set by the last worker to finish
   std::atomic<bool> waking_{false};                               // a wake() for worker 1 to pass on
   std::atomic<std::chrono::steady_clock::rep> watch_until_{0};    // a wake()'s watch, on the steady clock
-  std::atomic<unsigned> pending_{0};
-  std::size_t n_ = 0;
-  unsigned workers_ = 0;
-  ChunkCall call_ = nullptr;
-  void* body_ = nullptr;
+  // The job: its number (high half) and next chunk to take (low half), its chunks not yet finished, and
+  // its fields (atomics: a worker coming late reads them beside the next job's writes, and then leaves).
+  std::atomic<std::uint64_t> claims_{0};
+  std::atomic<unsigned> remaining_{0};
+  std::uint32_t job_ = 0;
+  std::atomic<std::size_t> n_{0};
+  std::atomic<unsigned> workers_{0};
+  std::atomic<ChunkCall> call_{nullptr};
+  std::atomic<void*> body_{nullptr};
   std::mutex error_mutex_;
   std::exception_ptr error_;
 };

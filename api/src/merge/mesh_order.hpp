@@ -47,58 +47,38 @@ inline void radix_sort_by_key(std::vector<std::pair<std::uint64_t, std::uint32_t
 }
 
 // The directed edges of a closed triangulated surface: per vertex a, its out-edges (b, the triangle holding
-// a -> b), ascending in b (and in the triangle for equal b, on a surface that is not a manifold).  Each
-// neighbour of a appears once (the other triangle holds b -> a).
+// a -> b), ascending in b.  Each neighbour of a appears once (the other triangle holds b -> a).  On one
+// core: the merge's first step, taken while the workers wake (wake_workers()); split among them, it waited
+// for their wake-up (docs/benchmarks.md, issue 42's merged path).
 struct EdgeIndex {
   std::vector<std::uint32_t> start;                          // per vertex, into `out`; one more at the end
   std::vector<std::pair<std::uint32_t, std::uint32_t>> out;  // (to, triangle)
 
-  // Two stable counting sorts, by end, then by start: every vertex's run ascending in its end, equal ends in
-  // triangle order.  Each worker owns a range of vertices, whose entries it places reading every item, so
-  // that no two write one place: the counts (a vertex ends as many half-edges as it starts, one each a
-  // triangle it is in, so both sorts place from `start`), the starts on one core, the half-edges ending in
-  // the range, then those starting in it.
   template <class Point>
   explicit EdgeIndex(const BasicHullMesh<Point>& mesh) : start(mesh.vertices.size() + 1, 0) {
-    const std::size_t n = mesh.vertices.size();
-    const unsigned workers =
-        static_cast<unsigned>(std::clamp<std::size_t>(n / kVerticesAWorker, 1, hardware_workers()));
-    auto each_range = [&](auto&& body) {
-      parallel_chunks(
-          workers, workers,
-          [&](std::size_t begin, std::size_t end, unsigned) {
-            for (std::size_t w = begin; w < end; ++w)
-              body(static_cast<std::uint32_t>(n * w / workers),
-                   static_cast<std::uint32_t>(n * (w + 1) / workers));
-          },
-          1);
-    };
-    each_range([&](std::uint32_t low, std::uint32_t high) {
-      for (const Triangle& t : mesh.triangles)
-        for (std::uint32_t v : t)
-          if (v - low < high - low) ++start[v + 1];
-    });
-    for (std::size_t v = 0; v < n; ++v)
+    for (const Triangle& t : mesh.triangles)
+      for (std::uint32_t v : t)
+        ++start[v + 1];
+    for (std::size_t v = 0; v + 1 < start.size(); ++v)
       start[v + 1] += start[v];
+    // Two stable counting sorts, by end, then by start: every run ascending in its end, and equal ends in
+    // triangle order (an insertion sort of each run mispredicted about once an edge).  A vertex ends as many
+    // half-edges as it starts (one each a triangle it is in), so both sorts place from `start`.
+    std::vector<std::uint32_t> end_fill(start.begin(), start.end() - 1);
     struct HalfEdge {
       std::uint32_t from, to, triangle;
     };
     std::vector<HalfEdge> by_end(start.back());
-    each_range([&](std::uint32_t low, std::uint32_t high) {
-      std::vector<std::uint32_t> fill(start.begin() + low, start.begin() + high);
-      for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
-        for (int k = 0; k < 3; ++k)
-          if (const std::uint32_t to = mesh.triangles[t][(k + 1) % 3]; to - low < high - low)
-            by_end[fill[to - low]++] = {mesh.triangles[t][k], to, t};
-    });
+    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t to = mesh.triangles[t][(k + 1) % 3];
+        by_end[end_fill[to]++] = {mesh.triangles[t][k], to, t};
+      }
     out.resize(start.back());
-    each_range([&](std::uint32_t low, std::uint32_t high) {
-      std::vector<std::uint32_t> fill(start.begin() + low, start.begin() + high);
-      for (const HalfEdge& e : by_end)
-        if (e.from - low < high - low) out[fill[e.from - low]++] = {e.to, e.triangle};
-    });
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (const HalfEdge& e : by_end)
+      out[fill[e.from]++] = {e.to, e.triangle};
   }
-  static constexpr std::size_t kVerticesAWorker = 256;  // fewer: a worker's wake-up costs more than its share
   std::uint32_t degree(std::uint32_t v) const { return start[v + 1] - start[v]; }
   std::uint32_t neighbour(std::uint32_t v, std::uint32_t k) const { return out[start[v] + k].first; }
   // The triangle holding the directed edge a -> b, kNone if none.

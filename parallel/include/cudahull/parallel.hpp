@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <thread>
 #include <vector>
 
@@ -81,16 +82,30 @@ void parallel_chunks(std::size_t n, unsigned workers, Body&& body, std::size_t g
   };
   if (detail::run_on_worker_pool(n, workers, call, const_cast<void*>(static_cast<const void*>(&body))))
     return;
-  // The pool is taken (e.g. the viewer's engine thread and the CPU backend at once): plain threads.
+  // The pool is taken (e.g. the viewer's engine thread and the CPU backend at once) or smaller than asked:
+  // plain threads, whose exceptions reach the caller too (the caller's own first).
   std::vector<std::thread> threads;
+  std::vector<std::exception_ptr> errors(workers);
   const std::size_t chunk = (n + workers - 1) / workers;
   for (unsigned w = 1; w < workers; ++w) {
     const std::size_t begin = std::min(n, w * chunk), end = std::min(n, begin + chunk);
-    threads.emplace_back([&body, begin, end, w] { body(begin, end, w); });
+    threads.emplace_back([&body, &errors, begin, end, w] {
+      try {
+        body(begin, end, w);
+      } catch (...) {
+        errors[w] = std::current_exception();
+      }
+    });
   }
-  body(std::size_t{0}, std::min(n, chunk), 0u);
+  try {
+    body(std::size_t{0}, std::min(n, chunk), 0u);
+  } catch (...) {
+    errors[0] = std::current_exception();
+  }
   for (auto& t : threads)
     t.join();
+  for (const std::exception_ptr& error : errors)
+    if (error) std::rethrow_exception(error);
 }
 
 // parallel_chunks() with its range dealt out in blocks of `block` items to whichever thread is free, for
