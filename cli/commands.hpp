@@ -55,6 +55,8 @@ struct BenchOptions {
   std::uint64_t batch = 0;
 };
 int run_bench(const BenchOptions& options);
+// `bench --batch B` (bench_batch.cpp), which run_bench() hands a batch to.
+int run_bench_batch(const BenchOptions& options);
 
 struct CheckOptions {
   std::string points;              // any point file the CLI reads

@@ -1,4 +1,4 @@
-// Colour functions shared by the viewer's shaders.  GLSL has no #include: renderer.cpp's compile() puts
+// Colour functions shared by the viewer's shaders.  GLSL has no #include: gl_helpers.cpp's compile() puts
 // this file after the #version line of every shader it compiles (no #version here).
 
 vec3 hsv_to_rgb(float h, float s, float v) {

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The Python module under AddressSanitizer and UBSan: the extension (python/src/module.cpp, nanobind's
+# The Python module under AddressSanitizer and UBSan: the extension (python/src/, nanobind's
 # array import and the library under it) built with -fsanitize=address,undefined into the sanitizer build
 # (-DCUDAHULL_PYTHON=ON, cmake/Python.cmake), loaded into build-venv's Python with the ASan runtime
 # preloaded, running the Python tests that cross its array boundary: DLPack tensors and

@@ -1,3 +1,5 @@
+// The Renderer (design: renderer.hpp): its GL objects, the upload of RenderData, and the draw of points,
+// splats, hull and overlay; the text is in renderer_text.cpp, the GL helpers in gl_helpers.cpp.
 #include "renderer.hpp"
 
 #include <glad/gl.h>
@@ -11,113 +13,15 @@
 
 #include "cudahull/errors.hpp"
 #include "embedded_shaders.hpp"
+#include "gl_helpers.hpp"
 #include "text.hpp"
 
 namespace cudahull::viewer {
 
 namespace {
 
-constexpr float kTextPixels = 15.0f;  // the labels' and the legend's font size, logical pixels
-
-constexpr const char* kLayerNames[kLayerCount] = {"hull",       "wireframe", "internal", "external",
-                                                  "vertices",   "cells",     "swaps",    "normals",
-                                                  "refinement", "labels",    "input"};
-
-// Throws DeviceError with `message` and the driver's log when `object` (a shader or a program, with its
-// glGet*iv, glGet*InfoLog and glDelete*) failed `status`, deleting it first.
-template <class GetIv, class GetLog, class Delete>
-void check_built(GLuint object, GLenum status, GetIv get_iv, GetLog get_log, Delete destroy,
-                 const std::string& message) {
-  GLint ok = 0;
-  get_iv(object, status, &ok);
-  if (ok) return;
-  char log[2048] = {};
-  get_log(object, sizeof log, nullptr, log);
-  destroy(object);
-  throw DeviceError(message + log);
-}
-
-// Compiles `source` with shaders/colors.glsl (hsv_to_rgb, face_color) after its #version line: GLSL has
-// no #include.  `#line 2` keeps the driver's line numbers those of the file.
-unsigned compile(GLenum type, const char* source, const char* name) {
-  const std::string text(source);
-  const std::size_t first_line_end = text.find('\n') + 1;
-  const std::string version = text.substr(0, first_line_end);
-  const std::string rest = "#line 2\n" + text.substr(first_line_end);
-  const char* parts[] = {version.c_str(), shaders::colors, rest.c_str()};
-  const GLuint shader = glCreateShader(type);
-  glShaderSource(shader, 3, parts, nullptr);
-  glCompileShader(shader);
-  check_built(shader, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog, glDeleteShader,
-              std::string("OpenGL: shader ") + name + " does not compile: ");
-  return shader;
-}
-
-// Links the compiled shaders into a program and deletes them; throws DeviceError with the driver's log.
-unsigned link_shaders(std::initializer_list<GLuint> shaders, const char* name) {
-  const GLuint program = glCreateProgram();
-  for (GLuint shader : shaders)
-    glAttachShader(program, shader);
-  glLinkProgram(program);
-  for (GLuint shader : shaders)
-    glDeleteShader(shader);
-  check_built(program, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog, glDeleteProgram,
-              std::string("OpenGL: program ") + name + " does not link: ");
-  return program;
-}
-
-}  // namespace
-
-unsigned link_program(const char* vertex, const char* fragment, const char* name) {
-  return link_shaders({compile(GL_VERTEX_SHADER, vertex, name), compile(GL_FRAGMENT_SHADER, fragment, name)},
-                      name);
-}
-
-namespace {
-
 unsigned link(const char* vertex, const char* fragment, const char* name) {
   return link_program(vertex, fragment, name);
-}
-
-unsigned link_compute(const char* source, const char* name) {
-  return link_shaders({compile(GL_COMPUTE_SHADER, source, name)}, name);
-}
-
-// Enables attribute `attribute` of `vao`: `size` values of `type` at `offset` in the vertices of binding
-// `binding`, read as floats (`normalized`: RGBA8 colours to 0..1).
-void float_attribute(GLuint vao, GLuint attribute, GLuint binding, GLint size, GLenum type,
-                     GLboolean normalized, GLuint offset) {
-  glVertexArrayAttribFormat(vao, attribute, size, type, normalized, offset);
-  glVertexArrayAttribBinding(vao, attribute, binding);
-  glEnableVertexArrayAttrib(vao, attribute);
-}
-
-// The same, read as integers.
-void int_attribute(GLuint vao, GLuint attribute, GLuint binding, GLint size, GLenum type, GLuint offset) {
-  glVertexArrayAttribIFormat(vao, attribute, size, type, offset);
-  glVertexArrayAttribBinding(vao, attribute, binding);
-  glEnableVertexArrayAttrib(vao, attribute);
-}
-
-// Creates one GL object a name in `names` with one call of `create` (glCreateBuffers, glCreateVertexArrays).
-template <class Create>
-void create_objects(Create create, std::initializer_list<GLuint*> names) {
-  std::vector<GLuint> ids(names.size());
-  create(static_cast<GLsizei>(ids.size()), ids.data());
-  const GLuint* id = ids.data();
-  for (GLuint* name : names)
-    *name = *id++;
-}
-
-// Position + RGBA8 colour per vertex (OverlayVertex), from `buffer`: the overlay and the labels.
-void bind_overlay_layout(GLuint vao, GLuint buffer) {
-  glVertexArrayVertexBuffer(vao, 0, buffer, 0, sizeof(OverlayVertex));
-  float_attribute(vao, 0, 0, 3, GL_FLOAT, GL_FALSE, offsetof(OverlayVertex, x));
-  float_attribute(vao, 1, 0, 4, GL_UNSIGNED_BYTE, GL_TRUE, offsetof(OverlayVertex, rgba));
-}
-
-GLint loc(unsigned program, const char* name) {
-  return glGetUniformLocation(program, name);
 }
 
 // The points' colouring, which the GL points and the compute splats share: by state or face, the layers
@@ -130,44 +34,7 @@ void set_point_color_uniforms(GLuint program, const RenderSettings& s) {
   glUniform3fv(loc(program, "u_external_color"), 1, glm::value_ptr(kExternalColor));
 }
 
-// Grows a buffer to at least `bytes` (doubling), so per-step hull uploads rarely reallocate.
-void ensure_capacity(unsigned buffer, std::size_t& capacity, std::size_t bytes) {
-  if (bytes <= capacity && capacity != 0) return;
-  capacity = std::max<std::size_t>({bytes, capacity * 2, 256});
-  glNamedBufferData(buffer, static_cast<GLsizeiptr>(capacity), nullptr, GL_DYNAMIC_DRAW);
-}
-
 }  // namespace
-
-const char* layer_name(Layer layer) {
-  return kLayerNames[static_cast<int>(layer)];
-}
-
-std::optional<Layer> layer_from_name(std::string_view name) {
-  for (int i = 0; i < kLayerCount; ++i) {
-    if (name == kLayerNames[i]) return static_cast<Layer>(i);
-  }
-  return std::nullopt;
-}
-
-std::string layer_names() {
-  std::string out;
-  for (int i = 0; i < kLayerCount; ++i)
-    out += (i ? ", " : "") + std::string(kLayerNames[i]);
-  return out;
-}
-
-std::string gl_description() {
-  auto str = [](GLenum e) {
-    const GLubyte* s = glGetString(e);
-    return s ? std::string(reinterpret_cast<const char*>(s)) : std::string("?");
-  };
-  return str(GL_RENDERER) + ", OpenGL " + str(GL_VERSION);
-}
-
-void finish_gl() {
-  glFinish();
-}
 
 Renderer::Renderer() {
   points_program_ = link(shaders::points_vert, shaders::points_frag, "points");
@@ -297,97 +164,6 @@ void Renderer::set_overlay(const std::vector<OverlayVertex>& triangles,
   if (!lines.empty())
     glNamedBufferSubData(overlay_buffer_, static_cast<GLintptr>(triangles.size() * sizeof(OverlayVertex)),
                          static_cast<GLsizeiptr>(lines.size() * sizeof(OverlayVertex)), lines.data());
-}
-
-namespace {
-// Seven-segment digits: segments a (top) b c d (bottom) e f g (middle), as in a pocket calculator.
-constexpr std::uint8_t kDigitSegments[10] = {0x3f, 0x06, 0x5b, 0x4f, 0x66, 0x6d, 0x7d, 0x07, 0x7f, 0x6f};
-// Each segment in a 1 x 2 cell, (x0, y0, x1, y1), y up.
-constexpr float kSegmentEnds[7][4] = {{0, 2, 1, 2}, {1, 2, 1, 1}, {1, 1, 1, 0}, {0, 0, 1, 0},
-                                      {0, 0, 0, 1}, {0, 1, 0, 2}, {0, 1, 1, 1}};
-}  // namespace
-
-// Ids and sequence numbers in the font (text.hpp), centred on their points; those whose outward direction
-// faces away from the eye are behind the hull and left out.  The legend in the view's bottom left corner.
-void Renderer::draw_text(const ViewParams& view, const glm::mat4& view_proj) const {
-  if (text_->pixel_height() != kTextPixels * view.pixel_scale)
-    text_ = std::make_unique<TextRenderer>(kTextPixels * view.pixel_scale);
-  text_->clear();
-  const glm::vec3 eye = glm::vec3(glm::inverse(view.view)[3]);
-  auto place = [&](const TextLabel& label) {
-    const glm::vec3 p(label.x, label.y, label.z), outward(label.nx, label.ny, label.nz);
-    const glm::vec4 clip = view_proj * glm::vec4(p, 1.0f);
-    if (clip.w <= 0) return;
-    // Silhouette faces and vertices, seen nearly edge-on, keep their labels.
-    const float facing = glm::dot(outward, eye - p);
-    if (facing < -0.2f * glm::length(outward) * glm::length(eye - p)) return;
-    const float px = (clip.x / clip.w * 0.5f + 0.5f) * view.width + label.dx * view.pixel_scale,
-                py = (0.5f - clip.y / clip.w * 0.5f) * view.height + label.dy * view.pixel_scale;
-    if (px < 0 || py < 0 || px > view.width || py > view.height) return;
-    text_->add_label(px, py, label.text, label.rgba);
-  };
-  for (const TextLabel& label : text_labels_)
-    place(label);
-  for (const OverlayLabel& label : labels_)
-    // Below right of their edge or vertex, where the ids (above right) are not.
-    place({label.x, label.y, label.z, 0, 0, 0, label.rgba, std::to_string(label.number), 9, 10});
-  if (!legend_.empty()) {
-    const float pad = 8 * view.pixel_scale, swatch = 12 * view.pixel_scale, line = text_->line_height();
-    float widest = 0;
-    for (const LegendRow& row : legend_)
-      widest = std::max(widest, text_->width(row.text) + (row.heading ? 0 : swatch + pad));
-    const float box_w = widest + 2 * pad, box_h = legend_.size() * line + 2 * pad;
-    const float left = pad, top = view.height - pad - box_h;
-    text_->add_rect(left, top, left + box_w, top + box_h, pack_rgba(0.05f, 0.05f, 0.06f, 0.82f));
-    float y = top + pad;
-    for (const LegendRow& row : legend_) {
-      const float baseline = y + 0.5f * line + 0.35f * text_->ascent();
-      if (row.heading) {
-        text_->add_text(left + pad, baseline, row.text, pack_rgba(0.65f, 0.65f, 0.7f, 1.0f));
-      } else {
-        const float sy = y + 0.5f * (line - swatch);
-        text_->add_rect(left + pad, sy, left + pad + swatch, sy + swatch,
-                        pack_rgba(row.color.r, row.color.g, row.color.b, 1.0f));
-        text_->add_text(left + 2 * pad + swatch, baseline, row.text, pack_rgba(0.92f, 0.92f, 0.92f, 1.0f));
-      }
-      y += line;
-    }
-  }
-  text_->draw(view.width, view.height);
-}
-
-void Renderer::draw_labels(const ViewParams& view, const glm::mat4& view_proj) const {
-  std::vector<OverlayVertex> lines;
-  const float unit = 5.0f * view.pixel_scale;  // a digit is 5 x 10 pixels at scale 1
-  for (const OverlayLabel& label : labels_) {
-    const glm::vec4 clip = view_proj * glm::vec4(label.x, label.y, label.z, 1.0f);
-    if (clip.w <= 0) continue;
-    // Pixel coordinates of the anchor, then the digits to its upper right.
-    float x = (clip.x / clip.w * 0.5f + 0.5f) * view.width + 3 * view.pixel_scale;
-    const float y = (clip.y / clip.w * 0.5f + 0.5f) * view.height + 3 * view.pixel_scale;
-    for (char ch : std::to_string(label.number)) {
-      const std::uint8_t mask = kDigitSegments[ch - '0'];
-      for (int seg = 0; seg < 7; ++seg) {
-        if (!(mask & (1u << seg))) continue;
-        const float* e = kSegmentEnds[seg];
-        for (int end = 0; end < 2; ++end) {
-          const float px = x + e[2 * end] * unit, py = y + e[2 * end + 1] * unit;
-          lines.push_back({2 * px / view.width - 1, 2 * py / view.height - 1, 0.0f, label.rgba});
-        }
-      }
-      x += 1.75f * unit;
-    }
-  }
-  if (lines.empty()) return;
-  ensure_capacity(label_buffer_, label_capacity_, lines.size() * sizeof(OverlayVertex));
-  glNamedBufferSubData(label_buffer_, 0, static_cast<GLsizeiptr>(lines.size() * sizeof(OverlayVertex)),
-                       lines.data());
-  const glm::mat4 identity(1.0f);
-  glUniformMatrix4fv(loc(overlay_program_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(identity));
-  glDisable(GL_DEPTH_TEST);
-  glBindVertexArray(label_vao_);
-  glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(lines.size()));
-  glEnable(GL_DEPTH_TEST);
 }
 
 float point_pixels(const ViewParams& view, const RenderSettings& s) {
@@ -556,61 +332,6 @@ void Renderer::draw(const ViewParams& view, const RenderSettings& s) const {
   glDisable(GL_SCISSOR_TEST);
   glBindVertexArray(0);
   glUseProgram(0);
-}
-
-OffscreenTarget::OffscreenTarget(int width, int height, int samples) : width_(width), height_(height) {
-  GLint max_samples = 0;
-  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
-  samples = std::max(1, std::min(samples, static_cast<int>(max_samples)));
-
-  glCreateRenderbuffers(1, &color_);
-  glNamedRenderbufferStorageMultisample(color_, samples, GL_RGBA8, width, height);
-  glCreateRenderbuffers(1, &depth_);
-  glNamedRenderbufferStorageMultisample(depth_, samples, GL_DEPTH_COMPONENT24, width, height);
-  glCreateFramebuffers(1, &fbo_);
-  glNamedFramebufferRenderbuffer(fbo_, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
-  glNamedFramebufferRenderbuffer(fbo_, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
-
-  glCreateRenderbuffers(1, &resolve_color_);
-  glNamedRenderbufferStorage(resolve_color_, GL_RGBA8, width, height);
-  glCreateFramebuffers(1, &resolve_fbo_);
-  glNamedFramebufferRenderbuffer(resolve_fbo_, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolve_color_);
-
-  for (GLuint fb : {fbo_, resolve_fbo_}) {
-    const GLenum status = glCheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE)
-      throw DeviceError("OpenGL: offscreen framebuffer " + std::to_string(width) + "x" +
-                        std::to_string(height) + " incomplete (status " + std::to_string(status) + ")");
-  }
-}
-
-OffscreenTarget::~OffscreenTarget() {
-  const GLuint fbos[2] = {fbo_, resolve_fbo_};
-  glDeleteFramebuffers(2, fbos);
-  const GLuint rbs[3] = {color_, depth_, resolve_color_};
-  glDeleteRenderbuffers(3, rbs);
-}
-
-void OffscreenTarget::bind() const {
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  glViewport(0, 0, width_, height_);
-}
-
-std::vector<std::uint8_t> OffscreenTarget::read_rgba() const {
-  glBlitNamedFramebuffer(fbo_, resolve_fbo_, 0, 0, width_, height_, 0, 0, width_, height_,
-                         GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, resolve_fbo_);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  const std::size_t row = static_cast<std::size_t>(width_) * 4;
-  std::vector<std::uint8_t> pixels(row * height_), flipped(row * height_);
-  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  if (const GLenum e = glGetError(); e != GL_NO_ERROR)
-    throw DeviceError("OpenGL: error " + std::to_string(e) + " while reading the offscreen framebuffer");
-  // GL's first row is the bottom one.
-  for (int y = 0; y < height_; ++y)
-    std::copy_n(pixels.data() + (height_ - 1 - y) * row, row, flipped.data() + y * row);
-  return flipped;
 }
 
 }  // namespace cudahull::viewer

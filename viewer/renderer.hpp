@@ -142,6 +142,8 @@ class Renderer {
   std::uint64_t total_point_upload_bytes() const { return total_point_bytes_; }
 
  private:
+  static constexpr float kTextPixels = 15.0f;  // the labels' and the legend's font size, logical pixels
+
   void draw_splats(const ViewParams& view, const glm::mat4& view_proj, const RenderSettings& s) const;
 
   unsigned points_program_ = 0, hull_program_ = 0, splat_program_ = 0, resolve_program_ = 0;

@@ -1,0 +1,207 @@
+// Batched hulls (issue 27): the package (convex_hull_batch in __init__.py) packs padded input and checks
+// shapes; here the packed (n, 3) points and B + 1 int64 offsets (host memory) become convex_hull_batch()'s
+// call, and its result a dict of NumPy arrays, or, for points in CUDA memory, of PyTorch tensors or CuPy
+// arrays that share the result's device memory.
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "bindings.hpp"
+#include "cudahull/convex_hull_batch.hpp"
+#include "hull_conversions.hpp"
+#include "numpy_arrays.hpp"
+
+namespace cudahull::python {
+
+namespace {
+
+using OffsetArray = nb::ndarray<const std::int64_t, nb::ndim<1>, nb::c_contig, nb::device::cpu>;
+
+// The B + 1 offsets, checked non-negative, read in place as std::size_t where that is int64's unsigned
+// counterpart (the same bits for these values, and an access the aliasing rules allow): a copy into fresh
+// pages costs a large batch host time (docs/benchmarks.md, "The measurements behind the code's constants").
+// Elsewhere, copied.  The caller must not write the
+// array during the call (as for the points, read in place with the GIL released).
+struct Bounds {
+  const std::size_t* data = nullptr;
+  std::size_t clouds = 0;
+  std::vector<std::size_t> copy;  // where they could not be read in place
+};
+Bounds offsets_from(const OffsetArray& offsets) {
+  if (offsets.shape(0) == 0)
+    throw std::invalid_argument("offsets must hold B + 1 cloud boundaries ([0] for no clouds), not none");
+  for (std::size_t k = 0; k < offsets.shape(0); ++k) {
+    if (offsets.data()[k] < 0) throw std::invalid_argument("offsets[" + std::to_string(k) + "] is negative");
+  }
+  Bounds bounds;
+  bounds.clouds = offsets.shape(0) - 1;
+  if constexpr (std::is_same_v<std::make_unsigned_t<std::int64_t>, std::size_t>) {
+    bounds.data = reinterpret_cast<const std::size_t*>(offsets.data());
+  } else {
+    bounds.copy.assign(offsets.data(), offsets.data() + offsets.shape(0));
+    bounds.data = bounds.copy.data();
+  }
+  return bounds;
+}
+
+ConvexHullBatchOptions batch_options_from(const std::string& backend, const std::string& precision,
+                                          const std::string& engine, unsigned threads) {
+  ConvexHullBatchOptions options;
+  options.hull = options_from(backend, precision, engine, {});
+  options.threads = threads;
+  return options;
+}
+
+nb::object offsets_to_numpy(const std::vector<std::size_t>& offsets) {
+  return to_numpy(std::vector<std::int64_t>(offsets.begin(), offsets.end()));
+}
+
+// What ran (ConvexHullBatchReport), for BatchHulls.report.
+nb::dict report_dict(const ConvexHullBatchReport& report) {
+  nb::dict d;
+  d["clouds_batched"] = report.clouds_batched;
+  d["batch_launches"] = report.batch_launches;
+  d["device_bytes_peak"] = report.device_bytes_peak;
+  d["device_ms"] = report.device_ms;
+  d["kernel_ms"] = report.kernel_ms;
+  d["describe_ms"] = report.describe_ms;
+  return d;
+}
+
+nb::dict batch_to_dict(ConvexHullBatch&& batch) {
+  nb::dict d;
+  d["report"] = report_dict(batch);
+  d["vertex_offsets"] = offsets_to_numpy(batch.vertex_offsets);
+  d["face_offsets"] = offsets_to_numpy(batch.face_offsets);
+  d["polygon_offsets"] = offsets_to_numpy(batch.polygon_offsets);
+  d["vertices"] = to_numpy(std::move(batch.vertices));
+  d["faces"] = take_rows(std::move(batch.faces));
+  d["planes"] = take_rows(std::move(batch.planes));
+  d["polygons"] = to_numpy(std::move(batch.polygons));
+  d["volumes"] = to_numpy(std::move(batch.volumes));
+  d["areas"] = to_numpy(std::move(batch.areas));
+  d["dimensions"] = to_numpy(std::move(batch.dimensions));
+  d["precision"] = precision_name(batch.precision);
+  d["backend"] = batch.backend;
+  return d;
+}
+
+template <class Scalar>
+nb::dict convex_hull_batch_of(PointArray<Scalar> points, const OffsetArray& offsets,
+                              const std::string& backend, const std::string& precision,
+                              const std::string& engine, unsigned threads) {
+  const Bounds bounds = offsets_from(offsets);
+  const ConvexHullBatchOptions options = batch_options_from(backend, precision, engine, threads);
+  ConvexHullBatch batch;
+  {
+    nb::gil_scoped_release unlocked;  // the caller's arrays stay alive: the call holds references to them
+    batch = convex_hull_batch(points.data(), points.shape(0), bounds.data, bounds.clouds, options);
+  }
+  return batch_to_dict(std::move(batch));
+}
+
+// A result column in device memory as an array of `Framework` (PyTorch, CuPy) on its device, sharing the
+// memory (DLPack): the capsule holds the column alive.  `width` values a row (1: a vector).
+template <class Framework, class T>
+nb::object column_array(const DeviceColumn<T>& column, std::size_t width, int device) {
+  auto* owned = new std::shared_ptr<T>(column.data);
+  nb::capsule owner(owned, [](void* p) noexcept { delete static_cast<std::shared_ptr<T>*>(p); });
+  const std::size_t shape[2] = {column.size / width, width};
+  return nb::ndarray<Framework, T>(column.data.get(), width == 1 ? 1 : 2, shape, owner, nullptr,
+                                   nb::dtype<T>(), nb::device::cuda::value, device)
+      .cast();
+}
+
+template <class Framework>
+nb::dict device_batch_to_dict(const DeviceConvexHullBatch& batch) {
+  const int device = batch.device;
+  nb::dict d;
+  d["report"] = report_dict(batch);
+  d["vertex_offsets"] = column_array<Framework>(batch.device_vertex_offsets, 1, device);
+  d["face_offsets"] = column_array<Framework>(batch.device_face_offsets, 1, device);
+  d["polygon_offsets"] = column_array<Framework>(batch.device_polygon_offsets, 1, device);
+  d["vertices"] = column_array<Framework>(batch.vertices, 1, device);
+  d["faces"] = column_array<Framework>(batch.faces, 3, device);
+  d["planes"] = column_array<Framework>(batch.planes, 4, device);
+  d["polygons"] = column_array<Framework>(batch.polygons, 1, device);
+  d["volumes"] = column_array<Framework>(batch.volumes, 1, device);
+  d["areas"] = column_array<Framework>(batch.areas, 1, device);
+  d["dimensions"] = column_array<Framework>(batch.dimensions, 1, device);
+  d["precision"] = precision_name(batch.precision);
+  d["backend"] = batch.backend;
+  return d;
+}
+
+// Packed points in CUDA memory, read in place: the batch kernel, and the single-cloud device path for the
+// clouds it does not take (convex_hull_batch_device_results()).  The result stays on the device, as arrays
+// of `library` ("torch", "cupy"), or comes back as NumPy ("numpy").
+template <class Scalar>
+nb::dict device_batch_of(const Scalar* xyz, std::size_t count, const OffsetArray& offsets,
+                         const std::string& backend, const std::string& precision,
+                         const std::string& library) {
+  const Bounds bounds = offsets_from(offsets);
+  const ConvexHullBatchOptions options = batch_options_from(backend, precision, "resident", 0);
+  DeviceConvexHullBatch batch;
+  {
+    nb::gil_scoped_release unlocked;
+    batch = convex_hull_batch_device_results(xyz, count, bounds.data, bounds.clouds, options);
+  }
+  if (library == "torch") return device_batch_to_dict<nb::pytorch>(batch);
+  if (library == "cupy") return device_batch_to_dict<nb::cupy>(batch);
+  ConvexHullBatch host;
+  {
+    nb::gil_scoped_release unlocked;
+    host = batch.to_host();
+  }
+  return batch_to_dict(std::move(host));
+}
+
+nb::dict convex_hull_batch_cuda(const CudaArray& points, const OffsetArray& offsets,
+                                const std::string& backend, const std::string& precision,
+                                const std::string& library) {
+  const bool is_float = points.dtype() == nb::dtype<float>(),
+             is_double = points.dtype() == nb::dtype<double>();
+  if (!is_float && !is_double)
+    throw std::invalid_argument("points in GPU memory must be float32 or float64 (convert with .astype())");
+  if (points.ndim() != 2 || points.shape(1) != 3)
+    throw std::invalid_argument("packed points in GPU memory must be an (n, 3) array");
+  const std::size_t n = points.shape(0);
+  if (n != 0 && (points.stride(1) != 1 || (n > 1 && points.stride(0) != 3)))
+    throw std::invalid_argument(
+        "points in GPU memory must be C-contiguous: the engine reads them in place "
+        "(cupy.ascontiguousarray(x) "
+        "or x.contiguous() copies them on the device)");
+  if (is_float)
+    return device_batch_of(static_cast<const float*>(points.data()), n, offsets, backend, precision, library);
+  return device_batch_of(static_cast<const double*>(points.data()), n, offsets, backend, precision, library);
+}
+
+nb::dict convex_hull_batch_cuda_pointer(std::uintptr_t pointer, std::size_t count, bool is_double,
+                                        const OffsetArray& offsets, const std::string& backend,
+                                        const std::string& precision, const std::string& library) {
+  if (is_double)
+    return device_batch_of(reinterpret_cast<const double*>(pointer), count, offsets, backend, precision,
+                           library);
+  return device_batch_of(reinterpret_cast<const float*>(pointer), count, offsets, backend, precision,
+                         library);
+}
+
+}  // namespace
+
+void bind_batch_hulls(nb::module_& m) {
+  // Batched hulls (issue 27): packed points and B + 1 offsets; the package packs padded input.
+  m.def("convex_hull_batch", &convex_hull_batch_of<float>, nb::arg("points"), nb::arg("offsets"),
+        nb::arg("backend"), nb::arg("precision"), nb::arg("engine"), nb::arg("threads") = 0);
+  m.def("convex_hull_batch", &convex_hull_batch_of<double>, nb::arg("points"), nb::arg("offsets"),
+        nb::arg("backend"), nb::arg("precision"), nb::arg("engine"), nb::arg("threads") = 0);
+  m.def("convex_hull_batch_cuda", &convex_hull_batch_cuda, nb::arg("points"), nb::arg("offsets"),
+        nb::arg("backend"), nb::arg("precision"), nb::arg("library"));
+  m.def("convex_hull_batch_cuda_pointer", &convex_hull_batch_cuda_pointer, nb::arg("pointer"),
+        nb::arg("count"), nb::arg("is_double"), nb::arg("offsets"), nb::arg("backend"), nb::arg("precision"),
+        nb::arg("library"));
+}
+
+}  // namespace cudahull::python
