@@ -12,23 +12,13 @@
 # Logs and JSON go to $OUT.  PART=all|tests|bench|sanitizers (all: tests and bench).
 set -uo pipefail
 cd "$(dirname "$0")/.."
-CARRY=${CARRY:-.carry-py}
-OUT=${OUT:-/tmp/cudahull-out}
-PART=${PART:-all}
-N=${N:-10000000}
-mkdir -p "$OUT"
-export PYTHONUNBUFFERED=1 PYTHONDONTWRITEBYTECODE=1
+source python/gpu_tests/build_module.sh
 nvidia-smi -L
 python3 -c "import numpy, scipy, cupy, torch; print('numpy', numpy.__version__, 'scipy', scipy.__version__, 'cupy', cupy.__version__, 'torch', torch.__version__)"
 
-python3 -m pip install -q --no-index --no-deps --no-compile --target /tmp/site "$CARRY"/wheels/*.whl || exit 1
-export PYTHONPATH=/tmp/site
 rm -rf /tmp/build-py
-start=$SECONDS
-cmake -S python/standalone -B /tmp/build-py -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_PREFIX_PATH="$PWD/$CARRY/prefix;$PWD/$CARRY/deps" -DPython_EXECUTABLE="$(command -v python3)" \
-  >"$OUT/build.log" 2>&1 && cmake --build /tmp/build-py >>"$OUT/build.log" 2>&1 || { tail -20 "$OUT/build.log"; exit 1; }
-echo "module built in $((SECONDS - start)) s"
+build_module || { tail -20 "$OUT/build.log"; exit 1; }
+echo "module built in $build_seconds s"
 export PYTHONPATH=/tmp/build-py/python:/tmp/site LD_LIBRARY_PATH="$PWD/$CARRY/deps/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 
 failed=0

@@ -227,7 +227,7 @@ __global__ void __launch_bounds__(Block, kMinBlocks) batch_kernel(PassArgs<Point
   // Compact code: five blocks an SM, each in a phase of its own, fetch the kernel's instructions from L2
   // (ncu: no instruction to issue in a fifth of the samples); the candidate search as loops took 19% off
   // 20,000 balls of 100 (docs/benchmarks.md, "Batched hulls").
-  const resident::BlockTeam<Block, true> team{slot.st};
+  const resident::BlockTeam<Block, true> team{{}, slot.st};
   while (true) {
     if (threadIdx.x == 0) taken = atomicAdd(a.next, 1u);
     __syncthreads();

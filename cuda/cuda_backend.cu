@@ -104,10 +104,8 @@ __device__ __forceinline__ bool better(double s, PointIndex i, double best_s, Po
   return s > best_s || (s == best_s && i < best_i);
 }
 
-// Reduces (s, i) over the block; thread 0 gets the result.
-__device__ __forceinline__ void block_argmax(double& s, PointIndex& i) {
-  __shared__ double warp_s[kBlock / 32];
-  __shared__ PointIndex warp_i[kBlock / 32];
+// Reduces (s, i) over the warp; lane 0 gets the result.
+__device__ __forceinline__ void warp_argmax(double& s, PointIndex& i) {
   for (int offset = 16; offset > 0; offset /= 2) {
     const double os = __shfl_down_sync(0xffffffffu, s, offset);
     const PointIndex oi = __shfl_down_sync(0xffffffffu, i, offset);
@@ -116,6 +114,13 @@ __device__ __forceinline__ void block_argmax(double& s, PointIndex& i) {
       i = oi;
     }
   }
+}
+
+// Reduces (s, i) over the block; thread 0 gets the result.
+__device__ __forceinline__ void block_argmax(double& s, PointIndex& i) {
+  __shared__ double warp_s[kBlock / 32];
+  __shared__ PointIndex warp_i[kBlock / 32];
+  warp_argmax(s, i);
   const int lane = threadIdx.x % 32, warp = threadIdx.x / 32;
   if (lane == 0) {
     warp_s[warp] = s;
@@ -125,14 +130,7 @@ __device__ __forceinline__ void block_argmax(double& s, PointIndex& i) {
   if (warp == 0) {
     s = lane < kBlock / 32 ? warp_s[lane] : -INFINITY;
     i = lane < kBlock / 32 ? warp_i[lane] : 0xffffffffu;
-    for (int offset = 16; offset > 0; offset /= 2) {
-      const double os = __shfl_down_sync(0xffffffffu, s, offset);
-      const PointIndex oi = __shfl_down_sync(0xffffffffu, i, offset);
-      if (better(os, oi, s, i)) {
-        s = os;
-        i = oi;
-      }
-    }
+    warp_argmax(s, i);
   }
 }
 
@@ -378,28 +376,27 @@ unsigned blocks_for(std::size_t n) {
   return static_cast<unsigned>((n + kBlock - 1) / kBlock);
 }
 
-// Owners of the stream and the event, so that a constructor that throws half way leaks neither.
-struct Stream {
-  cudaStream_t handle = nullptr;
-  Stream() = default;
-  Stream(const Stream&) = delete;
-  Stream& operator=(const Stream&) = delete;
-  ~Stream() {
-    if (handle != nullptr) {
-      cudaStreamSynchronize(handle);
-      cudaStreamDestroy(handle);
-    }
+// Owners of the stream and the events, so that a constructor that throws half way leaks none: Release runs
+// on the handle once it is set.
+template <class Handle, void (*Release)(Handle)>
+struct Owned {
+  Handle handle = nullptr;
+  Owned() = default;
+  Owned(const Owned&) = delete;
+  Owned& operator=(const Owned&) = delete;
+  ~Owned() {
+    if (handle != nullptr) Release(handle);
   }
 };
-struct Event {
-  cudaEvent_t handle = nullptr;
-  Event() = default;
-  Event(const Event&) = delete;
-  Event& operator=(const Event&) = delete;
-  ~Event() {
-    if (handle != nullptr) cudaEventDestroy(handle);
-  }
-};
+void release_stream(cudaStream_t stream) {
+  cudaStreamSynchronize(stream);
+  cudaStreamDestroy(stream);
+}
+void release_event(cudaEvent_t event) {
+  cudaEventDestroy(event);
+}
+using Stream = Owned<cudaStream_t, release_stream>;
+using Event = Owned<cudaEvent_t, release_event>;
 
 // ---------------------------------------------------------------------------------------------------------
 

@@ -179,9 +179,9 @@ template <class Point, class Log, class Range, int Block, bool kOneBlock>
 __global__ void __launch_bounds__(Block)
     iteration_kernel(IterationBuffers<Point, Log> b, u32* block_offset, IterationLaunch launch) {
   if constexpr (kOneBlock) {
-    resident_iterations(BlockTeam<Block>{b.st}, b, launch, Range{});
+    resident_iterations(BlockTeam<Block>{{}, b.st}, b, launch, Range{});
   } else {
-    resident_iterations(GridTeam<Block>{b.st, block_offset}, b, launch, Range{});
+    resident_iterations(GridTeam<Block>{{}, b.st, block_offset}, b, launch, Range{});
   }
 }
 

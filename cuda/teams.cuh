@@ -100,18 +100,29 @@ __device__ inline u64 now_ns() {
   return t;
 }
 
-// The time since the last lap into the state's phase (the teams' leader).
-__device__ inline void lap_phase(RoundsState* st, u64& t0, int phase) {
-  const u64 t = now_ns();
-  st->phase_ns[phase] += t - t0;
-  t0 = t;
-}
+// The phase timing of the teams that run the rounds (Team: the team itself, CRTP, with its state st, its
+// clock t0 and leader()): the leader stamps the clock at start_timing() and adds the time since the last
+// stamp to the state's phase at time(phase).
+template <class Team>
+struct LeaderTiming {
+  __device__ void start_timing() const {
+    const Team& team = static_cast<const Team&>(*this);
+    if (team.leader()) team.t0 = now_ns();
+  }
+  __device__ void time(int phase) const {
+    const Team& team = static_cast<const Team&>(*this);
+    if (!team.leader()) return;
+    const u64 t = now_ns();
+    team.st->phase_ns[phase] += t - team.t0;
+    team.t0 = t;
+  }
+};
 
 // A block's threads: __syncthreads() for a barrier, which costs far less than the grid's.  kCompact: the
 // rounds' candidate search as loops (FindCandidate::first), for a kernel whose blocks are in different
 // phases at once (the batch's).
 template <int Block, bool kCompact = false>
-struct BlockTeam {
+struct BlockTeam : LeaderTiming<BlockTeam<Block, kCompact>> {
   static constexpr bool kCompactCode = kCompact;
   RoundsState* st;
   mutable u64 t0 = 0;
@@ -122,12 +133,6 @@ struct BlockTeam {
   }
   __device__ void barrier() const { __syncthreads(); }
   __device__ bool leader() const { return threadIdx.x == 0; }
-  __device__ void start_timing() const {
-    if (leader()) t0 = now_ns();
-  }
-  __device__ void time(int phase) const {
-    if (leader()) lap_phase(st, t0, phase);
-  }
   // A warp appends its ballot at once: one atomic a warp.
   template <class Pred>
   __device__ void list_if(u32 n, const Pred& pred, u32* list, u32* count, u32 capacity) const {
@@ -310,7 +315,7 @@ struct WarpTeam {
 // Every thread of a cooperative launch: the grid's barrier.  A prefix sum takes a contiguous tile of the
 // values a block, then block 0 numbers the tiles (block_offset: one a block, and the total after them).
 template <int Block>
-struct GridTeam {
+struct GridTeam : LeaderTiming<GridTeam<Block>> {
   static constexpr bool kCompactCode = false;
   RoundsState* st;
   u32* block_offset;
@@ -324,12 +329,6 @@ struct GridTeam {
   }
   __device__ void barrier() const { cooperative_groups::this_grid().sync(); }
   __device__ bool leader() const { return tid() == 0; }
-  __device__ void start_timing() const {
-    if (leader()) t0 = now_ns();
-  }
-  __device__ void time(int phase) const {
-    if (leader()) lap_phase(st, t0, phase);
-  }
   template <class Pred>
   __device__ void list_if(u32 n, const Pred& pred, u32* list, u32* count, u32 capacity) const {
     BlockTeam<Block>::list_by_warps(tid(), gridDim.x * Block, n, pred, list, count, capacity);

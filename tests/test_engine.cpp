@@ -548,38 +548,20 @@ TEST(EngineSteps, BatchedSwapsReplayOneAtATimeInSequenceOrder) {
       continue;  // the tetrahedron; the last step may be finished exactly
     for (const RefinementEntry& e : engine.last_refinement())
       replay.split(e.face, e.apex);
-    std::map<int, std::pair<const SwapRecord*, const RemovalRecord*>> edits;
-    for (const SwapRecord& w : r.swaps) {
-      if (w.kind == SwapKind::kRegular || w.kind == SwapKind::kComplementary)
-        edits[w.sequence] = {&w, nullptr};
-    }
-    for (const RemovalRecord& m : r.removals) {
-      if (!m.rejected) edits[m.sequence] = {nullptr, &m};
-    }
-    std::vector<PointIndex> ring;
-    std::vector<FaceId> ring_faces;
-    for (const auto& [sequence, edit] : edits) {
-      if (edit.second) {
-        ASSERT_TRUE(replay.has_vertex(edit.second->vertex));
-        replay.remove_degree3(edit.second->vertex);
+    for (const KeptEdit& e : kept_edits(r)) {
+      if (e.removal) {
+        ASSERT_TRUE(replay.has_vertex(e.removal->vertex));
+        replay.remove_degree3(e.removal->vertex);
         continue;
       }
-      const PointIndex u = edit.first->old_edge[0], v = edit.first->old_edge[1];
-      replay.ring(u, ring, ring_faces);
-      bool swapped = false;
-      for (FaceId f : ring_faces) {
-        const int i = replay.edge_index(f, u, v);
-        if (i < 0) continue;
-        const auto made = replay.swap(f, i);
-        const MeshFace& n1 = replay.face(made[0]);
-        // The swap made the recorded edge x - y.
-        EXPECT_EQ(n1.v[0], edit.first->new_edge[0]) << "swap #" << sequence;
-        EXPECT_EQ(n1.v[2], edit.first->new_edge[1]) << "swap #" << sequence;
-        swapped = true;
-        break;
-      }
-      ASSERT_TRUE(swapped) << "iteration " << r.iteration << ": swap #" << sequence << " (" << u << "-" << v
-                           << ") does not replay";
+      const auto made = redo_swap(replay, *e.swap);
+      ASSERT_TRUE(made.has_value()) << "iteration " << r.iteration << ": swap #" << e.sequence << " ("
+                                    << e.swap->old_edge[0] << "-" << e.swap->old_edge[1]
+                                    << ") does not replay";
+      const MeshFace& n1 = replay.face((*made)[0]);
+      // The swap made the recorded edge x - y.
+      EXPECT_EQ(n1.v[0], e.swap->new_edge[0]) << "swap #" << e.sequence;
+      EXPECT_EQ(n1.v[2], e.swap->new_edge[1]) << "swap #" << e.sequence;
     }
     EXPECT_EQ(face_set(replay), face_set(engine.mesh())) << "iteration " << r.iteration;
     if (r.swaps_regular + r.swaps_complementary >= 64) ++batched_iterations;

@@ -202,36 +202,11 @@ void Scene::build_substeps() {
   snapshot("refinement: " + std::to_string(engine_->last_refinement().size()) + " faces split (Fig. 3a)", -1);
 
   // The accepted swaps and removals in the order the engine made them.
-  struct Edit {
-    int sequence;
-    const SwapRecord* swap;
-    const RemovalRecord* removal;
-  };
-  std::vector<Edit> edits;
-  for (const SwapRecord& w : record.swaps) {
-    if (w.kind == SwapKind::kRegular || w.kind == SwapKind::kComplementary)
-      edits.push_back({w.sequence, &w, nullptr});
-  }
-  for (const RemovalRecord& m : record.removals) {
-    if (!m.rejected) edits.push_back({m.sequence, nullptr, &m});
-  }
-  std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.sequence < b.sequence; });
-  std::vector<PointIndex> ring;
-  std::vector<FaceId> ring_faces;
-  for (const Edit& e : edits) {
+  for (const KeptEdit& e : kept_edits(record)) {
     if (e.swap) {
-      const PointIndex u = e.swap->old_edge[0], v = e.swap->old_edge[1];
-      mesh.ring(u, ring, ring_faces);
-      bool done = false;
-      for (FaceId f : ring_faces) {
-        const int i = mesh.edge_index(f, u, v);
-        if (i < 0) continue;
-        mesh.swap(f, i);
-        done = true;
-        break;
-      }
-      if (!done) break;  // the record does not replay: stop at what is known to be right
+      if (!redo_swap(mesh, *e.swap)) break;  // the record does not replay: stop at what is known to be right
       mark_new(FaceState::kSwapped);
+      const PointIndex u = e.swap->old_edge[0], v = e.swap->old_edge[1];
       snapshot("swap #" + std::to_string(e.sequence) + " (" + swap_kind_name(e.swap->kind) +
                    "): " + std::to_string(u) + "-" + std::to_string(v) + " -> " +
                    std::to_string(e.swap->new_edge[0]) + "-" + std::to_string(e.swap->new_edge[1]),

@@ -41,6 +41,32 @@ const char* swap_kind_name(SwapKind kind) {
   return "unknown";
 }
 
+std::vector<KeptEdit> kept_edits(const IterationRecord& record) {
+  std::vector<KeptEdit> edits;
+  for (const SwapRecord& w : record.swaps) {
+    if (w.kind == SwapKind::kRegular || w.kind == SwapKind::kComplementary)
+      edits.push_back({w.sequence, &w, nullptr});
+  }
+  for (const RemovalRecord& m : record.removals) {
+    if (!m.rejected) edits.push_back({m.sequence, nullptr, &m});
+  }
+  std::sort(edits.begin(), edits.end(),
+            [](const KeptEdit& a, const KeptEdit& b) { return a.sequence < b.sequence; });
+  return edits;
+}
+
+std::optional<std::array<FaceId, 2>> redo_swap(Mesh& mesh, const SwapRecord& swap) {
+  const PointIndex u = swap.old_edge[0], v = swap.old_edge[1];
+  std::vector<PointIndex> ring;
+  std::vector<FaceId> ring_faces;
+  mesh.ring(u, ring, ring_faces);
+  for (FaceId f : ring_faces) {
+    const int i = mesh.edge_index(f, u, v);
+    if (i >= 0) return mesh.swap(f, i);
+  }
+  return std::nullopt;
+}
+
 template <class Point>
 BasicEngine<Point>::BasicEngine(const std::vector<Point>& points,
                                 std::unique_ptr<BasicBackend<Point>> backend, EngineOptions options)

@@ -17,7 +17,9 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <tuple>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "cudahull/errors.hpp"
@@ -366,22 +368,25 @@ inline std::optional<PlyType> ply_type(std::string_view s) {
   return std::nullopt;
 }
 
+// Each PlyType's C++ type, in the enum's order: the one table of them (type_size, load_value).
+using PlyCppTypes = std::tuple<std::int8_t, std::uint8_t, std::int16_t, std::uint16_t, std::int32_t,
+                               std::uint32_t, float, double>;
+
+// f(T{}) for t's C++ type T, as an R (R{} for a value outside the enum).  Compiles to a switch.
+template <class R, class F, std::size_t... I>
+R visit_ply_type(PlyType t, const F& f, std::index_sequence<I...>) {
+  R r{};
+  const std::size_t k = static_cast<std::size_t>(t);
+  (void)((k == I && (r = f(std::tuple_element_t<I, PlyCppTypes>{}), true)) || ...);
+  return r;
+}
+template <class R, class F>
+R visit_ply_type(PlyType t, const F& f) {
+  return visit_ply_type<R>(t, f, std::make_index_sequence<std::tuple_size_v<PlyCppTypes>>{});
+}
+
 inline std::size_t type_size(PlyType t) {
-  switch (t) {
-    case PlyType::kInt8:
-    case PlyType::kUint8:
-      return 1;
-    case PlyType::kInt16:
-    case PlyType::kUint16:
-      return 2;
-    case PlyType::kInt32:
-    case PlyType::kUint32:
-    case PlyType::kFloat32:
-      return 4;
-    case PlyType::kFloat64:
-      return 8;
-  }
-  return 0;
+  return visit_ply_type<std::size_t>(t, [](auto v) { return sizeof(v); });
 }
 
 struct PlyProperty {
@@ -495,25 +500,7 @@ T load(const char* p, bool swap) {
 
 // Reads one binary value as a double (exact for every PLY type).
 inline double load_value(const char* p, PlyType t, bool swap) {
-  switch (t) {
-    case PlyType::kInt8:
-      return load<std::int8_t>(p, swap);
-    case PlyType::kUint8:
-      return load<std::uint8_t>(p, swap);
-    case PlyType::kInt16:
-      return load<std::int16_t>(p, swap);
-    case PlyType::kUint16:
-      return load<std::uint16_t>(p, swap);
-    case PlyType::kInt32:
-      return load<std::int32_t>(p, swap);
-    case PlyType::kUint32:
-      return load<std::uint32_t>(p, swap);
-    case PlyType::kFloat32:
-      return load<float>(p, swap);
-    case PlyType::kFloat64:
-      return load<double>(p, swap);
-  }
-  return 0;
+  return visit_ply_type<double>(t, [&](auto v) { return static_cast<double>(load<decltype(v)>(p, swap)); });
 }
 
 // Rounds a binary coordinate to float; "" when fine, else what is wrong with it.

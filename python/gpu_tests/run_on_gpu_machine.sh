@@ -11,12 +11,7 @@
 #   PART=all|tests|bench python/gpu_tests/run_on_gpu_machine.sh
 set -uo pipefail
 cd "$(dirname "$0")/../.."
-CARRY=${CARRY:-.carry-py}
-OUT=${OUT:-/tmp/cudahull-out}
-PART=${PART:-all}
-N=${N:-10000000}
-mkdir -p "$OUT"
-export PYTHONUNBUFFERED=1 PYTHONDONTWRITEBYTECODE=1
+source python/gpu_tests/build_module.sh
 
 echo "== machine"
 nvidia-smi -L
@@ -32,11 +27,7 @@ for name in ("numpy", "scipy", "pytest", "cupy", "torch", "nanobind", "dask", "d
 EOF
 
 echo "== build the module"
-python3 -m pip install -q --no-index --no-deps --no-compile --target /tmp/site "$CARRY"/wheels/*.whl || exit 1
-export PYTHONPATH=/tmp/site
-cmake -S python/standalone -B /tmp/build-py -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_PREFIX_PATH="$PWD/$CARRY/prefix;$PWD/$CARRY/deps" -DPython_EXECUTABLE="$(command -v python3)" \
-  >"$OUT/build.log" 2>&1 && cmake --build /tmp/build-py >>"$OUT/build.log" 2>&1
+build_module
 status=$?
 tail -5 "$OUT/build.log"
 [ $status = 0 ] || { echo "build failed"; exit 1; }

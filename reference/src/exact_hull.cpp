@@ -33,33 +33,10 @@ namespace {
 
 constexpr std::uint32_t kNone = 0xffffffffu;
 
-// The exact predicates behind every combinatorial decision, as a policy of static functions.
+// The exact predicates behind every combinatorial decision are a policy (wide_predicates.hpp):
 // FastPredicates (exact_hull) calls the inline predicates themselves, so its instantiations compile to the
 // same code as direct calls; WidePredicates (exact_hull_any, when no power-of-two scale brings the input
 // into the fast range) is exact for every finite double, slower.
-struct FastPredicates {
-  static int orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
-    return cudahull::orient3d(a, b, c, d);
-  }
-  static int orient2d(double ax, double ay, double bx, double by, double cx, double cy) {
-    return cudahull::orient2d(ax, ay, bx, by, cx, cy);
-  }
-  static bool collinear3d(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-    return cudahull::collinear3d(a, b, c);
-  }
-};
-
-struct WidePredicates {
-  static int orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
-    return orient3d_wide(a, b, c, d);
-  }
-  static int orient2d(double ax, double ay, double bx, double by, double cx, double cy) {
-    return orient2d_wide(ax, ay, bx, by, cx, cy);
-  }
-  static bool collinear3d(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-    return collinear3d_wide(a, b, c);
-  }
-};
 
 // A distinct input point: coordinates (float for Point3, double for Point3d) plus the lowest input index
 // among the points with these coordinates.

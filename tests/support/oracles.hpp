@@ -13,29 +13,12 @@
 
 namespace cudahull::testing {
 
-// The oracles' exact predicates.  FilteredExact: the engines' (a floating-point filter, then expansions),
-// exact on floats and on doubles whose products neither overflow nor underflow.  GmpExact: integer
-// arithmetic on the doubles' exact values, any finite double, no filter (slow: small sets only).
-struct FilteredExact {
-  static int orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
-    return cudahull::orient3d(a, b, c, d);
-  }
-  static int orient2d(double ax, double ay, double bx, double by, double cx, double cy) {
-    return cudahull::orient2d(ax, ay, bx, by, cx, cy);
-  }
-  static bool collinear(const Vec3d& a, const Vec3d& b, const Vec3d& c) { return collinear3d(a, b, c); }
-};
-struct GmpExact {
-  static int orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
-    return detail::orient3d_gmp(a, b, c, d);
-  }
-  static int orient2d(double ax, double ay, double bx, double by, double cx, double cy) {
-    return detail::orient2d_gmp(ax, ay, bx, by, cx, cy);
-  }
-  static bool collinear(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-    return detail::collinear3d_gmp(a, b, c);
-  }
-};
+// The oracles' exact predicates (policies of wide_predicates.hpp).  FilteredExact: the engines' (a
+// floating-point filter, then expansions), exact on floats and on doubles whose products neither overflow nor
+// underflow.  GmpExact: integer arithmetic on the doubles' exact values, any finite double, no filter (slow:
+// small sets only).
+using FilteredExact = FastPredicates;
+using GmpExact = GmpPredicates;
 
 // Strictly extreme points of a 3D-full set by brute force, O(n^4): a point is extreme iff it is a strict
 // corner of the coplanar set on some supporting plane through three of the points.  Among duplicates the
@@ -48,7 +31,7 @@ std::vector<PointIndex> brute_force_extreme(const std::vector<Point>& p) {
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = i + 1; j < n; ++j)
       for (std::size_t k = j + 1; k < n; ++k) {
-        if (Exact::collinear(V(i), V(j), V(k))) continue;
+        if (Exact::collinear3d(V(i), V(j), V(k))) continue;
         int side = 0;
         bool supporting = true;
         std::vector<std::size_t> on;
@@ -174,7 +157,7 @@ std::vector<PointIndex> brute_force_extreme_any(const std::vector<Point>& p, int
     ++b;
   if (b < n) {
     c = b + 1;
-    while (c < n && Exact::collinear(V(0), V(b), V(c)))
+    while (c < n && Exact::collinear3d(V(0), V(b), V(c)))
       ++c;
   }
   if (b < n && c < n) {

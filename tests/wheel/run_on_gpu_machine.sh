@@ -37,18 +37,13 @@ cudahull hull assets/bun_zipper.ply --verify -q --stats "$OUT/bunny_stats.json" 
 python3 -c "import json; s = json.load(open('$OUT/bunny_stats.json')); print(s.get('plan'))"
 echo "== merged path"
 python3 python/bench/bench_merged.py --repeat 5 2>&1 | tee "$OUT/bench_merged_cpu.txt" || failed=1
-python3 - <<'PY' 2>&1 | tee "$OUT/bench_merged_gpu.txt" || failed=1
+PYTHONPATH=$site:python/bench python3 - <<'PY' 2>&1 | tee "$OUT/bench_merged_gpu.txt" || failed=1
 # The merged path on the GPU against the exact hull on the GPU (and Qhull), 523,000 points in a ball.
-import time
-import numpy as np, scipy.spatial, cudahull
-rng = np.random.default_rng(5)
-p = rng.normal(size=(523_000, 3))
-p *= (rng.random(len(p)) ** (1 / 3) / np.linalg.norm(p, axis=1))[:, None]
+import scipy.spatial, cudahull
+from timing import ball_points, warm_best
+p = ball_points()
 def best(f, n=7):
-    f(); times = []
-    for _ in range(n):
-        t = time.perf_counter(); out = f(); times.append(time.perf_counter() - t)
-    return out, min(times)
+    return warm_best(f, n)
 exact, te = best(lambda: cudahull.ConvexHull(p))
 print("plan:", exact.plan)
 q, tq = best(lambda: scipy.spatial.ConvexHull(p, qhull_options="Qt"), 3)

@@ -43,4 +43,26 @@ int orient2d_gmp(double ax, double ay, double bx, double by, double cx, double c
 bool collinear3d_gmp(const Vec3d& a, const Vec3d& b, const Vec3d& c);
 }  // namespace detail
 
+// A set of the predicates as a policy of static functions, for code templated on which set decides.  The
+// functions are template arguments, so calls through the policy are direct calls (the inline predicates
+// inline as if called themselves).
+template <int (*Orient3d)(const Vec3d&, const Vec3d&, const Vec3d&, const Vec3d&),
+          int (*Orient2d)(double, double, double, double, double, double),
+          bool (*Collinear3d)(const Vec3d&, const Vec3d&, const Vec3d&)>
+struct PredicatePolicy {
+  static int orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
+    return Orient3d(a, b, c, d);
+  }
+  static int orient2d(double ax, double ay, double bx, double by, double cx, double cy) {
+    return Orient2d(ax, ay, bx, by, cx, cy);
+  }
+  static bool collinear3d(const Vec3d& a, const Vec3d& b, const Vec3d& c) { return Collinear3d(a, b, c); }
+};
+// predicates.hpp's: exact where in_fast_exact_range() holds.
+using FastPredicates = PredicatePolicy<orient3d, orient2d, collinear3d>;
+// The *_wide ones: exact for every finite double, slower.
+using WidePredicates = PredicatePolicy<orient3d_wide, orient2d_wide, collinear3d_wide>;
+// Stage 3 alone (GMP, no filter): for tests.
+using GmpPredicates = PredicatePolicy<detail::orient3d_gmp, detail::orient2d_gmp, detail::collinear3d_gmp>;
+
 }  // namespace cudahull

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,22 @@ struct IterationRecord {
   std::vector<DecisionEntry> decisions;                  // the decision array (Fig. 7) sent this iteration
   std::string note;                                      // e.g. "degenerate input: dimension 2"
 };
+
+// An edit the engine kept in an iteration: a performed swap (regular or complementary) or a removal that was
+// not rejected; one of the two is set.
+struct KeptEdit {
+  int sequence = 0;
+  const SwapRecord* swap = nullptr;
+  const RemovalRecord* removal = nullptr;
+};
+
+// The record's kept edits in the order the engine made them: replayed one at a time on the mesh after the
+// refinement (redo_swap(), Mesh::remove_degree3()), they make the mesh after the step.
+std::vector<KeptEdit> kept_edits(const IterationRecord& record);
+
+// A recorded swap done again on `mesh`: its old edge, found around its first vertex, swapped.  The faces it
+// made (as Mesh::swap() returns them), or nothing where the mesh has no such edge.
+std::optional<std::array<FaceId, 2>> redo_swap(Mesh& mesh, const SwapRecord& swap);
 
 // Every count of a record with its name, in declaration order: visit(name, value) with an int, std::size_t,
 // double or std::uint64_t (upload_ms on iteration 0 only).  The trace's JSON and the Python module's dict are

@@ -158,117 +158,62 @@ CUDAHULL_HD inline void two_two_diff(double a1, double a0, double b1, double b0,
 // Expansion arithmetic on nonoverlapping expansions stored in increasing magnitude (Shewchuk 1997, figs. 8
 // and 11).  Zero components are dropped, so the last component carries the sign; lengths are >= 1.
 
-// h = e + f.  h must hold elen + flen components and must not alias e or f.
-CUDAHULL_HD inline int expansion_sum(int elen, const double* e, int flen, const double* f, double* h) {
-  int ei = 0, fi = 0, hi = 0;
+// The components of e + f in increasing magnitude (figure 8): each nonzero one but the last goes to
+// emit(double), the last (Q, possibly zero) is returned.  expansion_sum stores them; expansion_sum_sign keeps
+// the sign.
+template <class Emit>
+CUDAHULL_HD inline double expansion_sum_components(int elen, const double* e, int flen, const double* f,
+                                                   const Emit& emit) {
+  int ei = 0, fi = 0;
   double enow = e[0], fnow = f[0];
-  double q, qnew, hh;
-  if ((fnow > enow) == (fnow > -enow)) {
-    q = enow;
-    ++ei;
-    enow = ei < elen ? e[ei] : 0.0;
-  } else {
-    q = fnow;
-    ++fi;
-    fnow = fi < flen ? f[fi] : 0.0;
-  }
-  if (ei < elen && fi < flen) {
+  // Gives op the next component of e or f, the smaller in magnitude, and moves past it.
+  auto take = [&](const auto& op) {
     if ((fnow > enow) == (fnow > -enow)) {
-      fast_two_sum(enow, q, qnew, hh);
+      op(enow);
       ++ei;
       enow = ei < elen ? e[ei] : 0.0;
     } else {
-      fast_two_sum(fnow, q, qnew, hh);
+      op(fnow);
       ++fi;
       fnow = fi < flen ? f[fi] : 0.0;
     }
+  };
+  double q, qnew, hh;
+  take([&](double x) { q = x; });
+  auto add = [&](double x) {
+    two_sum(q, x, qnew, hh);
     q = qnew;
-    if (hh != 0.0) h[hi++] = hh;
-    while (ei < elen && fi < flen) {
-      if ((fnow > enow) == (fnow > -enow)) {
-        two_sum(q, enow, qnew, hh);
-        ++ei;
-        enow = ei < elen ? e[ei] : 0.0;
-      } else {
-        two_sum(q, fnow, qnew, hh);
-        ++fi;
-        fnow = fi < flen ? f[fi] : 0.0;
-      }
-      q = qnew;
-      if (hh != 0.0) h[hi++] = hh;
-    }
-  }
-  while (ei < elen) {
-    two_sum(q, e[ei], qnew, hh);
-    ++ei;
+    if (hh != 0.0) emit(hh);
+  };
+  if (ei < elen && fi < flen) {
+    take([&](double x) { fast_two_sum(x, q, qnew, hh); });
     q = qnew;
-    if (hh != 0.0) h[hi++] = hh;
+    if (hh != 0.0) emit(hh);
+    while (ei < elen && fi < flen)
+      take(add);
   }
-  while (fi < flen) {
-    two_sum(q, f[fi], qnew, hh);
-    ++fi;
-    q = qnew;
-    if (hh != 0.0) h[hi++] = hh;
-  }
+  // One of them is used up: the other's components follow.
+  while (ei < elen)
+    add(e[ei++]);
+  while (fi < flen)
+    add(f[fi++]);
+  return q;
+}
+
+// h = e + f.  h must hold elen + flen components and must not alias e or f.
+CUDAHULL_HD inline int expansion_sum(int elen, const double* e, int flen, const double* f, double* h) {
+  int hi = 0;
+  const double q = expansion_sum_components(elen, e, flen, f, [&](double c) { h[hi++] = c; });
   if (q != 0.0 || hi == 0) h[hi++] = q;
   return hi;
 }
 
-// Sign of e + f, without storing the sum: the components come out in increasing magnitude, so the last
-// nonzero one (the final Q when it is nonzero) carries the sign.  Same steps as expansion_sum.
+// Sign of e + f, without storing the sum: the last nonzero component (Q when it is nonzero) carries it.
 CUDAHULL_HD inline int expansion_sum_sign(int elen, const double* e, int flen, const double* f) {
-  int ei = 0, fi = 0;
-  double enow = e[0], fnow = f[0];
-  double q, qnew, hh, last = 0.0;
-  if ((fnow > enow) == (fnow > -enow)) {
-    q = enow;
-    ++ei;
-    enow = ei < elen ? e[ei] : 0.0;
-  } else {
-    q = fnow;
-    ++fi;
-    fnow = fi < flen ? f[fi] : 0.0;
-  }
-  if (ei < elen && fi < flen) {
-    if ((fnow > enow) == (fnow > -enow)) {
-      fast_two_sum(enow, q, qnew, hh);
-      ++ei;
-      enow = ei < elen ? e[ei] : 0.0;
-    } else {
-      fast_two_sum(fnow, q, qnew, hh);
-      ++fi;
-      fnow = fi < flen ? f[fi] : 0.0;
-    }
-    q = qnew;
-    if (hh != 0.0) last = hh;
-    while (ei < elen && fi < flen) {
-      if ((fnow > enow) == (fnow > -enow)) {
-        two_sum(q, enow, qnew, hh);
-        ++ei;
-        enow = ei < elen ? e[ei] : 0.0;
-      } else {
-        two_sum(q, fnow, qnew, hh);
-        ++fi;
-        fnow = fi < flen ? f[fi] : 0.0;
-      }
-      q = qnew;
-      if (hh != 0.0) last = hh;
-    }
-  }
-  while (ei < elen) {
-    two_sum(q, e[ei], qnew, hh);
-    ++ei;
-    q = qnew;
-    if (hh != 0.0) last = hh;
-  }
-  while (fi < flen) {
-    two_sum(q, f[fi], qnew, hh);
-    ++fi;
-    q = qnew;
-    if (hh != 0.0) last = hh;
-  }
+  double last = 0.0;
+  const double q = expansion_sum_components(elen, e, flen, f, [&](double c) { last = c; });
   if (q != 0.0) last = q;
-  return (last > 0.0) - (last < 0.0);
+  return sign_of(last);
 }
 
 // h = e * b.  h must hold 2 * elen components and must not alias e.
