@@ -38,29 +38,25 @@ inline Vec3d cross(const Vec3d& a, const Vec3d& b) {
 inline double triangle_distance2(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
   const Vec3d ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
   auto dist2 = [&](const Vec3d& q) { return dot(sub(p, q), sub(p, q)); };
+  // The squared distance to the point t of the way along `direction` from `from`.
+  auto dist2_along = [&](const Vec3d& from, const Vec3d& direction, double t) {
+    return dist2({from.x + t * direction.x, from.y + t * direction.y, from.z + t * direction.z});
+  };
   const double d1 = dot(ab, ap), d2 = dot(ac, ap);
   if (d1 <= 0 && d2 <= 0) return dist2(a);
   const Vec3d bp = sub(p, b);
   const double d3 = dot(ab, bp), d4 = dot(ac, bp);
   if (d3 >= 0 && d4 <= d3) return dist2(b);
   const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    const double v = d1 / (d1 - d3);
-    return dist2({a.x + v * ab.x, a.y + v * ab.y, a.z + v * ab.z});
-  }
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return dist2_along(a, ab, d1 / (d1 - d3));
   const Vec3d cp = sub(p, c);
   const double d5 = dot(ab, cp), d6 = dot(ac, cp);
   if (d6 >= 0 && d5 <= d6) return dist2(c);
   const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    const double w = d2 / (d2 - d6);
-    return dist2({a.x + w * ac.x, a.y + w * ac.y, a.z + w * ac.z});
-  }
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return dist2_along(a, ac, d2 / (d2 - d6));
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return dist2({b.x + w * (c.x - b.x), b.y + w * (c.y - b.y), b.z + w * (c.z - b.z)});
-  }
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return dist2_along(b, sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)));
   const double denom = 1 / (va + vb + vc);
   const double v = vb * denom, w = vc * denom;
   return dist2({a.x + ab.x * v + ac.x * w, a.y + ab.y * v + ac.y * w, a.z + ab.z * v + ac.z * w});
