@@ -37,12 +37,12 @@
 #include <type_traits>
 #include <vector>
 
-#include "batch_cuda.hpp"
 #include "cuda_errors.hpp"
+#include "cudahull/cuda/batch_cuda.hpp"
+#include "cudahull/cuda/device_memory.hpp"
 #include "cudahull/detail/plane_impl.hpp"
 #include "cudahull/phase_times.hpp"
 #include "cudahull/resident/small_hull.hpp"
-#include "device_memory.hpp"
 #include "teams.cuh"
 
 namespace cudahull {

@@ -18,13 +18,13 @@
 #include <utility>
 #include <vector>
 
-#include "cuda_backend.hpp"
 #include "cuda_errors.hpp"
+#include "cudahull/cuda/cuda_backend.hpp"
+#include "cudahull/cuda/device_memory.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/parallel.hpp"
 #include "cudahull/phase_times.hpp"
 #include "cudahull/routing.hpp"
-#include "device_memory.hpp"
 
 namespace cudahull {
 namespace {

@@ -1,4 +1,4 @@
-#include "device_info.hpp"
+#include "cudahull/cuda/device_info.hpp"
 
 #include <cuda_runtime.h>
 

@@ -1,6 +1,6 @@
 // The allocator of device_memory.hpp (design there): the cache of small blocks, the stream ordering of their
 // reuse, and the policy of the device's default memory pool.
-#include "device_memory.hpp"
+#include "cudahull/cuda/device_memory.hpp"
 
 #include <cstdint>
 #include <map>

@@ -1,4 +1,4 @@
-#include "device_points.hpp"
+#include "cudahull/cuda/device_points.hpp"
 
 #include <cuda_runtime.h>
 
@@ -7,9 +7,9 @@
 #include <type_traits>
 
 #include "cuda_errors.hpp"
+#include "cudahull/cuda/device_memory.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/predicates.hpp"
-#include "device_memory.hpp"
 
 namespace cudahull {
 

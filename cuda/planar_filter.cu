@@ -1,5 +1,5 @@
 // planar_candidates(): the 2-D hull's filter on the device (design in planar_filter.hpp).
-#include "planar_filter.hpp"
+#include "cudahull/cuda/planar_filter.hpp"
 
 #include <cuda_runtime.h>
 
@@ -10,9 +10,9 @@
 #include <type_traits>
 
 #include "cuda_errors.hpp"
+#include "cudahull/cuda/device_memory.hpp"
+#include "cudahull/cuda/device_points.hpp"
 #include "cudahull/predicates.hpp"
-#include "device_memory.hpp"
-#include "device_points.hpp"
 
 namespace cudahull {
 

@@ -21,11 +21,11 @@
 #include <vector>
 
 #include "cuda_errors.hpp"
+#include "cudahull/cuda/device_memory.hpp"
+#include "cudahull/cuda/resident_cuda.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/resident/resident_driver.hpp"
 #include "cudahull/resident/resident_stepping.hpp"
-#include "device_memory.hpp"
-#include "resident_cuda.hpp"
 #include "teams.cuh"
 
 namespace cudahull {

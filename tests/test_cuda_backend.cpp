@@ -24,14 +24,14 @@
 
 #include <cuda_runtime_api.h>
 
-#include "cuda_backend.hpp"
 #include "cudahull/cpu_backend.hpp"
+#include "cudahull/cuda/cuda_backend.hpp"
+#include "cudahull/cuda/device_info.hpp"
 #include "cudahull/engine.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/generators.hpp"
 #include "cudahull/hull_checker.hpp"
 #include "cudahull/point_io.hpp"
-#include "device_info.hpp"
 
 namespace cudahull {
 namespace {

@@ -15,6 +15,8 @@
 
 #include "cudahull/convex_hull_batch.hpp"
 #include "cudahull/cpu_backend.hpp"
+#include "cudahull/cuda/device_info.hpp"
+#include "cudahull/cuda/resident_cuda.hpp"
 #include "cudahull/detail/plane_impl.hpp"
 #include "cudahull/engine.hpp"
 #include "cudahull/exact_hull.hpp"
@@ -23,8 +25,6 @@
 #include "cudahull/point_io.hpp"
 #include "cudahull/resident.hpp"
 #include "cudahull/trace.hpp"
-#include "device_info.hpp"
-#include "resident_cuda.hpp"
 #include "support/host_batch_slot.hpp"
 #include "support/point_sets.hpp"
 #include "support/property_cases.hpp"

@@ -24,11 +24,11 @@
 #include <vector>
 
 #include "batch_common.hpp"
-#include "batch_cuda.hpp"
 #include "cudahull/convex_hull_batch.hpp"
+#include "cudahull/cuda/batch_cuda.hpp"
+#include "cudahull/cuda/device_points.hpp"
 #include "cudahull/phase_times.hpp"
 #include "cudahull/tuning.hpp"
-#include "device_points.hpp"
 
 namespace cudahull::batch {
 

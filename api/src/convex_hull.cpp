@@ -13,8 +13,13 @@
 #include <type_traits>
 
 #include "checked_input.hpp"
-#include "cuda_backend.hpp"
 #include "cudahull/cpu_backend.hpp"
+#include "cudahull/cuda/cuda_backend.hpp"
+#include "cudahull/cuda/device_info.hpp"
+#include "cudahull/cuda/device_memory.hpp"
+#include "cudahull/cuda/device_points.hpp"
+#include "cudahull/cuda/planar_filter.hpp"
+#include "cudahull/cuda/resident_cuda.hpp"
 #include "cudahull/detail/plane_impl.hpp"
 #include "cudahull/engine.hpp"
 #include "cudahull/errors.hpp"
@@ -25,14 +30,9 @@
 #include "cudahull/plane.hpp"
 #include "cudahull/resident.hpp"
 #include "describe.hpp"
-#include "device_info.hpp"
-#include "device_memory.hpp"
-#include "device_points.hpp"
 #include "facet_merge.hpp"
 #include "host_hull.hpp"
-#include "planar_filter.hpp"
 #include "planar_hull.hpp"
-#include "resident_cuda.hpp"
 
 namespace cudahull {
 

@@ -8,11 +8,11 @@
 
 #include "checked_input.hpp"
 #include "cudahull/convex_hull.hpp"
+#include "cudahull/cuda/device_memory.hpp"
+#include "cudahull/cuda/device_points.hpp"
+#include "cudahull/cuda/planar_filter.hpp"
 #include "cudahull/exact_hull.hpp"
 #include "cudahull/parallel.hpp"
-#include "device_memory.hpp"
-#include "device_points.hpp"
-#include "planar_filter.hpp"
 #include "planar_hull.hpp"
 
 namespace cudahull {

@@ -5,9 +5,9 @@
 #include <string>
 
 #include "cudahull/convex_hull.hpp"
-#include "device_info.hpp"
-#include "device_memory.hpp"
-#include "device_points.hpp"
+#include "cudahull/cuda/device_info.hpp"
+#include "cudahull/cuda/device_memory.hpp"
+#include "cudahull/cuda/device_points.hpp"
 
 namespace cudahull {
 

@@ -1,10 +1,10 @@
 // hull_runner.hpp: the engines a plan names, built in one place.
 #include "cudahull/hull_runner.hpp"
 
-#include "cuda_backend.hpp"
 #include "cudahull/cpu_backend.hpp"
+#include "cudahull/cuda/cuda_backend.hpp"
+#include "cudahull/cuda/resident_cuda.hpp"
 #include "cudahull/phase_times.hpp"
-#include "resident_cuda.hpp"
 
 namespace cudahull {
 
