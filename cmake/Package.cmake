@@ -7,11 +7,10 @@ include(CMakePackageConfigHelpers)
 
 set(CUDAHULL_PACKAGE_DIR "${CMAKE_INSTALL_LIBDIR}/cmake/cudahull")
 
-# cuda/ names its own folder as its include directory, a source path that an installed target cannot carry;
-# the package installs no CUDA header (make_backend() in convex_hull.hpp stands for them), so that path
-# holds in the build tree only.
+# cuda/include is a source path that an installed target cannot carry; the package installs no CUDA header
+# (make_backend() in convex_hull.hpp stands for them), so that path holds in the build tree only.
 set_property(TARGET cudahull_cuda PROPERTY INTERFACE_INCLUDE_DIRECTORIES
-                                           "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/cuda>")
+                                           "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/cuda/include>")
 
 install(TARGETS cudahull_api cudahull_engine cudahull_resident cudahull_cuda cudahull_reference cudahull_parallel cudahull_core
         EXPORT cudahullTargets
