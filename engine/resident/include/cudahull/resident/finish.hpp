@@ -233,7 +233,7 @@ struct CheckRepaired {
 };
 
 // The plan's rows written into the mesh, live faces (the slots a repair leaves over are filled by the
-// mesh's last faces, resident_driver.hpp's fill_holes, not written dead).
+// mesh's last faces, resident_finish.hpp's fill_holes, not written dead).
 struct WriteRows {
   const FaceRow* rows;
   u32* fv;

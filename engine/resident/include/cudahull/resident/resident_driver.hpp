@@ -28,54 +28,50 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <iterator>
-#include <optional>
-#include <stdexcept>
 #include <string>
-#include <type_traits>
-#include <unordered_map>
 #include <vector>
 
 #include "cudahull/backend.hpp"
-#include "cudahull/errors.hpp"
 #include "cudahull/exact_hull.hpp"
 #include "cudahull/mesh.hpp"
 #include "cudahull/resident.hpp"
-#include "cudahull/resident/fault_repair.hpp"
 #include "cudahull/resident/first_mesh.hpp"
 #include "cudahull/resident/iteration.hpp"
+#include "cudahull/resident/resident_buffers.hpp"
+#include "cudahull/resident/resident_finish.hpp"
 #include "cudahull/resident/resident_ops.hpp"
+#include "cudahull/resident/resident_recording.hpp"
 #include "cudahull/resident/shared_phases.hpp"
 
 namespace cudahull::resident {
 
-// What a recorded iteration did, read back for the records (resident_stepping.hpp makes the IterationRecord
-// of it).  Face ids are the iteration's own: 0 .. faces_before - 1 the mesh it began with, then the
-// refinement's children, then each round's new faces, in order.
-struct RecordedIteration {
-  std::size_t faces_before = 0, refined = 0;
-  u32 first_round = 0;                 // the number of its first round (Rejection::round counts on)
-  std::vector<u32> fv;                 // corners of every face id (killed faces keep theirs)
-  std::vector<u32> killer;             // per face id: kAlive, kDeadSlot, or the entry that killed it
-  std::vector<Entry> entries;          // the decision entries (Fig. 7): refinements first, then the edits
-  std::vector<u32> round_first_entry;  // per round: its first entry
-  std::vector<Rejection> rejections;   // what the rounds turned down, by round and candidate (repeats kept)
-  std::vector<u32> new_id;             // per face id: its id after the compaction (live faces only)
-};
-
 template <class Point, class Exec>
-class ResidentHull {
- public:
-  template <class T>
-  using Buffer = typename Exec::template Buffer<T>;
+class ResidentHull : private IterationRecorder<Point, Exec>, private ResidentFinish<Point, Exec> {
+  // Its state and buffers (resident_buffers.hpp), its finish (resident_finish.hpp), and its recording
+  // (resident_recording.hpp).  The recorder comes first, so that its buffers are given back last.
+  using Buffers = ResidentBuffers<Point, Exec>;
+  using Finish = ResidentFinish<Point, Exec>;
+  using Recorder = IterationRecorder<Point, Exec>;
+  using Buffers::active_, Buffers::all_points, Buffers::c_, Buffers::capacity_, Buffers::entries_used_,
+      Buffers::entry_capacity_, Buffers::exec_, Buffers::extreme_, Buffers::face_of_, Buffers::face_rank_,
+      Buffers::faces_, Buffers::fetch, Buffers::first_list_, Buffers::first_mesh, Buffers::flags_,
+      Buffers::fn_, Buffers::fv_, Buffers::fv_out_, Buffers::grow_after_overflow, Buffers::grow_entries,
+      Buffers::grow_faces, Buffers::grow_for_iteration, Buffers::grow_spares, Buffers::grow_work,
+      Buffers::hull_of, Buffers::index_, Buffers::iteration_buffers, Buffers::keep_, Buffers::listed,
+      Buffers::n_, Buffers::point_rank_, Buffers::points_, Buffers::points_read_back_,
+      Buffers::release_rounds, Buffers::shrink_points, Buffers::state_, Buffers::swap_spares, Buffers::view,
+      Buffers::work_capacity_;
+  using Finish::exact_finish, Finish::finish;
+  using Recorder::grow_log, Recorder::read_rounds, Recorder::rejection_log, Recorder::start_recording;
 
+ public:
   // `count` points live at `points`, where the executor computes (the host vector itself for HostExec, a
   // device copy or the caller's device array for CudaExec).  `host_points`, when given, is the same data on
   // the host, where the exact checks read.  Without it (points only the executor holds, e.g. a CuPy array)
   // the driver reads back the few coordinates it checks: P's 14 points, the result's vertices, the exact
   // finish's candidates; every point only for section 3.1's tetrahedron or lower-dimensional input.
   ResidentHull(Exec& exec, const Point* points, std::size_t count, const std::vector<Point>* host_points)
-      : exec_(exec), host_(host_points), points_(points), n_(count) {}
+      : Finish(exec, points, count, host_points) {}
 
   BasicHullMesh<Point> run(ResidentStats& stats) {
     BasicHullMesh<Point> hull = run_all(stats);
@@ -201,18 +197,7 @@ class ResidentHull {
     // The first mesh, and the first distribution (section 3.1), in the room reserve_first() made.
     static_assert(static_cast<std::size_t>(kMaxFirstFaces) <= kInitialFaces, "the first mesh fits");
     faces_ = fv.size() / 3;
-    const u32 first_faces = static_cast<u32>(faces_);
-    FirstMesh first{};
-    first.faces = first_faces;
-    std::copy(fv.begin(), fv.end(), first.fv);
-    std::copy(fn.begin(), fn.end(), first.fn);
-    first.fv_out = fv_.data();
-    first.fn_out = fn_.data();
-    first.killer = killer_.data();
-    first.look = look_.data();
-    first.extreme = extreme_.data();
-    first.st = state_.data();
-    exec_.for_each(fv.size(), first);
+    exec_.for_each(fv.size(), first_mesh(fv, fn));
     // The points not proven inside P (all, without P), listed in index order (one wait for the count).
     first_list_ = nullptr;
     active_ = n;
@@ -269,52 +254,6 @@ class ResidentHull {
     index_[1].grow(n_);
   }
 
-  // The coordinates of points `ids`: from the host copy, or gathered where the executor computes and read
-  // back in one piece.
-  std::vector<Point> fetch(const std::vector<PointIndex>& ids) {
-    std::vector<Point> out(ids.size());
-    if (host_) {
-      for (std::size_t k = 0; k < ids.size(); ++k)
-        out[k] = (*host_)[ids[k]];
-    } else if (!ids.empty()) {
-      gather(listed(ids), out);
-    }
-    return out;
-  }
-  // `ids` (point or face ids) where the executor computes, in gather_ids_ (the last list uploaded).
-  const u32* listed(const std::vector<u32>& ids) {
-    gather_ids_.grow(ids.size());
-    exec_.upload(gather_ids_.data(), ids.data(), ids.size());
-    return gather_ids_.data();
-  }
-  // The coordinates of the `out.size()` points listed at `ids` where the executor computes.
-  void gather(const u32* ids, std::vector<Point>& out) {
-    points_read_back_ += out.size();
-    gathered_.grow(out.size());
-    exec_.for_each(out.size(), GatherPoints<Point>{points_, ids, gathered_.data()});
-    exec_.download(out.data(), gathered_.data(), out.size());
-  }
-  // Every point on the host: the caller's copy, or all of them read back once (section 3.1's tetrahedron
-  // and lower-dimensional input only).
-  const std::vector<Point>& all_points() {
-    if (host_) return *host_;
-    if (read_back_.size() != n_) {
-      points_read_back_ += n_;
-      read_back_.resize(n_);
-      exec_.download(read_back_.data(), points_, n_);
-    }
-    return read_back_;
-  }
-  // The exact hull of points `ids` (ascending, no repeats; `at`: their coordinates): as exact_hull of
-  // all points restricted to them, duplicates going to the lowest index.
-  BasicHullMesh<Point> hull_of(const std::vector<PointIndex>& ids, const std::vector<Point>& at) const {
-    if (host_) return exact_hull(*host_, ids);
-    BasicHullMesh<Point> hull = exact_hull(at);
-    for (PointIndex& v : hull.vertex_ids)
-      v = ids[v];
-    return hull;
-  }
-
   // Milliseconds since the last lap, charged to `phase` with the executor's launches and waits since then
   // and `bytes`, the least the phase moved (ResidentStats::phases).
   double lap(ResidentStats& stats, ResidentPhase phase, std::uint64_t bytes = 0) {
@@ -347,69 +286,6 @@ class ResidentHull {
   // A routing's least traffic: the kept points' coordinates read, and their index and face read and written.
   std::uint64_t routing_bytes(std::size_t kept) const { return kept * (sizeof(Point) + 4 * sizeof(u32)); }
 
-  MeshView<Point> view() {
-    return MeshView<Point>{points_, c_, fv_.data(), fn_.data(), killer_.data(), entries_.data()};
-  }
-
-  // Room for `count` faces, keeping the current ones; new claim slots hold no claim.
-  // Face ids are u32 and a candidate claims with 6 f + slot (Claim): beyond kMaxFaces the ids would wrap.
-  static constexpr std::size_t kMaxFaces = 0xffffffffu / 6;
-  static constexpr std::size_t kDoublingFaces = std::size_t{1} << 21;
-  void grow_faces(std::size_t count) {
-    if (count > capacity_) grow_capacity(count);
-    // The mesh's own buffers, which the compaction swaps with its spares (sized for the live faces only).
-    fv_.grow(3 * capacity_, 3 * faces_);
-    fn_.grow(3 * capacity_, 3 * faces_);
-  }
-  void grow_capacity(std::size_t count) {
-    if (count > kMaxFaces)
-      throw DeviceError("resident engine: the hull needs " + std::to_string(count) +
-                        " face slots, more than " + std::to_string(kMaxFaces) + " (use --engine stepping)");
-    const std::size_t old = capacity_;
-    // Doubling while small (a regrowth is a round of allocations and copies, most of an iteration's host
-    // time on a small hull), then what is asked (room_for() has the headroom; a copy of the faces is a
-    // fraction of an iteration): the room follows the need (issue 26: memory).
-    const std::size_t step = capacity_ < kDoublingFaces ? 2 * capacity_ : 0;
-    capacity_ = std::min(std::max(count, step), kMaxFaces);
-    killer_.grow(capacity_, faces_);
-    look_.grow(capacity_, faces_);
-    claim_.grow(capacity_, old);
-    exec_.fill(claim_.data() + old, capacity_ - old, u64{0});
-    // The refinement marks and their prefix sum (one per face) and the furthest points may be in use:
-    // those entries move along (in a small mesh's fused iteration the marks'
-    // entries are copied before they are written: harmless, and never more than the faces in use).
-    flags_.grow(capacity_ + 1, marks_in_use_);
-    face_rank_.grow(capacity_ + 1, marks_in_use_);
-  }
-  // The compaction's spares, for `live` faces: an iteration ends with at most its faces and two more a
-  // refined face (a split adds two, a swap none, a removal takes two away).  The furthest point per face
-  // is kept for the live faces too (the current ones' move along).
-  void grow_spares(std::size_t live) {
-    fv_out_.grow(3 * live);
-    fn_out_.grow(3 * live);
-    extreme_.grow(live, faces_);
-  }
-  // The rounds' candidates, given back before the finish (which sorts the corners: the peak of a large run).
-  void release_rounds() {
-    cands_.release();
-    work_capacity_ = 0;
-  }
-  // Room for the candidates of `count` work faces a round.
-  void grow_work(std::size_t count) {
-    if (count <= work_capacity_) return;
-    work_capacity_ = std::min<std::size_t>(count, 0xffffffffu);
-    cands_.grow(work_capacity_);
-    work_list_.grow(work_capacity_);
-  }
-  void grow_entries(std::size_t count) {
-    if (count > entry_capacity_) {
-      // Half as much again while small, then what is asked, as the faces grow.
-      entry_capacity_ =
-          std::max(count, entry_capacity_ < kDoublingFaces ? entry_capacity_ + entry_capacity_ / 2 : 0);
-      entries_.grow(entry_capacity_, entries_used_);
-    }
-  }
-
   // One iteration (iteration.hpp), or on a device loop as many as it can run, the host reading the state
   // after each launch; false when no face could refine.  With `out`, every candidate the rounds turn down
   // is logged and what the iteration did is read back into it.
@@ -441,32 +317,6 @@ class ResidentHull {
   bool loop_goes_on_here() const {
     return loop_goes_on(u32_of(faces_), u32_of(active_), u32_of(loop_faces()),
                         u32_of(loop_few_points_faces()));
-  }
-
-  // The iteration's buffers as they are now (the rounds' bits are the executor's).
-  template <class Log = NoLog>
-  IterationBuffers<Point, Log> iteration_buffers(const Log& log = {}) {
-    IterationBuffers<Point, Log> b{};
-    b.m = view();
-    b.log = log;
-    b.fv_spare = fv_out_.data();
-    b.fn_spare = fn_out_.data();
-    b.index = index_[0].data();
-    b.face = face_of_[0].data();
-    b.index_spare = index_[1].data();
-    b.face_spare = face_of_[1].data();
-    b.keep = keep_.data();
-    b.point_rank = point_rank_.data();
-    b.flags = flags_.data();
-    b.face_rank = face_rank_.data();
-    b.look = look_.data();
-    b.list = work_list_.data();
-    b.extreme = extreme_.data();
-    b.claim = claim_.data();
-    b.cands = cands_.data();
-    b.st = state_.data();
-    b.first_list = first_list_;
-    return b;
   }
 
   // The phases from..to of the iteration on the executor (`loop`: then whole iterations, in one launch of
@@ -522,367 +372,17 @@ class ResidentHull {
       stats.round_phase_ms[k] = static_cast<double>(state.phase_ns[k]) * 1e-6;
   }
 
-  // After a run of rounds that did not fit: the mesh as the rounds left it, and room for the next round
-  // and an eighth more for those after it.
-  void grow_after_overflow(const RoundsState& state, ResidentStats& stats) {
-    ++stats.round_overflows;
-    faces_ = state.faces;
-    entries_used_ = state.entries;
-    // Only what was short grows (a round short of work room needs no more face slots).
-    const auto more = [](std::size_t n) { return n + n / 8 + 64; };
-    // The faces' buffers at the capacity's size even when no more slots are needed: a device loop that
-    // stopped after an odd number of compactions left the faces in the spares.
-    grow_faces(state.needed_faces > capacity_ ? more(state.needed_faces) : 0);
-    if (state.needed_entries > entry_capacity_) grow_entries(more(state.needed_entries));
-    if (state.needed_work > work_capacity_) grow_work(more(state.needed_work));
-  }
-
-  // Room for a run of rounds: `faces` face slots, `entries` entries and `work` work faces a round.
-  void grow_for_rounds(std::size_t faces, std::size_t entries, std::size_t work) {
-    grow_faces(faces);
-    grow_entries(entries);
-    grow_work(work);
-  }
-  // Everything grows before the split (the marks are kept), by the refined count (room_for()).  A small
-  // mesh (`small`: sized as if every face refined) has work room for every face slot, as the first round's
-  // work may be six a refined face (the children and the stamped faces beside them), and on a device loop
-  // spares for them too, as its faces go back and forth between the two (a loop is sized for twice its
-  // faces refining: its later iterations grow the mesh, and each stop for room costs a launch and a wait).
-  void grow_for_iteration(std::size_t refined, bool small = false, bool loop = false) {
-    IterationRoom room = room_for(faces_, refined);
-    if (small) room.work = std::max<u64>(room.work, room.faces);
-    if (loop) room.spares = std::max<u64>(room.spares, room.faces);
-    marks_in_use_ = faces_;
-    // What holds nothing between iterations and must grow goes first, so that its old blocks are not
-    // held while the faces' buffers copy into their new ones.
-    if (room.work > work_capacity_) release_rounds();
-    // The spares are the last iteration's faces, swapped out at the capacity's size: back to the live
-    // faces' size (their contents are dead), before the faces' buffers copy into bigger ones.  A small
-    // mesh keeps both at the capacity's size instead, so that the swaps need no new blocks and copies.
-    if (!small &&
-        (3 * room.spares > fv_out_.capacity() || 3 * (room.spares + room.spares / 4) < fv_out_.capacity())) {
-      fv_out_.release();
-      fn_out_.release();
-    }
-    grow_for_rounds(room.faces, room.entries, room.work);
-    grow_spares(small ? std::max<std::size_t>(room.spares, capacity_) : room.spares);
-    marks_in_use_ = 0;
-  }
-
-  // The points' buffers follow the kept points down (issue 26: memory): those that hold nothing between
-  // iterations (the compaction's spares, the kept marks and their ranks) are made afresh once the kept
-  // points are fewer than half their room; the current ones follow when they become the spares.
-  void shrink_points() {
-    for (Buffer<u32>* b : {&index_[1], &face_of_[1], &keep_, &point_rank_}) {
-      if (active_ >= b->capacity() / 2) continue;
-      b->release();
-      b->grow(active_);
-    }
-  }
-
-  // The compaction's outputs become the current faces and points.
-  void swap_spares() {
-    fv_.swap(fv_out_);
-    fn_.swap(fn_out_);
-    index_[0].swap(index_[1]);
-    face_of_[0].swap(face_of_[1]);
-  }
-
   BasicHullMesh<Point> lower_dimensional(ResidentStats& stats, const std::string& why) {
     stats.note = why;
     return exact_hull(all_points());
   }
 
-  // The mesh's faces, read back once.
-  std::vector<u32> corners() {
-    std::vector<u32> fv(3 * faces_);
-    exec_.download(fv.data(), fv_.data(), fv.size());
-    return fv;
-  }
-
-  // No point left outside: the result, the defects the rounds left repaired where they are first
-  // (fault_repair.hpp), with more rings around them while some remain; the exact finish after the last.
-  static constexpr std::array<u32, 3> kRepairRings{2, 4, 8};
-  BasicHullMesh<Point> finish(ResidentStats& stats) {
-    u32 faults = 0;
-    bool checked = false;
-    for (std::size_t attempt = 0;; ++attempt) {
-      std::optional<BasicHullMesh<Point>> out = finish_once(faults, checked);
-      if (out) return std::move(*out);
-      if (attempt == 0) stats.faults = faults;
-      if (active_ != 0 || attempt == kRepairRings.size()) break;
-      stats.repaired_patches += repair_faults(kRepairRings[attempt], checked, stats.repair_vertices);
-    }
-    return exact_finish(
-        stats, std::to_string(stats.faults) + " concave edges or vertices not strictly extreme" +
-                   (stats.repaired_patches ? ", " + std::to_string(faults) + " left after repair" : ""));
-  }
-
-  // The result when no edge is concave and every vertex is strictly extreme (flat edges only triangulate
-  // coplanar facets); otherwise nothing, and the defects in `faults`.
-  // `checked`: the mesh is known to have none (a repair checked its faces), and is not counted again.
-  std::optional<BasicHullMesh<Point>> finish_once(u32& faults, bool checked) {
-    if constexpr (Exec::kFinishFaces > 0) {
-      if (faces_ <= Exec::kFinishFaces) return finish_small(faults, checked);
-    }
-    // The edges that are not strictly convex, counted into the state; then the vertices in index order
-    // (ascending, as exact_hull gives them) with the corners renumbered to their ranks, where they are.
-    // Fewer corners than points (most hulls): the corners sorted without repeats, each corner found there
-    // by bisection, and both counts read at once.  Otherwise each vertex flagged among the points and the
-    // flags prefix-summed (no sort of a corner list larger than the points).  Only the result comes back.
-    RoundsState* st = state_.data();
-    exec_.fill(&st->faults, 2, u32{0});
-    if (!checked) exec_.for_each(faces_, CountFaults<Point>{view(), &st->faults});
-    const std::size_t n = n_, corners = 3 * faces_;
-    u32 counts[2] = {0, 0};  // faults, vertices
-    const bool sorted = corners < n;
-    if (sorted) {
-      // The vertex list right after the renumbered corners, so that both come back in one read: fv_out_
-      // grown for it (a spare: nothing in it is kept), as the face capacity may be only a little above
-      // the faces in use.
-      index_[1].grow(corners);
-      fv_out_.grow(corners + std::min(corners, n));
-      u32* list = fv_out_.data() + corners;
-      exec_.sort_unique_to(fv_.data(), corners, list, index_[1].data(), n, &st->vertices);
-      exec_.for_each(corners, FindCorners{fv_.data(), list, &st->vertices, fv_out_.data()});
-    }
-    exec_.download(counts, &st->faults, sorted ? 2 : 1);
-    faults = counts[0] == 0 ? 0 : defects();
-    if (faults != 0) return std::nullopt;
-    if (sorted) {
-      std::vector<u32> both(corners + counts[1]);
-      exec_.download(both.data(), fv_out_.data(), both.size());
-      return result_mesh(both.data(), counts[1], fv_out_.data() + corners);
-    }
-    keep_.grow(n);
-    point_rank_.grow(n);
-    index_[1].grow(n);
-    exec_.fill(keep_.data(), n, u32{0});
-    exec_.for_each(corners, FlagCorners{fv_.data(), keep_.data()});
-    counts[1] = exec_.select(keep_.data(), point_rank_.data(), index_[1].data(), n);
-    fv_out_.grow(corners);
-    exec_.for_each(corners, RenumberCorners{fv_.data(), point_rank_.data(), fv_out_.data()});
-    const u32* vertex_list = index_[1].data();
-    const u32 vertices = counts[1];
-    BasicHullMesh<Point> out;
-    out.vertex_ids.resize(vertices);
-    exec_.download(out.vertex_ids.data(), vertex_list, vertices);
-    out.triangles.resize(faces_);
-    static_assert(sizeof(Triangle) == 3 * sizeof(u32));
-    exec_.download(reinterpret_cast<u32*>(out.triangles.data()), fv_out_.data(), 3 * faces_);
-    out.vertices = vertex_coordinates(out.vertex_ids, vertex_list);
-    return out;
-  }
-
-  // finish() of a small mesh in one launch and, as a rule, one read (the executor's finish_small): the
-  // counts, the renumbered corners and the vertex list lie one after another in fv_out_, and the host reads
-  // as many vertices as a closed mesh of genus 0 has (F / 2 + 2, Euler's formula), the rest only if there
-  // are more.
-  std::optional<BasicHullMesh<Point>> finish_small(u32& faults, bool checked) {
-    const std::size_t corners = 3 * faces_, at = 2 + corners;
-    // A spare (nothing in it is kept), whose size follows the live faces: room for the counts, the corners
-    // and a list of up to as many vertices as corners.
-    fv_out_.grow(at + corners);
-    u32* out = fv_out_.data();
-    exec_.finish_small(view(), faces_, n_, out);
-    // (Words past the list, when there are faults or fewer vertices, are read and not used.)
-    std::vector<u32> got(at + faces_ / 2 + 2);
-    exec_.download(got.data(), out, got.size());
-    const u32 vertices = got[1];
-    faults = got[0] == 0 || checked ? 0 : defects();
-    if (faults != 0) return std::nullopt;
-    if (at + vertices > got.size()) {
-      const std::size_t had = got.size();
-      got.resize(at + vertices);
-      exec_.download(got.data() + had, out + had, got.size() - had);
-    }
-    return result_mesh(got.data() + 2, vertices, out + at);
-  }
-
-  // The result from what the finish read back: the renumbered corners (3 a face), then `vertices` vertex
-  // ids; the coordinates from the host copy, or gathered from the vertex list at `list` where it is.
-  BasicHullMesh<Point> result_mesh(const u32* corners_then_vertices, std::size_t vertices, const u32* list) {
-    const std::size_t corners = 3 * faces_;
-    BasicHullMesh<Point> out;
-    out.vertex_ids.assign(corners_then_vertices + corners, corners_then_vertices + corners + vertices);
-    out.triangles.resize(faces_);
-    static_assert(sizeof(Triangle) == 3 * sizeof(u32));
-    std::copy(corners_then_vertices, corners_then_vertices + corners,
-              reinterpret_cast<u32*>(out.triangles.data()));
-    out.vertices = vertex_coordinates(out.vertex_ids, list);
-    return out;
-  }
-
-  // The result's coordinates: from the host copy, or gathered from the vertex list where it is.
-  std::vector<Point> vertex_coordinates(const std::vector<PointIndex>& ids, const u32* list) {
-    std::vector<Point> out(ids.size());
-    if (!host_) {
-      gather(list, out);
-      return out;
-    }
-    for (std::size_t k = 0; k < ids.size(); ++k)
-      out[k] = (*host_)[ids[k]];
-    return out;
-  }
-
-  // With edges that are not strictly convex: the concave edges and the thin vertices (CountConcave,
-  // CountThin).  None: the others are flat edges inside coplanar facets, and the mesh is the exact hull.
-  // The creases and the vertex flags stay in keep_ and point_rank_, and the concave edges' faces are
-  // stamped in look_ (free at the finish), for repair_faults().
-  u32 defects() {
-    const std::size_t n = n_;
-    keep_.grow(n);
-    point_rank_.grow(n);
-    exec_.fill(keep_.data(), n, u32{0});
-    exec_.fill(point_rank_.data(), n, u32{0});
-    RoundsState* st = state_.data();
-    exec_.fill(&st->defects, 1, u32{0});
-    exec_.fill(look_.data(), faces_, u32{0});
-    exec_.for_each(faces_,
-                   CountConcave<Point>{view(), keep_.data(), point_rank_.data(), &st->defects, look_.data()});
-    exec_.for_each(n, CountThin{keep_.data(), point_rank_.data(), &st->defects});
-    u32 count = 0;
-    exec_.download(&count, &st->defects, 1);
-    return count;
-  }
-
-  // The defects repaired where they are (fault_repair.hpp): the faces within `rings` of one stamped and
-  // read back with the ring around them, the host's plan written, the slots left over filled by the last
-  // faces.  Returns the patches repaired; `checked`: every patch was, and the new faces passed
-  // CheckRepaired (the finish need not count again); the patches' vertices are added to `vertices`.
-  static constexpr std::size_t kMaxRepairFaces = std::size_t{1} << 16;
-  std::size_t repair_faults(u32 rings, bool& checked, std::uint64_t& vertices) {
-    checked = false;
-    // The rings in look_ (defects() stamped the concave edges' faces), the stamped faces listed.
-    exec_.for_each(faces_,
-                   FaultRing{CountThin{keep_.data(), point_rank_.data(), nullptr}, fv_.data(), look_.data()});
-    for (u32 ring = 1; ring <= rings; ++ring)
-      exec_.for_each(faces_, SpreadStamp{fn_.data(), look_.data(), ring});
-    exec_.for_each(faces_, Stamped{look_.data(), flags_.data()});
-    work_list_.grow(faces_);
-    const u32 stamped = exec_.select(flags_.data(), face_rank_.data(), work_list_.data(), faces_);
-    if (stamped > kMaxRepairFaces) return 0;  // flat or cospherical input: the exact finish answers
-    const std::vector<FaceRow> rows = face_rows(work_list_.data(), stamped);
-    RepairPlan plan =
-        plan_repair<Point>(rows, rings, c_, [&](const std::vector<PointIndex>& ids) { return fetch(ids); });
-    vertices += plan.vertices;
-    if (plan.patches == 0) return 0;
-    write_rows(plan.writes);
-    fill_holes(plan.holes, plan.repaired);
-    if (plan.patches_left == 0) {
-      RoundsState* st = state_.data();
-      exec_.fill(&st->defects, 1, u32{0});
-      exec_.for_each(plan.repaired.size(), CheckRepaired<Point>{view(), listed(plan.repaired), &st->defects});
-      u32 left = 0;
-      exec_.download(&left, &st->defects, 1);
-      checked = left == 0;
-    }
-    return plan.patches;
-  }
-
-  // The rows of the `count` faces listed at `ids` where the executor computes (their rings from look_).
-  std::vector<FaceRow> face_rows(const u32* ids, std::size_t count) {
-    std::vector<FaceRow> rows(count);
-    repair_rows_.grow(count);
-    exec_.for_each(count, GatherRows{ids, fv_.data(), fn_.data(), look_.data(), repair_rows_.data()});
-    exec_.download(rows.data(), repair_rows_.data(), count);
-    return rows;
-  }
-  std::vector<FaceRow> face_rows(const std::vector<u32>& ids) { return face_rows(listed(ids), ids.size()); }
-  void write_rows(const std::vector<FaceRow>& rows) {
-    repair_rows_.grow(rows.size());
-    exec_.upload(repair_rows_.data(), rows.data(), rows.size());
-    exec_.for_each(rows.size(), WriteRows{repair_rows_.data(), fv_.data(), fn_.data(), killer_.data()});
-  }
-
-  // The slots a repair left over (`holes`, ascending) filled by the mesh's last faces, their neighbours
-  // relinked, so that the faces are 0..F-1 again; `renumber` (face ids) follows the moves.
-  void fill_holes(const std::vector<u32>& holes, std::vector<u32>& renumber) {
-    const std::size_t live = faces_ - holes.size();
-    std::vector<u32> movers, targets;
-    for (std::size_t f = live; f < faces_; ++f) {
-      if (!std::binary_search(holes.begin(), holes.end(), static_cast<u32>(f)))
-        movers.push_back(static_cast<u32>(f));
-    }
-    for (const u32 h : holes) {
-      if (h < live) targets.push_back(h);
-    }
-    faces_ = live;
-    if (movers.empty()) return;
-    std::unordered_map<u32, u32> to;
-    for (std::size_t k = 0; k < movers.size(); ++k)
-      to.emplace(movers[k], targets[k]);
-    auto moved = [&](u32& f) {
-      const auto it = to.find(f);
-      if (it != to.end()) f = it->second;
-    };
-    std::vector<FaceRow> rows = face_rows(movers);
-    std::vector<u32> around;
-    for (const FaceRow& row : rows) {
-      for (const u32 nb : row.n) {
-        if (!to.count(nb)) around.push_back(nb);
-      }
-    }
-    std::sort(around.begin(), around.end());
-    around.erase(std::unique(around.begin(), around.end()), around.end());
-    for (std::size_t k = 0; k < rows.size(); ++k)
-      rows[k].id = targets[k];
-    for (const FaceRow& row : face_rows(around))
-      rows.push_back(row);
-    for (FaceRow& row : rows) {
-      for (u32& nb : row.n)
-        moved(nb);
-    }
-    write_rows(rows);
-    for (u32& f : renumber)
-      moved(f);
-  }
-
-  // The exact reference hull of the mesh's vertices and the points still outside (see the design).
-  BasicHullMesh<Point> exact_finish(ResidentStats& stats, const std::string& why) {
-    stats.note = why;
-    stats.exact_finish = true;
-    std::vector<PointIndex> candidates = corners();
-    const std::size_t mesh_part = candidates.size();
-    candidates.resize(mesh_part + active_);
-    exec_.download(candidates.data() + mesh_part, index_[0].data(), active_);
-    std::sort(candidates.begin(), candidates.end());
-    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-    return hull_of(candidates, host_ ? std::vector<Point>{} : fetch(candidates));
-  }
-
-  // step()'s log of the rounds: the candidates turned down, and each round's first entry.
-  Buffer<Rejection> rejections_;
-  Buffer<u32> rejection_count_, round_first_entry_;
-  u32 rejection_capacity_ = 0, round_capacity_ = 0;
-
-  Exec& exec_;
-  const std::vector<Point>* host_;  // null: the points are only where the executor computes
-  const Point* points_;
-  std::size_t n_;
-  std::vector<Point> read_back_;  // all_points() without a host copy
-  std::uint64_t points_read_back_ = 0;
-  Buffer<u32> gather_ids_;
-  Buffer<Point> gathered_;
   std::chrono::steady_clock::time_point lap_start_;
   std::uint64_t lap_launches_ = 0, lap_waits_ = 0;  // the executor's counts at the last lap
-  Vec3d c_{};
-  double max_coordinate_ = 0;        // every point's coordinates are at most this in size
-  bool first_pending_ = false;       // the first distribution (kFirst) is the next launch's
-  const u32* first_list_ = nullptr;  // the points it distributes (NotInsideP), or null for all
-  bool unkept_listed_ = false;       // the points the first distribution did not keep are still listed
-  std::size_t marks_in_use_ = 0;     // entries of flags_ and face_rank_ that grow_faces() keeps
-  std::size_t faces_ = 0, capacity_ = 0, entries_used_ = 0, entry_capacity_ = 0, active_ = 0;
-  std::size_t work_capacity_ = 0;  // work faces a round has room for (cands_, work_list_)
+  double max_coordinate_ = 0;                       // every point's coordinates are at most this in size
+  bool first_pending_ = false;                      // the first distribution (kFirst) is the next launch's
+  bool unkept_listed_ = false;  // the points the first distribution did not keep are still listed
   u32 round_ = 0;
-  Buffer<u32> fv_, fn_, fv_out_, fn_out_, killer_, look_, flags_, face_rank_;
-  Buffer<u64> claim_, extreme_;
-  Buffer<RoundsState> state_;  // the counts where the executor computes (see RoundsState)
-  Buffer<Entry> entries_;
-  Buffer<u32> work_list_;        // the rounds' work faces (and the repair's stamped faces)
-  Buffer<FaceRow> repair_rows_;  // the repair's rows, read back and written (repair_faults())
-  Buffer<Candidate> cands_;      // the rounds' candidates, per work item
-  Buffer<u32> index_[2], face_of_[2], keep_, point_rank_;
 };
 
 template <class Point, class Exec>
@@ -896,19 +396,7 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
   if constexpr (Exec::kDeviceLoop) loop = !out && loop_goes_on_here() && active_ <= exec_.tuning.loop_points;
   const bool wait_for_refined = out || !small;
   if (!wait_for_refined) grow_for_iteration(loop ? 2 * faces_ : faces_, true, loop);
-  if (out) {
-    *out = RecordedIteration{};
-    out->faces_before = faces_;
-    // The rounds' rejections (a face may meet the same one in several rounds: all are kept here, in order,
-    // and the records keep the first), with each round's first entry; a log without room for a round
-    // stops it before it begins, and the host grows the log.
-    rejection_capacity_ = static_cast<u32>(std::max<std::size_t>(4096, 2 * faces_));
-    rejections_.grow(rejection_capacity_);
-    rejection_count_.grow(1);
-    exec_.fill(rejection_count_.data(), 1, u32{0});
-    round_capacity_ = 64;
-    round_first_entry_.grow(round_capacity_);
-  }
+  if (out) start_recording(exec_, *out, faces_);
   lap(stats, ResidentPhase::kHost);
   u32 from = first_pending_ ? kFirst : kFurthest;
   std::size_t face_ids = 0;
@@ -922,9 +410,7 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
     }
     RoundsState state{};
     if (out && from <= kRounds && to >= kRounds) {
-      state = run_phases(from, to, loop,
-                         RejectionLog{rejections_.data(), rejection_count_.data(), rejection_capacity_, 0,
-                                      round_first_entry_.data(), out->first_round, round_capacity_});
+      state = run_phases(from, to, loop, rejection_log(out->first_round));
     } else {
       state = run_phases(from, to, loop);
     }
@@ -947,16 +433,7 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
     if (state.loop_exit == kExitOverflow) {
       // Mid-rounds: the host grows what was short, and the rounds go on.
       grow_after_overflow(state, stats);
-      if (out && state.needed_rejections > rejection_capacity_) {
-        const std::size_t room = 2 * std::size_t{state.needed_rejections};
-        if (room > 0xffffffffu) throw DeviceError("resident engine: too many rejections to record");
-        rejections_.grow(room, rejection_capacity_);
-        rejection_capacity_ = static_cast<u32>(room);
-      }
-      if (out && state.needed_rounds > round_capacity_) {
-        round_first_entry_.grow(2 * std::size_t{state.needed_rounds}, round_capacity_);
-        round_capacity_ = 2 * state.needed_rounds;
-      }
+      if (out) grow_log(state);
       from = kRounds;
       continue;
     }
@@ -982,22 +459,7 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
       faces_ = state.faces;
       entries_used_ = state.entries;
       face_ids = faces_;
-      out->fv.resize(3 * faces_);
-      out->killer.resize(faces_);
-      out->entries.resize(entries_used_);
-      exec_.download(out->fv.data(), fv_.data(), out->fv.size());
-      exec_.download(out->killer.data(), killer_.data(), out->killer.size());
-      exec_.download(out->entries.data(), entries_.data(), out->entries.size());
-      out->round_first_entry.resize(round_ + 1 - out->first_round);
-      exec_.download(out->round_first_entry.data(), round_first_entry_.data(), out->round_first_entry.size());
-      u32 rejected = 0;
-      exec_.download(&rejected, rejection_count_.data(), 1);
-      out->rejections.resize(rejected);  // all of them: every round had room
-      exec_.download(out->rejections.data(), rejections_.data(), out->rejections.size());
-      // The log is filled by atomics in any order: by round, then candidate, the same on every executor.
-      std::sort(out->rejections.begin(), out->rejections.end(), [](const Rejection& a, const Rejection& b) {
-        return a.round != b.round ? a.round < b.round : a.id != b.id ? a.id < b.id : a.kind < b.kind;
-      });
+      read_rounds(exec_, view(), faces_, entries_used_, round_, *out);
       from = kRoute;
       continue;
     }

@@ -1,0 +1,102 @@
+// The recording of iterations (ResidentHull::step(), for the viewer's stepping and --trace): the rounds'
+// log of what they turned down, and what an iteration did, read back (RecordedIteration).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#include "cudahull/errors.hpp"
+#include "cudahull/resident/iteration.hpp"
+#include "cudahull/resident/resident_ops.hpp"
+
+namespace cudahull::resident {
+
+// What a recorded iteration did, read back for the records (resident_stepping.hpp makes the IterationRecord
+// of it).  Face ids are the iteration's own: 0 .. faces_before - 1 the mesh it began with, then the
+// refinement's children, then each round's new faces, in order.
+struct RecordedIteration {
+  std::size_t faces_before = 0, refined = 0;
+  u32 first_round = 0;                 // the number of its first round (Rejection::round counts on)
+  std::vector<u32> fv;                 // corners of every face id (killed faces keep theirs)
+  std::vector<u32> killer;             // per face id: kAlive, kDeadSlot, or the entry that killed it
+  std::vector<Entry> entries;          // the decision entries (Fig. 7): refinements first, then the edits
+  std::vector<u32> round_first_entry;  // per round: its first entry
+  std::vector<Rejection> rejections;   // what the rounds turned down, by round and candidate (repeats kept)
+  std::vector<u32> new_id;             // per face id: its id after the compaction (live faces only)
+};
+
+// The rounds' log where the executor computes, and the read-back of a recorded iteration.  Only step()
+// records: a plain run leaves these buffers empty.
+template <class Point, class Exec>
+class IterationRecorder {
+  template <class T>
+  using Buffer = typename Exec::template Buffer<T>;
+
+ protected:
+  // A recorded iteration begins, on a mesh of `faces` faces.
+  void start_recording(Exec& exec, RecordedIteration& out, std::size_t faces) {
+    out = RecordedIteration{};
+    out.faces_before = faces;
+    // The rounds' rejections (a face may meet the same one in several rounds: all are kept here, in order,
+    // and the records keep the first), with each round's first entry; a log without room for a round
+    // stops it before it begins, and the host grows the log.
+    rejection_capacity_ = static_cast<u32>(std::max<std::size_t>(4096, 2 * faces));
+    rejections_.grow(rejection_capacity_);
+    rejection_count_.grow(1);
+    exec.fill(rejection_count_.data(), 1, u32{0});
+    round_capacity_ = 64;
+    round_first_entry_.grow(round_capacity_);
+  }
+
+  // The log the rounds write, their numbers counted from `first_round`.
+  RejectionLog rejection_log(u32 first_round) {
+    return RejectionLog{
+        rejections_.data(), rejection_count_.data(), rejection_capacity_, 0, round_first_entry_.data(),
+        first_round,        round_capacity_};
+  }
+
+  // After a run of rounds that did not fit: the log grows too, where it was short.
+  void grow_log(const RoundsState& state) {
+    if (state.needed_rejections > rejection_capacity_) {
+      const std::size_t room = 2 * std::size_t{state.needed_rejections};
+      if (room > 0xffffffffu) throw DeviceError("resident engine: too many rejections to record");
+      rejections_.grow(room, rejection_capacity_);
+      rejection_capacity_ = static_cast<u32>(room);
+    }
+    if (state.needed_rounds > round_capacity_) {
+      round_first_entry_.grow(2 * std::size_t{state.needed_rounds}, round_capacity_);
+      round_capacity_ = 2 * state.needed_rounds;
+    }
+  }
+
+  // After the rounds, before the routing: the iteration's `faces` faces and `entries` entries (in `m`) and
+  // the log of its rounds up to `last_round`, read back into `out`.
+  void read_rounds(Exec& exec, const MeshView<Point>& m, std::size_t faces, std::size_t entries,
+                   u32 last_round, RecordedIteration& out) {
+    out.fv.resize(3 * faces);
+    out.killer.resize(faces);
+    out.entries.resize(entries);
+    exec.download(out.fv.data(), m.fv, out.fv.size());
+    exec.download(out.killer.data(), m.killer, out.killer.size());
+    exec.download(out.entries.data(), m.entries, out.entries.size());
+    out.round_first_entry.resize(last_round + 1 - out.first_round);
+    exec.download(out.round_first_entry.data(), round_first_entry_.data(), out.round_first_entry.size());
+    u32 rejected = 0;
+    exec.download(&rejected, rejection_count_.data(), 1);
+    out.rejections.resize(rejected);  // all of them: every round had room
+    exec.download(out.rejections.data(), rejections_.data(), out.rejections.size());
+    // The log is filled by atomics in any order: by round, then candidate, the same on every executor.
+    std::sort(out.rejections.begin(), out.rejections.end(), [](const Rejection& a, const Rejection& b) {
+      return a.round != b.round ? a.round < b.round : a.id != b.id ? a.id < b.id : a.kind < b.kind;
+    });
+  }
+
+ private:
+  // step()'s log of the rounds: the candidates turned down, and each round's first entry.
+  Buffer<Rejection> rejections_;
+  Buffer<u32> rejection_count_, round_first_entry_;
+  u32 rejection_capacity_ = 0, round_capacity_ = 0;
+};
+
+}  // namespace cudahull::resident
