@@ -130,6 +130,11 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
       [&] { radix_sort_by_key(keyed); }, 1024);
   laps.lap("joining and sort");
   Facets facets;
+  // Mesh triangle t's neighbours (position j's, in positions) as mesh triangles, into facets.across.
+  auto across_in_mesh = [&](std::uint32_t t, std::uint32_t j) {
+    for (int k = 0; k < 3; ++k)
+      facets.across[3 * t + k] = across[3 * j + k] == kNone ? kNone : visit.triangles[across[3 * j + k]];
+  };
   if (std::none_of(joining.begin(), joining.end(), [](std::uint8_t bits) { return bits != 0; })) {
     // No triangle joins another (a ball's hull): every seed is a facet alone, numbered in the seeds' order,
     // placed on all cores, where the grouping below would take them one by one.
@@ -143,8 +148,7 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
         facets.facet_of[t] = static_cast<std::uint32_t>(id);
         facets.seeds[id] = t;
         facets.planes[id] = {plane[j][0], plane[j][1], plane[j][2], -alone_top[j]};
-        for (int k = 0; k < 3; ++k)
-          facets.across[3 * t + k] = across[3 * j + k] == kNone ? kNone : visit.triangles[across[3 * j + k]];
+        across_in_mesh(t, j);
       }
     });
     laps.lap("alone");
@@ -199,8 +203,7 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
     for (std::size_t t = begin; t < end; ++t) {
       const std::uint32_t j = jrank[t];
       facets.facet_of[t] = facet_of[j];
-      for (int k = 0; k < 3; ++k)
-        facets.across[3 * t + k] = across[3 * j + k] == kNone ? kNone : visit.triangles[across[3 * j + k]];
+      across_in_mesh(t, j);
     }
   });
   facets.seeds.reserve(seeds.size());
