@@ -325,8 +325,9 @@ void measure_box(const std::vector<Point>& vertices, const std::vector<Triangle>
 template <class Point>
 ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend,
                            const ConvexHullOptions& options) {
-  // The merge's passes follow one another closely; its first would otherwise wait for every worker to wake
-  // (after a device's hull they have slept for milliseconds).
+  // The merge's passes follow one another closely: woken now, the workers share its first passes, which
+  // otherwise run on the caller alone while they wake (after a device's hull they have slept for
+  // milliseconds).
   wake_workers(std::chrono::microseconds(1000));
   BasicHullMesh<Point> local = mesh;
   for (std::size_t k = 0; k < local.vertex_ids.size(); ++k)
