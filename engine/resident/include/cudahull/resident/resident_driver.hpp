@@ -46,12 +46,11 @@
 namespace cudahull::resident {
 
 template <class Point, class Exec>
-class ResidentHull : private IterationRecorder<Point, Exec>, private ResidentFinish<Point, Exec> {
-  // Its state and buffers (resident_buffers.hpp), its finish (resident_finish.hpp), and its recording
-  // (resident_recording.hpp).  The recorder comes first, so that its buffers are given back last.
+class ResidentHull : private ResidentFinish<Point, Exec> {
+  // Its state and buffers (resident_buffers.hpp) and its finish (resident_finish.hpp); the stepper's
+  // recorder (resident_recording.hpp) records a step.
   using Buffers = ResidentBuffers<Point, Exec>;
   using Finish = ResidentFinish<Point, Exec>;
-  using Recorder = IterationRecorder<Point, Exec>;
   using Buffers::active_, Buffers::all_points, Buffers::c_, Buffers::capacity_, Buffers::entries_used_,
       Buffers::entry_capacity_, Buffers::exec_, Buffers::extreme_, Buffers::face_of_, Buffers::face_rank_,
       Buffers::faces_, Buffers::fetch, Buffers::first_list_, Buffers::first_mesh, Buffers::flags_,
@@ -62,7 +61,6 @@ class ResidentHull : private IterationRecorder<Point, Exec>, private ResidentFin
       Buffers::release_rounds, Buffers::shrink_points, Buffers::state_, Buffers::swap_spares, Buffers::view,
       Buffers::work_capacity_;
   using Finish::exact_finish, Finish::finish;
-  using Recorder::grow_log, Recorder::read_rounds, Recorder::rejection_log, Recorder::start_recording;
 
  public:
   // `count` points live at `points`, where the executor computes (the host vector itself for HostExec, a
@@ -81,7 +79,8 @@ class ResidentHull : private IterationRecorder<Point, Exec>, private ResidentFin
 
   // Stepping with records (resident_stepping.hpp: the viewer, --trace, --table).  The same iterations as
   // run(), one per step(), the rounds stepped by the host (the mesh is the fused rounds' own, which the tests
-  // check edit for edit), and what each did read back (RecordedIteration): O(faces) bytes a step, asked for.
+  // check edit for edit), and what each did read back by `recorder` (RecordedIteration): O(faces) bytes a
+  // step, asked for.
   // begin(): P, the first mesh and the first distribution; false when that is already the answer (no points,
   // lower-dimensional input), then in `done`.
   bool begin(ResidentStats& stats, BasicHullMesh<Point>& done) {
@@ -91,7 +90,9 @@ class ResidentHull : private IterationRecorder<Point, Exec>, private ResidentFin
     return false;
   }
   // One iteration, recorded; false when no face could refine (a stall: end(stats, true) finishes exactly).
-  bool step(ResidentStats& stats, RecordedIteration& out) { return iterate(stats, &out); }
+  bool step(ResidentStats& stats, IterationRecorder<Point, Exec>& recorder) {
+    return iterate(stats, recorder);
+  }
   // After the last step: the exact check and the result (the exact finish after a stall).
   BasicHullMesh<Point> end(ResidentStats& stats, bool stalled) {
     lap(stats, ResidentPhase::kHost);
@@ -152,7 +153,8 @@ class ResidentHull : private IterationRecorder<Point, Exec>, private ResidentFin
     }
     bool stalled = false;
     while (active_ > 0 && !stalled) {
-      if (!iterate(stats)) {
+      Unrecorded plain;
+      if (!iterate(stats, plain)) {
         if (active_ == 0) break;  // no point was left outside (only after setup() left them uncompacted)
         stalled = true;
       }
@@ -287,9 +289,11 @@ class ResidentHull : private IterationRecorder<Point, Exec>, private ResidentFin
   std::uint64_t routing_bytes(std::size_t kept) const { return kept * (sizeof(Point) + 4 * sizeof(u32)); }
 
   // One iteration (iteration.hpp), or on a device loop as many as it can run, the host reading the state
-  // after each launch; false when no face could refine.  With `out`, every candidate the rounds turn down
-  // is logged and what the iteration did is read back into it.
-  bool iterate(ResidentStats& stats, RecordedIteration* out = nullptr);
+  // after each launch; false when no face could refine.  `recording` is Unrecorded (run()) or the stepper's
+  // IterationRecorder (step()): then every candidate the rounds turn down is logged and what the iteration
+  // did is read back.
+  template <class Recording>
+  bool iterate(ResidentStats& stats, Recording& recording);
 
   // A small mesh is sized for every face refining, so that the host need not wait for the refined count
   // between the marks and the split; a larger one waits for it and stays tight in memory.
@@ -386,17 +390,20 @@ class ResidentHull : private IterationRecorder<Point, Exec>, private ResidentFin
 };
 
 template <class Point, class Exec>
-bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration* out) {
+template <class Recording>
+bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, Recording& recording) {
   // Few points left: the device loop runs whole iterations in one launch until they are done.
   // A small mesh is sized as if every face refined: its launches need no wait for the refined count, and
   // with few points left a device loop (one block) runs its iterations.  A large one is sized by the
-  // count, and waits for it.
+  // count, and waits for it.  A recorded iteration waits for it too, and stops after the rounds to read them.
+  constexpr bool records = Recording::kRecords;
   const bool small = faces_ <= kSpeculateFaces;
   bool loop = false;
-  if constexpr (Exec::kDeviceLoop) loop = !out && loop_goes_on_here() && active_ <= exec_.tuning.loop_points;
-  const bool wait_for_refined = out || !small;
+  if constexpr (Exec::kDeviceLoop)
+    loop = !records && loop_goes_on_here() && active_ <= exec_.tuning.loop_points;
+  const bool wait_for_refined = records || !small;
   if (!wait_for_refined) grow_for_iteration(loop ? 2 * faces_ : faces_, true, loop);
-  if (out) start_recording(exec_, *out, faces_);
+  recording.begin(exec_, faces_);
   lap(stats, ResidentPhase::kHost);
   u32 from = first_pending_ ? kFirst : kFurthest;
   std::size_t face_ids = 0;
@@ -405,15 +412,10 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
     u32 to = kCompact;
     if (wait_for_refined && from <= kFurthest) {
       to = kFurthest;
-    } else if (out && from <= kRounds) {
+    } else if (records && from <= kRounds) {
       to = kRounds;
     }
-    RoundsState state{};
-    if (out && from <= kRounds && to >= kRounds) {
-      state = run_phases(from, to, loop, rejection_log(out->first_round));
-    } else {
-      state = run_phases(from, to, loop);
-    }
+    const RoundsState state = run_phases(from, to, loop, recording.log());
     const ResidentPhase phase = to == kFurthest ? ResidentPhase::kRefine
                                 : to == kRounds ? ResidentPhase::kRounds
                                                 : ResidentPhase::kRoute;
@@ -433,17 +435,14 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
     if (state.loop_exit == kExitOverflow) {
       // Mid-rounds: the host grows what was short, and the rounds go on.
       grow_after_overflow(state, stats);
-      if (out) grow_log(state);
+      recording.grow_log(state);
       from = kRounds;
       continue;
     }
     if (state.loop_exit == kExitRoom || (to == kFurthest && state.loop_exit == kExitDone && active_ > 0)) {
       // The marks are made and the refined count known: room for the split and the rounds.
       faces_ = state.live_faces;
-      if (out) {
-        out->refined = state.refined;
-        out->first_round = round_ + 1;
-      }
+      recording.refined(state.refined, round_ + 1);
       // A device loop whose mesh grew past its limit hands the iteration to the grid's launches.
       loop = loop && loop_goes_on_here();
       if (loop) {
@@ -459,7 +458,7 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
       faces_ = state.faces;
       entries_used_ = state.entries;
       face_ids = faces_;
-      read_rounds(exec_, view(), faces_, entries_used_, round_, *out);
+      recording.read_rounds(exec_, view(), faces_, entries_used_, round_);
       from = kRoute;
       continue;
     }
@@ -467,10 +466,7 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, RecordedIteration*
     shrink_points();
     break;
   }
-  if (out) {
-    out->new_id.resize(face_ids);
-    exec_.download(out->new_id.data(), face_rank_.data(), face_ids);
-  }
+  recording.end(exec_, face_rank_.data(), face_ids);
   return true;
 }
 

@@ -1,5 +1,7 @@
 // The recording of iterations (ResidentHull::step(), for the viewer's stepping and --trace): the rounds'
-// log of what they turned down, and what an iteration did, read back (RecordedIteration).
+// log of what they turned down, and what an iteration did, read back (RecordedIteration).  The iteration
+// calls its recording's hooks (ResidentHull::iterate()): a plain run's are Unrecorded's and empty, so that
+// the loop is written once and has no branch on whether it records.
 #pragma once
 
 #include <algorithm>
@@ -26,16 +28,37 @@ struct RecordedIteration {
   std::vector<u32> new_id;             // per face id: its id after the compaction (live faces only)
 };
 
-// The rounds' log where the executor computes, and the read-back of a recorded iteration.  Only step()
-// records: a plain run leaves these buffers empty.
+// A plain run's iteration (ResidentHull::run()): nothing is recorded, and every hook is empty.
+struct Unrecorded {
+  static constexpr bool kRecords = false;
+  template <class Exec>
+  void begin(Exec&, std::size_t) {}
+  NoLog log() const { return {}; }
+  void grow_log(const RoundsState&) {}
+  void refined(std::size_t, u32) {}
+  template <class Exec, class View>
+  void read_rounds(Exec&, const View&, std::size_t, std::size_t, u32) {}
+  template <class Exec>
+  void end(Exec&, const u32*, std::size_t) {}
+};
+
+// A recorded iteration (ResidentHull::step(), which the stepper calls with its recorder): the rounds' log
+// where the executor computes, and what the iteration did read back into `out`.  The hooks are
+// Unrecorded's, in the order ResidentHull::iterate() calls them.
 template <class Point, class Exec>
 class IterationRecorder {
   template <class T>
   using Buffer = typename Exec::template Buffer<T>;
 
- protected:
+ public:
+  static constexpr bool kRecords =
+      true;  // the iteration waits for the refined count and stops after the rounds
+
+  explicit IterationRecorder(RecordedIteration& out) : out_(&out) {}
+
   // A recorded iteration begins, on a mesh of `faces` faces.
-  void start_recording(Exec& exec, RecordedIteration& out, std::size_t faces) {
+  void begin(Exec& exec, std::size_t faces) {
+    RecordedIteration& out = *out_;
     out = RecordedIteration{};
     out.faces_before = faces;
     // The rounds' rejections (a face may meet the same one in several rounds: all are kept here, in order,
@@ -49,11 +72,10 @@ class IterationRecorder {
     round_first_entry_.grow(round_capacity_);
   }
 
-  // The log the rounds write, their numbers counted from `first_round`.
-  RejectionLog rejection_log(u32 first_round) {
-    return RejectionLog{
-        rejections_.data(), rejection_count_.data(), rejection_capacity_, 0, round_first_entry_.data(),
-        first_round,        round_capacity_};
+  // The log the rounds write, their numbers counted from the iteration's first round.
+  RejectionLog log() {
+    return RejectionLog{rejections_.data(),        rejection_count_.data(), rejection_capacity_, 0,
+                        round_first_entry_.data(), out_->first_round,       round_capacity_};
   }
 
   // After a run of rounds that did not fit: the log grows too, where it was short.
@@ -70,10 +92,17 @@ class IterationRecorder {
     }
   }
 
+  // The marks are made: `refined` faces refine, and the rounds are numbered from `first_round`.
+  void refined(std::size_t refined, u32 first_round) {
+    out_->refined = refined;
+    out_->first_round = first_round;
+  }
+
   // After the rounds, before the routing: the iteration's `faces` faces and `entries` entries (in `m`) and
-  // the log of its rounds up to `last_round`, read back into `out`.
+  // the log of its rounds up to `last_round`, read back.
   void read_rounds(Exec& exec, const MeshView<Point>& m, std::size_t faces, std::size_t entries,
-                   u32 last_round, RecordedIteration& out) {
+                   u32 last_round) {
+    RecordedIteration& out = *out_;
     out.fv.resize(3 * faces);
     out.killer.resize(faces);
     out.entries.resize(entries);
@@ -92,7 +121,14 @@ class IterationRecorder {
     });
   }
 
+  // After the compaction: each of the iteration's `face_ids` face ids' id after it (`face_rank`).
+  void end(Exec& exec, const u32* face_rank, std::size_t face_ids) {
+    out_->new_id.resize(face_ids);
+    exec.download(out_->new_id.data(), face_rank, face_ids);
+  }
+
  private:
+  RecordedIteration* out_;
   // step()'s log of the rounds: the candidates turned down, and each round's first entry.
   Buffer<Rejection> rejections_;
   Buffer<u32> rejection_count_, round_first_entry_;

@@ -189,7 +189,7 @@ class ResidentStepper : public SteppingEngine {
     r.external_before = hull_->active_points();
     refinement_.clear();
     decisions_.clear();
-    if (!hull_->step(stats_, last_)) {
+    if (!hull_->step(stats_, recorder_)) {
       // A stall: no face could refine, the mesh is as it was; the exact finish answers.
       r.faces_after = r.faces_before;
       r.external_after = r.external_before;
@@ -426,6 +426,7 @@ class ResidentStepper : public SteppingEngine {
   BasicHullMesh<Point> result_;
   IterationRecord record_;
   RecordedIteration last_;
+  IterationRecorder<Point, Exec> recorder_{last_};  // step()'s log and read-back, into last_
   std::vector<FaceExtreme> extremes_;
   std::vector<DecisionEntry> decisions_;
   std::vector<RefinementEntry> refinement_;
