@@ -1,8 +1,10 @@
 // What `hull` and `bench` share: the request, the tuning, the plan and the stats' JSON (command_support.hpp).
 #include "command_support.hpp"
 
+#include <chrono>
 #include <cstdlib>
 
+#include "cudahull/parallel.hpp"
 #include "cudahull/point_io.hpp"
 
 namespace cudahull::cli {
@@ -31,6 +33,11 @@ Tuning tuning_from_environment() {
   read("CUDAHULL_BATCH_WARP_POINTS", t.batch.warp_points);
   read("CUDAHULL_BATCHED_SWAPS_FROM", t.batched_swaps_from);
   return t;
+}
+
+void pool_settings_from_environment() {
+  if (const char* text = std::getenv("CUDAHULL_WORKER_WATCH_US"))
+    set_worker_watch(std::chrono::microseconds(std::strtoll(text, nullptr, 10)));
 }
 
 HullPlan plan_with_tuning(const ConvexHullOptions& request, const HullInput& input, const Tuning& tuning) {

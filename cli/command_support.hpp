@@ -34,6 +34,8 @@ struct Tuning {
 };
 
 Tuning tuning_from_environment();
+// The worker pool's watch (set_worker_watch()) from CUDAHULL_WORKER_WATCH_US, where it is set.
+void pool_settings_from_environment();
 
 // plan_hull()'s plan for the request, with the resident engine's thresholds from the environment.
 HullPlan plan_with_tuning(const ConvexHullOptions& request, const HullInput& input, const Tuning& tuning);

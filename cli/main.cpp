@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "command_support.hpp"
 #include "commands.hpp"
 #include "cudahull/convex_hull.hpp"
 #include "cudahull/errors.hpp"
@@ -48,6 +49,7 @@ int fail(int code, const std::string& message) {
 int main(int argc, char** argv) {
   using namespace cudahull;
   cli::use_huge_pages(argv);
+  cli::pool_settings_from_environment();
   CLI::App app{
       "cudahull: exact 3D convex hulls with the CudaHull algorithm (Stein, Geva, El-Sana 2012).\n"
       "Points are read and computed as float32 or double (--precision); the hull is exact for those values."};

@@ -10,7 +10,6 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
-#include <cstdlib>
 #include <exception>
 #include <memory>
 #include <mutex>
@@ -28,14 +27,11 @@ namespace {
 
 thread_local bool on_pool_worker = false;
 
-// How long a worker watches for the next job (and the caller for the last worker) before sleeping; the
-// environment variable CUDAHULL_WORKER_WATCH_US overrides it (0: sleep at once), for A/B runs.
+// How long a worker watches for the next job (and the caller for the last worker) before sleeping
+// (set_worker_watch(), parallel.hpp).
+std::atomic<std::int64_t> watch_us{200};
 std::chrono::microseconds watch_time() {
-  static const std::chrono::microseconds watch = [] {
-    const char* text = std::getenv("CUDAHULL_WORKER_WATCH_US");
-    return std::chrono::microseconds(text != nullptr ? std::strtol(text, nullptr, 10) : 200);
-  }();
-  return watch;
+  return std::chrono::microseconds(watch_us.load(std::memory_order_relaxed));
 }
 
 inline void cpu_pause() {
@@ -222,6 +218,10 @@ void wake_workers(std::chrono::microseconds watch) {
   // Not from a worker, nor under a SerialScope: those run their passes on their own thread.
   if (hardware_workers() <= 1 || detail::on_pool_worker || detail::serial_scopes > 0) return;
   detail::worker_pool().wake(std::chrono::steady_clock::now() + watch);
+}
+
+void set_worker_watch(std::chrono::microseconds watch) {
+  detail::watch_us.store(std::max<std::int64_t>(0, watch.count()), std::memory_order_relaxed);
 }
 
 }  // namespace cudahull

@@ -52,6 +52,11 @@ class SerialScope {
 // once; the caller pays one wake-up, the first worker wakes the rest.
 void wake_workers(std::chrono::microseconds watch);
 
+// How long an idle worker watches for the next job (and a caller for the last worker) before it sleeps;
+// zero: at once.  The default, 200 us, and the A/B that chose it are in docs/benchmarks.md; the command
+// line sets it from CUDAHULL_WORKER_WATCH_US, for A/B runs.  Takes effect at the workers' next watch.
+void set_worker_watch(std::chrono::microseconds watch);
+
 namespace detail {
 using ChunkCall = void (*)(void* body, std::size_t begin, std::size_t end, unsigned worker);
 // Runs call(body, begin, end, w) for w in [0, workers) on the process's persistent worker threads (the
@@ -108,11 +113,7 @@ void parallel_chunks(std::size_t n, unsigned workers, Body&& body, std::size_t g
     if (error) std::rethrow_exception(error);
 }
 
-// parallel_chunks() with its range dealt out in blocks of `block` items to whichever thread is free, for
-// passes whose items are independent: on a shared machine a worker the scheduler holds back takes fewer
-// blocks, where an even split left the caller waiting for that worker's half.  `block` is the largest
-// block: a pass of few items gets at least four blocks a worker (of kLeastBlock items or more), so that a
-// hull of some thousand vertices keeps every core of a large machine busy, not as many as its blocks.
+// The least block parallel_blocks() deals out.
 constexpr std::size_t kLeastBlock = 48;
 
 // parallel_blocks() with `side()` run once, by the first thread to start, while the others take the blocks:
@@ -135,7 +136,11 @@ void parallel_blocks_beside(std::size_t n, unsigned workers, Body&& body, Side&&
       1);
 }
 
-// parallel_blocks() beside nothing.
+// parallel_chunks() with its range dealt out in blocks of `block` items to whichever thread is free, for
+// passes whose items are independent: on a shared machine a worker the scheduler holds back takes fewer
+// blocks, where an even split left the caller waiting for that worker's half.  `block` is the largest
+// block: a pass of few items gets at least four blocks a worker (of kLeastBlock items or more), so that a
+// hull of some thousand vertices keeps every core of a large machine busy, not as many as its blocks.
 template <class Body>
 void parallel_blocks(std::size_t n, unsigned workers, Body&& body, std::size_t block = 4096) {
   parallel_blocks_beside(

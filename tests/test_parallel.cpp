@@ -1,0 +1,127 @@
+// The worker pool (parallel.hpp): every index of a pass runs exactly once for any worker count, whether the
+// pool, the caller or plain threads take its chunks; a chunk's exception reaches its caller and leaves the
+// pool usable; two callers at once, wakes and watch settings change no result.  Oracle: a count per index.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstddef>
+#include <memory>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "cudahull/parallel.hpp"
+
+namespace cudahull {
+namespace {
+
+// How often each index of [0, n) ran, after parallel_chunks() with `workers` and `grain`.
+std::vector<int> chunk_hits(std::size_t n, unsigned workers, std::size_t grain) {
+  std::unique_ptr<std::atomic<int>[]> hits(new std::atomic<int>[n]());
+  std::atomic<bool> worker_in_range{true};
+  parallel_chunks(
+      n, workers,
+      [&](std::size_t begin, std::size_t end, unsigned worker) {
+        if (worker >= std::max(1u, workers) || begin > end || end > n) worker_in_range = false;
+        for (std::size_t i = begin; i < end; ++i)
+          hits[i].fetch_add(1, std::memory_order_relaxed);
+      },
+      grain);
+  EXPECT_TRUE(worker_in_range.load());
+  std::vector<int> out(n);
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = hits[i].load();
+  return out;
+}
+
+std::vector<int> block_hits(std::size_t n, unsigned workers, std::size_t block) {
+  std::unique_ptr<std::atomic<int>[]> hits(new std::atomic<int>[n]());
+  std::atomic<int> sides{0};
+  parallel_blocks_beside(
+      n, workers,
+      [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t i = begin; i < end; ++i)
+          hits[i].fetch_add(1, std::memory_order_relaxed);
+      },
+      [&] { sides.fetch_add(1); }, block);
+  EXPECT_EQ(sides.load(), 1) << "the side task runs once";
+  std::vector<int> out(n);
+  for (std::size_t i = 0; i < n; ++i)
+    out[i] = hits[i].load();
+  return out;
+}
+
+TEST(WorkerPool, EveryIndexRunsOnceForAnyWorkerCount) {
+  for (unsigned workers : {0u, 1u, 2u, 3u, 7u, 16u, 64u})  // 64: more than the pool has, plain threads
+    for (std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{5}, std::size_t{4095},
+                          std::size_t{4097}, std::size_t{100003}})
+      for (std::size_t grain : {std::size_t{1}, std::size_t{64}, std::size_t{4096}}) {
+        const std::vector<int> hits = chunk_hits(n, workers, grain);
+        for (std::size_t i = 0; i < n; ++i)
+          ASSERT_EQ(hits[i], 1) << "index " << i << " of " << n << ", " << workers << " workers, grain "
+                                << grain;
+      }
+}
+
+TEST(WorkerPool, EveryBlockRunsOnceBesideTheSideTask) {
+  for (unsigned workers : {1u, 2u, 5u, 16u})
+    for (std::size_t n :
+         {std::size_t{0}, std::size_t{1}, std::size_t{47}, std::size_t{1000}, std::size_t{65537}})
+      for (std::size_t block : {std::size_t{48}, std::size_t{4096}}) {
+        const std::vector<int> hits = block_hits(n, workers, block);
+        for (std::size_t i = 0; i < n; ++i)
+          ASSERT_EQ(hits[i], 1) << "index " << i << " of " << n << ", " << workers << " workers";
+      }
+}
+
+TEST(WorkerPool, AnExceptionReachesTheCallerAndThePoolGoesOn) {
+  for (unsigned workers : {2u, 3u, 16u, 64u}) {
+    for (std::size_t thrower : {std::size_t{0}, std::size_t{50000}, std::size_t{99999}}) {
+      EXPECT_THROW(parallel_chunks(
+                       100000, workers,
+                       [&](std::size_t begin, std::size_t end, unsigned) {
+                         if (begin <= thrower && thrower < end) throw std::runtime_error("chunk failed");
+                       },
+                       1),
+                   std::runtime_error)
+          << workers << " workers, thrown at " << thrower;
+    }
+    const std::vector<int> hits = chunk_hits(100000, workers, 1);
+    for (int h : hits)
+      ASSERT_EQ(h, 1);
+  }
+}
+
+TEST(WorkerPool, TwoCallersWakesAndWatchSettingsKeepTheResults) {
+  // No watch (workers sleep at once), a long one, and the default; woken ahead or not; two callers at once
+  // (one takes the pool, the other plain threads or its own thread).
+  for (long watch_us : {0L, 5000L, 200L}) {
+    set_worker_watch(std::chrono::microseconds(watch_us));
+    std::atomic<int> wrong{0};
+    auto caller = [&](unsigned workers, bool wake) {
+      for (int job = 0; job < 60; ++job) {
+        if (wake) wake_workers(std::chrono::microseconds(300));
+        const std::size_t n = 1000 + 997 * static_cast<std::size_t>(job);
+        std::atomic<std::size_t> sum{0};
+        parallel_chunks(
+            n, workers,
+            [&](std::size_t begin, std::size_t end, unsigned) {
+              std::size_t s = 0;
+              for (std::size_t i = begin; i < end; ++i)
+                s += i;
+              sum.fetch_add(s, std::memory_order_relaxed);
+            },
+            16);
+        if (sum.load() != n * (n - 1) / 2) wrong.fetch_add(1);
+      }
+    };
+    std::thread other(caller, 3u, false);
+    caller(hardware_workers() + 1, true);
+    other.join();
+    EXPECT_EQ(wrong.load(), 0) << "watch " << watch_us << " us";
+  }
+}
+
+}  // namespace
+}  // namespace cudahull
