@@ -11,7 +11,7 @@ import numpy.typing as npt
 from . import _cudahull
 from ._arrays import DeviceKind, checked_interface, cuda_protocol, host_integers, library_of, numeric, require_device
 from ._errors import value_text
-from ._hull import check_engine
+from ._hull_call import check_engine
 
 __all__ = ["BatchHulls", "convex_hull_batch", "release_device_memory"]
 

@@ -1,176 +1,23 @@
-"""One cloud's hull: ``convex_hull()`` (a dict, with the lower-dimensional answer for flat input) and
-``ConvexHull`` (scipy's drop-in: its arguments, attributes, methods and errors)."""
+"""One cloud's hull as scipy's drop-in: ``ConvexHull`` (its arguments, attributes, methods and errors).
+``convex_hull()``, the hull as a dict, is _hull_call's; what qhull_options add to the attributes is
+_option_results'."""
 
 from __future__ import annotations
 
 import math
-from typing import Any, Sequence, Union
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
 from . import _cudahull, _qhull
 from . import qhull_options as _qhull_options
-from ._arrays import (DeviceKind, as_points, checked_interface, cuda_protocol, device_shape, host_array,
-                      index_array, numeric, require_device)
-from ._errors import InputError, degenerate_error, number_text, qhull_error, too_few_points_error, value_text
+from ._arrays import DeviceKind, as_points, cuda_protocol, device_shape, host_array, index_array, numeric
+from ._errors import InputError, degenerate_error, number_text, qhull_error, too_few_points_error
+from ._hull_call import Tolerance, _hull_dict, check_engine, convex_hull
+from ._option_results import _good_facets, _joggled, _scaled_measures, _with_other_points
 
 __all__ = ["ConvexHull", "convex_hull"]
-
-Tolerance = Union[None, str, float]
-_Merge = tuple[str, float, float]
-
-_RESULT_ARRAYS = ("vertices", "simplices", "neighbors", "equations", "polygon", "coplanar")
-
-
-def check_engine(engine: str, on_device: bool) -> str:
-    # "auto" stays "auto": the module's plan_hull() (hull_plan.hpp) resolves it, as for the command line's
-    # --engine auto: the resident engine where it runs on a GPU (only it reads GPU memory), the stepping
-    # engine on the CPU, whose worker threads make it the faster one there.
-    if engine not in ("auto", "stepping", "resident"):
-        raise ValueError(f"engine must be auto, stepping or resident, not '{engine}'")
-    if on_device and engine == "stepping":
-        raise ValueError("the stepping engine edits the mesh on the host and takes host points: points in GPU "
-                         "memory take engine 'resident' (or 'auto')")
-    return engine
-
-
-def _device_hull(points: Any, protocol: str, backend: str, precision: str, merge: _Merge) -> dict[str, Any]:
-    """The hull dict of (n, 3) or (n, 2) points in CUDA memory: 3-D read in place by the resident engine,
-    2-D filtered on the device with only the possible corners read back."""
-    if backend == "cpu":
-        raise ValueError("points in GPU memory need backend 'auto' or 'cuda', not 'cpu' (for the CPU backend, "
-                         "pass them as NumPy: cupy.asnumpy(x), x.cpu().numpy())")
-    shape = device_shape(points, protocol)
-    if protocol == "cuda_array_interface":
-        pointer, is_double = checked_interface(points, shape)  # checked before any data is read
-        require_device()
-        return _cudahull.convex_hull_cuda_pointer(pointer, shape[0], shape[1], is_double, backend, precision,
-                                                  *merge)
-    require_device()
-    if getattr(points, "requires_grad", False):
-        points = points.detach()  # PyTorch exports no tensor that requires grad; the hull reads values only
-    return _cudahull.convex_hull_cuda(points, backend, precision, *merge)
-
-
-def _merge_arguments(tolerance: object, low: Any = None, high: Any = None) -> _Merge:
-    """The module's (merge, tolerance, angle_cosine) for a ``tolerance``: None (exact), "qhull", a float
-    (relative to the bounding box's largest side), or ("options", distance, cosine) from qhull_options' C
-    and A: an absolute distance (None: Qhull's), which needs the bounding box (``low``, ``high``) to become
-    relative, and An's cosine (None: no angle)."""
-    if tolerance is None:
-        return ("exact", 0.0, 1.0)
-    if isinstance(tolerance, str):
-        if tolerance != "qhull":
-            raise ValueError(f"tolerance must be None, 'qhull' or a number, not '{tolerance}'")
-        return ("qhull", 0.0, 1.0)
-    if isinstance(tolerance, tuple):
-        _, distance, cosine = tolerance
-        cosine = 1.0 if cosine is None else float(cosine)
-        if distance is None:
-            return ("qhull", 0.0, cosine)
-        low, high = np.asarray(low, dtype=np.float64), np.asarray(high, dtype=np.float64)
-        side = float(np.max(high - low)) if low.size else 0.0
-        return ("relative", distance / side if side > 0 else 0.0, cosine)
-    try:
-        value = float(tolerance)  # type: ignore[arg-type]
-    except (TypeError, ValueError):
-        value = math.nan
-    if not math.isfinite(value) or value < 0:
-        raise ValueError(f"tolerance must be None, 'qhull' or a finite number >= 0, not {value_text(tolerance)}")
-    return ("relative", value, 1.0)
-
-
-def _bounds_of(points: Any, tolerance: object, kind: DeviceKind | None = None) -> tuple[Any, Any]:
-    """The bounding box, only where an absolute tolerance needs it (else (None, None))."""
-    if not isinstance(tolerance, tuple) or tolerance[1] is None or points.shape[0] == 0:
-        return None, None
-    if kind is None:
-        return points.min(axis=0), points.max(axis=0)
-    low, high = kind.bounds(points)
-    return kind.to_numpy(low), kind.to_numpy(high)
-
-
-def _hull_dict(points: Any, protocol: str | None, kind: DeviceKind | None, backend: str, precision: str,
-               engine: str, tolerance: object, box_measures: bool = False) -> dict[str, Any]:
-    """The module's hull dict of (n, 2) or (n, 3) points (host points already through as_points): in GPU
-    memory through _device_hull, else the 2-D or 3-D hull on the host's array; ``box_measures``: with
-    Qhull's QbB volume and area of a 3-D host hull ("box_volume", "box_area")."""
-    merge = _merge_arguments(tolerance, *_bounds_of(points, tolerance, kind))
-    if protocol is not None:
-        return _device_hull(points, protocol, backend, precision, merge)
-    if points.shape[1] == 2:
-        return _cudahull.convex_hull_2d(points, backend, precision, *merge)
-    return _cudahull.convex_hull(points, backend, precision, engine, *merge, box_measures)
-
-
-def convex_hull(points: npt.ArrayLike, backend: str = "auto", precision: str = "auto", engine: str = "auto",
-                device_results: bool = False, tolerance: Tolerance = None) -> dict[str, Any]:
-    """The hull of ``points`` as a dict of arrays and numbers, with the lower-dimensional answer for flat input.
-
-    Parameters
-    ----------
-    points : (n, 3) or (n, 2) array_like, an (n, 3) or (n, 2) array in GPU memory, or (n, d >= 4) array_like
-        As for ``ConvexHull``.  Points of 4 or more dimensions are hulled by scipy's Qhull (scipy must be
-        installed): its answer, ``backend`` "qhull", and its QhullError for flat input.
-    backend : {"auto", "cpu", "cuda"}
-        "auto" takes the CUDA backend when a usable GPU is present.  Points in GPU memory need the GPU.
-    precision : {"auto", "float", "double"}
-        "auto" takes the input's own; "float" rounds double input once, "double" widens float input.
-    engine : {"auto", "stepping", "resident"}
-        "auto" is "resident" where the hull runs on a GPU (points in GPU memory, which only it reads in
-        place, or host points with a usable GPU and backend "auto" or "cuda") and "stepping" on the CPU,
-        as the command line's ``--engine auto``.
-    device_results : bool
-        Return the arrays of a CuPy or PyTorch input as CuPy arrays or tensors on its device.
-    tolerance : None, "qhull" or float
-        None: the exact hull.  "qhull": merged as Qhull's default merging does.  A number: merged within
-        that fraction of the bounding box's largest side.
-
-    Returns
-    -------
-    dict
-        ``dimension`` (the hull's affine dimension: below the input's for flat input), ``input_dimension``,
-        ``precision``, ``backend``, ``vertices``, ``simplices``, ``neighbors``, ``equations``, ``polygon``
-        (a flat or 2-D hull's corners in order), ``coplanar``, ``volume``, ``area``, ``tolerance``,
-        ``max_outside`` (as on ``ConvexHull``; indices are uint32 here), ``plan`` (as on ``ConvexHull``), and
-        ``stats``: the resident engine's counters (``host_syncs``, ``bytes_from_device``,
-        ``points_read_back``, ...), None otherwise.
-        2-D points in GPU memory are filtered there: only the points that can be corners come back.
-
-    Raises
-    ------
-    ValueError
-        For NaN or infinite coordinates (``InputError``), bad shapes and bad arguments.
-    DeviceError
-        For ``backend="cuda"``, or points in GPU memory, without a usable GPU.
-
-    Examples
-    --------
-    >>> import numpy as np, cudahull
-    >>> square = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0.5, 0.5, 0]])
-    >>> hull = cudahull.convex_hull(square, backend="cpu")
-    >>> hull["dimension"], hull["polygon"].tolist(), hull["area"]
-    (2, [0, 1, 2, 3], 2.0)
-    """
-    protocol = cuda_protocol(points)
-    engine = check_engine(engine, protocol is not None)
-    if protocol is None:
-        array = host_array(points)
-        if array.ndim == 2 and array.shape[1] >= 4:
-            _qhull.check_request(int(array.shape[1]), tolerance, backend, precision, engine)
-            return _qhull.hull_dict(numeric(array))
-        return _hull_dict(as_points(array, (2, 3)), None, None, backend, precision, engine, tolerance)
-    kind = DeviceKind(points)
-    if device_results:
-        kind.require_known("device_results=True")
-    result = _hull_dict(points, protocol, kind, backend, precision, engine, tolerance)
-    if device_results:
-        for key in _RESULT_ARRAYS:
-            array = result[key]
-            # Indices as int64 on the device: PyTorch has few operations on uint32.
-            result[key] = kind.like_input(array.astype(np.int64) if array.dtype == np.uint32 else array)
-    return result
 
 
 class _Default:
@@ -465,11 +312,11 @@ class ConvexHull:
         host: npt.NDArray[np.float64] | None = (np.ascontiguousarray(self._host(points), dtype=np.float64)
                                                 if other_points or good is not None else None)
         if other_points and host is not None:
-            coplanar = self._with_other_points(host, values, coplanar, result["tolerance"])
+            coplanar = _with_other_points(options, host, values, coplanar, result["tolerance"])
         values["coplanar"] = index_array(coplanar.reshape(-1, 3), npoints)
         values["good"] = None
         if good is not None and host is not None:
-            values["good"] = self._good(host, values, good)
+            values["good"] = _good_facets(options, host, values, good)
         if "box_volume" in result:
             values["volume"], values["area"] = result["box_volume"], result["box_area"]
         elif options is not None and scaled:
@@ -488,42 +335,6 @@ class ConvexHull:
 
     def _host(self, points: Any) -> npt.NDArray[Any]:
         return self._kind.to_numpy(points) if self._kind is not None else np.asarray(points)
-
-    def _good(self, host: npt.NDArray[np.float64], values: dict[str, Any], good: int) -> npt.NDArray[np.bool_]:
-        """QGn: the facets point n sees (strictly above their planes, decided exactly); QG-n: the others."""
-        visible: npt.NDArray[np.bool_] = np.asarray(_cudahull.facets_visible(host, np.ascontiguousarray(values["simplices"], dtype=np.int64),
-                                           host[good].copy()), dtype=bool)
-        assert self._options is not None
-        return np.asarray(visible if self._options.good_visible else ~visible, dtype=bool)
-
-    def _with_other_points(self, host: npt.NDArray[np.float64], values: dict[str, Any],
-                           coplanar: npt.NDArray[np.int64], tolerance: float) -> npt.NDArray[np.int64]:
-        """Qc: also every point that is neither a vertex nor already listed but lies within the tolerance of
-        a facet (within rounding, 8 units in the last place of the largest coordinate, for the exact hull),
-        as scipy's coplanar points; Qi: every other point too (the interior ones).  Each with its nearest
-        facet (the one it is least below) and that facet's nearest vertex.  O(n x facets), on the host."""
-        assert self._options is not None
-        listed = np.zeros(host.shape[0], dtype=bool)
-        listed[values["vertices"]] = True
-        listed[coplanar[:, 0]] = True
-        if self._good_point is not None:
-            listed[self._good_point] = True
-        rest = np.flatnonzero(~listed)
-        within = max(tolerance, 8 * float(np.finfo(np.float64).eps) * float(np.abs(host).max(initial=0.0)))
-        equations, simplices = values["equations"], values["simplices"]
-        rows = [coplanar]
-        for begin in range(0, rest.size, 4096):
-            chunk = rest[begin:begin + 4096]
-            heights = host[chunk] @ equations[:, :-1].T + equations[:, -1]
-            facet = np.argmax(heights, axis=1)
-            if not self._options.interior:
-                near = heights[np.arange(chunk.size), facet] >= -within
-                chunk, facet = chunk[near], facet[near]
-            corners = simplices[facet]
-            distance = np.linalg.norm(host[corners] - host[chunk][:, None, :], axis=2)
-            vertex = corners[np.arange(chunk.size), np.argmin(distance, axis=1)]
-            rows.append(np.column_stack([chunk, facet, vertex]))
-        return np.concatenate(rows).astype(np.int64)
 
     def _commit(self, points: Any, values: dict[str, Any]) -> None:
         self.points = points
@@ -639,34 +450,3 @@ class ConvexHull:
     def __repr__(self) -> str:
         return (f"<cudahull.ConvexHull of {self.npoints} {self.ndim}-D points: {len(self.vertices)} vertices, "
                 f"{self.nsimplex} simplices, backend={self.backend!r}>")
-
-
-def _joggled(points: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
-    """The points moved as Qhull's QJ moves them: each coordinate by a uniform random amount within
-    30,000 times Qhull's distance roundoff (qh_detjoggle), from a fixed seed, so the result repeats."""
-    epsilon = float(np.finfo(np.float64).eps)
-    magnitudes = np.abs(points)
-    largest = float(magnitudes.max(initial=0.0))
-    largest_sum = float(magnitudes.sum(axis=1).max(initial=0.0))
-    roundoff = epsilon * (points.shape[1] * largest_sum * 1.01 + largest)
-    joggle = 30000.0 * max(roundoff, epsilon)
-    return points + np.random.default_rng(1).uniform(-joggle, joggle, size=points.shape)
-
-
-def _scaled_measures(host: npt.NDArray[np.float64], simplices: npt.NDArray[Any],
-                     scaling: tuple[Sequence[float], Sequence[float]], volume: float) -> tuple[float, float]:
-    """The volume and area Qhull reports under QbB / Qbb / Qbk:n / QBk:n: those of the points mapped by
-    x -> x * scale + shift per axis.  The volume is the true one times the map's determinant; the area
-    (perimeter in 2-D) is summed over the simplices in the scaled coordinates."""
-    scale = np.asarray(scaling[0])
-    if host.shape[1] == 2:
-        # Edges of the scaled simplices: the map's shift cancels, so only the hull's edges are scaled.
-        corners = host[simplices]
-        edges = (corners[:, 1:] - corners[:, :1]) * scale
-        area = float(np.sqrt(np.einsum("ij,ij->i", edges[:, 0], edges[:, 0])).sum())
-    else:
-        # The module's sum, which the hull call's QbB shortcut also takes: the same bits either way.
-        area = float(_cudahull.scaled_area(np.ascontiguousarray(host, dtype=np.float64),
-                                           np.ascontiguousarray(simplices, dtype=np.int64),
-                                           [float(v) for v in scale]))
-    return volume * float(np.prod(np.abs(scale))), area

@@ -61,8 +61,8 @@ def test_every_public_name_has_a_numpydoc_docstring():
                 if not method_name.startswith("_"):
                     assert inspect.getdoc(method), f"{name}.{method_name}"
     # No user-facing text cites an issue number.
-    for module in ("__init__", "_arrays", "_batch", "_engine", "_errors", "_hull", "_qhull", "dask",
-                   "qhull_options"):
+    for module in ("__init__", "_arrays", "_batch", "_engine", "_errors", "_hull", "_hull_call", "_option_results",
+                   "_qhull", "dask", "qhull_options"):
         with open(os.path.join(os.path.dirname(cudahull.__file__), module + ".py")) as source:
             assert "issue " not in source.read().lower(), module
 
