@@ -1,178 +1,21 @@
-// Exact predicates (cudahull/predicates.hpp) against an independent exact reference, plus the Qhull
-// reference wrapper (reference/qhull/qhull_reference.hpp).
+// Exact predicates (cudahull/predicates.hpp) against an independent exact reference
+// (support/exact_reference.hpp).
 #include "cudahull/predicates.hpp"
-
-#include <cstring>
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <random>
-#include <set>
-#include <stdexcept>
 #include <thread>
 #include <vector>
 
-#include "cudahull/routing.hpp"
-#include "qhull_reference.hpp"
+#include "support/exact_reference.hpp"
 
 namespace cudahull {
 namespace {
-
-// ---------------------------------------------------------------------------------------------------------
-// Independent reference: every double is m * 2^e with an integer m of at most 53 bits.  Scaling all
-// coordinates of a query by 2^-emin turns them into integers; the determinant is then evaluated in a small
-// sign-magnitude big integer.  Shares nothing with the expansion arithmetic under test.
-class BigInt {
- public:
-  static constexpr int kLimbs = 80;  // 2560 bits: three products of ~ (2^128 / 2^-1074)-range differences
-
-  BigInt() = default;
-  // x * 2^-emin, which must be an integer.
-  static BigInt from_scaled(double x, int emin) {
-    BigInt r;
-    if (x == 0) return r;
-    int e = 0;
-    double m = std::frexp(x, &e);
-    auto mant = static_cast<std::int64_t>(std::ldexp(m, 53));
-    int shift = e - 53 - emin;
-    EXPECT_GE(shift, 0);
-    r.neg_ = mant < 0;
-    std::uint64_t mag = static_cast<std::uint64_t>(mant < 0 ? -mant : mant);
-    int limb = shift / 32, bit = shift % 32;
-    EXPECT_LT(limb + 3, kLimbs);
-    unsigned __int128 v = static_cast<unsigned __int128>(mag) << bit;
-    for (int i = 0; i < 3 && v != 0; ++i) {
-      r.limb_[limb + i] = static_cast<std::uint32_t>(v);
-      v >>= 32;
-    }
-    r.trim(kLimbs);
-    return r;
-  }
-  // Exponent of the lowest set bit of x's 53-bit integer mantissa representation (for the common scale).
-  static int low_exponent(double x) {
-    int e = 0;
-    std::frexp(x, &e);
-    return e - 53;
-  }
-
-  int sign() const { return len_ == 0 ? 0 : (neg_ ? -1 : 1); }
-  BigInt operator-() const {
-    BigInt r = *this;
-    if (r.len_ != 0) r.neg_ = !r.neg_;
-    return r;
-  }
-  friend BigInt operator+(const BigInt& a, const BigInt& b) {
-    if (a.neg_ == b.neg_) {
-      BigInt r = add_mag(a, b);
-      r.neg_ = a.len_ != 0 ? a.neg_ : b.neg_;
-      if (r.len_ == 0) r.neg_ = false;
-      return r;
-    }
-    int c = cmp_mag(a, b);
-    if (c == 0) return BigInt();
-    BigInt r = c > 0 ? sub_mag(a, b) : sub_mag(b, a);
-    r.neg_ = c > 0 ? a.neg_ : b.neg_;
-    return r;
-  }
-  friend BigInt operator-(const BigInt& a, const BigInt& b) { return a + (-b); }
-  friend BigInt operator*(const BigInt& a, const BigInt& b) {
-    BigInt r;
-    if (a.len_ == 0 || b.len_ == 0) return r;
-    EXPECT_LE(a.len_ + b.len_, kLimbs) << "reference big integer too small";
-    for (int i = 0; i < a.len_; ++i) {
-      std::uint64_t carry = 0;
-      for (int j = 0; j < b.len_ && i + j < kLimbs; ++j) {
-        std::uint64_t t = static_cast<std::uint64_t>(a.limb_[i]) * b.limb_[j] + r.limb_[i + j] + carry;
-        r.limb_[i + j] = static_cast<std::uint32_t>(t);
-        carry = t >> 32;
-      }
-      if (i + b.len_ < kLimbs) r.limb_[i + b.len_] = static_cast<std::uint32_t>(carry);
-    }
-    r.neg_ = a.neg_ != b.neg_;
-    r.trim(std::min(kLimbs, a.len_ + b.len_));
-    return r;
-  }
-
- private:
-  void trim(int n) {
-    len_ = n;
-    while (len_ > 0 && limb_[len_ - 1] == 0)
-      --len_;
-  }
-  static int cmp_mag(const BigInt& a, const BigInt& b) {
-    if (a.len_ != b.len_) return a.len_ < b.len_ ? -1 : 1;
-    for (int i = a.len_ - 1; i >= 0; --i) {
-      if (a.limb_[i] != b.limb_[i]) return a.limb_[i] < b.limb_[i] ? -1 : 1;
-    }
-    return 0;
-  }
-  static BigInt add_mag(const BigInt& a, const BigInt& b) {
-    BigInt r;
-    int n = std::max(a.len_, b.len_);
-    std::uint64_t carry = 0;
-    for (int i = 0; i < n; ++i) {
-      std::uint64_t t = static_cast<std::uint64_t>(a.limb_[i]) + b.limb_[i] + carry;
-      r.limb_[i] = static_cast<std::uint32_t>(t);
-      carry = t >> 32;
-    }
-    EXPECT_TRUE(n < kLimbs || carry == 0);
-    if (n < kLimbs) r.limb_[n] = static_cast<std::uint32_t>(carry);
-    r.trim(std::min(n + 1, kLimbs));
-    return r;
-  }
-  static BigInt sub_mag(const BigInt& a, const BigInt& b) {  // |a| > |b|
-    BigInt r;
-    std::int64_t borrow = 0;
-    for (int i = 0; i < a.len_; ++i) {
-      std::int64_t t = static_cast<std::int64_t>(a.limb_[i]) - b.limb_[i] - borrow;
-      borrow = t < 0;
-      r.limb_[i] = static_cast<std::uint32_t>(t + (borrow << 32));
-    }
-    r.trim(a.len_);
-    return r;
-  }
-
-  std::array<std::uint32_t, kLimbs> limb_{};
-  int len_ = 0;
-  bool neg_ = false;
-};
-
-int common_low_exponent(std::initializer_list<double> values) {
-  int emin = std::numeric_limits<int>::max();
-  for (double v : values) {
-    if (v != 0) emin = std::min(emin, BigInt::low_exponent(v));
-  }
-  return emin == std::numeric_limits<int>::max() ? 0 : emin;
-}
-
-int ref_orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
-  int e = common_low_exponent({a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z, d.x, d.y, d.z});
-  auto big = [e](double v) { return BigInt::from_scaled(v, e); };
-  BigInt ax = big(a.x), ay = big(a.y), az = big(a.z);
-  BigInt ux = big(b.x) - ax, uy = big(b.y) - ay, uz = big(b.z) - az;
-  BigInt vx = big(c.x) - ax, vy = big(c.y) - ay, vz = big(c.z) - az;
-  BigInt wx = big(d.x) - ax, wy = big(d.y) - ay, wz = big(d.z) - az;
-  // ((b - a) x (c - a)) . (d - a)
-  BigInt det = (uy * vz - uz * vy) * wx + (uz * vx - ux * vz) * wy + (ux * vy - uy * vx) * wz;
-  return det.sign();
-}
-
-int ref_orient2d(double ax, double ay, double bx, double by, double cx, double cy) {
-  int e = common_low_exponent({ax, ay, bx, by, cx, cy});
-  auto big = [e](double v) { return BigInt::from_scaled(v, e); };
-  BigInt det = (big(bx) - big(ax)) * (big(cy) - big(ay)) - (big(by) - big(ay)) * (big(cx) - big(ax));
-  return det.sign();
-}
-
-bool ref_collinear3d(const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-  return ref_orient2d(a.x, a.y, b.x, b.y, c.x, c.y) == 0 && ref_orient2d(a.y, a.z, b.y, b.z, c.y, c.z) == 0 &&
-         ref_orient2d(a.z, a.x, b.z, b.x, c.z, c.x) == 0;
-}
 
 // The determinant in plain double arithmetic, the way a naive implementation would do it.
 int naive_orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& d) {
@@ -200,13 +43,6 @@ int check_orient3d(const Vec3d& a, const Vec3d& b, const Vec3d& c, const Vec3d& 
   EXPECT_EQ(orient3d(a, b, d, c), -s);
   EXPECT_EQ(orient3d(d, b, c, a), -s);
   return s;
-}
-
-float ulp_step(float x, int steps) {
-  float inf = std::numeric_limits<float>::infinity();
-  for (int i = 0; i < std::abs(steps); ++i)
-    x = std::nextafter(x, steps > 0 ? inf : -inf);
-  return x;
 }
 
 // ---------------------------------------------------------------------------------------------------------
@@ -500,111 +336,6 @@ TEST(Orient3d, StatsCountAcrossThreads) {
 // ---------------------------------------------------------------------------------------------------------
 // orient2d and collinear3d
 
-// ---------------------------------------------------------------------------------------------------------
-// The CUDA backend's prepared planes (routing.hpp, face_verdict_prepared): the same verdict and exit edge as
-// face_verdict() and the same height bits as face_height(), on faces and points made to be degenerate.
-
-TEST(PreparedPlanes, SameVerdictAndHeightAsFaceVerdict) {
-  std::mt19937_64 rng(11);
-  std::uniform_real_distribution<double> unit(-1, 1), param(-2, 2);
-  std::uniform_int_distribution<int> scale(-30, 30), kind(0, 5), ulps(-2, 2), bits(1, 12);
-  const float kPool[] = {0.f, 1.f, -1.f, 1e30f, -1e30f, 1e-30f, 3e38f, -3e38f, 1e-40f, 7e-45f};
-  int verdicts[3] = {0, 0, 0};
-  unsigned long long fallbacks = 0;  // orient3d calls made by face_verdict_prepared
-  const int cases = 200000;
-  for (int i = 0; i < cases; ++i) {
-    const double sc = std::ldexp(1.0, scale(rng));
-    auto rp = [&] { return std::array<double, 3>{unit(rng) * sc, unit(rng) * sc, unit(rng) * sc}; };
-    auto to_float = [](const std::array<double, 3>& p) {
-      return Point3{float(p[0]), float(p[1]), float(p[2])};
-    };
-    FaceGeometry face{};
-    Vec3d c;
-    Point3 x;
-    const int k = kind(rng);
-    if (k == 5) {  // extreme magnitudes, mixed
-      std::uniform_int_distribution<std::size_t> pick(0, std::size(kPool) - 1);
-      auto p = [&] { return Point3{kPool[pick(rng)], kPool[pick(rng)], kPool[pick(rng)]}; };
-      face.v[0] = p(), face.v[1] = p(), face.v[2] = p();
-      const Point3 q = p();
-      c = {(double(face.v[0].x) + face.v[1].x + face.v[2].x + q.x) / 4,
-           (double(face.v[0].y) + face.v[1].y + face.v[2].y + q.y) / 4,
-           (double(face.v[0].z) + face.v[1].z + face.v[2].z + q.z) / 4};
-      x = p();
-    } else {
-      std::array<double, 3> v[3] = {rp(), rp(), rp()};
-      if (k == 4) {  // few significant bits: exact coplanarities everywhere
-        const int nb = bits(rng);
-        for (auto& p : v)
-          for (double& t : p)
-            t = std::ldexp(std::round(std::ldexp(t / sc, nb)), -nb) * sc;
-      }
-      for (int j = 0; j < 3; ++j)
-        face.v[j] = to_float(v[j]);
-      const std::array<double, 3> q = rp();
-      c = {(double(face.v[0].x) + face.v[1].x + face.v[2].x + float(q[0])) / 4,
-           (double(face.v[0].y) + face.v[1].y + face.v[2].y + float(q[1])) / 4,
-           (double(face.v[0].z) + face.v[1].z + face.v[2].z + float(q[2])) / 4};
-      std::array<double, 3> target{};
-      const double s = param(rng), t = param(rng);
-      double inside[3] = {std::fabs(unit(rng)), std::fabs(unit(rng)), std::fabs(unit(rng))};
-      const double sum = inside[0] + inside[1] + inside[2] + std::fabs(unit(rng));
-      for (double& w : inside)
-        w /= sum;
-      const double cc[3] = {c.x, c.y, c.z};
-      const int edge = static_cast<int>(rng() % 3);
-      for (int j = 0; j < 3; ++j) {
-        const double a = j == 0 ? face.v[edge].x : (j == 1 ? face.v[edge].y : face.v[edge].z);
-        const int e2 = (edge + 1) % 3;
-        const double b = j == 0 ? face.v[e2].x : (j == 1 ? face.v[e2].y : face.v[e2].z);
-        const double v0 = j == 0 ? face.v[0].x : (j == 1 ? face.v[0].y : face.v[0].z);
-        const double v1 = j == 0 ? face.v[1].x : (j == 1 ? face.v[1].y : face.v[1].z);
-        const double v2 = j == 0 ? face.v[2].x : (j == 1 ? face.v[2].y : face.v[2].z);
-        switch (k) {
-          case 0:  // near the face's plane
-          case 4:
-            target[j] = v0 + s * (v1 - v0) + t * (v2 - v0);
-            break;
-          case 1:  // near a radial plane (c, v[edge], v[edge + 1])
-            target[j] = cc[j] + s * (a - cc[j]) + t * (b - cc[j]);
-            break;
-          case 2:  // near the line from c through a corner
-            target[j] = cc[j] + s * (a - cc[j]);
-            break;
-          default:  // inside the tetrahedron of c and the face (the internal verdict)
-            target[j] =
-                cc[j] + inside[0] * (v0 - cc[j]) + inside[1] * (v1 - cc[j]) + inside[2] * (v2 - cc[j]);
-        }
-      }
-      x = to_float(target);
-      float* coord = (rng() % 3 == 0) ? &x.x : (rng() % 2 ? &x.y : &x.z);
-      *coord = ulp_step(*coord, ulps(rng));
-    }
-    face_tetrahedron_signs(c, face.v, face.tet);
-    FacePlanes planes;
-    prepare_face_planes(face, c, planes);
-    int want_edge = 0, got_edge = 0;
-    double height = 0;
-    const PointVerdict want = face_verdict(face, c, x, &want_edge);
-    const unsigned long long calls_before = predicate_stats().orient3d_calls;
-    const PointVerdict got = face_verdict_prepared(face, planes, c, x, &got_edge, &height);
-    fallbacks += predicate_stats().orient3d_calls - calls_before;
-    ASSERT_EQ(got, want) << "case " << i << " kind " << k;
-    ASSERT_EQ(got_edge, want_edge) << "case " << i << " kind " << k;
-    const double expected_height = face_height(face, x);
-    ASSERT_EQ(std::memcmp(&height, &expected_height, sizeof height), 0) << "case " << i << " kind " << k;
-    ++verdicts[got];
-  }
-  // Both paths ran: most decisions without orient3d, and some (the degenerate cases) through it.
-  std::printf("%d cases: %d internal, %d external, %d stray; %llu orient3d fallbacks\n", cases, verdicts[0],
-              verdicts[1], verdicts[2], fallbacks);
-  EXPECT_GT(fallbacks, 1000u);
-  EXPECT_LT(fallbacks, static_cast<unsigned long long>(cases));
-  EXPECT_GT(verdicts[0], cases / 50);
-  EXPECT_GT(verdicts[1], cases / 10);
-  EXPECT_GT(verdicts[2], cases / 50);
-}
-
 TEST(Orient2d, SignConventionAndBasics) {
   EXPECT_EQ(orient2d(0, 0, 1, 0, 0, 1), 1);
   EXPECT_EQ(orient2d(0, 0, 0, 1, 1, 0), -1);
@@ -700,73 +431,6 @@ TEST(Collinear3d, RandomAgainstReference) {
   }
   EXPECT_GT(collinear, 400);  // about 1/27 of the cases are not perturbed
   EXPECT_LT(collinear, 19000);
-}
-
-// ---------------------------------------------------------------------------------------------------------
-// Qhull reference
-
-TEST(QhullReference, CubeCornersPlusInteriorPoints) {
-  std::vector<Point3> points;
-  for (int i = 0; i < 8; ++i)
-    points.push_back({float(i & 1), float((i >> 1) & 1), float((i >> 2) & 1)});
-  std::mt19937 rng(10);
-  std::uniform_real_distribution<float> inner(0.1f, 0.9f);
-  for (int i = 0; i < 500; ++i)
-    points.push_back({inner(rng), inner(rng), inner(rng)});
-  std::shuffle(points.begin(), points.end(), rng);
-  QhullResult r = run_qhull(points);
-  ASSERT_EQ(r.vertex_ids.size(), 8u);
-  for (PointIndex id : r.vertex_ids) {
-    const Point3& p = points.at(id);
-    EXPECT_TRUE((p.x == 0 || p.x == 1) && (p.y == 0 || p.y == 1) && (p.z == 0 || p.z == 1));
-  }
-  EXPECT_TRUE(std::is_sorted(r.vertex_ids.begin(), r.vertex_ids.end()));
-  EXPECT_EQ(r.facets, 12u);  // six squares, triangulated by Qt
-  EXPECT_GE(r.milliseconds, 0.0);
-}
-
-TEST(QhullReference, RandomPointsGiveValidSortedIds) {
-  std::mt19937 rng(11);
-  std::normal_distribution<float> gauss;
-  std::vector<Point3> points;
-  for (int i = 0; i < 20000; ++i)
-    points.push_back({gauss(rng), gauss(rng), gauss(rng)});
-  QhullResult r = run_qhull(points);
-  ASSERT_GE(r.vertex_ids.size(), 4u);
-  EXPECT_TRUE(std::is_sorted(r.vertex_ids.begin(), r.vertex_ids.end()));
-  EXPECT_EQ(std::set<PointIndex>(r.vertex_ids.begin(), r.vertex_ids.end()).size(), r.vertex_ids.size());
-  for (PointIndex id : r.vertex_ids)
-    EXPECT_LT(id, points.size());
-  // A closed triangulated surface: F = 2V - 4.
-  EXPECT_EQ(r.facets, 2 * r.vertex_ids.size() - 4);
-  // Options are passed through.
-  QhullResult again = run_qhull(points, "Qt Qbb");
-  EXPECT_EQ(again.vertex_ids, r.vertex_ids);
-}
-
-TEST(QhullReference, SpherePointsAreAllVertices) {
-  std::mt19937 rng(12);
-  std::normal_distribution<double> gauss;
-  std::vector<Point3> points;
-  for (int i = 0; i < 2000; ++i) {
-    double x = gauss(rng), y = gauss(rng), z = gauss(rng), n = std::sqrt(x * x + y * y + z * z);
-    points.push_back({float(x / n), float(y / n), float(z / n)});
-  }
-  EXPECT_EQ(run_qhull(points).vertex_ids.size(), points.size());
-}
-
-TEST(QhullReference, DegenerateInputThrowsWithMessage) {
-  std::vector<Point3> flat = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0.5f, 0.5f, 0}};
-  try {
-    run_qhull(flat);
-    FAIL() << "expected std::runtime_error";
-  } catch (const std::runtime_error& e) {
-    std::string what = e.what();
-    EXPECT_NE(what.find("QH"), std::string::npos) << what;  // Qhull's own error code
-    EXPECT_EQ(what.find('\n'), std::string::npos) << what;  // one line
-  }
-  EXPECT_THROW(run_qhull({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}), std::runtime_error);
-  EXPECT_THROW(run_qhull({}), std::runtime_error);
 }
 
 }  // namespace
