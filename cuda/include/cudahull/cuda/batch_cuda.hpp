@@ -32,7 +32,7 @@ struct BatchRun {
   std::size_t device_bytes = 0;  // the most device memory the run held at once (the points not included)
   std::size_t kept_bytes = 0;    // what the passes' outputs hold until they are described
   double kernel_ms = 0;          // the launches alone (CUDA events)
-  struct PassOutput;             // a pass's hulls and results on the device (batch_cuda.cu)
+  struct PassOutput;             // a pass's hulls and results on the device (batch_shared.cuh)
   std::vector<std::shared_ptr<PassOutput>> outputs;
 };
 
