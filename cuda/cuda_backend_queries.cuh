@@ -5,6 +5,8 @@
 
 #include <cuda_runtime.h>
 
+#include <cub/block/block_reduce.cuh>
+
 #include <cmath>
 #include <cstddef>
 
@@ -23,35 +25,16 @@ __device__ __forceinline__ bool better(double s, PointIndex i, double best_s, Po
   return s > best_s || (s == best_s && i < best_i);
 }
 
-// Reduces (s, i) over the warp; lane 0 gets the result.
-__device__ __forceinline__ void warp_argmax(double& s, PointIndex& i) {
-  for (int offset = 16; offset > 0; offset /= 2) {
-    const double os = __shfl_down_sync(0xffffffffu, s, offset);
-    const PointIndex oi = __shfl_down_sync(0xffffffffu, i, offset);
-    if (better(os, oi, s, i)) {
-      s = os;
-      i = oi;
-    }
+// The better of two candidates: a total order (the higher score, then the lower index), so CUB's reduction
+// in any grouping picks the same one.
+struct BetterCandidate {
+  __device__ __forceinline__ Candidate operator()(const Candidate& a, const Candidate& b) const {
+    return better(b.score, b.index, a.score, a.index) ? b : a;
   }
-}
+};
 
-// Reduces (s, i) over the block; thread 0 gets the result.
-__device__ __forceinline__ void block_argmax(double& s, PointIndex& i) {
-  __shared__ double warp_s[kBlock / 32];
-  __shared__ PointIndex warp_i[kBlock / 32];
-  warp_argmax(s, i);
-  const int lane = threadIdx.x % 32, warp = threadIdx.x / 32;
-  if (lane == 0) {
-    warp_s[warp] = s;
-    warp_i[warp] = i;
-  }
-  __syncthreads();
-  if (warp == 0) {
-    s = lane < kBlock / 32 ? warp_s[lane] : -INFINITY;
-    i = lane < kBlock / 32 ? warp_i[lane] : 0xffffffffu;
-    warp_argmax(s, i);
-  }
-}
+// Reduces the candidates over the block; thread 0 gets the result.
+using BlockArgmax = cub::BlockReduce<Candidate, kBlock>;
 
 template <class Point, class Score>
 __global__ void __launch_bounds__(kBlock) argmax_partial(const Point* __restrict__ points, std::size_t n,
@@ -67,8 +50,9 @@ __global__ void __launch_bounds__(kBlock) argmax_partial(const Point* __restrict
       best_i = static_cast<PointIndex>(k);
     }
   }
-  block_argmax(best_s, best_i);
-  if (threadIdx.x == 0) partial[blockIdx.x] = {best_s, best_i};
+  __shared__ BlockArgmax::TempStorage temp;
+  const Candidate best = BlockArgmax(temp).Reduce(Candidate{best_s, best_i}, BetterCandidate{});
+  if (threadIdx.x == 0) partial[blockIdx.x] = best;
 }
 
 __global__ void __launch_bounds__(kBlock)
@@ -81,8 +65,9 @@ __global__ void __launch_bounds__(kBlock)
       best_i = partial[k].index;
     }
   }
-  block_argmax(best_s, best_i);
-  if (threadIdx.x == 0) *result = best_i;
+  __shared__ BlockArgmax::TempStorage temp;
+  const Candidate best = BlockArgmax(temp).Reduce(Candidate{best_s, best_i}, BetterCandidate{});
+  if (threadIdx.x == 0) *result = best.index;
 }
 
 // CpuBackend::extremes_x, both ends in one pass: lowest x (as the highest -x; exact in double) in
@@ -104,11 +89,12 @@ __global__ void __launch_bounds__(kBlock)
       high_i = static_cast<PointIndex>(k);
     }
   }
-  block_argmax(low_s, low_i);
-  if (threadIdx.x == 0) partial[blockIdx.x] = {low_s, low_i};
-  __syncthreads();  // block_argmax's shared slots are used again
-  block_argmax(high_s, high_i);
-  if (threadIdx.x == 0) partial[gridDim.x + blockIdx.x] = {high_s, high_i};
+  __shared__ BlockArgmax::TempStorage temp;
+  const Candidate low = BlockArgmax(temp).Reduce(Candidate{low_s, low_i}, BetterCandidate{});
+  if (threadIdx.x == 0) partial[blockIdx.x] = low;
+  __syncthreads();  // the reduction's shared storage is used again
+  const Candidate high = BlockArgmax(temp).Reduce(Candidate{high_s, high_i}, BetterCandidate{});
+  if (threadIdx.x == 0) partial[gridDim.x + blockIdx.x] = high;
 }
 
 // The fixed corners of the next two queries are read on the device (prepare(), once per thread), so no
