@@ -46,8 +46,8 @@ __device__ BatchSlot slot_of(const PassArgs<Point>& a, u32 s) {
   slot.fn += 3 * f;
   slot.fv_spare += 3 * f;
   slot.fn_spare += 3 * f;
-  slot.killer += f;
-  slot.look += f;
+  slot.replaced_by += f;
+  slot.revisit += f;
   slot.flags += f + s;  // room.faces + 1 a slot: the marks' prefix sum reads one past the faces
   slot.face_rank += f + s;
   slot.win_mask += words;

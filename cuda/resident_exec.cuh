@@ -344,7 +344,7 @@ struct CudaExec {
       out.point_rank = b.point_rank;
       out.flags = b.flags;
       out.face_rank = b.face_rank;
-      out.look = b.look;
+      out.revisit = b.revisit;
       out.list = b.list;
       out.win_mask = b.win_mask;
       out.word_rank = b.word_rank;

@@ -13,8 +13,8 @@ namespace cudahull::testing {
 
 template <class Point>
 struct HostBatchSlot {
-  std::vector<resident::u32> fv, fn, fv_spare, fn_spare, killer, look, flags, face_rank, win_mask, word_rank,
-      list, point_words, words, used{0, 0};
+  std::vector<resident::u32> fv, fn, fv_spare, fn_spare, replaced_by, revisit, flags, face_rank, win_mask,
+      word_rank, list, point_words, words, used{0, 0};
   std::vector<resident::u64> extreme, claim;
   std::vector<resident::Entry> entries;
   std::vector<resident::Candidate> cands;
@@ -27,7 +27,7 @@ struct HostBatchSlot {
         small ? resident::small_hull_room(vertices) : resident::batch_room(vertices);
     for (auto* b : {&fv, &fn, &fv_spare, &fn_spare})
       b->assign(3 * room.faces, 0xdeadbeefu);  // stale data, as a slot reused on the device holds
-    for (auto* b : {&killer, &look, &flags, &face_rank})
+    for (auto* b : {&replaced_by, &revisit, &flags, &face_rank})
       b->assign(room.faces + 1, 0xdeadbeefu);
     win_mask.assign(room.faces / 32 + 1, 0);
     word_rank.assign(room.faces / 32 + 1, 0);
@@ -43,8 +43,8 @@ struct HostBatchSlot {
                                fn.data(),
                                fv_spare.data(),
                                fn_spare.data(),
-                               killer.data(),
-                               look.data(),
+                               replaced_by.data(),
+                               revisit.data(),
                                flags.data(),
                                face_rank.data(),
                                win_mask.data(),

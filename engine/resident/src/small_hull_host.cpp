@@ -24,7 +24,8 @@ using resident::u32;
 using resident::u64;
 
 struct SmallHullWorkspace {
-  std::vector<u32> fv, fn, fv_spare, fn_spare, killer, look, flags, face_rank, list, point_words, words;
+  std::vector<u32> fv, fn, fv_spare, fn_spare, replaced_by, revisit, flags, face_rank, list, point_words,
+      words;
   std::vector<u64> extreme;
   std::vector<Point3d> staged, coordinates;
   resident::RoundsState state{};
@@ -35,7 +36,7 @@ struct SmallHullWorkspace {
     const resident::BatchRoom room = resident::small_hull_room(n);
     for (auto* b : {&fv, &fn, &fv_spare, &fn_spare})
       b->resize(3 * std::size_t{room.faces});
-    for (auto* b : {&killer, &look, &flags, &face_rank})
+    for (auto* b : {&replaced_by, &revisit, &flags, &face_rank})
       b->resize(room.faces + 1);
     extreme.resize(room.faces);
     list.resize(room.work);
@@ -48,10 +49,11 @@ struct SmallHullWorkspace {
   }
   resident::BatchSlot slot() {
     const resident::BatchRoom room = resident::small_hull_room(points);
-    return resident::BatchSlot{fv.data(),      fn.data(),    fv_spare.data(),  fn_spare.data(), killer.data(),
-                               look.data(),    flags.data(), face_rank.data(), nullptr,         nullptr,
-                               extreme.data(), nullptr,      nullptr,          list.data(),     nullptr,
-                               &state,         room};
+    return resident::BatchSlot{
+        fv.data(),      fn.data(),    fv_spare.data(),  fn_spare.data(), replaced_by.data(),
+        revisit.data(), flags.data(), face_rank.data(), nullptr,         nullptr,
+        extreme.data(), nullptr,      nullptr,          list.data(),     nullptr,
+        &state,         room};
   }
 };
 

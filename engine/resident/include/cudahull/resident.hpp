@@ -45,8 +45,8 @@ struct PhaseStat {
 struct ResidentStats {
   std::uint64_t iterations = 0;
   std::uint64_t refined_faces = 0;
-  std::uint64_t rounds = 0;               // flip and flop rounds over all iterations
-  std::uint64_t edits = 0;                // flips and flops made
+  std::uint64_t rounds = 0;               // swap and removal rounds over all iterations
+  std::uint64_t edits = 0;                // swaps and removals made
   std::uint64_t work_items = 0;           // faces the rounds looked at, summed over the rounds
   std::uint64_t dropped_by_polytope = 0;  // points proven inside P, the extremes' polytope, at the start
   std::uint64_t loop_iterations = 0;      // iterations run by the device loop of a small mesh

@@ -60,7 +60,7 @@ CUDAHULL_HD inline BatchRoom batch_room(u32 v) {
 // A team's slot: the face room (the mesh, its spares, the marks and the rounds' own) and its state.
 struct BatchSlot {
   u32 *fv, *fn, *fv_spare, *fn_spare;  // 3 a face
-  u32 *killer, *look, *flags, *face_rank;
+  u32 *replaced_by, *revisit, *flags, *face_rank;
   u32 *win_mask, *word_rank;  // faces / 32 + 1 words each
   u64 *extreme, *claim;
   Entry* entries;
@@ -181,8 +181,8 @@ CUDAHULL_HD bool batch_tetrahedron(const Team& team, const BatchSlot& slot, cons
           }
         }
       }
-      slot.killer[f] = kAlive;
-      slot.look[f] = 0;
+      slot.replaced_by[f] = kAlive;
+      slot.revisit[f] = 0;
       slot.extreme[f] = 0;
     }
   }
@@ -249,7 +249,7 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
   team.barrier();
 
   IterationBuffers<Point> b{};
-  b.m = MeshView<Point>{cloud.points, c, slot.fv, slot.fn, slot.killer, slot.entries};
+  b.m = MeshView<Point>{cloud.points, c, slot.fv, slot.fn, slot.replaced_by, slot.entries};
   b.fv_spare = slot.fv_spare;
   b.fn_spare = slot.fn_spare;
   b.index = cloud.index;
@@ -260,7 +260,7 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
   b.point_rank = cloud.point_rank;
   b.flags = slot.flags;
   b.face_rank = slot.face_rank;
-  b.look = slot.look;
+  b.revisit = slot.revisit;
   b.list = slot.list;
   b.win_mask = slot.win_mask;
   b.word_rank = slot.word_rank;
@@ -301,10 +301,10 @@ CUDAHULL_HD void batch_hull(const Team& team, const BatchSlot& slot, const Batch
   const u32 faces = st->live_faces;
   u32 *creases = cloud.keep, *used = cloud.point_rank, *rank = cloud.index, *list = cloud.index_spare;
   team.for_range(n, [&](u32 i) { creases[i] = used[i] = 0; });
-  team.for_range(faces, [&](u32 f) { slot.look[f] = 0; });
+  team.for_range(faces, [&](u32 f) { slot.revisit[f] = 0; });
   if (team.leader()) st->defects = 0;
   team.barrier();
-  const CountConcave<Point> concave{m, creases, used, &st->defects, slot.look};
+  const CountConcave<Point> concave{m, creases, used, &st->defects, slot.revisit};
   team.for_range(faces, [&](u32 f) { concave(f); });
   team.barrier();
   const CountThin thin{creases, used, &st->defects};

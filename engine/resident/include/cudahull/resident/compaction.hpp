@@ -23,7 +23,7 @@ struct MarkLive {
   u32* live;
   const u32* count;
   CUDAHULL_HD void operator()(std::size_t f) const {
-    live[f] = (!count || f < *count) && m.killer[f] == kAlive ? 1u : 0u;
+    live[f] = (!count || f < *count) && m.replaced_by[f] == kAlive ? 1u : 0u;
   }
 };
 
@@ -69,12 +69,12 @@ struct MovePoints {
 
 // Between iterations: the compacted faces live, unstamped, with no furthest point yet.
 struct ResetFaces {
-  u32* killer;
-  u32* look;
+  u32* replaced_by;
+  u32* revisit;
   u64* extreme;
   CUDAHULL_HD void operator()(std::size_t f) const {
-    killer[f] = kAlive;
-    look[f] = 0;
+    replaced_by[f] = kAlive;
+    revisit[f] = 0;
     extreme[f] = 0;
   }
 };

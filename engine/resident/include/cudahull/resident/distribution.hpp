@@ -24,7 +24,7 @@ struct RoutePoints {
   CUDAHULL_HD void operator()(std::size_t j) const {
     const Vec3d q = m.P(point_index[j]);
     u32 f = point_face[j];
-    for (u32 e = m.killer[f]; e != kAlive; e = m.killer[f]) {
+    for (u32 e = m.replaced_by[f]; e != kAlive; e = m.replaced_by[f]) {
       const Entry& entry = m.entries[e];
       if (entry.kind == kRefine) {
         // Child k = (v_k, v_k+1, p) holds q when q is left of p -> v_k+1 and right of p -> v_k.
@@ -34,7 +34,7 @@ struct RoutePoints {
           s[k] = orient3d(m.c, m.P(m.fv[3 * f + k]), p, q);
         const int k = (s[1] >= 0 && s[0] <= 0) ? 0 : (s[2] >= 0 && s[1] <= 0) ? 1 : 2;
         f = entry.out[k];
-      } else if (entry.kind == kFlip) {
+      } else if (entry.kind == kSwap) {
         f = orient3d(m.c, m.P(entry.p), m.P(entry.q), q) >= 0 ? entry.out[1] : entry.out[0];
       } else {
         f = entry.out[0];

@@ -1,11 +1,11 @@
 // The resident engine's local repair of the defects the rounds leave (the host's half: the plan).
 //
-// The rounds stop when no flip or removal is left.  What can remain (docs/architecture.md, "The resident
+// The rounds stop when no swap or removal is left.  What can remain (docs/architecture.md, "The resident
 // engine's finish"):
 //   - flat edges, where the input has four or more coplanar points on the hull (float coordinates on a
 //     dense sphere do: the curvature between neighbours is below an ulp).  These are no defect: they
 //     triangulate a coplanar facet, and the finish accepts them when every vertex is strictly extreme.
-//   - defects: a concave edge (a flip rejected by Fig. 5's foldover test, seen from c, over a vertex of
+//   - defects: a concave edge (a swap rejected by Fig. 5's foldover test, seen from c, over a vertex of
 //     degree above 3 that is not extreme), or a thin vertex, with fewer than three strictly convex edges
 //     (inside a coplanar facet or on a polytope edge).  The stepping engine takes such vertices out with
 //     complementary swaps (phases/vertex_removal.hpp); the resident engine repairs them here, where they

@@ -238,14 +238,14 @@ struct WriteRows {
   const FaceRow* rows;
   u32* fv;
   u32* fn;
-  u32* killer;
+  u32* replaced_by;
   CUDAHULL_HD void operator()(std::size_t k) const {
     const FaceRow& row = rows[k];
     for (int i = 0; i < 3; ++i) {
       fv[3 * row.id + i] = row.v[i];
       fn[3 * row.id + i] = row.n[i];
     }
-    killer[row.id] = kAlive;
+    replaced_by[row.id] = kAlive;
   }
 };
 

@@ -122,15 +122,15 @@ inline constexpr int kMaxFirstFaces = kMaxDropPlanes;
 struct FirstMesh {
   u32 faces;
   u32 fv[3 * kMaxFirstFaces], fn[3 * kMaxFirstFaces];
-  u32 *fv_out, *fn_out, *killer, *look;
+  u32 *fv_out, *fn_out, *replaced_by, *revisit;
   u64* extreme;
   RoundsState* st;
   CUDAHULL_HD void operator()(std::size_t i) const {
     fv_out[i] = fv[i];
     fn_out[i] = fn[i];
     if (i < faces) {  // live, unstamped, no furthest point yet (as ResetFaces leaves a compacted face)
-      killer[i] = kAlive;
-      look[i] = 0;
+      replaced_by[i] = kAlive;
+      revisit[i] = 0;
       extreme[i] = 0;
     }
     if (i == 0) *st = RoundsState{};

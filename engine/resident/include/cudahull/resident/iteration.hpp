@@ -58,7 +58,7 @@ struct IterationBuffers {
   Log log;            // the rounds' rejections (the recording driver's)
   u32 *fv_spare, *fn_spare;
   u32 *index, *face, *index_spare, *face_spare;  // the kept points and their faces
-  u32 *keep, *point_rank, *flags, *face_rank, *look, *list;
+  u32 *keep, *point_rank, *flags, *face_rank, *revisit, *list;
   u32 *win_mask, *word_rank;  // the executor's: a bit per face, the wins before each word (rounds.hpp)
   u64 *extreme, *claim;
   Candidate* cands;
@@ -170,7 +170,7 @@ CUDAHULL_HD void resident_iterations(const Team& team, IterationBuffers<Point, L
     }
     if (runs(kSplit)) {
       const SplitFaces<Point> split{m, b.extreme, b.flags,       b.face_rank, faces,
-                                    0, b.look,    st->round + 1, nullptr};
+                                    0, b.revisit, st->round + 1, nullptr};
       team.for_range(faces, [&](u32 f) { split(f); });
       refined_total += st->refined;
     }
@@ -182,7 +182,7 @@ CUDAHULL_HD void resident_iterations(const Team& team, IterationBuffers<Point, L
                                       launch.entry_capacity, launch.work_capacity});
       team.barrier();
       swap_and_removal_rounds(
-          team, RoundsBuffers<Point, Log>{FindCandidate<Point, Log>{m, b.log}, b.claim, b.look, b.cands,
+          team, RoundsBuffers<Point, Log>{FindCandidate<Point, Log>{m, b.log}, b.claim, b.revisit, b.cands,
                                           b.list, b.win_mask, b.word_rank, st});
       team.barrier();
       if (st->overflow) {
@@ -221,7 +221,7 @@ CUDAHULL_HD void resident_iterations(const Team& team, IterationBuffers<Point, L
     faces = live;
     active = kept;
     unkept = false;
-    const ResetFaces reset{m.killer, b.look, b.extreme};
+    const ResetFaces reset{m.replaced_by, b.revisit, b.extreme};
     team.for_range(faces, [&](u32 f) { reset(f); });
     team.barrier();
     ++iterations;

@@ -41,7 +41,7 @@ struct SplitFaces {
   const u32* refine;
   const u32* rank;
   u32 first_face, first_entry;
-  u32* look;  // an unrefined face next to a refined one is looked at in the first round
+  u32* revisit;  // an unrefined face next to a refined one is revisited in the first round
   u32 first_round;
   u32* refined_total;  // optional: the last face writes how many faces refine (no wait for the scan)
   // The face across edge (a -> b) of f after the split: nb itself, or nb's child on that edge.
@@ -59,7 +59,7 @@ struct SplitFaces {
         touched = touched || refine[nb];
         m.fn[3 * f + k] = across(nb, a, b);
       }
-      if (touched) look[f] = first_round;
+      if (touched) revisit[f] = first_round;
       return;
     }
     const u32 p = rank_key_index(extreme[f]);
@@ -73,11 +73,11 @@ struct SplitFaces {
       m.fn[3 * child] = across(m.fn[3 * f + k], a, b);
       m.fn[3 * child + 1] = kids + static_cast<u32>((k + 1) % 3);
       m.fn[3 * child + 2] = kids + static_cast<u32>((k + 2) % 3);
-      m.killer[child] = kAlive;
-      look[child] = 0;
+      m.replaced_by[child] = kAlive;
+      revisit[child] = 0;
     }
     m.entries[e] = Entry{kRefine, p, kNone, {kids, kids + 1, kids + 2}};
-    m.killer[f] = e;
+    m.replaced_by[f] = e;
   }
 };
 

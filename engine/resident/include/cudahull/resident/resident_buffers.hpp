@@ -73,7 +73,7 @@ struct ResidentBuffers {
   }
 
   MeshView<Point> view() {
-    return MeshView<Point>{points_, c_, fv_.data(), fn_.data(), killer_.data(), entries_.data()};
+    return MeshView<Point>{points_, c_, fv_.data(), fn_.data(), replaced_by_.data(), entries_.data()};
   }
 
   // Room for `count` faces, keeping the current ones; new claim slots hold no claim.
@@ -96,8 +96,8 @@ struct ResidentBuffers {
     // fraction of an iteration): the room follows the need (issue 26: memory).
     const std::size_t step = capacity_ < kDoublingFaces ? 2 * capacity_ : 0;
     capacity_ = std::min(std::max(count, step), kMaxFaces);
-    killer_.grow(capacity_, faces_);
-    look_.grow(capacity_, faces_);
+    replaced_by_.grow(capacity_, faces_);
+    revisit_.grow(capacity_, faces_);
     claim_.grow(capacity_, old);
     exec_.fill(claim_.data() + old, capacity_ - old, u64{0});
     // The refinement marks and their prefix sum (one per face) and the furthest points may be in use:
@@ -151,7 +151,7 @@ struct ResidentBuffers {
     b.point_rank = point_rank_.data();
     b.flags = flags_.data();
     b.face_rank = face_rank_.data();
-    b.look = look_.data();
+    b.revisit = revisit_.data();
     b.list = work_list_.data();
     b.extreme = extreme_.data();
     b.claim = claim_.data();
@@ -171,8 +171,8 @@ struct ResidentBuffers {
     std::copy(fn.begin(), fn.end(), first.fn);
     first.fv_out = b.m.fv;
     first.fn_out = b.m.fn;
-    first.killer = b.m.killer;
-    first.look = b.look;
+    first.replaced_by = b.m.replaced_by;
+    first.revisit = b.revisit;
     first.extreme = b.extreme;
     first.st = b.st;
     return first;
@@ -257,7 +257,7 @@ struct ResidentBuffers {
   std::size_t marks_in_use_ = 0;     // entries of flags_ and face_rank_ that grow_faces() keeps
   std::size_t faces_ = 0, capacity_ = 0, entries_used_ = 0, entry_capacity_ = 0, active_ = 0;
   std::size_t work_capacity_ = 0;  // work faces a round has room for (cands_, work_list_)
-  Buffer<u32> fv_, fn_, fv_out_, fn_out_, killer_, look_, flags_, face_rank_;
+  Buffer<u32> fv_, fn_, fv_out_, fn_out_, replaced_by_, revisit_, flags_, face_rank_;
   Buffer<u64> claim_, extreme_;
   Buffer<RoundsState> state_;  // the counts where the executor computes (see RoundsState)
   Buffer<Entry> entries_;

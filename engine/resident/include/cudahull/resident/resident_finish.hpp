@@ -26,9 +26,9 @@ class ResidentFinish : protected ResidentBuffers<Point, Exec> {
  protected:
   using Buffers::active_, Buffers::c_, Buffers::exec_, Buffers::face_rank_, Buffers::faces_, Buffers::fetch,
       Buffers::flags_, Buffers::fn_, Buffers::fv_, Buffers::fv_out_, Buffers::gather, Buffers::host_,
-      Buffers::hull_of, Buffers::index_, Buffers::keep_, Buffers::killer_, Buffers::listed, Buffers::look_,
-      Buffers::n_, Buffers::point_rank_, Buffers::repair_rows_, Buffers::state_, Buffers::view,
-      Buffers::work_list_;
+      Buffers::hull_of, Buffers::index_, Buffers::keep_, Buffers::replaced_by_, Buffers::listed,
+      Buffers::revisit_, Buffers::n_, Buffers::point_rank_, Buffers::repair_rows_, Buffers::state_,
+      Buffers::view, Buffers::work_list_;
   using Buffers::Buffers;
 
   // The mesh's faces, read back once.
@@ -166,7 +166,7 @@ class ResidentFinish : protected ResidentBuffers<Point, Exec> {
   // With edges that are not strictly convex: the concave edges and the thin vertices (CountConcave,
   // CountThin).  None: the others are flat edges inside coplanar facets, and the mesh is the exact hull.
   // The creases and the vertex flags stay in keep_ and point_rank_, and the concave edges' faces are
-  // stamped in look_ (free at the finish), for repair_faults().
+  // stamped in revisit_ (free at the finish), for repair_faults().
   u32 defects() {
     const std::size_t n = n_;
     keep_.grow(n);
@@ -175,9 +175,9 @@ class ResidentFinish : protected ResidentBuffers<Point, Exec> {
     exec_.fill(point_rank_.data(), n, u32{0});
     RoundsState* st = state_.data();
     exec_.fill(&st->defects, 1, u32{0});
-    exec_.fill(look_.data(), faces_, u32{0});
-    exec_.for_each(faces_,
-                   CountConcave<Point>{view(), keep_.data(), point_rank_.data(), &st->defects, look_.data()});
+    exec_.fill(revisit_.data(), faces_, u32{0});
+    exec_.for_each(
+        faces_, CountConcave<Point>{view(), keep_.data(), point_rank_.data(), &st->defects, revisit_.data()});
     exec_.for_each(n, CountThin{keep_.data(), point_rank_.data(), &st->defects});
     u32 count = 0;
     exec_.download(&count, &st->defects, 1);
@@ -191,12 +191,12 @@ class ResidentFinish : protected ResidentBuffers<Point, Exec> {
   static constexpr std::size_t kMaxRepairFaces = std::size_t{1} << 16;
   std::size_t repair_faults(u32 rings, bool& checked, std::uint64_t& vertices) {
     checked = false;
-    // The rings in look_ (defects() stamped the concave edges' faces), the stamped faces listed.
-    exec_.for_each(faces_,
-                   FaultRing{CountThin{keep_.data(), point_rank_.data(), nullptr}, fv_.data(), look_.data()});
+    // The rings in revisit_ (defects() stamped the concave edges' faces), the stamped faces listed.
+    exec_.for_each(
+        faces_, FaultRing{CountThin{keep_.data(), point_rank_.data(), nullptr}, fv_.data(), revisit_.data()});
     for (u32 ring = 1; ring <= rings; ++ring)
-      exec_.for_each(faces_, SpreadStamp{fn_.data(), look_.data(), ring});
-    exec_.for_each(faces_, Stamped{look_.data(), flags_.data()});
+      exec_.for_each(faces_, SpreadStamp{fn_.data(), revisit_.data(), ring});
+    exec_.for_each(faces_, Stamped{revisit_.data(), flags_.data()});
     work_list_.grow(faces_);
     const u32 stamped = exec_.select(flags_.data(), face_rank_.data(), work_list_.data(), faces_);
     if (stamped > kMaxRepairFaces) return 0;  // flat or cospherical input: the exact finish answers
@@ -218,11 +218,11 @@ class ResidentFinish : protected ResidentBuffers<Point, Exec> {
     return plan.patches;
   }
 
-  // The rows of the `count` faces listed at `ids` where the executor computes (their rings from look_).
+  // The rows of the `count` faces listed at `ids` where the executor computes (their rings from revisit_).
   std::vector<FaceRow> face_rows(const u32* ids, std::size_t count) {
     std::vector<FaceRow> rows(count);
     repair_rows_.grow(count);
-    exec_.for_each(count, GatherRows{ids, fv_.data(), fn_.data(), look_.data(), repair_rows_.data()});
+    exec_.for_each(count, GatherRows{ids, fv_.data(), fn_.data(), revisit_.data(), repair_rows_.data()});
     exec_.download(rows.data(), repair_rows_.data(), count);
     return rows;
   }
@@ -230,7 +230,7 @@ class ResidentFinish : protected ResidentBuffers<Point, Exec> {
   void write_rows(const std::vector<FaceRow>& rows) {
     repair_rows_.grow(rows.size());
     exec_.upload(repair_rows_.data(), rows.data(), rows.size());
-    exec_.for_each(rows.size(), WriteRows{repair_rows_.data(), fv_.data(), fn_.data(), killer_.data()});
+    exec_.for_each(rows.size(), WriteRows{repair_rows_.data(), fv_.data(), fn_.data(), replaced_by_.data()});
   }
 
   // The slots a repair left over (`holes`, ascending) filled by the mesh's last faces, their neighbours

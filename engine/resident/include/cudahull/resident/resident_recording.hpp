@@ -21,7 +21,7 @@ struct RecordedIteration {
   std::size_t faces_before = 0, refined = 0;
   u32 first_round = 0;                 // the number of its first round (Rejection::round counts on)
   std::vector<u32> fv;                 // corners of every face id (killed faces keep theirs)
-  std::vector<u32> killer;             // per face id: kAlive, kDeadSlot, or the entry that killed it
+  std::vector<u32> replaced_by;        // per face id: kAlive, kDeadSlot, or the entry that killed it
   std::vector<Entry> entries;          // the decision entries (Fig. 7): refinements first, then the edits
   std::vector<u32> round_first_entry;  // per round: its first entry
   std::vector<Rejection> rejections;   // what the rounds turned down, by round and candidate (repeats kept)
@@ -104,10 +104,10 @@ class IterationRecorder {
                    u32 last_round) {
     RecordedIteration& out = *out_;
     out.fv.resize(3 * faces);
-    out.killer.resize(faces);
+    out.replaced_by.resize(faces);
     out.entries.resize(entries);
     exec.download(out.fv.data(), m.fv, out.fv.size());
-    exec.download(out.killer.data(), m.killer, out.killer.size());
+    exec.download(out.replaced_by.data(), m.replaced_by, out.replaced_by.size());
     exec.download(out.entries.data(), m.entries, out.entries.size());
     out.round_first_entry.resize(last_round + 1 - out.first_round);
     exec.download(out.round_first_entry.data(), round_first_entry_.data(), out.round_first_entry.size());

@@ -4,17 +4,17 @@
 //
 // design:
 //   step 0        P (or section 3.1's tetrahedron) and the first distribution; the mesh read back
-//   step k        ResidentHull::step(): refine, the flip and flop rounds stepped by the host with every
+//   step k        ResidentHull::step(): refine, the swap and removal rounds stepped by the host with every
 //                 candidate they turn down logged, route, compact; then read back what it did
 //                 (RecordedIteration, O(faces) bytes) and the new mesh, and turn them into the
 //                 IterationRecord the stepping Engine gives:
 //                   refinements     the entries of kind refine: the killed face's corners and the apex
-//                   swaps           flips, in round order, each round's rejections first; regular when
-//                                   the flipped edge is an edge of a face refined this iteration (Fig.
-//                                   3b), complementary otherwise (Fig. 4)
-//                   removals        flops (Fig. 4); rejected ones where the new face would not keep c
-//                                   strictly below, or the surface would not stay a 2-manifold
-//                   decision array  the flip and flop entries as Fig. 7's entries: a flip's plane is the
+//                   swaps           the swap entries in round order, each round's rejections first; regular
+//                                   when the swapped edge is an edge of a face refined this iteration
+//                                   (Fig. 3b), complementary otherwise (Fig. 4)
+//                   removals        the removal entries (Fig. 4); rejected ones where the new face would
+//                                   not keep c strictly below, or the surface would not stay a 2-manifold
+//                   decision array  the swap and removal entries as Fig. 7's entries: a swap's plane is the
 //                                   plane through c and the new edge (the resident engine routes by cones
 //                                   from c), a removal's has none
 //   the end       the exact check on the executor (ResidentHull::end), as the fast path finishes
@@ -239,17 +239,17 @@ class ResidentStepper : public SteppingEngine {
   // Where a point of face id `o` of the iteration goes (Fig. 7's route codes): its id in the new mesh,
   // or the decision entry that killed it later in the iteration.
   static std::int32_t route_code(const RecordedIteration& it, u32 o) {
-    const u32 e = it.killer[o];
+    const u32 e = it.replaced_by[o];
     if (e == kAlive) return static_cast<std::int32_t>(it.new_id[o]);
     return -static_cast<std::int32_t>(e - it.refined) - 1;
   }
 
   void describe(const RecordedIteration& it, IterationRecord& r) {
     const std::size_t entries = it.entries.size();
-    // The faces each entry killed (a refinement one, a flip two, a flop three).
+    // The faces each entry killed (a refinement one, a swap two, a removal three).
     std::vector<std::array<u32, 3>> killed(entries, {kNone, kNone, kNone});
-    for (u32 f = 0; f < it.killer.size(); ++f) {
-      const u32 e = it.killer[f];
+    for (u32 f = 0; f < it.replaced_by.size(); ++f) {
+      const u32 e = it.replaced_by[f];
       if (e >= entries) continue;
       for (u32& slot : killed[e]) {
         if (slot == kNone) {
@@ -300,7 +300,7 @@ class ResidentStepper : public SteppingEngine {
     for (std::size_t e = it.refined; e < entries; ++e) {
       const Entry& entry = it.entries[e];
       DecisionEntry d;
-      if (entry.kind == kFlip) {
+      if (entry.kind == kSwap) {
         const u32 n2 = entry.out[1];
         const Vec3d x = point(entry.p), y = point(entry.q), v = point(corner(n2, 1));
         d.plane =
@@ -335,7 +335,7 @@ class ResidentStepper : public SteppingEngine {
       for (std::size_t e = begin; e < end; ++e) {
         const Entry& entry = it.entries[e];
         const auto index = static_cast<std::int32_t>(e - it.refined);
-        if (entry.kind == kFlip) {
+        if (entry.kind == kSwap) {
           SwapRecord s;
           const u32 u = corner(entry.out[0], 1), v = corner(entry.out[1], 1);
           s.kind = refined_edges.count(edge_key(u, v)) ? SwapKind::kRegular : SwapKind::kComplementary;
@@ -384,7 +384,7 @@ class ResidentStepper : public SteppingEngine {
       ++r.removals_rejected;
       return;
     }
-    // Flip u - v into x - y: n1 = (x, u, y), n2 = (y, v, x).  A foldover (Fig. 5): seen from c, the vertex
+    // Swap u - v into x - y: n1 = (x, u, y), n2 = (y, v, x).  A foldover (Fig. 5): seen from c, the vertex
     // of the old edge whose new face would turn over lies beneath the other new face.
     const u32 u = rej.vertex[0], v = rej.vertex[1], x = rej.vertex[2], y = rej.vertex[3];
     SwapRecord s;
@@ -473,13 +473,13 @@ std::vector<std::string> ResidentStepper<Point, Exec>::explain_route(PointIndex 
     return verdict(f, lines);
   }
   const RecordedIteration& it = last_;
-  if (it.killer.empty())
+  if (it.replaced_by.empty())
     return {"the last step refined no face (a stall): the exact finish answered, no point was routed"};
   if (old_face < 0 || static_cast<std::size_t>(old_face) >= it.faces_before)
     return {"point " + std::to_string(point_id) + " had no face before this step (inside, or a vertex)"};
   u32 f = static_cast<u32>(old_face);
   lines.push_back("from face " + std::to_string(f) + " of the mesh before the step");
-  for (u32 e = it.killer[f]; e != kAlive; e = it.killer[f]) {
+  for (u32 e = it.replaced_by[f]; e != kAlive; e = it.replaced_by[f]) {
     const Entry& entry = it.entries[e];
     if (entry.kind == kRefine) {
       const Vec3d p = point(entry.p);
@@ -490,7 +490,7 @@ std::vector<std::string> ResidentStepper<Point, Exec>::explain_route(PointIndex 
       lines.push_back("refinement at apex " + std::to_string(entry.p) + " (Fig. 3a): child " +
                       std::to_string(k) + " by the planes through c, the apex and the corners");
       f = entry.out[k];
-    } else if (entry.kind == kFlip) {
+    } else if (entry.kind == kSwap) {
       const bool above = orient3d(c_, point(entry.p), point(entry.q), q) >= 0;
       lines.push_back("decision[" + std::to_string(e - it.refined) + "]: swap to edge " +
                       std::to_string(entry.p) + "-" + std::to_string(entry.q) + ", " + (above ? "+" : "-") +

@@ -35,7 +35,7 @@ template <class Point, class Log = NoLog>
 struct RoundsBuffers {
   FindCandidate<Point, Log> find;  // the mesh, and the log of rejections (the recording driver's)
   u64* claim;
-  u32* look;
+  u32* revisit;
   Candidate* cands;  // per work item
   u32* list;         // the work faces
   u32* win_mask;     // a bit per face: (faces + 31) / 32 words
@@ -66,7 +66,7 @@ CUDAHULL_HD void swap_and_removal_rounds(const Team& team, const RoundsBuffers<P
   while (true) {
     const u32 faces = st->faces, fresh = st->fresh_from, entries = st->entries, round = st->round + 1;
     const u32 words = (faces + 31) / 32;
-    const MarkWork<Point> rule{b.find.m, b.look, fresh, round};
+    const MarkWork<Point> rule{b.find.m, b.revisit, fresh, round};
     const auto is_work = [&](u32 f) { return rule.is_work(f); };
     team.list_if(faces, is_work, b.list, &st->round_work, st->work_capacity);
     team.for_range(words, [&](u32 w) { b.win_mask[w] = 0; });
@@ -107,7 +107,8 @@ CUDAHULL_HD void swap_and_removal_rounds(const Team& team, const RoundsBuffers<P
     team.barrier();
     FindCandidate<Point, Log> find = b.find;
     if constexpr (kRecording) find.log.round = round;
-    const Claim<Point, FindCandidate<Point, Log>, Team::kCompactCode> claimer{find, round, b.claim, b.look};
+    const Claim<Point, FindCandidate<Point, Log>, Team::kCompactCode> claimer{find, round, b.claim,
+                                                                              b.revisit};
     team.for_range(work, [&](u32 i) { claimer.claim_for(b.list[i], b.cands[i]); });
     team.barrier();
     team.time(0);
@@ -129,7 +130,7 @@ CUDAHULL_HD void swap_and_removal_rounds(const Team& team, const RoundsBuffers<P
     if (faces + 2 * winners > st->face_capacity || entries + winners > st->entry_capacity) {
       // So far the round changed links (FixLinks, which a rerun repeats), claims (a rerun claims with the
       // same keys) and the stamps of the faces with a candidate, which go back to this round.
-      team.for_range(work, [&](u32 i) { b.look[b.list[i]] = round; });
+      team.for_range(work, [&](u32 i) { b.revisit[b.list[i]] = round; });
       if (team.leader()) {
         // The rerun logs the round's rejections again: this run's go (every claim is done).
         if constexpr (kRecording) *b.find.log.count = logged_before;
@@ -140,7 +141,7 @@ CUDAHULL_HD void swap_and_removal_rounds(const Team& team, const RoundsBuffers<P
       return;
     }
 
-    const Apply<Point> applier{b.find.m, faces, entries, b.look, round};
+    const Apply<Point> applier{b.find.m, faces, entries, b.revisit, round};
     team.for_range(work, [&](u32 i) {
       const u32 f = b.list[i], word = b.win_mask[f / 32], bit = 1u << (f % 32);
       if (word & bit) applier.apply(b.cands[i], b.word_rank[f / 32] + popcount_u32(word & (bit - 1)));

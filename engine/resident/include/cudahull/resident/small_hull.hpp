@@ -54,8 +54,8 @@ struct SmallHullArrays {
   u32 faces, free_room;  // face slots; free-list entries
 };
 CUDAHULL_HD inline SmallHullArrays small_hull_arrays(const BatchSlot& s) {
-  return SmallHullArrays{s.fv,       s.fn,       s.killer, s.flags,   s.face_rank,  s.look,
-                         s.fv_spare, s.fn_spare, s.list,   s.extreme, s.room.faces, s.room.work};
+  return SmallHullArrays{s.fv,       s.fn,       s.replaced_by, s.flags,   s.face_rank,  s.revisit,
+                         s.fv_spare, s.fn_spare, s.list,        s.extreme, s.room.faces, s.room.work};
 }
 
 // A team's room for a hull of up to v vertices: a mesh of at most 2 v - 4 live faces, and no more slots in

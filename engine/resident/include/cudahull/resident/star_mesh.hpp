@@ -12,17 +12,17 @@
 //   that says, by one or two exact orient3d with c, which new face a point of a killed face belongs to:
 //     refine (Fig. 3a)  face (a, b, d) at its furthest point p, strictly inside the cone: children
 //                       (a, b, p), (b, d, p), (d, a, p), each written with its own links (gathers)
-//     flip (Fig. 3b)    concave edge u - v of f = (u, v, x), g = (v, u, y) into x - y: n1 = (x, u, y),
+//     swap (Fig. 3b)    concave edge u - v of f = (u, v, x), g = (v, u, y) into x - y: n1 = (x, u, y),
 //                       n2 = (y, v, x); only when both new faces keep c strictly below (the foldover test
 //                       of Fig. 5, seen from c)
-//     flop (Fig. 4)     a vertex v of degree 3 that is concave or flat: its three faces become (a, b, d)
-//   Flips and flops run in conflict-free rounds: each candidate claims the faces it kills (two for a
-//   flip, three for a flop) with a 64-bit atomicMax of (round, ~candidate id); the holders of all their
+//     removal (Fig. 4)  a vertex v of degree 3 that is concave or flat: its three faces become (a, b, d)
+//   Swaps and removals run in conflict-free rounds: each candidate claims the faces it kills (two for a
+//   swap, three for a removal) with a 64-bit atomicMax of (round, ~candidate id); the holders of all their
 //   claims apply at once, numbered by a prefix sum, so the result is the same on any executor and thread
 //   count.  A winner writes only its new faces and the killed faces' entries, and stamps the faces around it
 //   for the next round (every winner that touches one writes the same stamp); those faces keep
 //   links to killed faces until the next round's FixLinks gathers the new ones from the entries (as the
-//   refinement's gathers do).  Disjoint flips cannot make the same edge: in the radial view each new edge
+//   refinement's gathers do).  Disjoint swaps cannot make the same edge: in the radial view each new edge
 //   lies inside its own quadrilateral.
 //   Face ids only grow within an iteration (killed faces keep their corners for the routing); compaction
 //   renumbers between iterations.
@@ -39,14 +39,14 @@ namespace cudahull::resident {
 using u32 = std::uint32_t;
 using u64 = std::uint64_t;
 
-inline constexpr u32 kAlive = 0xffffffffu;     // killer[] of a live face
-inline constexpr u32 kDeadSlot = 0xfffffffeu;  // killer[] of a face slot a flop left unused
+inline constexpr u32 kAlive = 0xffffffffu;     // replaced_by[] of a live face
+inline constexpr u32 kDeadSlot = 0xfffffffeu;  // replaced_by[] of a face slot a removal left unused
 inline constexpr u32 kNone = 0xffffffffu;
 
-enum EntryKind : u32 { kRefine = 0, kFlip = 1, kFlop = 2 };
+enum EntryKind : u32 { kRefine = 0, kSwap = 1, kRemoval = 2 };
 
-// A decision entry (Fig. 7).  refine: p = apex, out = children; flip: p = x, q = y, out = n1, n2; flop:
-// out[0] = the new face.
+// A decision entry (Fig. 7).  refine: p = apex, out = children; swap: p = x, q = y, out = n1, n2;
+// removal: out[0] = the new face.
 struct Entry {
   u32 kind, p, q;
   u32 out[3];
@@ -135,7 +135,7 @@ struct MeshView {
   Vec3d c;  // the interior point
   u32* fv;
   u32* fn;
-  u32* killer;  // kAlive, kDeadSlot, or the entry that killed the face this iteration
+  u32* replaced_by;  // kAlive, kDeadSlot, or the entry that killed the face this iteration
   Entry* entries;
 
   CUDAHULL_HD Vec3d P(u32 i) const { return to_vec3d(points[i]); }

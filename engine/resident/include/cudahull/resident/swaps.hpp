@@ -23,16 +23,16 @@ namespace cudahull::resident {
 
 // A candidate edit: the faces it kills (claimed) and the faces around them (stamped for the next round).
 struct Candidate {
-  u32 kind = kNone;    // kFlip or kFlop, or kNone
+  u32 kind = kNone;    // kSwap or kRemoval, or kNone
   u32 id = 0;          // 6 f + slot: what it claims with
-  u32 faces[6] = {};   // flip: f, g, A (across x->u), B (u->y), C (y->v), D (v->x); flop: f, h, t, the
-                       // outer faces across a->b, b->d, d->a
-  u32 vertex[4] = {};  // flip: u, v, x, y; flop: v, a, b, d
+  u32 faces[6] = {};   // swap: f, g, A (across x->u), B (u->y), C (y->v), D (v->x); removal: f, h,
+                       // t, the outer faces across a->b, b->d, d->a
+  u32 vertex[4] = {};  // swap: u, v, x, y; removal: v, a, b, d
 };
 
 // faces[0 .. claimed_faces(c)): the faces a candidate kills, which it claims (the rest are the faces around).
 CUDAHULL_HD inline u32 claimed_faces(const Candidate& c) {
-  return c.kind == kFlip ? 2u : c.kind == kFlop ? 3u : 0u;
+  return c.kind == kSwap ? 2u : c.kind == kRemoval ? 3u : 0u;
 }
 
 // What a candidate's id claims with in round `round`: later rounds win over stale claims, and within a
@@ -82,13 +82,13 @@ struct Around {
 // the recording driver's rounds log them (FindCandidate<Point, RejectionLog>); the fast paths' NoLog
 // compiles the logging away.
 enum RejectionKind : u32 {
-  kRejectFoldover = 0,     // a flip whose new faces would not keep c strictly below (Fig. 5, seen from c)
-  kRejectNotManifold = 1,  // a flip whose new edge is already an edge of the mesh
+  kRejectFoldover = 0,     // a swap whose new faces would not keep c strictly below (Fig. 5, seen from c)
+  kRejectNotManifold = 1,  // a swap whose new edge is already an edge of the mesh
   kRejectRemoval = 2,      // a degree-3 concave vertex whose removal would fold over or not be a 2-manifold
 };
 struct Rejection {
   u32 kind, round, id;  // id: 6 f + slot, as Candidate::id
-  u32 vertex[4];        // flip: u, v, x, y; removal: v, a, b, d
+  u32 vertex[4];        // swap: u, v, x, y; removal: v, a, b, d
 };
 struct NoLog {
   CUDAHULL_HD void add(u32, u32, u32, u32, u32, u32) const {}
@@ -112,9 +112,9 @@ struct FindCandidate {
   MeshView<Point> m;
   Log log;
 
-  // Edge i of f, owned by f when f is the lower of its two faces: a concave edge whose flip keeps both new
+  // Edge i of f, owned by f when f is the lower of its two faces: a concave edge whose swap keeps both new
   // faces' cones proper.
-  CUDAHULL_HD bool flip(const Around<Point>& a, int i, Candidate& out) const {
+  CUDAHULL_HD bool swap(const Around<Point>& a, int i, Candidate& out) const {
     const u32 f = a.f, g = a.n[i];
     const int j = a.j[i];
     if (g < f || j < 0) return false;
@@ -130,14 +130,14 @@ struct FindCandidate {
       log.add(kRejectNotManifold, 6 * f + static_cast<u32>(i), a.v[i], a.v[iv], a.v[ix], a.apex(i));
       return false;
     }
-    out = Candidate{kFlip, 0, {f, g, A, B, C, D}, {a.v[i], a.v[iv], a.v[ix], a.apex(i)}};
+    out = Candidate{kSwap, 0, {f, g, A, B, C, D}, {a.v[i], a.v[iv], a.v[ix], a.apex(i)}};
     return true;
   }
 
   // Corner k of f: a vertex v of degree 3 (faces f = (v, a, b), h = (v, d, a), t = (v, b, d)), owned by
   // the lowest of its faces, concave or flat, whose removal keeps the new face's cone proper.  h is
   // neighbour k and t neighbour k + 2; d is h's apex over the edge a -> v.
-  CUDAHULL_HD bool flop(const Around<Point>& r, int k, Candidate& out) const {
+  CUDAHULL_HD bool removal(const Around<Point>& r, int k, Candidate& out) const {
     const int ka = (k + 1) % 3, kb = (k + 2) % 3;
     const u32 f = r.f, v = r.v[k], a = r.v[ka], b = r.v[kb], h = r.n[k], t = r.n[kb];
     if (h < f || t < f || r.j[k] < 0) return false;
@@ -159,7 +159,7 @@ struct FindCandidate {
       log.add(kRejectRemoval, 6 * f + 3 + static_cast<u32>(k), v, a, b, d);
       return false;
     }
-    out = Candidate{kFlop, 0, {f, h, t, ab, bd, da}, {v, a, b, d}};
+    out = Candidate{kRemoval, 0, {f, h, t, ab, bd, da}, {v, a, b, d}};
     return true;
   }
 
@@ -176,7 +176,7 @@ struct FindCandidate {
 #pragma unroll(kUnroll)
 #endif
     for (int i = 0; i < 3; ++i) {
-      if (flip(around, i, out)) {
+      if (swap(around, i, out)) {
         slot = i;
         return true;
       }
@@ -185,7 +185,7 @@ struct FindCandidate {
 #pragma unroll(kUnroll)
 #endif
     for (int k = 0; k < 3; ++k) {
-      if (flop(around, k, out)) {
+      if (removal(around, k, out)) {
         slot = 3 + k;
         return true;
       }
@@ -195,15 +195,15 @@ struct FindCandidate {
 };
 
 // The faces round `round` looks at: live ones made in the previous round (id >= fresh_from), and those
-// stamped for it (look[f] == round): the faces next to the previous round's new ones (the lower face of an
-// edge owns it, and a flop belongs to the lowest of three faces), and those whose candidate lost a claim.
+// stamped for it (revisit[f] == round): the faces next to the previous round's new ones (the lower face of an
+// edge owns it, and a removal belongs to the lowest of three faces), and those whose candidate lost a claim.
 template <class Point>
 struct MarkWork {
   MeshView<Point> m;
-  const u32* look;
+  const u32* revisit;
   u32 fresh_from, round;
   CUDAHULL_HD bool is_work(u32 f) const {
-    return m.killer[f] == kAlive && (f >= fresh_from || look[f] == round);
+    return m.replaced_by[f] == kAlive && (f >= fresh_from || revisit[f] == round);
   }
 };
 
@@ -214,11 +214,11 @@ struct FixLinks {
   MeshView<Point> m;
   CUDAHULL_HD void fix(u32 f) const {
     for (int k = 0; k < 3; ++k) {
-      const u32 nb = m.fn[3 * f + k], e = m.killer[nb];
+      const u32 nb = m.fn[3 * f + k], e = m.replaced_by[nb];
       if (e == kAlive) continue;
       const Entry& entry = m.entries[e];
       const u32 a = m.fv[3 * f + k], b = m.fv[3 * f + (k + 1) % 3];
-      for (int o = 0; o < (entry.kind == kFlip ? 2 : 1); ++o) {
+      for (int o = 0; o < (entry.kind == kSwap ? 2 : 1); ++o) {
         if (m.edge_slot(entry.out[o], b, a) >= 0) m.fn[3 * f + k] = entry.out[o];
       }
     }
@@ -232,7 +232,7 @@ struct Claim {
   Find find;
   u32 round;
   u64* claim;
-  u32* look;
+  u32* revisit;
   CUDAHULL_HD void claim_for(u32 f, Candidate& cand) const {
     int slot = 0;
     if (!find.template first<kCompact>(f, cand, slot)) {
@@ -243,7 +243,7 @@ struct Claim {
   }
   // Face f's first candidate, found at `slot`: kept, and its faces claimed.
   CUDAHULL_HD void take(u32 f, Candidate& cand, int slot) const {
-    look[f] = round + 1;  // won (then killed) or lost (then tried again)
+    revisit[f] = round + 1;  // won (then killed) or lost (then tried again)
     cand.id = 6 * f + static_cast<u32>(slot);
     const u64 key = claim_key(round, cand.id);
     for (u32 k = 0; k < claimed_faces(cand); ++k)
@@ -271,24 +271,24 @@ template <class Point>
 struct Apply {
   MeshView<Point> m;
   u32 first_face, first_entry;
-  u32* look;
+  u32* revisit;
   u32 round;
 
   // An outer face: it links to a face killed here until FixLinks, in the next round, points it at the new
   // one (another winner may be killing it this round).  Every winner that touches it writes the same stamp.
-  CUDAHULL_HD void touch(u32 face) const { look[face] = round + 1; }
+  CUDAHULL_HD void touch(u32 face) const { revisit[face] = round + 1; }
   CUDAHULL_HD void set_face(u32 f, u32 a, u32 b, u32 d, u32 na, u32 nb, u32 nd) const {
     u32* fv = m.fv + 3 * f;
     u32* fn = m.fn + 3 * f;
     fv[0] = a, fv[1] = b, fv[2] = d;
     fn[0] = na, fn[1] = nb, fn[2] = nd;
-    m.killer[f] = kAlive;
-    look[f] = 0;
+    m.replaced_by[f] = kAlive;
+    revisit[f] = 0;
   }
   // A winning candidate, the r-th winner of its round.
   CUDAHULL_HD void apply(const Candidate& cand, u32 r) const {
     const u32 n1 = first_face + 2 * r, n2 = n1 + 1, e = first_entry + r;
-    if (cand.kind == kFlip) {
+    if (cand.kind == kSwap) {
       const u32 u = cand.vertex[0], v = cand.vertex[1], x = cand.vertex[2], y = cand.vertex[3];
       const u32 A = cand.faces[2], B = cand.faces[3], C = cand.faces[4], D = cand.faces[5];
       set_face(n1, x, u, y, A, B, n2);
@@ -297,9 +297,9 @@ struct Apply {
       touch(B);
       touch(C);
       touch(D);
-      m.entries[e] = Entry{kFlip, x, y, {n1, n2, kNone}};
-      m.killer[cand.faces[0]] = e;
-      m.killer[cand.faces[1]] = e;
+      m.entries[e] = Entry{kSwap, x, y, {n1, n2, kNone}};
+      m.replaced_by[cand.faces[0]] = e;
+      m.replaced_by[cand.faces[1]] = e;
     } else {
       const u32 a = cand.vertex[1], b = cand.vertex[2], d = cand.vertex[3];
       const u32 ab = cand.faces[3], bd = cand.faces[4], da = cand.faces[5];
@@ -307,13 +307,13 @@ struct Apply {
       touch(ab);
       touch(bd);
       touch(da);
-      m.killer[n2] = kDeadSlot;
+      m.replaced_by[n2] = kDeadSlot;
       for (int k = 0; k < 3; ++k)
         m.fv[3 * n2 + k] = m.fn[3 * n2 + k] = kNone;
-      look[n2] = 0;
-      m.entries[e] = Entry{kFlop, kNone, kNone, {n1, kNone, kNone}};
+      revisit[n2] = 0;
+      m.entries[e] = Entry{kRemoval, kNone, kNone, {n1, kNone, kNone}};
       for (int k = 0; k < 3; ++k)
-        m.killer[cand.faces[k]] = e;
+        m.replaced_by[cand.faces[k]] = e;
     }
   }
 };
