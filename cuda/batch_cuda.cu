@@ -167,8 +167,8 @@ std::vector<Unfinished> run_pass(const Point* points, std::size_t count, const s
   s.fn = memory.take<u32>(3 * f, "the faces' links");
   s.fv_spare = memory.take<u32>(3 * f, "the compaction's faces");
   s.fn_spare = memory.take<u32>(3 * f, "the compaction's links");
-  s.replaced_by = memory.take<u32>(f, "the faces' killers");
-  s.revisit = memory.take<u32>(f, "the faces' stamps");
+  s.replaced_by = memory.take<u32>(f, "the faces' replacing entries");
+  s.revisit = memory.take<u32>(f, "the faces' revisit rounds");
   s.flags = memory.take<u32>(f + slots, "the faces' marks");
   s.face_rank = memory.take<u32>(f + slots, "the marks' ranks");
   s.win_mask = memory.take<u32>(words, "the rounds' wins");
