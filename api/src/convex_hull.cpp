@@ -308,7 +308,7 @@ bool small_cloud_hull(const Scalar* xyz, std::size_t count, const ConvexHullOpti
   if (options.merge != MergeMode::kExact || options.engine != EngineChoice::kAuto ||
       options.backend != BackendChoice::kCpu || count < 4 || count > kSmallHullPoints)
     return false;
-  const Precision own = std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat;
+  const Precision own = precision_of<Scalar>();
   if (plan_precision(options.precision, own).precision == Precision::kDouble)
     return small_cloud_in<Point3d>(xyz, count, hull);
   return small_cloud_in<Point3>(xyz, count, hull);

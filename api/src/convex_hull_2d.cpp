@@ -112,7 +112,7 @@ ConvexHull describe_planar(const Scalar* xy, PlanarHull planar, const ConvexHull
   ConvexHull hull;
   hull.input_dimension = 2;
   hull.dimension = planar.dimension;
-  hull.precision = std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat;
+  hull.precision = precision_of<Scalar>();
   hull.backend = std::move(backend);
   auto x = [&](PointIndex i) { return static_cast<double>(xy[2 * i]); };
   auto y = [&](PointIndex i) { return static_cast<double>(xy[2 * i + 1]); };
@@ -322,8 +322,7 @@ ConvexHull planar_hull_of(const Input* xy, std::size_t count, Precision own,
 // survivors, which keep every corner and, in input order, every duplicate of one.
 template <class Scalar>
 ConvexHull device_planar_hull(const Scalar* device_xy, std::size_t count, const ConvexHullOptions& options) {
-  const HullPlan plan =
-      device_plan(count, 2, std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat, options);
+  const HullPlan plan = device_plan(count, 2, precision_of<Scalar>(), options);
   require_device_points(device_xy, count, plan);
   if (plan.precision == Precision::kFloat && std::is_same_v<Scalar, double>) {
     // Rounded to float first: on the host, which rounds as the NumPy path does.

@@ -28,7 +28,7 @@ using namespace batch;
 template <class Scalar, class HullOf>
 ConvexHullBatch host_batch(const Scalar* xyz, std::size_t count, const std::size_t* offsets,
                            std::size_t clouds, const ConvexHullBatchOptions& options, HullOf hull_of) {
-  constexpr Precision own = std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat;
+  constexpr Precision own = precision_of<Scalar>();
   check_offsets(count, offsets, clouds);
   const HullPlan plan = batch_plan(count, own, false, options.hull);
   if (!plan.unavailable.empty()) throw DeviceError(plan.unavailable);
@@ -104,7 +104,7 @@ DeviceConvexHullBatch device_batch(const Scalar* device_xyz, std::size_t count, 
           " points, more than the result's int32 indices hold (convex_hull_batch_device "
           "returns the result on the host)");
   }
-  constexpr Precision own = std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat;
+  constexpr Precision own = precision_of<Scalar>();
   const HullPlan plan = batch_plan(count, own, true, options.hull);
   if (plan.backend == BackendChoice::kCpu) throw std::invalid_argument(plan.unavailable);
   if (!plan.unavailable.empty()) throw DeviceError(plan.unavailable);

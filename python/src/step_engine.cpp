@@ -30,7 +30,7 @@ class StepEngine {
     request.backend = backend_from_name(backend);
     request.engine = EngineChoice::kStepping;  // what this class steps
     HullInput input;
-    input.precision = std::is_same_v<Scalar, double> ? Precision::kDouble : Precision::kFloat;
+    input.precision = precision_of<Scalar>();
     input.count = points.shape(0);
     const HullPlan plan = plan_hull(request, input);
     // The engine borrows its points: they live on the heap, owned here, for as long as it does.  The

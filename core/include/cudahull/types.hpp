@@ -34,10 +34,12 @@ struct Point3d {
 // integers), kDouble for text formats and for binary PLY whose x, y, z include a double or a 32-bit integer.
 enum class Precision { kAuto, kFloat, kDouble };
 
-// The precision of a point type: kFloat for Point3, kDouble for Point3d.
-template <class Point>
+// The precision of a point type or of its coordinates: kFloat for Point3 and float, kDouble for Point3d and
+// double.
+template <class PointOrScalar>
 constexpr Precision precision_of() {
-  return std::is_same_v<Point, Point3d> ? Precision::kDouble : Precision::kFloat;
+  return std::is_same_v<PointOrScalar, Point3d> || std::is_same_v<PointOrScalar, double> ? Precision::kDouble
+                                                                                         : Precision::kFloat;
 }
 
 // "auto", "float" or "double".
