@@ -38,6 +38,9 @@ enum class Precision { kAuto, kFloat, kDouble };
 // double.
 template <class PointOrScalar>
 constexpr Precision precision_of() {
+  static_assert(std::is_same_v<PointOrScalar, Point3> || std::is_same_v<PointOrScalar, Point3d> ||
+                    std::is_same_v<PointOrScalar, float> || std::is_same_v<PointOrScalar, double>,
+                "precision_of: Point3, Point3d, float or double");
   return std::is_same_v<PointOrScalar, Point3d> || std::is_same_v<PointOrScalar, double> ? Precision::kDouble
                                                                                          : Precision::kFloat;
 }

@@ -49,6 +49,9 @@ class ResidentStepper : public SteppingEngine {
         points_(&points),
         name_(std::move(backend_name)),
         device_states_(device_point_states) {}
+  // Its recorder points at its own last_: not copied.
+  ResidentStepper(const ResidentStepper&) = delete;
+  ResidentStepper& operator=(const ResidentStepper&) = delete;
 
   bool done() const override { return done_; }
   void restart() override {
