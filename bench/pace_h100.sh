@@ -8,6 +8,7 @@
 # Carried: .carry/bin, .carry/lib (libqhull_r, libgmp), .carry/models/dragon_scans.ply.  The cube-faces row
 # is written here as a binary PLY (every point on a face of the unit cube, seed 7).
 # SKIP="sphere 100M|..." drops rows by label; BUDGET_S stops starting rows after that many seconds.
+# VARIANT=cudahull_x runs a third binary (a change under test) on the rows VARIANT_ROWS="sphere 1M|..." names.
 set -u
 export LD_LIBRARY_PATH=$PWD/.carry/lib
 B=.carry/bin; O=${OUT:-/tmp/out}; mkdir -p "$O"
@@ -53,7 +54,9 @@ for round in $(seq "${ROUNDS:-2}"); do
     IFS='|' read -r label args repeat qhull <<< "$row"
     [[ "|${SKIP:-}|" == *"|$label|"* ]] && continue
     [ $(( $(date +%s) - start )) -gt "${BUDGET_S:-100000}" ] && { echo "budget: $label round $round not run"; continue; }
-    for bin in ${OLD:?name the predecessor binary} cudahull; do
+    bins="${OLD:?name the predecessor binary} cudahull"
+    [[ -n "${VARIANT:-}" && "|${VARIANT_ROWS:-}|" == *"|$label|"* ]] && bins="$bins $VARIANT"
+    for bin in $bins; do
       run $bin "$label" "$repeat" "" $args
     done
     [ "$round" = 1 ] && [ "$qhull" = 1 ] && run cudahull "$label" 1 "--vs qhull" $args
