@@ -42,11 +42,12 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--json")
+    ap.add_argument("--scale", type=int, default=1, help="divide every size by this (a quick check)")
     args = ap.parse_args()
     rng = np.random.default_rng(7)
     rows = []
 
-    points = ball(rng, (10_000_000, 3))
+    points = ball(rng, (10_000_000 // args.scale, 3))
     single = [("NumPy array, ball 10M", lambda: points)]
     try:
         import cupy
@@ -62,7 +63,8 @@ def main():
                      "engine_ms": stats.get("engine_ms"), "describe_ms": stats.get("describe_ms"),
                      "plan": hull.plan})
 
-    batches = [("balls", 10_000, 1_000), ("balls", 100_000, 100), ("spheres", 10_000, 1_000)]
+    batches = [("balls", 10_000 // args.scale, 1_000), ("balls", 100_000 // args.scale, 100),
+               ("spheres", 10_000 // args.scale, 1_000)]
     try:
         import torch
 
@@ -73,7 +75,7 @@ def main():
                          "report": result.report})
     except ImportError:
         pass
-    host = ball(rng, (100_000, 100, 3))
+    host = ball(rng, (100_000 // args.scale, 100, 3))
     result, median, best = timed(lambda: cudahull.convex_hull_batch(host), args.repeat)
     rows.append({"row": "batch from a NumPy array, balls 100,000 x 100 (float32)", "median_ms": median,
                  "best_ms": best, "report": result.report})
