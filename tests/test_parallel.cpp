@@ -6,8 +6,12 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstddef>
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -16,6 +20,10 @@
 
 namespace cudahull {
 namespace {
+
+// A pool wider than the two cores CI has, unless the run sets its own: the race below needs a job of more
+// workers after one of fewer, which a one-worker pool never runs (read once, when the pool is made).
+const bool kWidePool = setenv("CUDAHULL_THREADS", "16", 0) == 0;
 
 // How often each index of [0, n) ran, after parallel_chunks() with `workers` and `grain`.
 std::vector<int> chunk_hits(std::size_t n, unsigned workers, std::size_t grain) {
@@ -92,6 +100,50 @@ TEST(WorkerPool, AnExceptionReachesTheCallerAndThePoolGoesOn) {
     for (int h : hits)
       ASSERT_EQ(h, 1);
   }
+}
+
+// A job of few workers, then one of many, over and over: a worker that read the narrow job's claims (all
+// taken) and then the wide job's fields, before the wide job published its claims, took a chunk of the wide
+// job under the narrow one's claims, and that chunk ran twice (the CPU backend's per-worker tables freed
+// twice on a 16-core machine).  Each index must run once in every job.
+TEST(WorkerPool, AWideJobAfterANarrowOneRunsEachChunkOnce) {
+  ASSERT_TRUE(kWidePool);
+  const unsigned wide = std::max(2u, hardware_workers());
+  std::vector<std::atomic<int>> hits(4 * wide);
+  // A chunk run twice also upsets the pool's count of chunks left: the caller may then wait for ever.
+  std::mutex mutex;
+  std::condition_variable finished;
+  bool done = false;
+  std::thread watchdog([&] {
+    std::unique_lock lock(mutex);
+    if (!finished.wait_for(lock, std::chrono::seconds(120), [&] { return done; })) {
+      std::fprintf(stderr, "AWideJobAfterANarrowOneRunsEachChunkOnce: the pool hung\n");
+      std::_Exit(1);
+    }
+  });
+  int twice = 0;
+  for (int job = 0; job < 200000 && twice == 0; ++job) {
+    const unsigned workers = job % 2 == 0 ? 2u : wide;
+    const std::size_t n = 4 * workers;
+    for (std::size_t i = 0; i < n; ++i)
+      hits[i].store(0, std::memory_order_relaxed);
+    parallel_chunks(
+        n, workers,
+        [&](std::size_t begin, std::size_t end, unsigned) {
+          for (std::size_t i = begin; i < end; ++i)
+            hits[i].fetch_add(1, std::memory_order_relaxed);
+        },
+        1);
+    for (std::size_t i = 0; i < n; ++i)
+      if (hits[i].load() != 1) ++twice;
+  }
+  {
+    std::lock_guard lock(mutex);
+    done = true;
+  }
+  finished.notify_one();
+  watchdog.join();
+  EXPECT_EQ(twice, 0) << "indices not run exactly once";
 }
 
 TEST(WorkerPool, TwoCallersWakesAndWatchSettingsKeepTheResults) {

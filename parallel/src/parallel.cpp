@@ -65,13 +65,18 @@ class WorkerPool {
     if (on_pool_worker || workers > size_ + 1) return false;
     std::unique_lock caller(run_mutex_, std::try_to_lock);
     if (!caller.owns_lock()) return false;
-    n_.store(n, std::memory_order_relaxed);
-    workers_.store(workers, std::memory_order_relaxed);
-    call_.store(call, std::memory_order_relaxed);
-    body_.store(body, std::memory_order_relaxed);
+    ++job_;
+    // The last job's claims are closed before its fields change: a worker that read them (every chunk
+    // taken) and then this job's wider `workers_` would otherwise claim a chunk of this job under the last
+    // job's claims, which still matched, and that chunk would run twice.  The fields' release stores
+    // order this store before them for a worker that reads any of them.
+    claims_.store(std::uint64_t{job_} << 32 | kClosed, std::memory_order_relaxed);
+    n_.store(n, std::memory_order_release);
+    workers_.store(workers, std::memory_order_release);
+    call_.store(call, std::memory_order_release);
+    body_.store(body, std::memory_order_release);
     error_ = nullptr;
     remaining_.store(workers, std::memory_order_relaxed);
-    ++job_;
     // Publishes the fields above with the job's chunks; chunk 0 is the caller's.
     claims_.store(std::uint64_t{job_} << 32 | 1, std::memory_order_release);
     for (unsigned w = 1; w < workers; ++w) {
@@ -96,6 +101,8 @@ class WorkerPool {
 
  private:
   static std::size_t chunk(std::size_t n, unsigned workers) { return (n + workers - 1) / workers; }
+  // A job's claims between jobs: no chunk is left to take, whatever `workers_` reads.
+  static constexpr std::uint32_t kClosed = 0xffffffffu;
 
   void work(unsigned w) {
     on_pool_worker = true;
@@ -116,13 +123,13 @@ class WorkerPool {
     for (;;) {
       std::uint64_t claims = claims_.load(std::memory_order_acquire);
       const unsigned next = static_cast<std::uint32_t>(claims);
-      // The fields as published with `claims`' job; a later job rewrites them only after every chunk of
-      // this one is taken, which the exchange below would see.
-      const unsigned workers = workers_.load(std::memory_order_relaxed);
+      // The fields as published with `claims`' job.  A later job first closes these claims, then rewrites
+      // the fields: a field of it read here makes the exchange below see the closing and fail.
+      const unsigned workers = workers_.load(std::memory_order_acquire);
       if (next >= workers) return;
-      const std::size_t n = n_.load(std::memory_order_relaxed);
-      const ChunkCall call = call_.load(std::memory_order_relaxed);
-      void* const body = body_.load(std::memory_order_relaxed);
+      const std::size_t n = n_.load(std::memory_order_acquire);
+      const ChunkCall call = call_.load(std::memory_order_acquire);
+      void* const body = body_.load(std::memory_order_acquire);
       if (!claims_.compare_exchange_weak(claims, claims + 1, std::memory_order_acq_rel)) continue;
       const std::size_t size = chunk(n, workers);
       const std::size_t begin = std::min(n, next * size), end = std::min(n, begin + size);
