@@ -104,8 +104,8 @@ TEST(WorkerPool, AnExceptionReachesTheCallerAndThePoolGoesOn) {
 
 // A job of few workers, then one of many, over and over: a worker that read the narrow job's claims (all
 // taken) and then the wide job's fields, before the wide job published its claims, took a chunk of the wide
-// job under the narrow one's claims, and that chunk ran twice (the CPU backend's per-worker tables freed
-// twice on a 16-core machine).  Each index must run once in every job.
+// job under the narrow one's claims, and that chunk ran twice (the CPU backend's per-worker tables were
+// then freed twice).  Each index must run once in every job.
 TEST(WorkerPool, AWideJobAfterANarrowOneRunsEachChunkOnce) {
   ASSERT_TRUE(kWidePool);
   const unsigned wide = std::max(2u, hardware_workers());
