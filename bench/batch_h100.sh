@@ -15,7 +15,7 @@ O=${OUT:-/tmp/out}
 PART=${PART:-all}
 mkdir -p $O .carry/bin
 tar -xJf .carry/bin.tar.xz -C .carry/bin
-export LD_LIBRARY_PATH=$PWD/.carry/lib CUDAHULL_MODELS_DIR=$PWD/.carry/models
+export LD_LIBRARY_PATH=$PWD/.carry/lib CUDAHULL_MODELS_DIR=$PWD/.carry/models CUDAHULL_CLI=$PWD/.carry/bin/cudahull
 B=.carry/bin
 failed=0
 nvidia-smi -L

@@ -14,7 +14,7 @@
 #   PART=racecheck-models  racecheck on the six shared models (the slowest: one call of its own)
 # Each part prints one line per test program with its exit status; the logs go to $OUT.
 set -u
-export LD_LIBRARY_PATH=$PWD/.carry/lib CUDAHULL_MODELS_DIR=$PWD/.carry/models
+export LD_LIBRARY_PATH=$PWD/.carry/lib CUDAHULL_MODELS_DIR=$PWD/.carry/models CUDAHULL_CLI=$PWD/.carry/bin/cudahull
 export __EGL_VENDOR_LIBRARY_FILENAMES=${__EGL_VENDOR_LIBRARY_FILENAMES:-/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json}
 B=.carry/bin; O=${OUT:-/tmp/out}; mkdir -p "$O"
 PART=${PART:?PART=tests, python, sanitizers or racecheck-models}

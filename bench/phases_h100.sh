@@ -5,7 +5,7 @@
 # repository root with .carry/bin (cudahull, test_resident_cuda, test_cuda_backend, built here for sm_90),
 # .carry/lib (libqhull_r, libgmp) and .carry/models (the shared models) carried.
 set -u
-export LD_LIBRARY_PATH=$PWD/.carry/lib CUDAHULL_MODELS_DIR=$PWD/.carry/models
+export LD_LIBRARY_PATH=$PWD/.carry/lib CUDAHULL_MODELS_DIR=$PWD/.carry/models CUDAHULL_CLI=$PWD/.carry/bin/cudahull
 B=.carry/bin; O=${OUT:-/tmp/out}; mkdir -p "$O"
 nvidia-smi -L
 for t in test_cuda_backend test_resident_cuda; do

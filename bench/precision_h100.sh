@@ -6,7 +6,7 @@
 # shared models), and the GL loader packages in .gl/ (the device tool's README says how).
 set -u
 for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
-export LD_LIBRARY_PATH=$PWD/.carry/lib CUDAHULL_MODELS_DIR=$PWD/.carry/models
+export LD_LIBRARY_PATH=$PWD/.carry/lib CUDAHULL_MODELS_DIR=$PWD/.carry/models CUDAHULL_CLI=$PWD/.carry/bin/cudahull
 B=.carry/bin; O=${OUT:-/tmp/out}; mkdir -p $O
 nvidia-smi -L
 echo "== gpu label"

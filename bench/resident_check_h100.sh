@@ -5,7 +5,7 @@
 # synccheck on the dragon and, racecheck, 30 property cases).  For the full table: resident_h100.sh.
 #   bash bench/resident_check_h100.sh
 set -u
-export LD_LIBRARY_PATH=$PWD/.carry/lib CUDAHULL_MODELS_DIR=$PWD/.carry/models
+export LD_LIBRARY_PATH=$PWD/.carry/lib CUDAHULL_MODELS_DIR=$PWD/.carry/models CUDAHULL_CLI=$PWD/.carry/bin/cudahull
 B=.carry/bin; O=${OUT:-/tmp/out}; mkdir -p $O
 nvidia-smi -L
 timeout 60 $B/test_resident_cuda > $O/t_full.txt 2>&1; echo "test_resident_cuda exit $?"

@@ -14,6 +14,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -27,7 +28,12 @@
 namespace {
 
 namespace fs = std::filesystem;
-const std::string kCli = CUDAHULL_CLI_PATH;
+// The command line under test: the build tree's, or CUDAHULL_CLI's where the tests run away from the build
+// tree (the GPU machine, as CUDAHULL_MODELS_DIR points them at the models there).
+const std::string kCli = [] {
+  const char* env = std::getenv("CUDAHULL_CLI");
+  return std::string(env != nullptr && *env != '\0' ? env : CUDAHULL_CLI_PATH);
+}();
 
 using cudahull::testing::describe;
 using cudahull::testing::shell_quote;
