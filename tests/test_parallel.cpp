@@ -109,7 +109,6 @@ TEST(WorkerPool, AnExceptionReachesTheCallerAndThePoolGoesOn) {
 TEST(WorkerPool, AWideJobAfterANarrowOneRunsEachChunkOnce) {
   ASSERT_TRUE(kWidePool);
   const unsigned wide = std::max(2u, hardware_workers());
-  std::vector<std::atomic<int>> hits(4 * wide);
   // A chunk run twice also upsets the pool's count of chunks left: the caller may then wait for ever.
   std::mutex mutex;
   std::condition_variable finished;
@@ -124,18 +123,8 @@ TEST(WorkerPool, AWideJobAfterANarrowOneRunsEachChunkOnce) {
   int twice = 0;
   for (int job = 0; job < 200000 && twice == 0; ++job) {
     const unsigned workers = job % 2 == 0 ? 2u : wide;
-    const std::size_t n = 4 * workers;
-    for (std::size_t i = 0; i < n; ++i)
-      hits[i].store(0, std::memory_order_relaxed);
-    parallel_chunks(
-        n, workers,
-        [&](std::size_t begin, std::size_t end, unsigned) {
-          for (std::size_t i = begin; i < end; ++i)
-            hits[i].fetch_add(1, std::memory_order_relaxed);
-        },
-        1);
-    for (std::size_t i = 0; i < n; ++i)
-      if (hits[i].load() != 1) ++twice;
+    for (int hits : chunk_hits(4 * workers, workers, 1))
+      if (hits != 1) ++twice;
   }
   {
     std::lock_guard lock(mutex);
