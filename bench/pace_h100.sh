@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # The pace goals' table on the GPU machine in one run (docs/benchmarks.md, "Phases and their floors"):
-# every row of the resident engine's goals with this build (.carry/bin/cudahull) and its predecessor
-# (.carry/bin/$OLD, built here from an earlier commit), alternating for ROUNDS rounds, then Qhull once on
-# the rows it finishes in reasonable time (the same points: each binary generates them from the same seed).
+# every row of the resident engine's goals with this build (.carry/bin/cudahull) and, where OLD names it, its
+# predecessor (.carry/bin/$OLD, built here from an earlier commit), alternating for ROUNDS rounds (default
+# 2), then Qhull once on the rows it finishes in reasonable time (the same points: each binary generates
+# them from the same seed).
 # One JSON line a run in $OUT/pace.jsonl (with the resident engine's phases and floors); a summary on stdout.
 #   OLD=cudahull_cbe1aa3 ROUNDS=2 bash bench/pace_h100.sh
+#   ROUNDS=1 bash bench/pace_h100.sh   (this build alone: the phases and floors of every row)
 # Carried: .carry/bin, .carry/lib (libqhull_r, libgmp), .carry/models/dragon_scans.ply.  The cube-faces row
 # is written here as a binary PLY (every point on a face of the unit cube, seed 7).
 # SKIP="sphere 100M|..." drops rows by label; BUDGET_S stops starting rows after that many seconds.
@@ -54,7 +56,7 @@ for round in $(seq "${ROUNDS:-2}"); do
     IFS='|' read -r label args repeat qhull <<< "$row"
     [[ "|${SKIP:-}|" == *"|$label|"* ]] && continue
     [ $(( $(date +%s) - start )) -gt "${BUDGET_S:-100000}" ] && { echo "budget: $label round $round not run"; continue; }
-    bins="${OLD:?name the predecessor binary} cudahull"
+    bins="${OLD:-} cudahull"
     [[ -n "${VARIANT:-}" && "|${VARIANT_ROWS:-}|" == *"|$label|"* ]] && bins="$bins $VARIANT"
     for bin in $bins; do
       run $bin "$label" "$repeat" "" $args

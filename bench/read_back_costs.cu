@@ -76,32 +76,9 @@ int main(int argc, char** argv) {
     if (v[words / 2] != 0x01010101u) std::abort();
     return t;
   });
-  const double staged = median_of(5, [&] {
-    const double s = now_ms();
-    std::unique_ptr<unsigned char[]> v(new unsigned char[bytes]);
-    const auto* from = reinterpret_cast<const unsigned char*>(device);
-    const std::size_t chunks = (bytes + kChunk - 1) / kChunk;
-    for (std::size_t c = 0; c < chunks && c < 2; ++c) {
-      cudaMemcpyAsync(pinned[c % 2], from + c * kChunk, std::min(kChunk, bytes - c * kChunk),
-                      cudaMemcpyDeviceToHost, stream);
-      cudaEventRecord(done[c % 2], stream);
-    }
-    for (std::size_t c = 0; c < chunks; ++c) {
-      cudaEventSynchronize(done[c % 2]);
-      std::memcpy(v.get() + c * kChunk, pinned[c % 2], std::min(kChunk, bytes - c * kChunk));
-      if (c + 2 < chunks) {
-        cudaMemcpyAsync(pinned[c % 2], from + (c + 2) * kChunk, std::min(kChunk, bytes - (c + 2) * kChunk),
-                        cudaMemcpyDeviceToHost, stream);
-        cudaEventRecord(done[c % 2], stream);
-      }
-    }
-    const double t = now_ms() - s;
-    if (v[bytes / 2] != 1) std::abort();
-    return t;
-  });
-  // The same, each chunk's copy out of pinned memory split among `threads` threads (fresh memory is
-  // first touched, and copied, on several cores at once).
-  const auto staged_parallel = [&](unsigned threads) {
+  // Through the two pinned buffers taking turns: each chunk's copy out of pinned memory on this thread, or
+  // split among `threads` threads (fresh memory is first touched, and copied, on several cores at once).
+  const auto staged_read = [&](unsigned threads) {
     return median_of(5, [&] {
       const double s = now_ms();
       std::unique_ptr<unsigned char[]> v(new unsigned char[bytes]);
@@ -117,16 +94,21 @@ int main(int argc, char** argv) {
       for (std::size_t c = 0; c < chunks; ++c) {
         cudaEventSynchronize(done[c % 2]);
         const std::size_t size = std::min(kChunk, bytes - c * kChunk), part = (size + threads - 1) / threads;
-        std::vector<std::thread> team;
-        for (unsigned t = 0; t < threads; ++t) {
-          const std::size_t begin = std::min(size, t * part), end = std::min(size, begin + part);
-          team.emplace_back([&, begin, end] {
-            std::memcpy(v.get() + c * kChunk + begin, static_cast<unsigned char*>(pinned[c % 2]) + begin,
-                        end - begin);
-          });
+        const auto copy = [&, c](std::size_t begin, std::size_t end) {
+          std::memcpy(v.get() + c * kChunk + begin, static_cast<unsigned char*>(pinned[c % 2]) + begin,
+                      end - begin);
+        };
+        if (threads == 1) {
+          copy(0, size);
+        } else {
+          std::vector<std::thread> team;
+          for (unsigned t = 0; t < threads; ++t) {
+            const std::size_t begin = std::min(size, t * part), end = std::min(size, begin + part);
+            team.emplace_back(copy, begin, end);
+          }
+          for (std::thread& t : team)
+            t.join();
         }
-        for (std::thread& t : team)
-          t.join();
         if (c + 2 < chunks) issue(c + 2);
       }
       const double t = now_ms() - s;
@@ -134,7 +116,7 @@ int main(int argc, char** argv) {
       return t;
     });
   };
-  const double staged4 = staged_parallel(4), staged8 = staged_parallel(8);
+  const double staged = staged_read(1), staged4 = staged_read(4), staged8 = staged_read(8);
   const double registered = median_of(5, [&] {
     const double s = now_ms();
     std::unique_ptr<unsigned[]> v(new unsigned[words]);
