@@ -59,16 +59,22 @@ inline bool clearly_above(const Vec3d& v, const Vec3d* link, std::size_t k, doub
     q[j] = link[j];
     scale = std::max({scale, std::fabs(q[j].x), std::fabs(q[j].y), std::fabs(q[j].z)});
   }
-  // The facets of hull(link) that v stands above face about the way from the link's centroid to v: their
-  // triples are tried first, with the link point furthest that way in every one of the first C(k - 1, 2).
+  // The facets of hull(link) that v stands above face about the way from the link's centroid to v, and hold
+  // the link points furthest that way: the points sorted that way first, so that the triples of the highest
+  // come first (about two triples a vertex on a ball's hull, where the furthest point alone first took five).
+  // Only the order of the tries changes: the answer is whether any triple shows it.
   Vec3d centre{0, 0, 0};
   for (std::size_t j = 0; j < k; ++j)
     centre = {centre.x + q[j].x, centre.y + q[j].y, centre.z + q[j].z};
   const Vec3d way = sub(v, {centre.x / k, centre.y / k, centre.z / k});
-  std::size_t furthest = 0;
-  for (std::size_t j = 1; j < k; ++j)
-    if (dot(way, q[j]) > dot(way, q[furthest])) furthest = j;
-  std::swap(q[0], q[furthest]);
+  double along[kMaxLink];
+  for (std::size_t j = 0; j < k; ++j) {
+    along[j] = dot(way, q[j]);
+    for (std::size_t x = j; x > 0 && along[x - 1] < along[x]; --x) {
+      std::swap(along[x - 1], along[x]);
+      std::swap(q[x - 1], q[x]);
+    }
+  }
   const double needed = limit + 0x1p-40 * scale;
   auto length_up = [](const Vec3d& a, const Vec3d& b) {
     const Vec3d d = sub(b, a);
