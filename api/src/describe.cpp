@@ -19,9 +19,11 @@ namespace cudahull {
 namespace {
 
 // neighbors[f][k] = the face holding the reverse of the edge opposite corner k (each directed edge appears
-// once in a closed 2-manifold with consistent orientation).  `triangles` index `vertex_count` vertices: the
-// directed edges are grouped by their first vertex (a counting sort), so each reverse is found among a
-// vertex's few edges; sorting all edges took most of a 28K-face hull's time outside the engine.
+// once in a closed 2-manifold with consistent orientation).  `triangles` index `vertex_count` vertices.
+// Each face's corners are grouped by vertex (a counting sort), with the corners after and before them: at
+// vertex a, the face across f's edge a -> b is the face of a whose corner before a is b, found among a's
+// few corners, read together, by selects (a search of b's edges for a, branching on each, mispredicted most
+// of the time; sorting all edges, before that, took most of a 28K-face hull's time outside the engine).
 std::vector<std::array<std::int32_t, 3>> face_neighbors(const std::vector<Triangle>& triangles,
                                                         std::size_t vertex_count) {
   std::vector<std::uint32_t> start(vertex_count + 1, 0);
@@ -31,29 +33,34 @@ std::vector<std::array<std::int32_t, 3>> face_neighbors(const std::vector<Triang
   }
   for (std::size_t v = 0; v < vertex_count; ++v)
     start[v + 1] += start[v];
-  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1), to(3 * triangles.size()),
-      face(3 * triangles.size());
-  for (std::size_t f = 0; f < triangles.size(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t slot = fill[triangles[f][k]]++;
-      to[slot] = triangles[f][(k + 1) % 3];
-      face[slot] = static_cast<std::uint32_t>(f);
-    }
+  struct Corner {
+    std::uint32_t face, k, after, before;  // face's corner k; the corners after and before it
+  };
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  std::vector<Corner> corners(3 * triangles.size());
+  for (std::uint32_t f = 0; f < triangles.size(); ++f) {
+    for (std::uint32_t k = 0; k < 3; ++k)
+      corners[fill[triangles[f][k]]++] = {f, k, triangles[f][(k + 1) % 3], triangles[f][(k + 2) % 3]};
   }
-  std::vector<std::array<std::int32_t, 3>> neighbors(triangles.size(), {-1, -1, -1});
-  for (std::size_t f = 0; f < triangles.size(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      // The edge opposite corner k runs from corner k+1 to corner k+2; its neighbour holds it reversed.
-      const std::uint32_t from = triangles[f][(k + 2) % 3], wanted = triangles[f][(k + 1) % 3];
-      for (std::uint32_t slot = start[from]; slot < start[from + 1]; ++slot) {
-        if (to[slot] == wanted) {
-          neighbors[f][k] = static_cast<std::int32_t>(face[slot]);
-          break;
+  constexpr std::uint32_t kNoFace = 0xffffffffu;
+  std::vector<std::array<std::int32_t, 3>> neighbors(triangles.size());
+  // Each corner writes its own entry: the vertices on all cores (a small mesh's on this thread, where
+  // waking the workers would cost more).
+  const unsigned workers = vertex_count >= 1024 ? hardware_workers() : 1;
+  parallel_blocks(vertex_count, workers, [&](std::size_t begin, std::size_t end, unsigned) {
+    for (std::size_t v = begin; v < end; ++v) {
+      for (std::uint32_t i = start[v]; i < start[v + 1]; ++i) {
+        // Corner k's edge k -> k + 1 is opposite corner k + 2.
+        std::uint32_t found = kNoFace;
+        for (std::uint32_t j = start[v + 1]; j-- > start[v];) {  // last to first: the first match stays
+          const std::uint32_t match = 0u - static_cast<std::uint32_t>(corners[j].before == corners[i].after);
+          found = (found & ~match) | (corners[j].face & match);
         }
+        if (found == kNoFace) throw std::logic_error("convex_hull: the mesh is not closed");
+        neighbors[corners[i].face][(corners[i].k + 2) % 3] = static_cast<std::int32_t>(found);
       }
-      if (neighbors[f][k] < 0) throw std::logic_error("convex_hull: the mesh is not closed");
     }
-  }
+  });
   return neighbors;
 }
 
@@ -131,9 +138,41 @@ std::array<double, 4> facet_plane(Vec3d a, Vec3d b, Vec3d c) {
 // chunk, as every batch cloud's, is measure_mesh()'s own order: the device describe's bits.
 constexpr std::size_t kMeasureChunk = std::size_t{1} << 20;  // a multiple of the 32 error sums
 
+// A mesh of one chunk with more than this many faces has its faces' terms found on all cores and added on
+// one, in measure_mesh()'s order (its bits).
+constexpr std::size_t kMeasureTermsOnCores = 2048;
+
 template <class Corner>
 detail::SolidMeasures measure_on_cores(std::size_t faces, const Corner& corner, const Vec3d& apex) {
-  if (faces <= kMeasureChunk) return detail::measure_mesh(faces, corner, apex);
+  if (faces <= kMeasureTermsOnCores) return detail::measure_mesh(faces, corner, apex);
+  if (faces <= kMeasureChunk) {
+    using detail::SolidMeasures;
+    std::vector<SolidMeasures::FaceTerms> terms(faces);
+    parallel_blocks(faces, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
+      for (std::size_t f = begin; f < end; ++f)
+        terms[f] = SolidMeasures::face_terms(corner(f, 0), corner(f, 1), corner(f, 2), apex);
+    });
+    SolidMeasures measures;
+    double error_sums[SolidMeasures::kErrorSums] = {};
+    for (std::size_t f = 0; f < faces; ++f) {
+      measures.add_terms(terms[f]);
+      double& sum = error_sums[f % SolidMeasures::kErrorSums];
+      sum = detail::add_rn(sum, terms[f].six_volume_error);
+    }
+    for (const double sum : error_sums)
+      measures.six_volume_error = detail::add_rn(measures.six_volume_error, sum);
+    if (measures.volume_uncertain()) {
+      std::vector<double> exact(faces);
+      parallel_blocks(faces, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
+        for (std::size_t f = begin; f < end; ++f)
+          exact[f] = SolidMeasures::exact_six_volume(corner(f, 0), corner(f, 1), corner(f, 2), apex);
+      });
+      measures.exact_volume_pass();
+      for (const double term : exact)
+        measures.add_exact(term);
+    }
+    return measures;
+  }
   using detail::add_rn;
   using detail::SolidMeasures;
   const std::size_t chunks = (faces + kMeasureChunk - 1) / kMeasureChunk;
@@ -248,10 +287,13 @@ ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend,
   }
   if (mesh.dimension != 3) return hull;
 
+  PhaseLaps laps("describe_exact");  // CUDAHULL_PHASE_TIMES=1
   hull.faces.reserve(mesh.triangles.size());
   for (const Triangle& t : mesh.triangles)
     hull.faces.push_back({mesh.vertex_ids[t[0]], mesh.vertex_ids[t[1]], mesh.vertex_ids[t[2]]});
+  laps.lap("faces");
   measure_solid(mesh.vertices, mesh.triangles, hull);
+  laps.lap("measures");
   // Each face's plane on its own (on all cores: a sliver's is exact, and a hull of millions of faces has
   // some), so the result does not depend on the worker count.
   hull.planes.resize(mesh.triangles.size());
@@ -272,8 +314,10 @@ ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend,
             hull.planes[f] = facet_plane(a, b, c);
         }
       },
-      std::size_t{1} << 12);
+      std::size_t{1} << 10);
+  laps.lap("planes");
   if (neighbors) hull.neighbors = face_neighbors(mesh.triangles, mesh.vertices.size());
+  laps.lap("neighbours");
   return hull;
 }
 
