@@ -62,8 +62,8 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   const Facets facets = group_facets(current, graph, visit, tolerance, angle_sine);
   laps.lap("group");
 
-  // Output: triangles grouped by facet, in input indices, on one core beside the kept vertices' bounds
-  // (below), which do not depend on it.
+  // Output: the triangles' order by facet, the kept vertices and the dropped ones, on one core beside the
+  // kept vertices' bounds (below), which do not depend on them; the faces in that order after them.
   // By facet, each facet's triangles ascending (a counting sort: the stable sort's order).
   const std::size_t nt = current.triangles.size();
   std::vector<std::uint32_t> by_facet(nt), position(nt);
@@ -83,25 +83,6 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
       merged.vertices.push_back(exact.vertex_ids[id]);
     if (!std::is_sorted(merged.vertices.begin(), merged.vertices.end()))
       std::sort(merged.vertices.begin(), merged.vertices.end());
-    merged.faces.resize(nt);
-    merged.planes.resize(nt);
-    merged.facet_of_face.resize(nt);
-    merged.neighbors.resize(nt);
-    for (std::size_t p = 0; p < nt; ++p) {
-      const std::uint32_t t = by_facet[p];
-      const Triangle& tri = current.triangles[t];
-      merged.faces[p] = {exact.vertex_ids[current.vertex_ids[tri[0]]],
-                         exact.vertex_ids[current.vertex_ids[tri[1]]],
-                         exact.vertex_ids[current.vertex_ids[tri[2]]]};
-      merged.planes[p] = facets.planes[facets.facet_of[t]];
-      merged.facet_of_face[p] = facets.facet_of[t];
-      for (int k = 0; k < 3; ++k) {
-        // The edge opposite corner k runs from corner k + 1 to corner k + 2: across[3t + k + 1] holds it.
-        const std::uint32_t u = facets.across[3 * t + (k + 1) % 3];
-        if (u == kNone) throw std::logic_error("merge_facets: the mesh is not closed");
-        merged.neighbors[p][k] = static_cast<std::int32_t>(position[u]);
-      }
-    }
 
     // Coplanar: every exact-hull vertex that was dropped, with its nearest triangle and that one's nearest
     // corner.
@@ -133,6 +114,28 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   const KeptBounds kept =
       kept_bounds(graph, facets.planes, seed_corners, in_visit_order, centroid, 4 * tolerance, output);
   const std::vector<double>& kept_bound = kept.bounds;
+  // The faces in their facets' order, on all cores.
+  merged.faces.resize(nt);
+  merged.planes.resize(nt);
+  merged.facet_of_face.resize(nt);
+  merged.neighbors.resize(nt);
+  parallel_blocks(nt, nt >= 1024 ? hardware_workers() : 1, [&](std::size_t begin, std::size_t end, unsigned) {
+    for (std::size_t p = begin; p < end; ++p) {
+      const std::uint32_t t = by_facet[p];
+      const Triangle& tri = current.triangles[t];
+      merged.faces[p] = {exact.vertex_ids[current.vertex_ids[tri[0]]],
+                         exact.vertex_ids[current.vertex_ids[tri[1]]],
+                         exact.vertex_ids[current.vertex_ids[tri[2]]]};
+      merged.planes[p] = facets.planes[facets.facet_of[t]];
+      merged.facet_of_face[p] = facets.facet_of[t];
+      for (int k = 0; k < 3; ++k) {
+        // The edge opposite corner k runs from corner k + 1 to corner k + 2: across[3t + k + 1] holds it.
+        const std::uint32_t u = facets.across[3 * t + (k + 1) % 3];
+        if (u == kNone) throw std::logic_error("merge_facets: the mesh is not closed");
+        merged.neighbors[p][k] = static_cast<std::int32_t>(position[u]);
+      }
+    }
+  });
   laps.lap("kept bound and output");
   merged.coplanar.resize(dropped.size());
   auto face_corner = [&](std::uint32_t f, int k) {

@@ -47,9 +47,10 @@ inline void radix_sort_by_key(std::vector<std::pair<std::uint64_t, std::uint32_t
 }
 
 // The directed edges of a closed triangulated surface: per vertex a, its out-edges (b, the triangle holding
-// a -> b), ascending in b.  Each neighbour of a appears once (the other triangle holds b -> a).  On one
-// core: the merge's first step, taken while the workers wake (wake_workers()); split among them, it waited
-// for their wake-up (docs/benchmarks.md, issue 42's merged path).
+// a -> b), ascending in b.  Each neighbour of a appears once (the other triangle holds b -> a).  A counting
+// sort by a on the caller (the merge's first step, taken while the workers wake: wake_workers()), then each
+// vertex's few edges sorted by b on all cores, which the caller alone does if they are not yet awake (two
+// counting sorts on one core, b's and then a's, took twice as long there).
 struct EdgeIndex {
   std::vector<std::uint32_t> start;                          // per vertex, into `out`; one more at the end
   std::vector<std::pair<std::uint32_t, std::uint32_t>> out;  // (to, triangle)
@@ -61,23 +62,33 @@ struct EdgeIndex {
         ++start[v + 1];
     for (std::size_t v = 0; v + 1 < start.size(); ++v)
       start[v + 1] += start[v];
-    // Two stable counting sorts, by end, then by start: every run ascending in its end, and equal ends in
-    // triangle order (an insertion sort of each run mispredicted about once an edge).  A vertex ends as many
-    // half-edges as it starts (one each a triangle it is in), so both sorts place from `start`.
-    std::vector<std::uint32_t> end_fill(start.begin(), start.end() - 1);
-    struct HalfEdge {
-      std::uint32_t from, to, triangle;
-    };
-    std::vector<HalfEdge> by_end(start.back());
-    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t to = mesh.triangles[t][(k + 1) % 3];
-        by_end[end_fill[to]++] = {mesh.triangles[t][k], to, t};
-      }
+    // A vertex starts one half-edge for each triangle it is in.
     out.resize(start.back());
     std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-    for (const HalfEdge& e : by_end)
-      out[fill[e.from]++] = {e.to, e.triangle};
+    for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k)
+        out[fill[mesh.triangles[t][k]]++] = {mesh.triangles[t][(k + 1) % 3], t};
+    const std::size_t n = mesh.vertices.size();
+    parallel_blocks(n, n >= 1024 ? hardware_workers() : 1, [&](std::size_t begin, std::size_t end, unsigned) {
+      constexpr std::uint32_t kFew = 16;
+      std::pair<std::uint32_t, std::uint32_t> edges[kFew];
+      for (std::size_t v = begin; v < end; ++v) {
+        const std::uint32_t first = start[v], degree = start[v + 1] - first;
+        if (degree > kFew) {
+          std::sort(out.begin() + first, out.begin() + first + degree);
+          continue;
+        }
+        // Each edge's place is the number of edges with a smaller b (every b differs): counted by compares
+        // without branches, where an insertion sort mispredicted about once an edge.
+        std::copy(out.begin() + first, out.begin() + first + degree, edges);
+        for (std::uint32_t i = 0; i < degree; ++i) {
+          std::uint32_t place = 0;
+          for (std::uint32_t j = 0; j < degree; ++j)
+            place += edges[j].first < edges[i].first;
+          out[first + place] = edges[i];
+        }
+      }
+    });
   }
   std::uint32_t degree(std::uint32_t v) const { return start[v + 1] - start[v]; }
   std::uint32_t neighbour(std::uint32_t v, std::uint32_t k) const { return out[start[v] + k].first; }
