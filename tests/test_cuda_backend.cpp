@@ -11,6 +11,7 @@
 
 #include "support/dist_cases.hpp"
 #include "support/point_sets.hpp"
+#include "support/shared_models.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -305,13 +306,8 @@ TEST_F(Cuda, SmallRandomIntegerSets) {
   }
 }
 
-std::filesystem::path models_dir() {
-  if (const char* env = std::getenv("CUDAHULL_MODELS_DIR"); env != nullptr && *env != '\0') return env;
-  return CUDAHULL_MODELS_DIR;
-}
-
 TEST_F(Cuda, SharedModels) {
-  const std::filesystem::path dir = models_dir();
+  const std::filesystem::path dir = testing::shared_models_dir();
   if (!std::filesystem::exists(dir))
     GTEST_SKIP() << "no models folder " << dir << " (set CUDAHULL_MODELS_DIR)";
   int found = 0;

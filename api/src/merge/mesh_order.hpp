@@ -92,12 +92,6 @@ struct EdgeIndex {
   }
   std::uint32_t degree(std::uint32_t v) const { return start[v + 1] - start[v]; }
   std::uint32_t neighbour(std::uint32_t v, std::uint32_t k) const { return out[start[v] + k].first; }
-  // The triangle holding the directed edge a -> b, kNone if none.
-  std::uint32_t triangle(std::uint32_t a, std::uint32_t b) const {
-    for (std::uint32_t k = start[a]; k < start[a + 1]; ++k)
-      if (out[k].first == b) return out[k].second;
-    return kNone;
-  }
 };
 
 // The vertices of `mesh` along a Morton curve of their box, and its triangles by their first corner in that
