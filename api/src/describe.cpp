@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "cudahull/detail/plane_impl.hpp"
 #include "cudahull/exact_hull.hpp"
@@ -18,32 +19,42 @@ namespace cudahull {
 
 namespace {
 
-// neighbors[f][k] = the face holding the reverse of the edge opposite corner k (each directed edge appears
-// once in a closed 2-manifold with consistent orientation).  `triangles` index `vertex_count` vertices.
-// Each face's corners are grouped by vertex (a counting sort), with the corners after and before them: at
-// vertex a, the face across f's edge a -> b is the face of a whose corner before a is b, found among a's
-// few corners, read together, by selects (a search of b's edges for a, branching on each, mispredicted most
-// of the time; sorting all edges, before that, took most of a 28K-face hull's time outside the engine).
-std::vector<std::array<std::int32_t, 3>> face_neighbors(const std::vector<Triangle>& triangles,
-                                                        std::size_t vertex_count) {
-  std::vector<std::uint32_t> start(vertex_count + 1, 0);
-  for (const Triangle& t : triangles) {
-    for (int k = 0; k < 3; ++k)
-      ++start[t[k] + 1];
-  }
-  for (std::size_t v = 0; v < vertex_count; ++v)
-    start[v + 1] += start[v];
+// Face neighbours in two steps: neighbors[f][k] = the face holding the reverse of the edge opposite corner
+// k (each directed edge appears once in a closed 2-manifold with consistent orientation).  Each face's
+// corners are grouped by vertex (a counting sort, on one core: FaceCorners), with the corners after and
+// before them; at vertex a, the face across f's edge a -> b is the face of a whose corner before a is b,
+// found among a's few corners, read together, by selects (face_neighbors(), on all cores).  A search of b's
+// edges for a, branching on each, mispredicted most of the time; sorting all edges, before that, took most
+// of a 28K-face hull's time outside the engine.
+struct FaceCorners {
   struct Corner {
     std::uint32_t face, k, after, before;  // face's corner k; the corners after and before it
   };
-  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-  std::vector<Corner> corners(3 * triangles.size());
-  for (std::uint32_t f = 0; f < triangles.size(); ++f) {
-    for (std::uint32_t k = 0; k < 3; ++k)
-      corners[fill[triangles[f][k]]++] = {f, k, triangles[f][(k + 1) % 3], triangles[f][(k + 2) % 3]};
+  std::vector<std::uint32_t> start;  // per vertex, into `corners`; one more at the end
+  std::vector<Corner> corners;
+
+  FaceCorners(const std::vector<Triangle>& triangles, std::size_t vertex_count) : start(vertex_count + 1, 0) {
+    for (const Triangle& t : triangles) {
+      for (int k = 0; k < 3; ++k)
+        ++start[t[k] + 1];
+    }
+    for (std::size_t v = 0; v < vertex_count; ++v)
+      start[v + 1] += start[v];
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    corners.resize(3 * triangles.size());
+    for (std::uint32_t f = 0; f < triangles.size(); ++f) {
+      for (std::uint32_t k = 0; k < 3; ++k)
+        corners[fill[triangles[f][k]]++] = {f, k, triangles[f][(k + 1) % 3], triangles[f][(k + 2) % 3]};
+    }
   }
+};
+
+std::vector<std::array<std::int32_t, 3>> face_neighbors(const FaceCorners& index, std::size_t faces) {
   constexpr std::uint32_t kNoFace = 0xffffffffu;
-  std::vector<std::array<std::int32_t, 3>> neighbors(triangles.size());
+  const std::vector<std::uint32_t>& start = index.start;
+  const std::vector<FaceCorners::Corner>& corners = index.corners;
+  const std::size_t vertex_count = start.size() - 1;
+  std::vector<std::array<std::int32_t, 3>> neighbors(faces);
   // Each corner writes its own entry: the vertices on all cores (a small mesh's on this thread, where
   // waking the workers would cost more).
   const unsigned workers = vertex_count >= 1024 ? hardware_workers() : 1;
@@ -288,24 +299,24 @@ ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend,
   if (mesh.dimension != 3) return hull;
 
   PhaseLaps laps("describe_exact");  // CUDAHULL_PHASE_TIMES=1
-  hull.faces.reserve(mesh.triangles.size());
-  for (const Triangle& t : mesh.triangles)
-    hull.faces.push_back({mesh.vertex_ids[t[0]], mesh.vertex_ids[t[1]], mesh.vertex_ids[t[2]]});
-  laps.lap("faces");
-  measure_solid(mesh.vertices, mesh.triangles, hull);
-  laps.lap("measures");
+  const std::size_t faces = mesh.triangles.size();
+  hull.faces.resize(faces);
   // Each face's plane on its own (on all cores: a sliver's is exact, and a hull of millions of faces has
   // some), so the result does not depend on the worker count.
-  hull.planes.resize(mesh.triangles.size());
+  hull.planes.resize(faces);
   // Vertices all in the fast exact range (every float, nearly every double): facet_plane()'s in-range path
   // without its test a face, which cost a small cloud more than its planes.
   bool in_range = true;
   if constexpr (std::is_same_v<Point, Point3d>) in_range = in_fast_exact_range(mesh.vertices);
-  parallel_chunks(
-      mesh.triangles.size(), hardware_workers(),
+  // The faces and planes on all cores, the neighbours' corner index beside them on one (a small mesh all on
+  // this thread, where waking the workers would cost more).
+  std::unique_ptr<FaceCorners> corners;
+  parallel_blocks_beside(
+      faces, faces >= 2048 ? hardware_workers() : 1,
       [&](std::size_t begin, std::size_t end, unsigned) {
         for (std::size_t f = begin; f < end; ++f) {
           const Triangle& t = mesh.triangles[f];
+          hull.faces[f] = {mesh.vertex_ids[t[0]], mesh.vertex_ids[t[1]], mesh.vertex_ids[t[2]]};
           const Vec3d a = to_vec3d(mesh.vertices[t[0]]), b = to_vec3d(mesh.vertices[t[1]]),
                       c = to_vec3d(mesh.vertices[t[2]]);
           if (in_range)
@@ -314,9 +325,14 @@ ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend,
             hull.planes[f] = facet_plane(a, b, c);
         }
       },
+      [&] {
+        if (neighbors) corners = std::make_unique<FaceCorners>(mesh.triangles, mesh.vertices.size());
+      },
       std::size_t{1} << 10);
-  laps.lap("planes");
-  if (neighbors) hull.neighbors = face_neighbors(mesh.triangles, mesh.vertices.size());
+  laps.lap("faces, planes and corner index");
+  measure_solid(mesh.vertices, mesh.triangles, hull);
+  laps.lap("measures");
+  if (neighbors) hull.neighbors = face_neighbors(*corners, faces);
   laps.lap("neighbours");
   return hull;
 }
