@@ -43,7 +43,8 @@ int main(int argc, char** argv) {
     for (int r = 0; r < reps; ++r) {
       const auto start = std::chrono::steady_clock::now();
       faces = hull_from_mesh(mesh, "cpu", options).faces.size();
-      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      ms.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     }
     std::sort(ms.begin(), ms.end());
     std::printf("%-6s: %zu faces, median %.3f ms, best %.3f ms\n", name, faces, ms[ms.size() / 2], ms[0]);
