@@ -94,6 +94,7 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
     std::sort(dropped.begin(), dropped.end(),
               [&](std::uint32_t a, std::uint32_t b) { return exact.vertex_ids[a] < exact.vertex_ids[b]; });
   };
+  laps.lap("output set up");
   std::vector<Triangle> seed_corners;  // per facet: its largest triangle's corners
   seed_corners.reserve(facets.seeds.size());
   for (std::uint32_t seed : facets.seeds) {
@@ -111,9 +112,11 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   }
   const double vertex_count = static_cast<double>(current.vertices.size());
   centroid = {centroid.x / vertex_count, centroid.y / vertex_count, centroid.z / vertex_count};
+  laps.lap("kept bound set up");
   const KeptBounds kept =
       kept_bounds(graph, facets.planes, seed_corners, in_visit_order, centroid, 4 * tolerance, output);
   const std::vector<double>& kept_bound = kept.bounds;
+  laps.lap("kept bound and facet order");
   // The faces in their facets' order, on all cores.
   merged.faces.resize(nt);
   merged.planes.resize(nt);
@@ -136,7 +139,7 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
       }
     }
   });
-  laps.lap("kept bound and output");
+  laps.lap("faces");
   merged.coplanar.resize(dropped.size());
   auto face_corner = [&](std::uint32_t f, int k) {
     return to_vec3d(current.vertices[current.triangles[by_facet[f]][k]]);

@@ -9,6 +9,7 @@
 
 #include "box_tree.hpp"
 #include "cudahull/parallel.hpp"
+#include "cudahull/phase_times.hpp"
 #include "cudahull/predicates.hpp"
 #include "geometry.hpp"
 #include "mesh_order.hpp"
@@ -139,6 +140,7 @@ KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
   }
   std::vector<double> found(count, -kInfinity);
   const unsigned workers = hardware_workers();
+  PhaseLaps laps("kept_bounds");  // CUDAHULL_PHASE_TIMES=1
   std::vector<double> least(workers, kInfinity);
   parallel_blocks_beside(
       count, workers,
@@ -167,6 +169,9 @@ KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
             v = next;  // n . p + d grows strictly, exactly: the ascent ends
           }
         };
+        // The block's least depth, kept here and written once: the workers' entries share cache lines, and
+        // a write a facet from every worker kept them moving between the cores.
+        double block_least = kInfinity;
         for (std::size_t i = begin; i < end; ++i) {
           const Plane& plane = ordered[i];
           const bool exact = g.coordinates_safe && plane_safe(plane);
@@ -177,7 +182,7 @@ KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
               found[i] = std::max(found[i], bound_at(plane, p));
               if (thin) depth = std::max(depth, -plane_value(plane, p));
             }
-            least[worker] = std::min(least[worker], depth);
+            block_least = std::min(block_least, depth);
             continue;
           }
           // First from the seed's corner of the largest value, where the maximum usually is: an end with
@@ -202,10 +207,12 @@ KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
             }
             depth = -plane_value(plane, at[u]);
           }
-          least[worker] = std::min(least[worker], depth);
+          block_least = std::min(block_least, depth);
         }
+        least[worker] = std::min(least[worker], block_least);
       },
       side, 256);
+  laps.lap("ascents");
   KeptBounds kept;
   kept.bounds.assign(planes.size(), -kInfinity);
   for (std::size_t i = 0; i < count; ++i)
