@@ -49,8 +49,8 @@ inline void radix_sort_by_key(std::vector<std::pair<std::uint64_t, std::uint32_t
 // The directed edges of a closed triangulated surface: per vertex a, its out-edges (b, the triangle holding
 // a -> b), ascending in b.  Each neighbour of a appears once (the other triangle holds b -> a).  A counting
 // sort by a on the caller (the merge's first step, taken while the workers wake: wake_workers()), then each
-// vertex's few edges sorted by b on all cores, which the caller alone does if they are not yet awake (two
-// counting sorts on one core, b's and then a's, took twice as long there).
+// vertex's few edges sorted by b on all cores, which the caller alone does if they are not yet awake (where
+// two counting sorts, by b and then by a, all ran on one core).
 struct EdgeIndex {
   std::vector<std::uint32_t> start;                          // per vertex, into `out`; one more at the end
   std::vector<std::pair<std::uint32_t, std::uint32_t>> out;  // (to, triangle)
