@@ -311,8 +311,7 @@ TEST_F(Cuda, SharedModels) {
   if (!std::filesystem::exists(dir))
     GTEST_SKIP() << "no models folder " << dir << " (set CUDAHULL_MODELS_DIR)";
   int found = 0;
-  for (const char* name : {"bun_zipper.ply", "stanford-bunny.obj", "dragonStandRight_0.ply",
-                           "dragon_scans.ply", "teapot.obj", "spot.obj"}) {
+  for (const auto& [name, count] : testing::kSharedModelCounts) {
     if (!std::filesystem::exists(dir / name)) continue;
     ++found;
     const auto points = read_points((dir / name).string());

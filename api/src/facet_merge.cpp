@@ -94,7 +94,6 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
     std::sort(dropped.begin(), dropped.end(),
               [&](std::uint32_t a, std::uint32_t b) { return exact.vertex_ids[a] < exact.vertex_ids[b]; });
   };
-  laps.lap("output set up");
   std::vector<Triangle> seed_corners;  // per facet: its largest triangle's corners
   seed_corners.reserve(facets.seeds.size());
   for (std::uint32_t seed : facets.seeds) {
