@@ -59,7 +59,8 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
     graph = relabelled(current, edges, visit);
   }
   laps.lap("drop");
-  const Facets facets = group_facets(current, graph, visit, tolerance, angle_sine);
+  Facets facets = group_facets(current, graph, visit, std::move(graph.area_keys), graph.keys_sorted,
+                               tolerance, angle_sine);
   laps.lap("group");
 
   // Output: the triangles' order by facet, the kept vertices and the dropped ones, on one core beside the
@@ -68,7 +69,9 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   const std::size_t nt = current.triangles.size();
   std::vector<std::uint32_t> by_facet(nt), position(nt);
   std::vector<std::uint32_t> dropped;
+  Clock::time_point output_start, output_end;
   auto output = [&] {
+    output_start = Clock::now();
     std::vector<std::uint32_t> facet_start(facets.planes.size() + 1, 0);
     for (std::uint32_t f : facets.facet_of)
       ++facet_start[f + 1];
@@ -93,16 +96,8 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
       if (!kept[i]) dropped.push_back(i);
     std::sort(dropped.begin(), dropped.end(),
               [&](std::uint32_t a, std::uint32_t b) { return exact.vertex_ids[a] < exact.vertex_ids[b]; });
+    output_end = Clock::now();
   };
-  std::vector<Triangle> seed_corners;  // per facet: its largest triangle's corners
-  seed_corners.reserve(facets.seeds.size());
-  for (std::uint32_t seed : facets.seeds) {
-    seed_corners.push_back(current.triangles[seed]);
-  }
-  std::vector<std::uint32_t> in_visit_order;  // the facets by their seeds' places in the visit order
-  in_visit_order.reserve(facets.seeds.size());
-  for (std::uint32_t t : visit.triangles)
-    if (facets.seeds[facets.facet_of[t]] == t) in_visit_order.push_back(facets.facet_of[t]);
   // The vertices' centroid for the thinnest depth, summed in the mesh's order.
   Vec3d centroid{0, 0, 0};
   for (const Point& p : current.vertices) {
@@ -112,13 +107,15 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   const double vertex_count = static_cast<double>(current.vertices.size());
   centroid = {centroid.x / vertex_count, centroid.y / vertex_count, centroid.z / vertex_count};
   laps.lap("kept bound set up");
-  const KeptBounds kept =
-      kept_bounds(graph, facets.planes, seed_corners, in_visit_order, centroid, 4 * tolerance, output);
-  const std::vector<double>& kept_bound = kept.bounds;
+  const KeptBounds kept = kept_bounds(graph, facets.planes, facets.in_visit_order, facets.visit_starts,
+                                      centroid, 4 * tolerance, output);
+  laps.note("the facet order beside", output_start, output_end);
   laps.lap("kept bound and facet order");
-  // The faces in their facets' order, on all cores.
+  // The faces in their facets' order, on all cores.  Where every facet is one triangle (a ball's hull), the
+  // facets' planes are the faces' (the facets are numbered in the faces' order).
+  const bool single_triangles = facets.planes.size() == nt;
   merged.faces.resize(nt);
-  merged.planes.resize(nt);
+  if (!single_triangles) merged.planes.resize(nt);
   merged.facet_of_face.resize(nt);
   merged.neighbors.resize(nt);
   parallel_blocks(nt, nt >= 1024 ? hardware_workers() : 1, [&](std::size_t begin, std::size_t end, unsigned) {
@@ -128,7 +125,7 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
       merged.faces[p] = {exact.vertex_ids[current.vertex_ids[tri[0]]],
                          exact.vertex_ids[current.vertex_ids[tri[1]]],
                          exact.vertex_ids[current.vertex_ids[tri[2]]]};
-      merged.planes[p] = facets.planes[facets.facet_of[t]];
+      if (!single_triangles) merged.planes[p] = facets.planes[facets.facet_of[t]];
       merged.facet_of_face[p] = facets.facet_of[t];
       for (int k = 0; k < 3; ++k) {
         // The edge opposite corner k runs from corner k + 1 to corner k + 2: across[3t + k + 1] holds it.
@@ -138,6 +135,8 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
       }
     }
   });
+  if (single_triangles) merged.planes = std::move(facets.planes);
+  const std::vector<Plane>& facet_planes = single_triangles ? merged.planes : facets.planes;
   laps.lap("faces");
   merged.coplanar.resize(dropped.size());
   auto face_corner = [&](std::uint32_t f, int k) {
@@ -199,11 +198,21 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
       32);
 
   laps.lap("coplanar");
-  merged.thinnest = facets.planes.empty() ? kInfinity : kept.thinnest;
+  merged.thinnest = facet_planes.empty() ? kInfinity : kept.thinnest;
   std::vector<Vec3d> dropped_points;
   for (std::uint32_t i : dropped)
     dropped_points.push_back(to_vec3d(vertices[i]));
-  merged.max_outside = std::nextafter(dropped_bound(dropped_points, facets.planes, kept_bound), kInfinity);
+  // The kept vertices' bound per facet (kept_bounds() gives them in the visit order): needed only where
+  // points were dropped; otherwise dropped_bound() takes their largest alone.
+  std::vector<double> kept_bound;
+  if (!dropped_points.empty()) {
+    kept_bound.resize(facet_planes.size());
+    for (std::size_t i = 0; i < kept.bounds.size(); ++i)
+      kept_bound[facets.in_visit_order[i]] = kept.bounds[i];
+  }
+  merged.max_outside = std::nextafter(
+      dropped_bound(dropped_points, facet_planes, dropped_points.empty() ? kept.bounds : kept_bound),
+      kInfinity);
   laps.lap("dropped bound");
   return merged;
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -115,29 +116,23 @@ inline bool plane_safe(const Plane& plane) {
 // hull), the deepest vertex itself, by a descent from the facet's start (its seed's corner 0) along the
 // edges against the plane's normal, with exact comparisons, to the first neighbour found deeper.
 //
-// The planes are taken in `order` (their starts' visit order, VisitOrder), not in the facets' (largest
-// first, scattered): the same results, from the cache.  `side()` runs beside them on one core.
+// The planes are taken in `order` (their starts' visit order, Facets::in_visit_order), each from `starts`
+// (its seed's corners as positions of g, in that order), not in the facets' (largest first, scattered): the
+// same results, from the cache.  `side()` runs beside them on one core.
 struct KeptBounds {
-  std::vector<double> bounds;  // per plane
+  std::vector<double> bounds;  // per plane, in `order`'s order
   double thinnest = kInfinity;
 };
 
 template <class Side>
 KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
-                       const std::vector<Triangle>& seed_corners, const std::vector<std::uint32_t>& order,
-                       const Vec3d& centroid, double near, Side&& side) {
-  // The planes and starts gathered in `order` and the ascents on the relabelled mesh (each vertex's
-  // neighbours in EdgeIndex's order, so that every ascent takes the same steps): the ascents read what
-  // their neighbours read, not scattered lines.
+                       const std::vector<std::uint32_t>& order,
+                       const std::vector<std::array<std::uint32_t, 3>>& starts, const Vec3d& centroid,
+                       double near, Side&& side) {
+  // The ascents on the relabelled mesh (each vertex's neighbours in EdgeIndex's order, so that every ascent
+  // takes the same steps): the ascents read what their neighbours read, not scattered lines.
   const std::vector<Vec3d>& at = g.at;
   const std::size_t count = order.size();
-  std::vector<Plane> ordered(count);
-  std::vector<Triangle> corners(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    ordered[i] = planes[order[i]];
-    for (int k = 0; k < 3; ++k)
-      corners[i][k] = g.rank[seed_corners[order[i]][k]];
-  }
   std::vector<double> found(count, -kInfinity);
   const unsigned workers = hardware_workers();
   PhaseLaps laps("kept_bounds");  // CUDAHULL_PHASE_TIMES=1
@@ -173,7 +168,7 @@ KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
         // a write a facet from every worker kept them moving between the cores.
         double block_least = kInfinity;
         for (std::size_t i = begin; i < end; ++i) {
-          const Plane& plane = ordered[i];
+          const Plane& plane = planes[order[i]];
           const bool exact = g.coordinates_safe && plane_safe(plane);
           double depth = -plane_value(plane, centroid);
           if (!exact) {
@@ -188,7 +183,7 @@ KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
           // First from the seed's corner of the largest value, where the maximum usually is: an end with
           // every neighbour exactly below is the unique maximum, which the ascent from corner 0 (the
           // bound's definition) also ends at.  Otherwise (a tie) that ascent itself.
-          const Triangle& c = corners[i];
+          const std::array<std::uint32_t, 3>& c = starts[i];
           std::uint32_t best = c[0];
           for (int k = 1; k < 3; ++k)
             if (plane_value(plane, at[c[k]]) > plane_value(plane, at[best])) best = c[k];
@@ -214,9 +209,7 @@ KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
       side, 256);
   laps.lap("ascents");
   KeptBounds kept;
-  kept.bounds.assign(planes.size(), -kInfinity);
-  for (std::size_t i = 0; i < count; ++i)
-    kept.bounds[order[i]] = found[i];
+  kept.bounds = std::move(found);
   kept.thinnest = *std::min_element(least.begin(), least.end());
   return kept;
 }

@@ -3,8 +3,11 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
+#include <utility>
 
 #include "cudahull/predicates.hpp"
 
@@ -32,6 +35,17 @@ inline double dot(const Vec3d& a, const Vec3d& b) {
 }
 inline Vec3d cross(const Vec3d& a, const Vec3d& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+// Triangle t's key in the largest-first order of the facets' seeds (grouping.hpp): the bits of twice its
+// area (|(b - a) x (c - a)|) inverted, which order as the areas do (none is negative or NaN), then t.
+inline std::pair<std::uint64_t, std::uint32_t> largest_first_key(const Vec3d& a, const Vec3d& b,
+                                                                 const Vec3d& c, std::uint32_t t) {
+  const Vec3d n = cross(sub(b, a), sub(c, a));
+  const double twice_area = std::sqrt(dot(n, n));
+  std::uint64_t bits;
+  std::memcpy(&bits, &twice_area, sizeof bits);
+  return {~bits, t};
 }
 
 // Squared Euclidean distance from p to triangle abc (closest point by Voronoi regions, Ericson 5.1.5).

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -21,6 +22,11 @@ struct Facets {
   std::vector<Plane> planes;            // per facet
   std::vector<std::uint32_t> seeds;     // per facet: its largest triangle
   std::vector<std::uint32_t> across;    // per triangle t and edge k: the triangle holding its reverse
+  // The facets by their seeds' places in the visit order, and each one's seed corners as positions of the
+  // relabelled mesh: kept_bounds() takes the facets in this order, so that neighbours' planes are read
+  // together.
+  std::vector<std::uint32_t> in_visit_order;
+  std::vector<std::array<std::uint32_t, 3>> visit_starts;
 };
 
 // Step 3: groups the triangles of `mesh` into merged facets.
@@ -37,6 +43,7 @@ struct Facets {
 // and every test are the mesh's, so the facets are too.
 template <class Point>
 Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const VisitOrder& visit,
+                    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed, bool keys_sorted,
                     double tolerance, double angle_sine) {
   PhaseLaps laps("group_facets");  // CUDAHULL_PHASE_TIMES=1
   const std::size_t nt = mesh.triangles.size();
@@ -50,11 +57,9 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
     return kNone;
   };
   std::vector<Plane> plane(nt);
-  std::vector<double> twice_area(nt);
-  // Largest first, ties by the mesh's index: (the area's bits inverted, index) keys, which order as the
-  // areas do (no area is negative or NaN), listed by index and sorted stably on the bits alone (a radix
-  // sort, beside the joining pass below).
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(nt);
+  // `keyed`: the triangles' largest_first_key()s, by index (Relabelled::area_keys), sorted unless
+  // `keys_sorted` beside the joining pass below (a radix sort): the seeds' order, largest first, ties by
+  // the mesh's index.
   std::vector<std::uint32_t> across(3 * nt);  // the triangle across edge k of j: the one holding its reverse
   parallel_blocks(
       nt, hardware_workers(),
@@ -64,11 +69,6 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
           tri[j] = {g.rank[corners[0]], g.rank[corners[1]], g.rank[corners[2]]};
           const Vec3d a = corner(j, 0), b = corner(j, 1), c = corner(j, 2);
           plane[j] = plane_through(a, b, c);
-          const Vec3d n = cross(sub(b, a), sub(c, a));
-          twice_area[j] = std::sqrt(dot(n, n));
-          std::uint64_t area_bits;
-          std::memcpy(&area_bits, &twice_area[j], sizeof area_bits);
-          keyed[visit.triangles[j]] = {~area_bits, visit.triangles[j]};
           for (int k = 0; k < 3; ++k)
             across[3 * j + k] = holder(tri[j][(k + 1) % 3], tri[j][k]);
         }
@@ -108,6 +108,7 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
   // Per triangle as a seed: which neighbours would join (bit k: across edge k), and the offset of its plane
   // were it alone (the top of its corners).
   std::vector<std::uint8_t> joining(nt);
+  Clock::time_point sort_start, sort_end;
   std::vector<double> alone_top(nt);
   parallel_blocks_beside(
       nt, hardware_workers(),
@@ -127,7 +128,13 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
               {dot3(plane[j], corner(j, 0)), dot3(plane[j], corner(j, 1)), dot3(plane[j], corner(j, 2))});
         }
       },
-      [&] { radix_sort_by_key(keyed); }, 1024);
+      [&] {
+        sort_start = Clock::now();
+        if (!keys_sorted) radix_sort_by_key(keyed);
+        sort_end = Clock::now();
+      },
+      1024);
+  laps.note("the sort beside", sort_start, sort_end);
   laps.lap("joining and sort");
   Facets facets;
   // Mesh triangle t's neighbours (position j's, in positions) as mesh triangles, into facets.across.
@@ -141,16 +148,23 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
     facets.facet_of.resize(nt);
     facets.seeds.resize(nt);
     facets.planes.resize(nt);
-    facets.across.resize(3 * nt);
+    // In index order (a small mesh), position j is triangle j: the neighbours are already the mesh's, and
+    // the facets' visit order is facet_of.
+    const bool in_index_order = visit.in_index_order;
+    if (!in_index_order) facets.across.resize(3 * nt), facets.in_visit_order.resize(nt);
     parallel_blocks(nt, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
       for (std::size_t id = begin; id < end; ++id) {
-        const std::uint32_t t = keyed[id].second, j = jrank[t];
+        const std::uint32_t t = keyed[id].second, j = in_index_order ? t : jrank[t];
         facets.facet_of[t] = static_cast<std::uint32_t>(id);
         facets.seeds[id] = t;
         facets.planes[id] = {plane[j][0], plane[j][1], plane[j][2], -alone_top[j]};
+        if (in_index_order) continue;
+        facets.in_visit_order[j] = static_cast<std::uint32_t>(id);
         across_in_mesh(t, j);
       }
     });
+    if (in_index_order) facets.across = std::move(across), facets.in_visit_order = facets.facet_of;
+    facets.visit_starts = std::move(tri);  // every position is a seed
     laps.lap("alone");
     return facets;
   }
@@ -209,6 +223,13 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
   facets.seeds.reserve(seeds.size());
   for (std::uint32_t j : seeds)
     facets.seeds.push_back(visit.triangles[j]);
+  facets.in_visit_order.reserve(seeds.size());
+  facets.visit_starts.reserve(seeds.size());
+  for (std::uint32_t j = 0; j < nt; ++j)
+    if (seeds[facet_of[j]] == j) {
+      facets.in_visit_order.push_back(facet_of[j]);
+      facets.visit_starts.push_back(tri[j]);
+    }
   return facets;
 }
 

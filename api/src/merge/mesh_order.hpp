@@ -15,6 +15,7 @@
 #include "cudahull/parallel.hpp"
 #include "cudahull/predicates.hpp"
 #include "cudahull/types.hpp"
+#include "geometry.hpp"
 
 namespace cudahull::merge {
 
@@ -98,10 +99,12 @@ struct EdgeIndex {
 // order.  The per-vertex, per-triangle and per-facet passes take their independent items in these orders,
 // so that neighbours on the hull are neighbours in time: in index order (the engine's, spatially random)
 // nearly every read of a corner, a link or a plane missed the cache, most of a 100,000-vertex sphere's
-// merge.  Only the order of independent items changes, never a result.  Small meshes keep index order.
+// merge.  Only the order of independent items changes, never a result.  A small mesh (under 4096 vertices,
+// read from the cache in any order) keeps index order, vertices and triangles.
 struct VisitOrder {
   std::vector<std::uint32_t> vertices, triangles;
   std::vector<std::uint32_t> triangle_rank;  // per triangle: its place in `triangles`
+  bool in_index_order = false;               // both identities (a small mesh)
 };
 
 template <class Point>
@@ -110,36 +113,42 @@ VisitOrder visit_order(const BasicHullMesh<Point>& mesh) {
   VisitOrder order;
   order.vertices.resize(n);
   std::iota(order.vertices.begin(), order.vertices.end(), 0u);
-  if (n >= 4096) {
-    Box all;
-    for (const Point& p : mesh.vertices)
-      all.add({{double(p.x), double(p.y), double(p.z)}, {double(p.x), double(p.y), double(p.z)}});
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(n);
-    parallel_chunks(n, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
-      for (std::size_t i = begin; i < end; ++i) {
-        const double at[3] = {double(mesh.vertices[i].x), double(mesh.vertices[i].y),
-                              double(mesh.vertices[i].z)};
-        std::uint64_t code = 0;
-        for (int k = 0; k < 3; ++k) {
-          const double width = all.hi[k] - all.lo[k];
-          double t = width > 0 ? (at[k] - all.lo[k]) / width : 0;
-          if (!(t > 0)) t = 0;  // NaN too: the order only affects speed
-          code |= spread3(static_cast<std::uint64_t>(std::min(t, 1.0) * 2097151.0)) << k;
-        }
-        keyed[i] = {code, static_cast<std::uint32_t>(i)};
-      }
-    });
-    std::sort(keyed.begin(), keyed.end());
-    for (std::size_t i = 0; i < n; ++i)
-      order.vertices[i] = keyed[i].second;
+  const std::size_t nt = mesh.triangles.size();
+  if (n < 4096) {  // a small mesh's passes read from the cache in any order: its triangles in index order
+    order.triangles.resize(nt);
+    std::iota(order.triangles.begin(), order.triangles.end(), 0u);
+    order.triangle_rank = order.triangles;
+    order.in_index_order = true;
+    return order;
   }
+  // Along the Morton curve.
+  Box all;
+  for (const Point& p : mesh.vertices)
+    all.add({{double(p.x), double(p.y), double(p.z)}, {double(p.x), double(p.y), double(p.z)}});
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(n);
+  parallel_chunks(n, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
+    for (std::size_t i = begin; i < end; ++i) {
+      const double at[3] = {double(mesh.vertices[i].x), double(mesh.vertices[i].y),
+                            double(mesh.vertices[i].z)};
+      std::uint64_t code = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double width = all.hi[k] - all.lo[k];
+        double t = width > 0 ? (at[k] - all.lo[k]) / width : 0;
+        if (!(t > 0)) t = 0;  // NaN too: the order only affects speed
+        code |= spread3(static_cast<std::uint64_t>(std::min(t, 1.0) * 2097151.0)) << k;
+      }
+      keyed[i] = {code, static_cast<std::uint32_t>(i)};
+    }
+  });
+  std::sort(keyed.begin(), keyed.end());
+  for (std::size_t i = 0; i < n; ++i)
+    order.vertices[i] = keyed[i].second;
   // Each vertex's triangles (those it is the first corner of) in its out-edges' order (a triangle a -> b -> c
   // holds out-edge a -> b): by their second corner, then stably by their first corner's place, two counting
   // sorts.
   std::vector<std::uint32_t> rank_of(n);
   for (std::uint32_t j = 0; j < n; ++j)
     rank_of[order.vertices[j]] = j;
-  const std::size_t nt = mesh.triangles.size();
   std::vector<std::uint32_t> second_start(n + 1, 0), first_start(n + 1, 0);
   for (const Triangle& t : mesh.triangles)
     ++second_start[t[1] + 1], ++first_start[rank_of[t[0]] + 1];
@@ -166,6 +175,11 @@ struct Relabelled {
   std::vector<std::uint32_t> face;  // per out-edge: the place in VisitOrder::triangles of its triangle
   std::vector<Vec3d> at;
   bool coordinates_safe = true;  // every coordinate in compare_along()'s exact range
+  // Per triangle of the mesh, by index: largest_first_key(), found here beside the relabelling (each
+  // triangle by its first corner) so that the keys' sort can run beside a later pass; `keys_sorted` once
+  // sorted ascending (largest first), which drop_low_vertices() does beside the heights.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> area_keys;
+  bool keys_sorted = false;
 };
 
 template <class Point>
@@ -177,6 +191,7 @@ Relabelled relabelled(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, 
   g.to.resize(edges.out.size());
   g.face.resize(edges.out.size());
   g.at.resize(n);
+  g.area_keys.resize(mesh.triangles.size());
   for (std::uint32_t j = 0; j < n; ++j) {
     const std::uint32_t v = visit.vertices[j];
     g.rank[v] = j;
@@ -191,8 +206,12 @@ Relabelled relabelled(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, 
       block_safe = block_safe && in_fast_exact_range(g.at[j].x) && in_fast_exact_range(g.at[j].y) &&
                    in_fast_exact_range(g.at[j].z);
       for (std::uint32_t k = 0; k < edges.degree(v); ++k) {
+        const std::uint32_t t = edges.out[edges.start[v] + k].second;
         g.to[g.start[j] + k] = g.rank[edges.neighbour(v, k)];
-        g.face[g.start[j] + k] = visit.triangle_rank[edges.out[edges.start[v] + k].second];
+        g.face[g.start[j] + k] = visit.triangle_rank[t];
+        if (const Triangle& corners = mesh.triangles[t]; corners[0] == v)
+          g.area_keys[t] = largest_first_key(g.at[j], to_vec3d(mesh.vertices[corners[1]]),
+                                             to_vec3d(mesh.vertices[corners[2]]), t);
       }
     }
     if (!block_safe) safe.store(false, std::memory_order_relaxed);

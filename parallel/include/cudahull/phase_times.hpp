@@ -44,6 +44,14 @@ class PhaseLaps {
     line_ += text;
     t0_ = Clock::now();
   }
+  // A part of the next lap timed on its own (a step run beside a parallel pass, from its start time).
+  void note(const char* part, Clock::time_point start, Clock::time_point end) {
+    if (!wanted_) return;
+    char text[96];
+    std::snprintf(text, sizeof text, "%s (%s %.3f ms)", line_.back() == ':' ? "" : ",", part,
+                  std::chrono::duration<double, std::milli>(end - start).count());
+    line_ += text;
+  }
 
  private:
   bool wanted_;
