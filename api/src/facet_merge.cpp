@@ -59,8 +59,7 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
     graph = relabelled(current, edges, visit);
   }
   laps.lap("drop");
-  Facets facets = group_facets(current, graph, visit, std::move(graph.area_keys), graph.keys_sorted,
-                               tolerance, angle_sine);
+  Facets facets = group_facets(current, graph, visit, std::move(graph.largest_first), tolerance, angle_sine);
   laps.lap("group");
 
   // Output: the triangles' order by facet, the kept vertices and the dropped ones, on one core beside the
@@ -203,16 +202,15 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   for (std::uint32_t i : dropped)
     dropped_points.push_back(to_vec3d(vertices[i]));
   // The kept vertices' bound per facet (kept_bounds() gives them in the visit order): needed only where
-  // points were dropped; otherwise dropped_bound() takes their largest alone.
+  // points were dropped.
   std::vector<double> kept_bound;
   if (!dropped_points.empty()) {
     kept_bound.resize(facet_planes.size());
     for (std::size_t i = 0; i < kept.bounds.size(); ++i)
       kept_bound[facets.in_visit_order[i]] = kept.bounds[i];
   }
-  merged.max_outside = std::nextafter(
-      dropped_bound(dropped_points, facet_planes, dropped_points.empty() ? kept.bounds : kept_bound),
-      kInfinity);
+  merged.max_outside =
+      std::nextafter(dropped_bound(dropped_points, facet_planes, kept_bound, kept.largest), kInfinity);
   laps.lap("dropped bound");
   return merged;
 }

@@ -120,7 +120,8 @@ inline bool plane_safe(const Plane& plane) {
 // (its seed's corners as positions of g, in that order), not in the facets' (largest first, scattered): the
 // same results, from the cache.  `side()` runs beside them on one core.
 struct KeptBounds {
-  std::vector<double> bounds;  // per plane, in `order`'s order
+  std::vector<double> bounds;   // per plane, in `order`'s order
+  double largest = -kInfinity;  // of the bounds (found in their pass, where the workers' lines still are)
   double thinnest = kInfinity;
 };
 
@@ -136,7 +137,7 @@ KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
   std::vector<double> found(count, -kInfinity);
   const unsigned workers = hardware_workers();
   PhaseLaps laps("kept_bounds");  // CUDAHULL_PHASE_TIMES=1
-  std::vector<double> least(workers, kInfinity);
+  std::vector<double> least(workers, kInfinity), largest(workers, -kInfinity);
   parallel_blocks_beside(
       count, workers,
       [&](std::size_t begin, std::size_t end, unsigned worker) {
@@ -166,7 +167,7 @@ KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
         };
         // The block's least depth, kept here and written once: the workers' entries share cache lines, and
         // a write a facet from every worker kept them moving between the cores.
-        double block_least = kInfinity;
+        double block_least = kInfinity, block_largest = -kInfinity;
         for (std::size_t i = begin; i < end; ++i) {
           const Plane& plane = planes[order[i]];
           const bool exact = g.coordinates_safe && plane_safe(plane);
@@ -178,6 +179,7 @@ KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
               if (thin) depth = std::max(depth, -plane_value(plane, p));
             }
             block_least = std::min(block_least, depth);
+            block_largest = std::max(block_largest, found[i]);
             continue;
           }
           // First from the seed's corner of the largest value, where the maximum usually is: an end with
@@ -203,14 +205,17 @@ KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
             depth = -plane_value(plane, at[u]);
           }
           block_least = std::min(block_least, depth);
+          block_largest = std::max(block_largest, found[i]);
         }
         least[worker] = std::min(least[worker], block_least);
+        largest[worker] = std::max(largest[worker], block_largest);
       },
       side, 256);
   laps.lap("ascents");
   KeptBounds kept;
   kept.bounds = std::move(found);
   kept.thinnest = *std::min_element(least.begin(), least.end());
+  kept.largest = *std::max_element(largest.begin(), largest.end());
   return kept;
 }
 
@@ -218,10 +223,11 @@ KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
 // box is skipped when no point in it can exceed the best bound so far: every p in it is within R of the
 // box's computed centre c (R: half the computed diagonal plus the centre's rounding, inflated), so
 // n . p + d <= [n . c + d] + |n| R, the bracket bounded as for a point, |n| by its computed value inflated,
-// and the sum's own rounding covered by a further 4u of its terms.  Returns the largest bound.
+// and the sum's own rounding covered by a further 4u of its terms.  `kept`: per plane, the kept vertices'
+// bound (read only where there are points), `kept_largest` the largest of them.  Returns the largest bound.
 inline double dropped_bound(const std::vector<Vec3d>& points, const std::vector<Plane>& planes,
-                            const std::vector<double>& kept) {
-  double result = *std::max_element(kept.begin(), kept.end());
+                            const std::vector<double>& kept, double kept_largest) {
+  double result = kept_largest;
   std::vector<Box> boxes(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
     boxes[i] = {{points[i].x, points[i].y, points[i].z}, {points[i].x, points[i].y, points[i].z}};

@@ -43,8 +43,7 @@ struct Facets {
 // and every test are the mesh's, so the facets are too.
 template <class Point>
 Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const VisitOrder& visit,
-                    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed, bool keys_sorted,
-                    double tolerance, double angle_sine) {
+                    LargestFirst largest_first, double tolerance, double angle_sine) {
   PhaseLaps laps("group_facets");  // CUDAHULL_PHASE_TIMES=1
   const std::size_t nt = mesh.triangles.size();
   const std::vector<std::uint32_t>& jrank = visit.triangle_rank;  // per mesh triangle: its position
@@ -57,9 +56,9 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
     return kNone;
   };
   std::vector<Plane> plane(nt);
-  // `keyed`: the triangles' largest_first_key()s, by index (Relabelled::area_keys), sorted unless
-  // `keys_sorted` beside the joining pass below (a radix sort): the seeds' order, largest first, ties by
-  // the mesh's index.
+  // The seeds' order, largest first, ties by the mesh's index (Relabelled::largest_first), sorted beside
+  // the joining pass below unless it is already.
+  const auto& keyed = largest_first.keys;
   std::vector<std::uint32_t> across(3 * nt);  // the triangle across edge k of j: the one holding its reverse
   parallel_blocks(
       nt, hardware_workers(),
@@ -130,7 +129,7 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
       },
       [&] {
         sort_start = Clock::now();
-        if (!keys_sorted) radix_sort_by_key(keyed);
+        if (!largest_first.sorted) largest_first.sort();
         sort_end = Clock::now();
       },
       1024);
@@ -145,23 +144,26 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
   if (std::none_of(joining.begin(), joining.end(), [](std::uint8_t bits) { return bits != 0; })) {
     // No triangle joins another (a ball's hull): every seed is a facet alone, numbered in the seeds' order,
     // placed on all cores, where the grouping below would take them one by one.
-    facets.facet_of.resize(nt);
+    // Each block's writes together (written scattered, the workers' lines moved between the cores): its
+    // range taken as facets (seeds and planes), as positions (the visit order) and as triangles (the
+    // neighbours).  In index order (a small mesh), position j is triangle j: the neighbours are already the
+    // mesh's, and the facets' visit order is facet_of.
+    facets.facet_of = std::move(largest_first.rank);
     facets.seeds.resize(nt);
     facets.planes.resize(nt);
-    // In index order (a small mesh), position j is triangle j: the neighbours are already the mesh's, and
-    // the facets' visit order is facet_of.
     const bool in_index_order = visit.in_index_order;
     if (!in_index_order) facets.across.resize(3 * nt), facets.in_visit_order.resize(nt);
     parallel_blocks(nt, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
       for (std::size_t id = begin; id < end; ++id) {
         const std::uint32_t t = keyed[id].second, j = in_index_order ? t : jrank[t];
-        facets.facet_of[t] = static_cast<std::uint32_t>(id);
         facets.seeds[id] = t;
         facets.planes[id] = {plane[j][0], plane[j][1], plane[j][2], -alone_top[j]};
-        if (in_index_order) continue;
-        facets.in_visit_order[j] = static_cast<std::uint32_t>(id);
-        across_in_mesh(t, j);
       }
+      if (in_index_order) return;
+      for (std::size_t j = begin; j < end; ++j)
+        facets.in_visit_order[j] = facets.facet_of[visit.triangles[j]];
+      for (std::size_t t = begin; t < end; ++t)
+        across_in_mesh(static_cast<std::uint32_t>(t), jrank[t]);
     });
     if (in_index_order) facets.across = std::move(across), facets.in_visit_order = facets.facet_of;
     facets.visit_starts = std::move(tri);  // every position is a seed

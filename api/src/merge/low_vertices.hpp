@@ -193,8 +193,7 @@ EdgeIndex drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Poin
         },
         [&] {
           sort_start = Clock::now();
-          radix_sort_by_key(graph.area_keys);
-          graph.keys_sorted = true;
+          graph.largest_first.sort();
           sort_end = Clock::now();
         },
         256);  // blocks of some hundreds of microseconds: a worker woken for less costs more

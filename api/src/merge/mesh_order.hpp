@@ -47,6 +47,23 @@ inline void radix_sort_by_key(std::vector<std::pair<std::uint64_t, std::uint32_t
       std::swap(items[x - 1], items[x]);
 }
 
+// The triangles' largest-first order (the facets' seeds, grouping.hpp): each triangle's
+// largest_first_key(), by index, then sorted() ascending (largest first, ties by index) with each
+// triangle's place in that order.
+struct LargestFirst {
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys;
+  std::vector<std::uint32_t> rank;  // per triangle, once sorted
+  bool sorted = false;
+
+  void sort() {
+    radix_sort_by_key(keys);
+    rank.resize(keys.size());
+    for (std::uint32_t place = 0; place < keys.size(); ++place)
+      rank[keys[place].second] = place;
+    sorted = true;
+  }
+};
+
 // The directed edges of a closed triangulated surface: per vertex a, its out-edges (b, the triangle holding
 // a -> b), ascending in b.  Each neighbour of a appears once (the other triangle holds b -> a).  A counting
 // sort by a on the caller (the merge's first step, taken while the workers wake: wake_workers()), then each
@@ -175,11 +192,9 @@ struct Relabelled {
   std::vector<std::uint32_t> face;  // per out-edge: the place in VisitOrder::triangles of its triangle
   std::vector<Vec3d> at;
   bool coordinates_safe = true;  // every coordinate in compare_along()'s exact range
-  // Per triangle of the mesh, by index: largest_first_key(), found here beside the relabelling (each
-  // triangle by its first corner) so that the keys' sort can run beside a later pass; `keys_sorted` once
-  // sorted ascending (largest first), which drop_low_vertices() does beside the heights.
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> area_keys;
-  bool keys_sorted = false;
+  // The triangles' keys, found in the relabelling's pass so that their sort can run beside a later one
+  // (drop_low_vertices() sorts them beside the heights).
+  LargestFirst largest_first;
 };
 
 template <class Point>
@@ -191,7 +206,8 @@ Relabelled relabelled(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, 
   g.to.resize(edges.out.size());
   g.face.resize(edges.out.size());
   g.at.resize(n);
-  g.area_keys.resize(mesh.triangles.size());
+  const std::size_t nt = mesh.triangles.size();
+  g.largest_first.keys.resize(nt);
   for (std::uint32_t j = 0; j < n; ++j) {
     const std::uint32_t v = visit.vertices[j];
     g.rank[v] = j;
@@ -206,13 +222,16 @@ Relabelled relabelled(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, 
       block_safe = block_safe && in_fast_exact_range(g.at[j].x) && in_fast_exact_range(g.at[j].y) &&
                    in_fast_exact_range(g.at[j].z);
       for (std::uint32_t k = 0; k < edges.degree(v); ++k) {
-        const std::uint32_t t = edges.out[edges.start[v] + k].second;
         g.to[g.start[j] + k] = g.rank[edges.neighbour(v, k)];
-        g.face[g.start[j] + k] = visit.triangle_rank[t];
-        if (const Triangle& corners = mesh.triangles[t]; corners[0] == v)
-          g.area_keys[t] = largest_first_key(g.at[j], to_vec3d(mesh.vertices[corners[1]]),
-                                             to_vec3d(mesh.vertices[corners[2]]), t);
+        g.face[g.start[j] + k] = visit.triangle_rank[edges.out[edges.start[v] + k].second];
       }
+    }
+    // The triangles of the same share of [0, nt): every triangle once, each block's written together.
+    for (std::size_t t = begin * nt / n; t < end * nt / n; ++t) {
+      const Triangle& corners = mesh.triangles[t];
+      g.largest_first.keys[t] =
+          largest_first_key(to_vec3d(mesh.vertices[corners[0]]), to_vec3d(mesh.vertices[corners[1]]),
+                            to_vec3d(mesh.vertices[corners[2]]), static_cast<std::uint32_t>(t));
     }
     if (!block_safe) safe.store(false, std::memory_order_relaxed);
   });
