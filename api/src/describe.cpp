@@ -158,7 +158,7 @@ detail::SolidMeasures measure_on_cores(std::size_t faces, const Corner& corner, 
   if (faces <= kMeasureTermsOnCores) return detail::measure_mesh(faces, corner, apex);
   if (faces <= kMeasureChunk) {
     using detail::SolidMeasures;
-    std::vector<SolidMeasures::FaceTerms> terms(faces);
+    PassVector<SolidMeasures::FaceTerms> terms(faces);
     parallel_blocks(faces, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
       for (std::size_t f = begin; f < end; ++f)
         terms[f] = SolidMeasures::face_terms(corner(f, 0), corner(f, 1), corner(f, 2), apex);
@@ -173,7 +173,7 @@ detail::SolidMeasures measure_on_cores(std::size_t faces, const Corner& corner, 
     for (const double sum : error_sums)
       measures.six_volume_error = detail::add_rn(measures.six_volume_error, sum);
     if (measures.volume_uncertain()) {
-      std::vector<double> exact(faces);
+      PassVector<double> exact(faces);
       parallel_blocks(faces, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
         for (std::size_t f = begin; f < end; ++f)
           exact[f] = SolidMeasures::exact_six_volume(corner(f, 0), corner(f, 1), corner(f, 2), apex);
@@ -228,9 +228,8 @@ detail::SolidMeasures measure_on_cores(std::size_t faces, const Corner& corner, 
 // The solid's volume and surface area into `hull`, over `triangles` (outward, indices into `vertices`):
 // detail::measure_mesh() (plane_impl.hpp, as the batch's device describe: the same bits), its apex the first
 // triangle's first corner; scaled into the fast exact range where the vertices are not in it.
-template <class Point>
-void measure_solid(const std::vector<Point>& vertices, const std::vector<Triangle>& triangles,
-                   ConvexHull& hull) {
+template <class Point, class Triangles>
+void measure_solid(const std::vector<Point>& vertices, const Triangles& triangles, ConvexHull& hull) {
   if (triangles.empty()) return;
   const auto vertex = [&](std::size_t k) { return to_vec3d(vertices[k]); };
   int scale = 0;
@@ -364,8 +363,8 @@ double merge_tolerance(const std::vector<Point>& vertices, const ConvexHullOptio
 // ConvexHullOptions::box_measures: Qhull's QbB volume and area of the 3-D hull whose faces are `faces`
 // (positions in `vertices`, the exact hull's vertices, which attain the points' bounds), summed in the
 // result's face order as the Python module's general path sums them (qhull_scaling.hpp).
-template <class Point>
-void measure_box(const std::vector<Point>& vertices, const std::vector<Triangle>& faces, ConvexHull& hull) {
+template <class Point, class Triangles>
+void measure_box(const std::vector<Point>& vertices, const Triangles& faces, ConvexHull& hull) {
   double low[3] = {INFINITY, INFINITY, INFINITY}, high[3] = {-INFINITY, -INFINITY, -INFINITY};
   for (const Point& p : vertices) {
     const double at[3] = {double(p.x), double(p.y), double(p.z)};
@@ -380,8 +379,9 @@ void measure_box(const std::vector<Point>& vertices, const std::vector<Triangle>
   hull.box_area = box[1];
 }
 
-// A merged hull (issue 25) from the exact one: merge_facets() works on the exact hull's vertices alone,
-// since every input point is a convex combination of them, and its indices are mapped back to the input's.
+// A merged hull from the exact one: merge_facets() works on the exact hull's vertices alone, since every
+// input point is a convex combination of them; its faces come both as input indices and as positions in
+// mesh.vertices, which the measures read.
 template <class Point>
 ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend,
                            const ConvexHullOptions& options) {
@@ -389,12 +389,9 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
   // otherwise run on the caller alone while they wake (after a device's hull they have slept for
   // milliseconds).
   wake_workers(std::chrono::microseconds(1000));
-  BasicHullMesh<Point> local = mesh;
-  for (std::size_t k = 0; k < local.vertex_ids.size(); ++k)
-    local.vertex_ids[k] = static_cast<PointIndex>(k);
   const double cosine = std::clamp(options.angle_cosine, 0.0, 1.0);
   PhaseLaps laps("describe_merged");  // CUDAHULL_PHASE_TIMES=1
-  MergedHull merged = merge_facets(mesh.vertices, local, merge_tolerance(mesh.vertices, options),
+  MergedHull merged = merge_facets(mesh.vertices, mesh, merge_tolerance(mesh.vertices, options),
                                    std::sqrt(1 - cosine * cosine));
   ConvexHull hull;
   hull.dimension = 3;
@@ -403,22 +400,15 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
   hull.tolerance = merged.tolerance;
   hull.max_outside = merged.max_outside;
   hull.thinnest = merged.thinnest;
-  for (PointIndex v : merged.vertices)
-    hull.vertices.push_back(mesh.vertex_ids[v]);
-  std::sort(hull.vertices.begin(), hull.vertices.end());
-  // merged's indices are positions in mesh.vertices (local's ids): its faces are the mesh's triangles.
-  hull.faces.reserve(merged.faces.size());
-  for (const Triangle& face : merged.faces)
-    hull.faces.push_back({mesh.vertex_ids[face[0]], mesh.vertex_ids[face[1]], mesh.vertex_ids[face[2]]});
-  laps.lap("merge and faces");
-  measure_solid(mesh.vertices, merged.faces, hull);
-  if (options.box_measures) measure_box(mesh.vertices, merged.faces, hull);
+  hull.vertices = std::move(merged.vertices);
+  hull.faces = std::move(merged.faces);
+  laps.lap("merge");
+  measure_solid(mesh.vertices, merged.face_positions, hull);
+  if (options.box_measures) measure_box(mesh.vertices, merged.face_positions, hull);
   laps.lap("measures");
   hull.planes = std::move(merged.planes);
   hull.neighbors = std::move(merged.neighbors);
-  laps.lap("planes and neighbours");
-  for (const auto& row : merged.coplanar)
-    hull.coplanar.push_back({mesh.vertex_ids[row[0]], row[1], mesh.vertex_ids[row[2]]});
+  hull.coplanar = std::move(merged.coplanar);
   return hull;
 }
 

@@ -114,6 +114,7 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   // facets' planes are the faces' (the facets are numbered in the faces' order).
   const bool single_triangles = facets.planes.size() == nt;
   merged.faces.resize(nt);
+  merged.face_positions.resize(nt);
   if (!single_triangles) merged.planes.resize(nt);
   merged.facet_of_face.resize(nt);
   merged.neighbors.resize(nt);
@@ -121,9 +122,10 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
     for (std::size_t p = begin; p < end; ++p) {
       const std::uint32_t t = by_facet[p];
       const Triangle& tri = current.triangles[t];
-      merged.faces[p] = {exact.vertex_ids[current.vertex_ids[tri[0]]],
-                         exact.vertex_ids[current.vertex_ids[tri[1]]],
-                         exact.vertex_ids[current.vertex_ids[tri[2]]]};
+      const Triangle at = {current.vertex_ids[tri[0]], current.vertex_ids[tri[1]],
+                           current.vertex_ids[tri[2]]};
+      merged.face_positions[p] = at;
+      merged.faces[p] = {exact.vertex_ids[at[0]], exact.vertex_ids[at[1]], exact.vertex_ids[at[2]]};
       if (!single_triangles) merged.planes[p] = facets.planes[facets.facet_of[t]];
       merged.facet_of_face[p] = facets.facet_of[t];
       for (int k = 0; k < 3; ++k) {

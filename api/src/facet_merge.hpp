@@ -47,6 +47,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "cudahull/parallel.hpp"
 #include "cudahull/types.hpp"
 
 namespace cudahull {
@@ -56,6 +57,8 @@ struct MergedHull {
   // Outward counter-clockwise triangles (input indices), grouped by merged facet (facet ids ascending).
   // Each merged facet is triangulated with its corners only: hull(S)'s own triangles of the facet.
   std::vector<std::array<PointIndex, 3>> faces;
+  // The same triangles as positions in the exact hull's `vertices` (what its measures read).
+  PassVector<Triangle> face_positions;
   // Per triangle: its merged facet's unit outward normal and offset (n . x + d <= 0 inside); triangles of
   // one merged facet share it.
   std::vector<std::array<double, 4>> planes;

@@ -120,21 +120,21 @@ inline bool plane_safe(const Plane& plane) {
 // (its seed's corners as positions of g, in that order), not in the facets' (largest first, scattered): the
 // same results, from the cache.  `side()` runs beside them on one core.
 struct KeptBounds {
-  std::vector<double> bounds;   // per plane, in `order`'s order
+  PassVector<double> bounds;    // per plane, in `order`'s order
   double largest = -kInfinity;  // of the bounds (found in their pass, where the workers' lines still are)
   double thinnest = kInfinity;
 };
 
 template <class Side>
 KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
-                       const std::vector<std::uint32_t>& order,
-                       const std::vector<std::array<std::uint32_t, 3>>& starts, const Vec3d& centroid,
+                       const PassVector<std::uint32_t>& order,
+                       const PassVector<std::array<std::uint32_t, 3>>& starts, const Vec3d& centroid,
                        double near, Side&& side) {
   // The ascents on the relabelled mesh (each vertex's neighbours in EdgeIndex's order, so that every ascent
   // takes the same steps): the ascents read what their neighbours read, not scattered lines.
   const std::vector<Vec3d>& at = g.at;
   const std::size_t count = order.size();
-  std::vector<double> found(count, -kInfinity);
+  PassVector<double> found(count);
   const unsigned workers = hardware_workers();
   PhaseLaps laps("kept_bounds");  // CUDAHULL_PHASE_TIMES=1
   std::vector<double> least(workers, kInfinity), largest(workers, -kInfinity);
@@ -174,6 +174,7 @@ KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
           double depth = -plane_value(plane, centroid);
           if (!exact) {
             const bool thin = depth <= near;
+            found[i] = -kInfinity;
             for (const Vec3d& p : at) {
               found[i] = std::max(found[i], bound_at(plane, p));
               if (thin) depth = std::max(depth, -plane_value(plane, p));

@@ -18,15 +18,15 @@
 namespace cudahull::merge {
 
 struct Facets {
-  std::vector<std::uint32_t> facet_of;  // per triangle of the mesh
-  std::vector<Plane> planes;            // per facet
-  std::vector<std::uint32_t> seeds;     // per facet: its largest triangle
-  std::vector<std::uint32_t> across;    // per triangle t and edge k: the triangle holding its reverse
+  PassVector<std::uint32_t> facet_of;  // per triangle of the mesh
+  std::vector<Plane> planes;           // per facet
+  PassVector<std::uint32_t> seeds;     // per facet: its largest triangle
+  PassVector<std::uint32_t> across;    // per triangle t and edge k: the triangle holding its reverse
   // The facets by their seeds' places in the visit order, and each one's seed corners as positions of the
   // relabelled mesh: kept_bounds() takes the facets in this order, so that neighbours' planes are read
   // together.
-  std::vector<std::uint32_t> in_visit_order;
-  std::vector<std::array<std::uint32_t, 3>> visit_starts;
+  PassVector<std::uint32_t> in_visit_order;
+  PassVector<std::array<std::uint32_t, 3>> visit_starts;
 };
 
 // Step 3: groups the triangles of `mesh` into merged facets.
@@ -47,7 +47,7 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
   PhaseLaps laps("group_facets");  // CUDAHULL_PHASE_TIMES=1
   const std::size_t nt = mesh.triangles.size();
   const std::vector<std::uint32_t>& jrank = visit.triangle_rank;  // per mesh triangle: its position
-  std::vector<std::array<std::uint32_t, 3>> tri(nt);              // per position: its corners' positions
+  PassVector<std::array<std::uint32_t, 3>> tri(nt);               // per position: its corners' positions
   auto corner = [&](std::uint32_t j, int k) { return g.at[tri[j][k]]; };
   // The triangle holding the directed edge a -> b (positions), kNone if none.
   auto holder = [&](std::uint32_t a, std::uint32_t b) {
@@ -55,11 +55,11 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
       if (g.to[e] == b) return g.face[e];
     return kNone;
   };
-  std::vector<Plane> plane(nt);
+  PassVector<Plane> plane(nt);
   // The seeds' order, largest first, ties by the mesh's index (Relabelled::largest_first), sorted beside
   // the joining pass below unless it is already.
   const auto& keyed = largest_first.keys;
-  std::vector<std::uint32_t> across(3 * nt);  // the triangle across edge k of j: the one holding its reverse
+  PassVector<std::uint32_t> across(3 * nt);  // the triangle across edge k of j: the one holding its reverse
   parallel_blocks(
       nt, hardware_workers(),
       [&](std::size_t begin, std::size_t end, unsigned) {
@@ -106,9 +106,9 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
   };
   // Per triangle as a seed: which neighbours would join (bit k: across edge k), and the offset of its plane
   // were it alone (the top of its corners).
-  std::vector<std::uint8_t> joining(nt);
+  PassVector<std::uint8_t> joining(nt);
   Clock::time_point sort_start, sort_end;
-  std::vector<double> alone_top(nt);
+  PassVector<double> alone_top(nt);
   parallel_blocks_beside(
       nt, hardware_workers(),
       [&](std::size_t begin, std::size_t end, unsigned) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <numeric>
@@ -20,24 +21,29 @@
 namespace cudahull::merge {
 
 // Sorts (key, value) pairs by key, stably (equal keys keep their order): a least-significant-digit radix
-// sort of the keys' high halves in 11-bit digits (passing over digits in which every key is the same), then
-// each run of equal high halves by insertion on the low half.  The keys here are doubles' bits, whose high
-// halves (sign, exponent and 20 bits of mantissa) rarely tie: half the passes of a sort on all 64 bits.
+// sort of the keys' high halves in 11-bit digits (all three digits counted in one pass; a digit in which
+// every key is the same is passed over), then each run of equal high halves by insertion on the low half.
+// The keys here are doubles' bits, whose high halves (sign, exponent and 20 bits of mantissa) rarely tie:
+// half the passes of a sort on all 64 bits.
 inline void radix_sort_by_key(std::vector<std::pair<std::uint64_t, std::uint32_t>>& items) {
-  constexpr int kDigit = 11;
+  constexpr int kDigit = 11, kDigits = 3;
   constexpr std::size_t kBuckets = std::size_t{1} << kDigit;
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> spare(items.size());
-  std::vector<std::size_t> count(kBuckets + 1);
-  for (int shift = 32; shift < 64; shift += kDigit) {
-    std::fill(count.begin(), count.end(), 0);
-    auto digit = [shift](std::uint64_t key) { return (key >> shift) & (kBuckets - 1); };
-    for (const auto& item : items)
-      ++count[digit(item.first) + 1];
-    if (!items.empty() && count[digit(items[0].first) + 1] == items.size()) continue;
+  auto digit = [](std::uint64_t key, int d) { return (key >> (32 + kDigit * d)) & (kBuckets - 1); };
+  std::vector<std::array<std::uint32_t, kBuckets + 1>> count(kDigits);
+  for (auto& c : count)
+    c.fill(0);
+  for (const auto& item : items)
+    for (int d = 0; d < kDigits; ++d)
+      ++count[d][digit(item.first, d) + 1];
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> spare;
+  for (int d = 0; d < kDigits; ++d) {
+    std::array<std::uint32_t, kBuckets + 1>& c = count[d];
+    if (items.empty() || c[digit(items[0].first, d) + 1] == items.size()) continue;
     for (std::size_t b = 0; b < kBuckets; ++b)
-      count[b + 1] += count[b];
+      c[b + 1] += c[b];
+    spare.resize(items.size());
     for (const auto& item : items)
-      spare[count[digit(item.first)]++] = item;
+      spare[c[digit(item.first, d)]++] = item;
     items.swap(spare);
   }
   for (std::size_t k = 1; k < items.size(); ++k)
@@ -52,7 +58,7 @@ inline void radix_sort_by_key(std::vector<std::pair<std::uint64_t, std::uint32_t
 // triangle's place in that order.
 struct LargestFirst {
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keys;
-  std::vector<std::uint32_t> rank;  // per triangle, once sorted
+  PassVector<std::uint32_t> rank;  // per triangle, once sorted
   bool sorted = false;
 
   void sort() {
@@ -188,8 +194,9 @@ VisitOrder visit_order(const BasicHullMesh<Point>& mesh) {
 // index, so that every loop over them takes the same steps).  Built in one pass of scattered reads that
 // overlap; the passes then read their neighbours' data from the cache.
 struct Relabelled {
-  std::vector<std::uint32_t> rank, start, to;
-  std::vector<std::uint32_t> face;  // per out-edge: the place in VisitOrder::triangles of its triangle
+  std::vector<std::uint32_t> rank, start;
+  PassVector<std::uint32_t> to;
+  PassVector<std::uint32_t> face;  // per out-edge: the place in VisitOrder::triangles of its triangle
   std::vector<Vec3d> at;
   bool coordinates_safe = true;  // every coordinate in compare_along()'s exact range
   // The triangles' keys, found in the relabelling's pass so that their sort can run beside a later one

@@ -14,32 +14,15 @@
 #include <utility>
 #include <vector>
 
+#include "cudahull/parallel.hpp"
 #include "cudahull/routing.hpp"
 #include "cudahull/types.hpp"
 
 namespace cudahull {
 
-// std::allocator, except that resize() leaves new elements of a trivial type uninitialised instead of
-// zeroing them: the engine overwrites every face of its face arrays anyway, and zeroing two million faces
-// (100 MB) on one core, first touch and all, cost more than the parallel pass that then fills them.
-template <class T>
-struct DefaultInitAllocator : std::allocator<T> {
-  template <class U>
-  struct rebind {
-    using other = DefaultInitAllocator<U>;
-  };
-  DefaultInitAllocator() = default;
-  template <class U>
-  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept {}
-  template <class U>
-  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <class U, class... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
+// DefaultInitAllocator (parallel.hpp): the engine overwrites every face of its face arrays anyway, and
+// zeroing two million faces (100 MB) on one core, first touch and all, cost more than the parallel pass that
+// then fills them.
 template <class Point>
 using BasicFaceGeometryArray =
     std::vector<BasicFaceGeometry<Point>, DefaultInitAllocator<BasicFaceGeometry<Point>>>;

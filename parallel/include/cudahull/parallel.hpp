@@ -9,10 +9,40 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <memory>
+#include <new>
 #include <thread>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace cudahull {
+
+// std::allocator, except that resize() leaves new elements of a trivial type uninitialised instead of
+// zeroing them: for the arrays a parallel pass fills, which a zeroing resize() would first write on the
+// calling core, whose cache lines each worker would then have to take from it before writing its own.
+template <class T>
+struct DefaultInitAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = DefaultInitAllocator<U>;
+  };
+  DefaultInitAllocator() = default;
+  template <class U>
+  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+// A vector for a parallel pass to fill: resize() writes nothing (DefaultInitAllocator).
+template <class T>
+using PassVector = std::vector<T, DefaultInitAllocator<T>>;
 
 // Asked once: glibc answers hardware_concurrency() by opening and reading /sys/devices/system/cpu/online,
 // and the engine asks before every parallel pass (dozens of times for a small cube, once most of its host
