@@ -57,7 +57,7 @@ std::vector<std::array<std::int32_t, 3>> face_neighbors(const FaceCorners& index
   std::vector<std::array<std::int32_t, 3>> neighbors(faces);
   // Each corner writes its own entry: the vertices on all cores (a small mesh's on this thread, where
   // waking the workers would cost more).
-  const unsigned workers = vertex_count >= 1024 ? hardware_workers() : 1;
+  const unsigned workers = workers_from(vertex_count, 1024);
   parallel_blocks(vertex_count, workers, [&](std::size_t begin, std::size_t end, unsigned) {
     for (std::size_t v = begin; v < end; ++v) {
       for (std::uint32_t i = start[v]; i < start[v + 1]; ++i) {
@@ -311,7 +311,7 @@ ConvexHull describe_exact(const BasicHullMesh<Point>& mesh, std::string backend,
   // this thread, where waking the workers would cost more).
   std::unique_ptr<FaceCorners> corners;
   parallel_blocks_beside(
-      faces, faces >= 2048 ? hardware_workers() : 1,
+      faces, workers_from(faces, 2048),
       [&](std::size_t begin, std::size_t end, unsigned) {
         for (std::size_t f = begin; f < end; ++f) {
           const Triangle& t = mesh.triangles[f];

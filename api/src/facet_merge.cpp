@@ -118,7 +118,7 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   if (!single_triangles) merged.planes.resize(nt);
   merged.facet_of_face.resize(nt);
   merged.neighbors.resize(nt);
-  parallel_blocks(nt, nt >= 1024 ? hardware_workers() : 1, [&](std::size_t begin, std::size_t end, unsigned) {
+  parallel_blocks(nt, workers_from(nt, 1024), [&](std::size_t begin, std::size_t end, unsigned) {
     for (std::size_t p = begin; p < end; ++p) {
       const std::uint32_t t = by_facet[p];
       const Triangle& tri = current.triangles[t];

@@ -30,14 +30,11 @@ double scaled_area(const Scalar* xyz, std::size_t faces, const Corner& corner, c
     const double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
     return std::sqrt(x * x + y * y + z * z);
   };
-  std::vector<double> lengths(faces);
-  parallel_chunks(
-      faces, hardware_workers(),
-      [&](std::size_t begin, std::size_t end, unsigned) {
-        for (std::size_t f = begin; f < end; ++f)
-          lengths[f] = twice_area(f);
-      },
-      2048);
+  PassVector<double> lengths(faces);
+  parallel_blocks(faces, workers_from(faces, 2048), [&](std::size_t begin, std::size_t end, unsigned) {
+    for (std::size_t f = begin; f < end; ++f)
+      lengths[f] = twice_area(f);
+  });
   double sum = 0;
   for (const double length : lengths)
     sum += length;

@@ -57,7 +57,7 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
   };
   PassVector<Plane> plane(nt);
   // The seeds' order, largest first, ties by the mesh's index (Relabelled::largest_first), sorted beside
-  // the joining pass below unless it is already.
+  // the joining pass below unless it is already, and ranked there.
   const auto& keyed = largest_first.keys;
   PassVector<std::uint32_t> across(3 * nt);  // the triangle across edge k of j: the one holding its reverse
   parallel_blocks(
@@ -130,10 +130,11 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
       [&] {
         sort_start = Clock::now();
         if (!largest_first.sorted) largest_first.sort();
+        largest_first.rank_triangles();
         sort_end = Clock::now();
       },
       1024);
-  laps.note("the sort beside", sort_start, sort_end);
+  laps.note("the seeds' order beside", sort_start, sort_end);
   laps.lap("joining and sort");
   Facets facets;
   // Mesh triangle t's neighbours (position j's, in positions) as mesh triangles, into facets.across.

@@ -54,19 +54,21 @@ inline void radix_sort_by_key(std::vector<std::pair<std::uint64_t, std::uint32_t
 }
 
 // The triangles' largest-first order (the facets' seeds, grouping.hpp): each triangle's
-// largest_first_key(), by index, then sorted() ascending (largest first, ties by index) with each
-// triangle's place in that order.
+// largest_first_key(), by index, then sort()ed ascending (largest first, ties by index), then each
+// triangle's place in that order (rank()): two steps, run beside two passes.
 struct LargestFirst {
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keys;
-  PassVector<std::uint32_t> rank;  // per triangle, once sorted
+  PassVector<std::uint32_t> rank;  // per triangle, once ranked
   bool sorted = false;
 
   void sort() {
     radix_sort_by_key(keys);
+    sorted = true;
+  }
+  void rank_triangles() {
     rank.resize(keys.size());
     for (std::uint32_t place = 0; place < keys.size(); ++place)
       rank[keys[place].second] = place;
-    sorted = true;
   }
 };
 
@@ -93,7 +95,7 @@ struct EdgeIndex {
       for (int k = 0; k < 3; ++k)
         out[fill[mesh.triangles[t][k]]++] = {mesh.triangles[t][(k + 1) % 3], t};
     const std::size_t n = mesh.vertices.size();
-    parallel_blocks(n, n >= 1024 ? hardware_workers() : 1, [&](std::size_t begin, std::size_t end, unsigned) {
+    parallel_blocks(n, workers_from(n, 1024), [&](std::size_t begin, std::size_t end, unsigned) {
       constexpr std::uint32_t kFew = 16;
       std::pair<std::uint32_t, std::uint32_t> edges[kFew];
       for (std::size_t v = begin; v < end; ++v) {

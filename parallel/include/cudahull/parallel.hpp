@@ -59,6 +59,12 @@ inline unsigned hardware_workers() {
   return workers;
 }
 
+// The workers for a pass of n items that is worth spreading over the cores only from `least` items up (a
+// small mesh's pass costs less on the calling thread than the workers' wake-up and the lines they share).
+inline unsigned workers_from(std::size_t n, std::size_t least) {
+  return n >= least ? hardware_workers() : 1;
+}
+
 namespace detail {
 // How many SerialScopes are alive on this thread.
 inline thread_local int serial_scopes = 0;
