@@ -51,35 +51,42 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
 
   VisitOrder visit;
   Relabelled graph;
-  const EdgeIndex edges = tolerance > 0 || angle_sine > 0
-                              ? drop_low_vertices(vertices, current, tolerance, angle_sine, visit, graph)
-                              : EdgeIndex(current);
-  if (visit.vertices.size() != current.vertices.size()) {
-    visit = visit_order(current);
-    graph = relabelled(current, edges, visit);
-  }
+  if (tolerance > 0 || angle_sine > 0)
+    drop_low_vertices(vertices, current, tolerance, angle_sine, visit, graph);
+  else
+    index_mesh(current, visit, graph);
   laps.lap("drop");
   Facets facets = group_facets(current, graph, visit, std::move(graph.largest_first), tolerance, angle_sine);
   laps.lap("group");
 
-  // Output: the triangles' order by facet, the kept vertices and the dropped ones, on one core beside the
-  // kept vertices' bounds (below), which do not depend on them; the faces in that order after them.
-  // By facet, each facet's triangles ascending (a counting sort: the stable sort's order).
+  // The triangles by facet, each facet's triangles ascending (a counting sort: the stable sort's order), and
+  // each triangle's place in that order; where every facet is one triangle (a ball's hull), the facets'
+  // seeds and the facets themselves (the facets are numbered in the faces' order, and their planes are the
+  // faces').
   const std::size_t nt = current.triangles.size();
-  std::vector<std::uint32_t> by_facet(nt), position(nt);
-  std::vector<std::uint32_t> dropped;
-  Clock::time_point output_start, output_end;
-  auto output = [&] {
-    output_start = Clock::now();
+  const bool single_triangles = facets.planes.size() == nt;
+  PassVector<std::uint32_t> sorted_by_facet, sorted_position;
+  if (!single_triangles) {
+    sorted_by_facet.resize(nt);
+    sorted_position.resize(nt);
     std::vector<std::uint32_t> facet_start(facets.planes.size() + 1, 0);
     for (std::uint32_t f : facets.facet_of)
       ++facet_start[f + 1];
     for (std::size_t f = 0; f + 1 < facet_start.size(); ++f)
       facet_start[f + 1] += facet_start[f];
     for (std::uint32_t t = 0; t < nt; ++t) {
-      position[t] = facet_start[facets.facet_of[t]]++;
-      by_facet[position[t]] = t;
+      sorted_position[t] = facet_start[facets.facet_of[t]]++;
+      sorted_by_facet[sorted_position[t]] = t;
     }
+  }
+  const PassVector<std::uint32_t>& by_facet = single_triangles ? facets.seeds : sorted_by_facet;
+  const PassVector<std::uint32_t>& position = single_triangles ? facets.facet_of : sorted_position;
+  // The kept vertices and the dropped ones, on one core beside the kept vertices' bounds (below), which do
+  // not depend on them.
+  std::vector<std::uint32_t> dropped;
+  Clock::time_point output_start, output_end;
+  auto output = [&] {
+    output_start = Clock::now();
     merged.vertices.reserve(current.vertex_ids.size());
     for (PointIndex id : current.vertex_ids)
       merged.vertices.push_back(exact.vertex_ids[id]);
@@ -97,28 +104,13 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
               [&](std::uint32_t a, std::uint32_t b) { return exact.vertex_ids[a] < exact.vertex_ids[b]; });
     output_end = Clock::now();
   };
-  // The vertices' centroid for the thinnest depth, summed in the mesh's order.
-  Vec3d centroid{0, 0, 0};
-  for (const Point& p : current.vertices) {
-    const Vec3d q = to_vec3d(p);
-    centroid = {centroid.x + q.x, centroid.y + q.y, centroid.z + q.z};
-  }
-  const double vertex_count = static_cast<double>(current.vertices.size());
-  centroid = {centroid.x / vertex_count, centroid.y / vertex_count, centroid.z / vertex_count};
-  laps.lap("kept bound set up");
-  const KeptBounds kept = kept_bounds(graph, facets.planes, facets.in_visit_order, facets.visit_starts,
-                                      centroid, 4 * tolerance, output);
-  laps.note("the facet order beside", output_start, output_end);
-  laps.lap("kept bound and facet order");
-  // The faces in their facets' order, on all cores.  Where every facet is one triangle (a ball's hull), the
-  // facets' planes are the faces' (the facets are numbered in the faces' order).
-  const bool single_triangles = facets.planes.size() == nt;
+  // The faces in their facets' order, in the kept bounds' pass.
   merged.faces.resize(nt);
   merged.face_positions.resize(nt);
   if (!single_triangles) merged.planes.resize(nt);
   merged.facet_of_face.resize(nt);
   merged.neighbors.resize(nt);
-  parallel_blocks(nt, workers_from(nt, 1024), [&](std::size_t begin, std::size_t end, unsigned) {
+  auto faces = [&](std::size_t begin, std::size_t end) {
     for (std::size_t p = begin; p < end; ++p) {
       const std::uint32_t t = by_facet[p];
       const Triangle& tri = current.triangles[t];
@@ -135,10 +127,22 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
         merged.neighbors[p][k] = static_cast<std::int32_t>(position[u]);
       }
     }
-  });
+  };
+  // The vertices' centroid for the thinnest depth, summed in the mesh's order.
+  Vec3d centroid{0, 0, 0};
+  for (const Point& p : current.vertices) {
+    const Vec3d q = to_vec3d(p);
+    centroid = {centroid.x + q.x, centroid.y + q.y, centroid.z + q.z};
+  }
+  const double vertex_count = static_cast<double>(current.vertices.size());
+  centroid = {centroid.x / vertex_count, centroid.y / vertex_count, centroid.z / vertex_count};
+  laps.lap("facet order and set up");
+  const KeptBounds kept = kept_bounds(graph, facets.planes, facets.in_visit_order, facets.visit_starts,
+                                      centroid, 4 * tolerance, output, nt, faces);
+  laps.note("the kept and dropped vertices beside", output_start, output_end);
+  laps.lap("kept bounds and faces");
   if (single_triangles) merged.planes = std::move(facets.planes);
   const std::vector<Plane>& facet_planes = single_triangles ? merged.planes : facets.planes;
-  laps.lap("faces");
   merged.coplanar.resize(dropped.size());
   auto face_corner = [&](std::uint32_t f, int k) {
     return to_vec3d(current.vertices[current.triangles[by_facet[f]][k]]);

@@ -118,18 +118,19 @@ inline bool plane_safe(const Plane& plane) {
 //
 // The planes are taken in `order` (their starts' visit order, Facets::in_visit_order), each from `starts`
 // (its seed's corners as positions of g, in that order), not in the facets' (largest first, scattered): the
-// same results, from the cache.  `side()` runs beside them on one core.
+// same results, from the cache.  `side()` runs beside them on one core, and alongside(begin, end) over
+// [0, alongside_items) shares their pass (work that does not depend on them: the merged faces).
 struct KeptBounds {
   PassVector<double> bounds;    // per plane, in `order`'s order
   double largest = -kInfinity;  // of the bounds (found in their pass, where the workers' lines still are)
   double thinnest = kInfinity;
 };
 
-template <class Side>
+template <class Side, class Alongside>
 KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
                        const PassVector<std::uint32_t>& order,
                        const PassVector<std::array<std::uint32_t, 3>>& starts, const Vec3d& centroid,
-                       double near, Side&& side) {
+                       double near, Side&& side, std::size_t alongside_items, Alongside&& alongside) {
   // The ascents on the relabelled mesh (each vertex's neighbours in EdgeIndex's order, so that every ascent
   // takes the same steps): the ascents read what their neighbours read, not scattered lines.
   const std::vector<Vec3d>& at = g.at;
@@ -138,78 +139,83 @@ KeptBounds kept_bounds(const Relabelled& g, const std::vector<Plane>& planes,
   const unsigned workers = hardware_workers();
   PhaseLaps laps("kept_bounds");  // CUDAHULL_PHASE_TIMES=1
   std::vector<double> least(workers, kInfinity), largest(workers, -kInfinity);
-  parallel_blocks_beside(
-      count, workers,
-      [&](std::size_t begin, std::size_t end, unsigned worker) {
-        // The ascent from v: to the neighbour of the largest value among those exactly above, until none
-        // is; `tie` tells whether a neighbour of the end is exactly level with it.  The vertex it came from
-        // is exactly below, so it is not compared again.
-        auto ascend = [&](const Plane& plane, std::uint32_t v, bool& tie) {
-          std::uint32_t from = kNone;
-          for (;;) {
-            std::uint32_t next = kNone;
-            double next_value = -kInfinity;
-            tie = false;
-            for (std::uint32_t k = g.start[v]; k < g.start[v + 1]; ++k) {
-              const std::uint32_t q = g.to[k];
-              if (q == from) continue;
-              const int side = compare_along(plane, at[q], at[v]);
-              tie = tie || side == 0;
-              if (side > 0) {
-                const double value = plane_value(plane, at[q]);
-                if (next == kNone || value > next_value) next = q, next_value = value;
-              }
-            }
-            if (next == kNone) return v;
-            from = v;
-            v = next;  // n . p + d grows strictly, exactly: the ascent ends
+  auto ascents = [&](std::size_t begin, std::size_t end, unsigned worker) {
+    // The ascent from v: to the neighbour of the largest value among those exactly above, until none
+    // is; `tie` tells whether a neighbour of the end is exactly level with it.  The vertex it came from
+    // is exactly below, so it is not compared again.
+    auto ascend = [&](const Plane& plane, std::uint32_t v, bool& tie) {
+      std::uint32_t from = kNone;
+      for (;;) {
+        std::uint32_t next = kNone;
+        double next_value = -kInfinity;
+        tie = false;
+        for (std::uint32_t k = g.start[v]; k < g.start[v + 1]; ++k) {
+          const std::uint32_t q = g.to[k];
+          if (q == from) continue;
+          const int side = compare_along(plane, at[q], at[v]);
+          tie = tie || side == 0;
+          if (side > 0) {
+            const double value = plane_value(plane, at[q]);
+            if (next == kNone || value > next_value) next = q, next_value = value;
           }
-        };
-        // The block's least depth, kept here and written once: the workers' entries share cache lines, and
-        // a write a facet from every worker kept them moving between the cores.
-        double block_least = kInfinity, block_largest = -kInfinity;
-        for (std::size_t i = begin; i < end; ++i) {
-          const Plane& plane = planes[order[i]];
-          const bool exact = g.coordinates_safe && plane_safe(plane);
-          double depth = -plane_value(plane, centroid);
-          if (!exact) {
-            const bool thin = depth <= near;
-            found[i] = -kInfinity;
-            for (const Vec3d& p : at) {
-              found[i] = std::max(found[i], bound_at(plane, p));
-              if (thin) depth = std::max(depth, -plane_value(plane, p));
-            }
-            block_least = std::min(block_least, depth);
-            block_largest = std::max(block_largest, found[i]);
-            continue;
-          }
-          // First from the seed's corner of the largest value, where the maximum usually is: an end with
-          // every neighbour exactly below is the unique maximum, which the ascent from corner 0 (the
-          // bound's definition) also ends at.  Otherwise (a tie) that ascent itself.
-          const std::array<std::uint32_t, 3>& c = starts[i];
-          std::uint32_t best = c[0];
-          for (int k = 1; k < 3; ++k)
-            if (plane_value(plane, at[c[k]]) > plane_value(plane, at[best])) best = c[k];
-          bool tie = false;
-          std::uint32_t v = ascend(plane, best, tie);
-          if (tie && best != c[0]) v = ascend(plane, c[0], tie);
-          found[i] = bound_at(plane, at[v]);
-          if (depth <= near) {
-            const Plane against{-plane[0], -plane[1], -plane[2], plane[3]};
-            std::uint32_t u = c[0];
-            for (bool moved = true; moved;) {
-              moved = false;
-              for (std::uint32_t k = g.start[u]; k < g.start[u + 1] && !moved; ++k)
-                if (const std::uint32_t q = g.to[k]; compare_along(against, at[q], at[u]) > 0)
-                  u = q, moved = true;  // deeper, exactly: the descent ends
-            }
-            depth = -plane_value(plane, at[u]);
-          }
-          block_least = std::min(block_least, depth);
-          block_largest = std::max(block_largest, found[i]);
         }
-        least[worker] = std::min(least[worker], block_least);
-        largest[worker] = std::max(largest[worker], block_largest);
+        if (next == kNone) return v;
+        from = v;
+        v = next;  // n . p + d grows strictly, exactly: the ascent ends
+      }
+    };
+    // The block's least depth, kept here and written once: the workers' entries share cache lines, and
+    // a write a facet from every worker kept them moving between the cores.
+    double block_least = kInfinity, block_largest = -kInfinity;
+    for (std::size_t i = begin; i < end; ++i) {
+      const Plane& plane = planes[order[i]];
+      const bool exact = g.coordinates_safe && plane_safe(plane);
+      double depth = -plane_value(plane, centroid);
+      if (!exact) {
+        const bool thin = depth <= near;
+        found[i] = -kInfinity;
+        for (const Vec3d& p : at) {
+          found[i] = std::max(found[i], bound_at(plane, p));
+          if (thin) depth = std::max(depth, -plane_value(plane, p));
+        }
+        block_least = std::min(block_least, depth);
+        block_largest = std::max(block_largest, found[i]);
+        continue;
+      }
+      // First from the seed's corner of the largest value, where the maximum usually is: an end with
+      // every neighbour exactly below is the unique maximum, which the ascent from corner 0 (the
+      // bound's definition) also ends at.  Otherwise (a tie) that ascent itself.
+      const std::array<std::uint32_t, 3>& c = starts[i];
+      std::uint32_t best = c[0];
+      for (int k = 1; k < 3; ++k)
+        if (plane_value(plane, at[c[k]]) > plane_value(plane, at[best])) best = c[k];
+      bool tie = false;
+      std::uint32_t v = ascend(plane, best, tie);
+      if (tie && best != c[0]) v = ascend(plane, c[0], tie);
+      found[i] = bound_at(plane, at[v]);
+      if (depth <= near) {
+        const Plane against{-plane[0], -plane[1], -plane[2], plane[3]};
+        std::uint32_t u = c[0];
+        for (bool moved = true; moved;) {
+          moved = false;
+          for (std::uint32_t k = g.start[u]; k < g.start[u + 1] && !moved; ++k)
+            if (const std::uint32_t q = g.to[k]; compare_along(against, at[q], at[u]) > 0)
+              u = q, moved = true;  // deeper, exactly: the descent ends
+        }
+        depth = -plane_value(plane, at[u]);
+      }
+      block_least = std::min(block_least, depth);
+      block_largest = std::max(block_largest, found[i]);
+    }
+    least[worker] = std::min(least[worker], block_least);
+    largest[worker] = std::max(largest[worker], block_largest);
+  };
+  // The ascents' blocks first, then `alongside`'s: one pass, one wait.
+  parallel_blocks_beside(
+      count + alongside_items, workers,
+      [&](std::size_t begin, std::size_t end, unsigned worker) {
+        if (begin < count) ascents(begin, std::min(end, count), worker);
+        if (end > count) alongside(std::max(begin, count) - count, end - count);
       },
       side, 256);
   laps.lap("ascents");

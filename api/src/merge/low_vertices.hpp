@@ -120,16 +120,16 @@ inline bool clearly_above(const Vec3d& v, const Vec3d* link, std::size_t k, doub
 }
 
 // Steps 1-2: drops the vertices of `current` (its vertex_ids index `points`) whose height is within
-// `limit`, in rounds of independent sets, until a round drops nothing or only the flat remains.  Returns
-// the final mesh's edges, its visit order and relabelled mesh into `visit` and `graph`.
+// `limit`, in rounds of independent sets, until a round drops nothing or only the flat remains, and
+// leaves the final mesh's visit order and relabelled mesh in `visit` and `graph`.
 // With an angle (`angle_sine` > 0, Qhull's An), a vertex's limit grows by angle_sine times half its
 // distance r to its farthest neighbour in the exact hull (taken once, so that the drops do not compound: a
 // later, wider link would let the angle grow): a vertex h above its link makes facets that meet at about
 // 2h / r, so the dropped ones are those whose facets' normals differ by less than about the angle, Qhull's
 // test for a pair of facets.
 template <class Point>
-EdgeIndex drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Point>& current, double limit,
-                            double angle_sine, VisitOrder& visit, Relabelled& graph) {
+void drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Point>& current, double limit,
+                       double angle_sine, VisitOrder& visit, Relabelled& graph) {
   // Per vertex of `points`: its link (ascending) when its height was computed, and that height; a vertex
   // whose link did not change keeps its height (it depends on nothing else).  The links lie in one pool,
   // each vertex's latest at link_at[id] (link_size[id] of them; a vertex a round did not touch keeps its
@@ -141,12 +141,8 @@ EdgeIndex drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Poin
   PhaseLaps laps("drop_low_vertices");  // CUDAHULL_PHASE_TIMES=1
   for (;;) {
     const std::size_t n = current.vertices.size();
-    EdgeIndex edges(current);
-    laps.lap("edges");
-    visit = visit_order(current);
-    laps.lap("visit order");
-    graph = relabelled(current, edges, visit);
-    laps.lap("relabelled");
+    const EdgeIndex edges = index_mesh(current, visit, graph);
+    laps.lap("edges and relabelled");
     const Relabelled& g = graph;
     std::vector<PointIndex> ids(n);  // by position
     for (std::uint32_t j = 0; j < n; ++j)
@@ -205,7 +201,7 @@ EdgeIndex drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Poin
       any_low = heights_at[j] <= limit + angle_sine * reach_at[j] / 2;
     if (!any_low) {
       laps.lap("round");
-      return edges;
+      return;
     }
     std::vector<double> heights(n), reach(n);
     std::vector<std::uint8_t> relinked(n);
@@ -253,7 +249,7 @@ EdgeIndex drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Poin
       dropped.resize(dropped.size() / 2);
     }
     laps.lap("round");
-    if (dropped.empty()) return edges;  // the mesh's, unchanged by this round
+    if (dropped.empty()) return;  // the mesh unchanged by this round
   }
 }
 

@@ -81,8 +81,14 @@ struct EdgeIndex {
   std::vector<std::uint32_t> start;                          // per vertex, into `out`; one more at the end
   std::vector<std::pair<std::uint32_t, std::uint32_t>> out;  // (to, triangle)
 
+  EdgeIndex() = default;
   template <class Point>
-  explicit EdgeIndex(const BasicHullMesh<Point>& mesh) : start(mesh.vertices.size() + 1, 0) {
+  explicit EdgeIndex(const BasicHullMesh<Point>& mesh)
+      : EdgeIndex(mesh, [](const EdgeIndex&, std::size_t, std::size_t) {}) {}
+  // As above, with after(*this, begin, end) run by the same worker once vertices [begin, end) have their
+  // edges (index_mesh(): the relabelled mesh of a small one, in the same pass).
+  template <class Point, class After>
+  EdgeIndex(const BasicHullMesh<Point>& mesh, const After& after) : start(mesh.vertices.size() + 1, 0) {
     for (const Triangle& t : mesh.triangles)
       for (std::uint32_t v : t)
         ++start[v + 1];
@@ -114,6 +120,7 @@ struct EdgeIndex {
           out[first + place] = edges[i];
         }
       }
+      after(*this, begin, end);
     });
   }
   std::uint32_t degree(std::uint32_t v) const { return start[v + 1] - start[v]; }
@@ -246,6 +253,50 @@ Relabelled relabelled(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, 
   });
   g.coordinates_safe = safe.load();
   return g;
+}
+
+// The three views of `mesh`: its EdgeIndex, its VisitOrder into `visit` and its Relabelled into `g`.  A
+// small mesh (in index order) is its own relabelling (ranks and orders identities), so its relabelled
+// arrays, and its triangles' keys, are filled in the edge index's pass: one pass, not two.
+template <class Point>
+EdgeIndex index_mesh(const BasicHullMesh<Point>& mesh, VisitOrder& visit, Relabelled& g) {
+  visit = visit_order(mesh);
+  if (!visit.in_index_order) {
+    EdgeIndex edges(mesh);
+    g = relabelled(mesh, edges, visit);
+    return edges;
+  }
+  const std::size_t n = mesh.vertices.size(), nt = mesh.triangles.size();
+  g = Relabelled{};
+  g.rank.resize(n);
+  std::iota(g.rank.begin(), g.rank.end(), 0u);
+  g.to.resize(3 * nt);  // a half-edge for each corner
+  g.face.resize(3 * nt);
+  g.at.resize(n);
+  g.largest_first.keys.resize(nt);
+  std::atomic<bool> safe{true};
+  EdgeIndex edges(mesh, [&](const EdgeIndex& index, std::size_t begin, std::size_t end) {
+    bool block_safe = true;
+    for (std::size_t v = begin; v < end; ++v) {
+      g.at[v] = to_vec3d(mesh.vertices[v]);
+      block_safe = block_safe && in_fast_exact_range(g.at[v].x) && in_fast_exact_range(g.at[v].y) &&
+                   in_fast_exact_range(g.at[v].z);
+      for (std::uint32_t k = index.start[v]; k < index.start[v + 1]; ++k) {
+        g.to[k] = index.out[k].first;
+        g.face[k] = index.out[k].second;
+      }
+    }
+    if (!block_safe) safe.store(false, std::memory_order_relaxed);
+    for (std::size_t t = begin * nt / n; t < end * nt / n; ++t) {
+      const Triangle& corners = mesh.triangles[t];
+      g.largest_first.keys[t] =
+          largest_first_key(to_vec3d(mesh.vertices[corners[0]]), to_vec3d(mesh.vertices[corners[1]]),
+                            to_vec3d(mesh.vertices[corners[2]]), static_cast<std::uint32_t>(t));
+    }
+  });
+  g.start = edges.start;
+  g.coordinates_safe = safe.load();
+  return edges;
 }
 
 }  // namespace cudahull::merge
