@@ -56,11 +56,12 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
     return kNone;
   };
   PassVector<Plane> plane(nt);
-  // The seeds' order, largest first, ties by the mesh's index (Relabelled::largest_first), sorted beside
-  // the joining pass below unless it is already, and ranked there.
+  // The seeds' order, largest first, ties by the mesh's index (Relabelled::largest_first): sorted beside
+  // the planes' pass, ranked beside the joining pass.
   const auto& keyed = largest_first.keys;
   PassVector<std::uint32_t> across(3 * nt);  // the triangle across edge k of j: the one holding its reverse
-  parallel_blocks(
+  Clock::time_point sort_start, sort_end;
+  parallel_blocks_beside(
       nt, hardware_workers(),
       [&](std::size_t begin, std::size_t end, unsigned) {
         for (std::size_t j = begin; j < end; ++j) {
@@ -72,7 +73,13 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
             across[3 * j + k] = holder(tri[j][(k + 1) % 3], tri[j][k]);
         }
       },
+      [&] {
+        sort_start = Clock::now();
+        largest_first.sort();
+        sort_end = Clock::now();
+      },
       1024);
+  laps.note("the seeds' order beside", sort_start, sort_end);
   laps.lap("planes");
   // Whether `vertex` (a position) fits the group of `seed`: within the tolerance of the seed's plane, or
   // exactly on it (a point exactly on it evaluates to within a few ulps of the coordinates' scale, under 28u
@@ -107,7 +114,7 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
   // Per triangle as a seed: which neighbours would join (bit k: across edge k), and the offset of its plane
   // were it alone (the top of its corners).
   PassVector<std::uint8_t> joining(nt);
-  Clock::time_point sort_start, sort_end;
+  Clock::time_point rank_start, rank_end;
   PassVector<double> alone_top(nt);
   parallel_blocks_beside(
       nt, hardware_workers(),
@@ -128,14 +135,13 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
         }
       },
       [&] {
-        sort_start = Clock::now();
-        if (!largest_first.sorted) largest_first.sort();
+        rank_start = Clock::now();
         largest_first.rank_triangles();
-        sort_end = Clock::now();
+        rank_end = Clock::now();
       },
       1024);
-  laps.note("the seeds' order beside", sort_start, sort_end);
-  laps.lap("joining and sort");
+  laps.note("the seeds' ranks beside", rank_start, rank_end);
+  laps.lap("joining");
   Facets facets;
   // Mesh triangle t's neighbours (position j's, in positions) as mesh triangles, into facets.across.
   auto across_in_mesh = [&](std::uint32_t t, std::uint32_t j) {

@@ -150,10 +150,7 @@ void drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Point>& c
     // By position, turned back into vertex order below.
     std::vector<double> heights_at(n, kInfinity), reach_at(n, 0);
     std::vector<std::uint8_t> relinked_at(n, 0);
-    // Beside the heights, on one core: the triangles' largest-first order for the grouping (which would
-    // otherwise sort it beside a shorter pass); a round that drops vertices sorts its new mesh's again.
-    Clock::time_point sort_start, sort_end;
-    parallel_blocks_beside(
+    parallel_blocks(
         n, hardware_workers(),
         [&](std::size_t begin, std::size_t end, unsigned) {
           std::vector<PointIndex> link;
@@ -187,13 +184,7 @@ void drop_low_vertices(const std::vector<Point>& points, BasicHullMesh<Point>& c
             heights_at[j] = cached_height[id];
           }
         },
-        [&] {
-          sort_start = Clock::now();
-          graph.largest_first.sort();
-          sort_end = Clock::now();
-        },
         256);  // blocks of some hundreds of microseconds: a worker woken for less costs more
-    laps.note("the triangles' order beside", sort_start, sort_end);
     laps.lap("heights");
     // Nothing low enough (most hulls' first round): done, with no bookkeeping for a next round.
     bool any_low = false;

@@ -59,12 +59,8 @@ inline void radix_sort_by_key(std::vector<std::pair<std::uint64_t, std::uint32_t
 struct LargestFirst {
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keys;
   PassVector<std::uint32_t> rank;  // per triangle, once ranked
-  bool sorted = false;
 
-  void sort() {
-    radix_sort_by_key(keys);
-    sorted = true;
-  }
+  void sort() { radix_sort_by_key(keys); }
   void rank_triangles() {
     rank.resize(keys.size());
     for (std::uint32_t place = 0; place < keys.size(); ++place)
@@ -208,8 +204,7 @@ struct Relabelled {
   PassVector<std::uint32_t> face;  // per out-edge: the place in VisitOrder::triangles of its triangle
   std::vector<Vec3d> at;
   bool coordinates_safe = true;  // every coordinate in compare_along()'s exact range
-  // The triangles' keys, found in the relabelling's pass so that their sort can run beside a later one
-  // (drop_low_vertices() sorts them beside the heights).
+  // The triangles' keys, found in the relabelling's pass (group_facets() sorts them beside its planes).
   LargestFirst largest_first;
 };
 
