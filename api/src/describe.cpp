@@ -153,6 +153,35 @@ constexpr std::size_t kMeasureChunk = std::size_t{1} << 20;  // a multiple of th
 // one, in measure_mesh()'s order (its bits).
 constexpr std::size_t kMeasureTermsOnCores = 2048;
 
+// measure_mesh()'s sums (the same bits) of a mesh of one chunk from its faces' terms found elsewhere (on
+// all cores): added in face order on this core; the volume's exact pass, where the bounds ask for it, on all
+// cores.
+template <class Terms, class Corner>
+detail::SolidMeasures sum_face_terms(const Terms& terms, std::size_t faces, const Corner& corner,
+                                     const Vec3d& apex) {
+  using detail::SolidMeasures;
+  SolidMeasures measures;
+  double error_sums[SolidMeasures::kErrorSums] = {};
+  for (std::size_t f = 0; f < faces; ++f) {
+    measures.add_terms(terms[f]);
+    double& sum = error_sums[f % SolidMeasures::kErrorSums];
+    sum = detail::add_rn(sum, terms[f].six_volume_error);
+  }
+  for (const double sum : error_sums)
+    measures.six_volume_error = detail::add_rn(measures.six_volume_error, sum);
+  if (measures.volume_uncertain()) {
+    PassVector<double> exact(faces);
+    parallel_blocks(faces, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
+      for (std::size_t f = begin; f < end; ++f)
+        exact[f] = SolidMeasures::exact_six_volume(corner(f, 0), corner(f, 1), corner(f, 2), apex);
+    });
+    measures.exact_volume_pass();
+    for (const double term : exact)
+      measures.add_exact(term);
+  }
+  return measures;
+}
+
 template <class Corner>
 detail::SolidMeasures measure_on_cores(std::size_t faces, const Corner& corner, const Vec3d& apex) {
   if (faces <= kMeasureTermsOnCores) return detail::measure_mesh(faces, corner, apex);
@@ -163,26 +192,7 @@ detail::SolidMeasures measure_on_cores(std::size_t faces, const Corner& corner, 
       for (std::size_t f = begin; f < end; ++f)
         terms[f] = SolidMeasures::face_terms(corner(f, 0), corner(f, 1), corner(f, 2), apex);
     });
-    SolidMeasures measures;
-    double error_sums[SolidMeasures::kErrorSums] = {};
-    for (std::size_t f = 0; f < faces; ++f) {
-      measures.add_terms(terms[f]);
-      double& sum = error_sums[f % SolidMeasures::kErrorSums];
-      sum = detail::add_rn(sum, terms[f].six_volume_error);
-    }
-    for (const double sum : error_sums)
-      measures.six_volume_error = detail::add_rn(measures.six_volume_error, sum);
-    if (measures.volume_uncertain()) {
-      PassVector<double> exact(faces);
-      parallel_blocks(faces, hardware_workers(), [&](std::size_t begin, std::size_t end, unsigned) {
-        for (std::size_t f = begin; f < end; ++f)
-          exact[f] = SolidMeasures::exact_six_volume(corner(f, 0), corner(f, 1), corner(f, 2), apex);
-      });
-      measures.exact_volume_pass();
-      for (const double term : exact)
-        measures.add_exact(term);
-    }
-    return measures;
+    return sum_face_terms(terms, faces, corner, apex);
   }
   using detail::add_rn;
   using detail::SolidMeasures;
@@ -363,14 +373,22 @@ double merge_tolerance(const std::vector<Point>& vertices, const ConvexHullOptio
 // ConvexHullOptions::box_measures: Qhull's QbB volume and area of the 3-D hull whose faces are `faces`
 // (positions in `vertices`, the exact hull's vertices, which attain the points' bounds), summed in the
 // result's face order as the Python module's general path sums them (qhull_scaling.hpp).
-template <class Point, class Triangles>
-void measure_box(const std::vector<Point>& vertices, const Triangles& faces, ConvexHull& hull) {
-  double low[3] = {INFINITY, INFINITY, INFINITY}, high[3] = {-INFINITY, -INFINITY, -INFINITY};
+// The exact hull's vertices' bounds (the input's).
+template <class Point>
+void vertex_bounds(const std::vector<Point>& vertices, double low[3], double high[3]) {
+  for (int k = 0; k < 3; ++k)
+    low[k] = INFINITY, high[k] = -INFINITY;
   for (const Point& p : vertices) {
     const double at[3] = {double(p.x), double(p.y), double(p.z)};
     for (int k = 0; k < 3; ++k)
       low[k] = std::min(low[k], at[k]), high[k] = std::max(high[k], at[k]);
   }
+}
+
+template <class Point, class Triangles>
+void measure_box(const std::vector<Point>& vertices, const Triangles& faces, ConvexHull& hull) {
+  double low[3], high[3];
+  vertex_bounds(vertices, low, high);
   static_assert(sizeof(Point) == 3 * sizeof(Point::x), "a point is its three coordinates");
   const std::array<double, 2> box = box_scaled_measures(
       &vertices.data()->x, faces.size(), [&](std::size_t f, int k) { return std::size_t{faces[f][k]}; }, low,
@@ -378,6 +396,77 @@ void measure_box(const std::vector<Point>& vertices, const Triangles& faces, Con
   hull.box_volume = box[0];
   hull.box_area = box[1];
 }
+
+// The merged hull's measures (and QbB's), as measure_solid() and measure_box() find them (the same bits),
+// with their per-face terms found in the merge's own pass over the faces (MergedFacesWork) and only their
+// sums after it.  A mesh outside the fast exact range, or of more than one measuring chunk, is measured
+// after the merge instead.
+template <class Point>
+class MergedMeasures final : public MergedFacesWork {
+ public:
+  MergedMeasures(const std::vector<Point>& vertices, bool box) : vertices_(vertices), box_(box) {
+    in_range_ = fast_range_scale(
+        vertices.size(), [&](std::size_t k) { return to_vec3d(vertices[k]); }, &scale_);
+    if (box_) {
+      double low[3], high[3];
+      vertex_bounds(vertices, low, high);
+      box_scale(low, high, box_scale_);
+    }
+  }
+  void start(const Triangle& first_face, std::size_t faces) override {
+    terms_on_faces_ = in_range_ && faces <= kMeasureChunk;
+    if (terms_on_faces_) {
+      apex_ = scaled_by(to_vec3d(vertices_[first_face[0]]), scale_);
+      terms_.resize(faces);
+    }
+    if (box_) lengths_.resize(faces);
+  }
+  void faces(const MergedHull& merged, std::size_t begin, std::size_t end) override {
+    const auto& at = merged.face_positions;
+    for (std::size_t f = begin; f < end; ++f) {
+      if (terms_on_faces_)
+        terms_[f] =
+            detail::SolidMeasures::face_terms(corner(at, f, 0), corner(at, f, 1), corner(at, f, 2), apex_);
+      if (box_) lengths_[f] = scaled_twice_area(xyz(), face_corner(at), f, box_scale_);
+    }
+  }
+  void finish(const MergedHull& merged, ConvexHull& hull) const {
+    const auto& at = merged.face_positions;
+    if (!terms_on_faces_) {
+      measure_solid(vertices_, at, hull);
+    } else if (!at.empty()) {
+      const detail::SolidMeasures measures = sum_face_terms(
+          terms_, at.size(), [&](unsigned long long f, int k) { return corner(at, f, k); }, apex_);
+      hull.volume = scale_ == 0 ? measures.volume() : std::ldexp(measures.volume(), 3 * scale_);
+      hull.area = scale_ == 0 ? measures.area() : std::ldexp(measures.area(), 2 * scale_);
+    }
+    if (box_) {
+      hull.box_volume = box_scaled_volume(hull.volume, box_scale_);
+      hull.box_area = half_sum(lengths_);
+    }
+  }
+
+ private:
+  Vec3d corner(const PassVector<Triangle>& at, std::size_t f, int k) const {
+    return scaled_by(to_vec3d(vertices_[at[f][k]]), scale_);
+  }
+  static auto face_corner(const PassVector<Triangle>& at) {
+    return [&at](std::size_t f, int k) { return std::size_t{at[f][k]}; };
+  }
+  const decltype(Point::x)* xyz() const {
+    static_assert(sizeof(Point) == 3 * sizeof(Point::x), "a point is its three coordinates");
+    return &vertices_.data()->x;
+  }
+
+  const std::vector<Point>& vertices_;
+  const bool box_;
+  bool in_range_ = false, terms_on_faces_ = false;
+  int scale_ = 0;
+  double box_scale_[3] = {1, 1, 1};
+  Vec3d apex_;
+  PassVector<detail::SolidMeasures::FaceTerms> terms_;
+  PassVector<double> lengths_;
+};
 
 // A merged hull from the exact one: merge_facets() works on the exact hull's vertices alone, since every
 // input point is a convex combination of them; its faces come both as input indices and as positions in
@@ -391,8 +480,9 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
   wake_workers(std::chrono::microseconds(1000));
   const double cosine = std::clamp(options.angle_cosine, 0.0, 1.0);
   PhaseLaps laps("describe_merged");  // CUDAHULL_PHASE_TIMES=1
+  MergedMeasures<Point> measures(mesh.vertices, options.box_measures);
   MergedHull merged = merge_facets(mesh.vertices, mesh, merge_tolerance(mesh.vertices, options),
-                                   std::sqrt(1 - cosine * cosine));
+                                   std::sqrt(1 - cosine * cosine), &measures);
   ConvexHull hull;
   hull.dimension = 3;
   hull.precision = precision_of<Point>();
@@ -403,9 +493,8 @@ ConvexHull describe_merged(const BasicHullMesh<Point>& mesh, std::string backend
   hull.vertices = std::move(merged.vertices);
   hull.faces = std::move(merged.faces);
   laps.lap("merge");
-  measure_solid(mesh.vertices, merged.face_positions, hull);
-  if (options.box_measures) measure_box(mesh.vertices, merged.face_positions, hull);
-  laps.lap("measures");
+  measures.finish(merged, hull);
+  laps.lap("measures' sums");
   hull.planes = std::move(merged.planes);
   hull.neighbors = std::move(merged.neighbors);
   hull.coplanar = std::move(merged.coplanar);

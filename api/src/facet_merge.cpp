@@ -27,7 +27,7 @@ using namespace merge;
 
 template <class Point>
 MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Point>& exact, double tolerance,
-                        double angle_sine) {
+                        double angle_sine, MergedFacesWork* work) {
   if (!(tolerance >= 0) || !std::isfinite(tolerance))
     throw std::invalid_argument("merge_facets: the tolerance must be finite and >= 0, not " +
                                 std::to_string(tolerance));
@@ -127,7 +127,13 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
         merged.neighbors[p][k] = static_cast<std::int32_t>(position[u]);
       }
     }
+    if (work) work->faces(merged, begin, end);
   };
+  if (work && nt > 0) {
+    const Triangle& first = current.triangles[by_facet[0]];
+    work->start({current.vertex_ids[first[0]], current.vertex_ids[first[1]], current.vertex_ids[first[2]]},
+                nt);
+  }
   // The vertices' centroid for the thinnest depth, summed in the mesh's order.
   Vec3d centroid{0, 0, 0};
   for (const Point& p : current.vertices) {
@@ -253,8 +259,10 @@ double qhull_default_tolerance(const std::vector<Point>& points) {
   return 4 * dist_round;
 }
 
-template MergedHull merge_facets(const std::vector<Point3>&, const HullMesh&, double, double);
-template MergedHull merge_facets(const std::vector<Point3d>&, const HullMeshd&, double, double);
+template MergedHull merge_facets(const std::vector<Point3>&, const HullMesh&, double, double,
+                                 MergedFacesWork*);
+template MergedHull merge_facets(const std::vector<Point3d>&, const HullMeshd&, double, double,
+                                 MergedFacesWork*);
 template double qhull_default_tolerance(const std::vector<Point3>&);
 template double qhull_default_tolerance(const std::vector<Point3d>&);
 

@@ -44,6 +44,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -85,9 +86,20 @@ struct MergedHull {
 // its vertices, no faces.  Throws std::invalid_argument for a negative or non-finite tolerance.
 // `angle_sine` (Qhull's An, as the sine of the angle; 0 for none) widens each vertex's and facet corner's
 // limit by that times its distance to its neighbours (drop_low_vertices, group_facets).
+//
+// `work` (optional): what a caller adds to the merge's pass over the merged faces, so that it needs no pass
+// of its own (describe_merged(): the measures' per-face terms).
+struct MergedFacesWork {
+  virtual ~MergedFacesWork() = default;
+  // Once the faces' order is known, before any is written: face 0's corners (positions in exact.vertices)
+  // and the number of faces.
+  virtual void start(const Triangle& first_face, std::size_t faces) = 0;
+  // On any worker, once faces [begin, end) are written (MergedHull::face_positions).
+  virtual void faces(const MergedHull& merged, std::size_t begin, std::size_t end) = 0;
+};
 template <class Point>
 MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Point>& exact, double tolerance,
-                        double angle_sine = 0);
+                        double angle_sine = 0, MergedFacesWork* work = nullptr);
 
 // Qhull's default merging tolerance for these points in 3-D (what scipy's ConvexHull gets with its default
 // options, "Qt", and Qhull's default pre-merge 'C-0'): qh.MINoutside = 4 x qh.DISTround, the distance a
@@ -96,8 +108,10 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
 template <class Point>
 double qhull_default_tolerance(const std::vector<Point>& points);
 
-extern template MergedHull merge_facets(const std::vector<Point3>&, const HullMesh&, double, double);
-extern template MergedHull merge_facets(const std::vector<Point3d>&, const HullMeshd&, double, double);
+extern template MergedHull merge_facets(const std::vector<Point3>&, const HullMesh&, double, double,
+                                        MergedFacesWork*);
+extern template MergedHull merge_facets(const std::vector<Point3d>&, const HullMeshd&, double, double,
+                                        MergedFacesWork*);
 extern template double qhull_default_tolerance(const std::vector<Point3>&);
 extern template double qhull_default_tolerance(const std::vector<Point3d>&);
 
