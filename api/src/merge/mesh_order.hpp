@@ -55,7 +55,7 @@ inline void radix_sort_by_key(std::vector<std::pair<std::uint64_t, std::uint32_t
 
 // The triangles' largest-first order (the facets' seeds, grouping.hpp): each triangle's
 // largest_first_key(), by index, then sort()ed ascending (largest first, ties by index), then each
-// triangle's place in that order (rank()): two steps, run beside two passes.
+// triangle's place in that order (rank_triangles()): two steps, run beside two passes.
 struct LargestFirst {
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keys;
   PassVector<std::uint32_t> rank;  // per triangle, once ranked
