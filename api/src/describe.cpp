@@ -235,6 +235,12 @@ detail::SolidMeasures measure_on_cores(std::size_t faces, const Corner& corner, 
   return measures;
 }
 
+// `measures` of a solid scaled by 2^-scale (fast_range_scale()) into `hull`'s volume and area.
+void set_measures(const detail::SolidMeasures& measures, int scale, ConvexHull& hull) {
+  hull.volume = scale == 0 ? measures.volume() : std::ldexp(measures.volume(), 3 * scale);
+  hull.area = scale == 0 ? measures.area() : std::ldexp(measures.area(), 2 * scale);
+}
+
 // The solid's volume and surface area into `hull`, over `triangles` (outward, indices into `vertices`):
 // detail::measure_mesh() (plane_impl.hpp, as the batch's device describe: the same bits), its apex the first
 // triangle's first corner; scaled into the fast exact range where the vertices are not in it.
@@ -247,10 +253,8 @@ void measure_solid(const std::vector<Point>& vertices, const Triangles& triangle
     const auto corner = [&](unsigned long long f, int k) {
       return scaled_by(vertex(triangles[f][k]), scale);
     };
-    const detail::SolidMeasures measures =
-        measure_on_cores(triangles.size(), corner, scaled_by(vertex(triangles[0][0]), scale));
-    hull.volume = scale == 0 ? measures.volume() : std::ldexp(measures.volume(), 3 * scale);
-    hull.area = scale == 0 ? measures.area() : std::ldexp(measures.area(), 2 * scale);
+    set_measures(measure_on_cores(triangles.size(), corner, scaled_by(vertex(triangles[0][0]), scale)), scale,
+                 hull);
     return;
   }
   // Vertices more than 2^500 apart in magnitude: long double, from the same apex (no term negative).
@@ -370,9 +374,6 @@ double merge_tolerance(const std::vector<Point>& vertices, const ConvexHullOptio
   return options.tolerance * largest_side;
 }
 
-// ConvexHullOptions::box_measures: Qhull's QbB volume and area of the 3-D hull whose faces are `faces`
-// (positions in `vertices`, the exact hull's vertices, which attain the points' bounds), summed in the
-// result's face order as the Python module's general path sums them (qhull_scaling.hpp).
 // The exact hull's vertices' bounds (the input's).
 template <class Point>
 void vertex_bounds(const std::vector<Point>& vertices, double low[3], double high[3]) {
@@ -385,6 +386,9 @@ void vertex_bounds(const std::vector<Point>& vertices, double low[3], double hig
   }
 }
 
+// ConvexHullOptions::box_measures: Qhull's QbB volume and area of the 3-D hull whose faces are `faces`
+// (positions in `vertices`, the exact hull's vertices, which attain the points' bounds), summed in the
+// result's face order as the Python module's general path sums them (qhull_scaling.hpp).
 template <class Point, class Triangles>
 void measure_box(const std::vector<Point>& vertices, const Triangles& faces, ConvexHull& hull) {
   double low[3], high[3];
@@ -435,10 +439,10 @@ class MergedMeasures final : public MergedFacesWork {
     if (!terms_on_faces_) {
       measure_solid(vertices_, at, hull);
     } else if (!at.empty()) {
-      const detail::SolidMeasures measures = sum_face_terms(
-          terms_, at.size(), [&](unsigned long long f, int k) { return corner(at, f, k); }, apex_);
-      hull.volume = scale_ == 0 ? measures.volume() : std::ldexp(measures.volume(), 3 * scale_);
-      hull.area = scale_ == 0 ? measures.area() : std::ldexp(measures.area(), 2 * scale_);
+      set_measures(
+          sum_face_terms(
+              terms_, at.size(), [&](unsigned long long f, int k) { return corner(at, f, k); }, apex_),
+          scale_, hull);
     }
     if (box_) {
       hull.box_volume = box_scaled_volume(hull.volume, box_scale_);

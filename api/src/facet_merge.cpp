@@ -84,9 +84,7 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   // The kept vertices and the dropped ones, on one core beside the kept vertices' bounds (below), which do
   // not depend on them.
   std::vector<std::uint32_t> dropped;
-  Clock::time_point output_start, output_end;
   auto output = [&] {
-    output_start = Clock::now();
     merged.vertices.reserve(current.vertex_ids.size());
     for (PointIndex id : current.vertex_ids)
       merged.vertices.push_back(exact.vertex_ids[id]);
@@ -102,8 +100,8 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
       if (!kept[i]) dropped.push_back(i);
     std::sort(dropped.begin(), dropped.end(),
               [&](std::uint32_t a, std::uint32_t b) { return exact.vertex_ids[a] < exact.vertex_ids[b]; });
-    output_end = Clock::now();
   };
+  PhaseLaps::Span output_span;
   // The faces in their facets' order, in the kept bounds' pass.
   merged.faces.resize(nt);
   merged.face_positions.resize(nt);
@@ -143,9 +141,10 @@ MergedHull merge_facets(const std::vector<Point>& points, const BasicHullMesh<Po
   const double vertex_count = static_cast<double>(current.vertices.size());
   centroid = {centroid.x / vertex_count, centroid.y / vertex_count, centroid.z / vertex_count};
   laps.lap("facet order and set up");
-  const KeptBounds kept = kept_bounds(graph, facets.planes, facets.in_visit_order, facets.visit_starts,
-                                      centroid, 4 * tolerance, output, nt, faces);
-  laps.note("the kept and dropped vertices beside", output_start, output_end);
+  const KeptBounds kept = kept_bounds(
+      graph, facets.planes, facets.in_visit_order, facets.visit_starts, centroid, 4 * tolerance,
+      [&] { output_span.time(output); }, nt, faces);
+  laps.note("the kept and dropped vertices beside", output_span);
   laps.lap("kept bounds and faces");
   if (single_triangles) merged.planes = std::move(facets.planes);
   const std::vector<Plane>& facet_planes = single_triangles ? merged.planes : facets.planes;

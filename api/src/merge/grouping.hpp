@@ -60,7 +60,7 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
   // the planes' pass, ranked beside the joining pass.
   const auto& keyed = largest_first.keys;
   PassVector<std::uint32_t> across(3 * nt);  // the triangle across edge k of j: the one holding its reverse
-  Clock::time_point sort_start, sort_end;
+  PhaseLaps::Span sort;
   parallel_blocks_beside(
       nt, hardware_workers(),
       [&](std::size_t begin, std::size_t end, unsigned) {
@@ -73,13 +73,8 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
             across[3 * j + k] = holder(tri[j][(k + 1) % 3], tri[j][k]);
         }
       },
-      [&] {
-        sort_start = Clock::now();
-        largest_first.sort();
-        sort_end = Clock::now();
-      },
-      1024);
-  laps.note("the seeds' order beside", sort_start, sort_end);
+      [&] { sort.time([&] { largest_first.sort(); }); }, 1024);
+  laps.note("the seeds' order beside", sort);
   laps.lap("planes");
   // Whether `vertex` (a position) fits the group of `seed`: within the tolerance of the seed's plane, or
   // exactly on it (a point exactly on it evaluates to within a few ulps of the coordinates' scale, under 28u
@@ -114,7 +109,7 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
   // Per triangle as a seed: which neighbours would join (bit k: across edge k), and the offset of its plane
   // were it alone (the top of its corners).
   PassVector<std::uint8_t> joining(nt);
-  Clock::time_point rank_start, rank_end;
+  PhaseLaps::Span ranks;
   PassVector<double> alone_top(nt);
   parallel_blocks_beside(
       nt, hardware_workers(),
@@ -134,13 +129,8 @@ Facets group_facets(const BasicHullMesh<Point>& mesh, const Relabelled& g, const
               {dot3(plane[j], corner(j, 0)), dot3(plane[j], corner(j, 1)), dot3(plane[j], corner(j, 2))});
         }
       },
-      [&] {
-        rank_start = Clock::now();
-        largest_first.rank_triangles();
-        rank_end = Clock::now();
-      },
-      1024);
-  laps.note("the seeds' ranks beside", rank_start, rank_end);
+      [&] { ranks.time([&] { largest_first.rank_triangles(); }); }, 1024);
+  laps.note("the seeds' ranks beside", ranks);
   laps.lap("joining");
   Facets facets;
   // Mesh triangle t's neighbours (position j's, in positions) as mesh triangles, into facets.across.

@@ -208,6 +208,25 @@ struct Relabelled {
   LargestFirst largest_first;
 };
 
+// Whether every coordinate of p is in compare_along()'s exact range (Relabelled::coordinates_safe).
+inline bool coordinates_safe(const Vec3d& p) {
+  return in_fast_exact_range(p.x) && in_fast_exact_range(p.y) && in_fast_exact_range(p.z);
+}
+
+// The keys of the triangles in vertices [begin, end)'s share of [0, nt), into `order`: over the blocks of a
+// pass over the vertices, every triangle once, each block's written together.
+template <class Point>
+void key_triangles(const BasicHullMesh<Point>& mesh, std::size_t begin, std::size_t end,
+                   LargestFirst& order) {
+  const std::size_t n = mesh.vertices.size(), nt = mesh.triangles.size();
+  for (std::size_t t = begin * nt / n; t < end * nt / n; ++t) {
+    const Triangle& corners = mesh.triangles[t];
+    order.keys[t] =
+        largest_first_key(to_vec3d(mesh.vertices[corners[0]]), to_vec3d(mesh.vertices[corners[1]]),
+                          to_vec3d(mesh.vertices[corners[2]]), static_cast<std::uint32_t>(t));
+  }
+}
+
 template <class Point>
 Relabelled relabelled(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, const VisitOrder& visit) {
   const std::size_t n = mesh.vertices.size();
@@ -217,8 +236,7 @@ Relabelled relabelled(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, 
   g.to.resize(edges.out.size());
   g.face.resize(edges.out.size());
   g.at.resize(n);
-  const std::size_t nt = mesh.triangles.size();
-  g.largest_first.keys.resize(nt);
+  g.largest_first.keys.resize(mesh.triangles.size());
   for (std::uint32_t j = 0; j < n; ++j) {
     const std::uint32_t v = visit.vertices[j];
     g.rank[v] = j;
@@ -230,20 +248,13 @@ Relabelled relabelled(const BasicHullMesh<Point>& mesh, const EdgeIndex& edges, 
     for (std::size_t j = begin; j < end; ++j) {
       const std::uint32_t v = visit.vertices[j];
       g.at[j] = to_vec3d(mesh.vertices[v]);
-      block_safe = block_safe && in_fast_exact_range(g.at[j].x) && in_fast_exact_range(g.at[j].y) &&
-                   in_fast_exact_range(g.at[j].z);
+      block_safe = block_safe && coordinates_safe(g.at[j]);
       for (std::uint32_t k = 0; k < edges.degree(v); ++k) {
         g.to[g.start[j] + k] = g.rank[edges.neighbour(v, k)];
         g.face[g.start[j] + k] = visit.triangle_rank[edges.out[edges.start[v] + k].second];
       }
     }
-    // The triangles of the same share of [0, nt): every triangle once, each block's written together.
-    for (std::size_t t = begin * nt / n; t < end * nt / n; ++t) {
-      const Triangle& corners = mesh.triangles[t];
-      g.largest_first.keys[t] =
-          largest_first_key(to_vec3d(mesh.vertices[corners[0]]), to_vec3d(mesh.vertices[corners[1]]),
-                            to_vec3d(mesh.vertices[corners[2]]), static_cast<std::uint32_t>(t));
-    }
+    key_triangles(mesh, begin, end, g.largest_first);
     if (!block_safe) safe.store(false, std::memory_order_relaxed);
   });
   g.coordinates_safe = safe.load();
@@ -274,20 +285,14 @@ EdgeIndex index_mesh(const BasicHullMesh<Point>& mesh, VisitOrder& visit, Relabe
     bool block_safe = true;
     for (std::size_t v = begin; v < end; ++v) {
       g.at[v] = to_vec3d(mesh.vertices[v]);
-      block_safe = block_safe && in_fast_exact_range(g.at[v].x) && in_fast_exact_range(g.at[v].y) &&
-                   in_fast_exact_range(g.at[v].z);
+      block_safe = block_safe && coordinates_safe(g.at[v]);
       for (std::uint32_t k = index.start[v]; k < index.start[v + 1]; ++k) {
         g.to[k] = index.out[k].first;
         g.face[k] = index.out[k].second;
       }
     }
     if (!block_safe) safe.store(false, std::memory_order_relaxed);
-    for (std::size_t t = begin * nt / n; t < end * nt / n; ++t) {
-      const Triangle& corners = mesh.triangles[t];
-      g.largest_first.keys[t] =
-          largest_first_key(to_vec3d(mesh.vertices[corners[0]]), to_vec3d(mesh.vertices[corners[1]]),
-                            to_vec3d(mesh.vertices[corners[2]]), static_cast<std::uint32_t>(t));
-    }
+    key_triangles(mesh, begin, end, g.largest_first);
   });
   g.start = edges.start;
   g.coordinates_safe = safe.load();

@@ -44,12 +44,22 @@ class PhaseLaps {
     line_ += text;
     t0_ = Clock::now();
   }
-  // A part of the next lap timed on its own (a step run beside a parallel pass, from its start time).
-  void note(const char* part, Clock::time_point start, Clock::time_point end) {
+  // A step run beside a parallel pass (parallel_blocks_beside()'s `side`), timed on its own: span.time(step)
+  // runs it, note() adds its time to the next lap's entry.
+  struct Span {
+    Clock::time_point start{}, end{};
+    template <class Step>
+    void time(Step&& step) {
+      start = Clock::now();
+      step();
+      end = Clock::now();
+    }
+  };
+  void note(const char* part, const Span& span) {
     if (!wanted_) return;
     char text[96];
     std::snprintf(text, sizeof text, "%s (%s %.3f ms)", line_.back() == ':' ? "" : ",", part,
-                  std::chrono::duration<double, std::milli>(end - start).count());
+                  std::chrono::duration<double, std::milli>(span.end - span.start).count());
     line_ += text;
   }
 
