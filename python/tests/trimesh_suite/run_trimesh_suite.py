@@ -24,12 +24,13 @@ Options: ``--runs scipy`` or ``--runs cudahull`` for one run only (the other's r
 trimesh's optional dependencies: without them (as in build-venv, which has numpy and scipy only) about a
 third of trimesh's tests fail alike in both runs on ``ModuleNotFoundError`` (trimesh's tests fail rather
 than skip) and reach no hull.  For the fuller run, install trimesh's "easy" extras outside the venv and put
-them first on PYTHONPATH (``--no-deps``: the venv's numpy and scipy stay the ones used)::
+them first on PYTHONPATH (``--no-deps``: the venv's numpy and scipy stay the ones used; typing-extensions,
+which ``referencing`` needs, is not in every venv, and without it jsonschema's import fails in both runs)::
 
     build-venv/bin/python -m pip install --target /tmp/trimesh-extras --no-deps colorlog manifold3d \\
         charset-normalizer lxml jsonschema jsonschema-specifications referencing rpds-py attrs networkx \\
         svg.path pycollada python-dateutil six shapely xxhash rtree httpx httpcore anyio h11 idna certifi \\
-        sniffio pillow embreex vhacdx mapbox_earcut pyinstrument
+        sniffio pillow embreex vhacdx mapbox_earcut pyinstrument typing-extensions
     PYTHONPATH=/tmp/trimesh-extras:build/python build-venv/bin/python python/tests/trimesh_suite/...
 
 Each run is ``python -m pytest -p cudahull_trimesh_plugin <trimesh-src>/tests/...`` in its own process, from
