@@ -9,6 +9,7 @@
 #include "batch_shared.cuh"
 #include "cudahull/cuda/batch_cuda.hpp"
 #include "cudahull/cuda/device_memory.hpp"
+#include "cudahull/cuda/host_transfer.hpp"
 
 namespace cudahull {
 namespace {
@@ -60,11 +61,11 @@ std::shared_ptr<void> batch_column(std::size_t bytes, const char* what) {
 }
 
 void copy_to_device(void* device, const void* host, std::size_t bytes) {
-  if (bytes != 0) check(cudaMemcpy(device, host, bytes, cudaMemcpyHostToDevice), "copying up the hulls");
+  copy_host_to_device(device, host, bytes, kWho, "copying up the hulls");
 }
 
 void copy_to_host(void* host, const void* device, std::size_t bytes) {
-  if (bytes != 0) check(cudaMemcpy(host, device, bytes, cudaMemcpyDeviceToHost), "reading back the hulls");
+  copy_device_to_host(host, device, bytes, kWho, "reading back the hulls");
 }
 
 void finish_device_work() {

@@ -8,6 +8,7 @@
 
 #include "cuda_errors.hpp"
 #include "cudahull/cuda/device_memory.hpp"
+#include "cudahull/cuda/host_transfer.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/predicates.hpp"
 
@@ -136,7 +137,7 @@ void require_current_device_memory(const void* xyz) {
 
 std::shared_ptr<void> upload_to_device(const void* host, std::size_t bytes) {
   std::shared_ptr<unsigned char> copy = shared_device_array<unsigned char>(bytes, kWho, "the points");
-  check(cudaMemcpy(copy.get(), host, bytes, cudaMemcpyHostToDevice), "uploading the points");
+  copy_host_to_device(copy.get(), host, bytes, kWho, "uploading the points");
   return copy;
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "batch_on_device.hpp"
+#include "cudahull/convex_hull_batch_results.hpp"
 
 namespace cudahull {
 
@@ -127,17 +128,32 @@ template DeviceConvexHullBatch assemble_on_device(const BatchRun<Point3d>&, Host
 
 }  // namespace batch
 
+void copy_to_host(const DeviceConvexHullBatch& batch, const BatchHostColumns& into) {
+  const std::size_t clouds = batch.size();
+  for (auto [to, from] : {std::pair{into.vertex_offsets, &batch.device_vertex_offsets},
+                          std::pair{into.face_offsets, &batch.device_face_offsets},
+                          std::pair{into.polygon_offsets, &batch.device_polygon_offsets}}) {
+    if (from->data)
+      copy_to_host(to, from->data.get(), (clouds + 1) * sizeof(std::int64_t));
+    else
+      std::fill_n(to, clouds + 1, std::int64_t{0});
+  }
+  copy_to_host(into.vertices, batch.vertices.data.get(), batch.vertices.size * sizeof(std::int32_t));
+  copy_to_host(into.faces, batch.faces.data.get(), batch.faces.size * sizeof(std::int32_t));
+  copy_to_host(into.planes, batch.planes.data.get(), batch.planes.size * sizeof(double));
+  copy_to_host(into.polygons, batch.polygons.data.get(), batch.polygons.size * sizeof(std::int32_t));
+  copy_to_host(into.volumes, batch.volumes.data.get(), clouds * sizeof(double));
+  copy_to_host(into.areas, batch.areas.data.get(), clouds * sizeof(double));
+  copy_to_host(into.dimensions, batch.dimensions.data.get(), clouds * sizeof(std::int32_t));
+}
+
 ConvexHullBatch DeviceConvexHullBatch::to_host() const {
   ConvexHullBatch batch;
   static_cast<ConvexHullBatchReport&>(batch) = *this;
   const std::size_t clouds = size();
-  for (auto [to, from] : {std::pair{&batch.vertex_offsets, &device_vertex_offsets},
-                          std::pair{&batch.face_offsets, &device_face_offsets},
-                          std::pair{&batch.polygon_offsets, &device_polygon_offsets}}) {
-    std::vector<std::int64_t> offsets(clouds + 1, 0);
-    if (from->data) copy_to_host(offsets.data(), from->data.get(), offsets.size() * sizeof(std::int64_t));
-    to->assign(offsets.begin(), offsets.end());
-  }
+  std::vector<std::int64_t> offsets[3];
+  for (auto& column : offsets)
+    column.resize(clouds + 1);
   batch.vertices.resize(vertices.size);
   batch.faces.resize(faces.size / 3);
   batch.planes.resize(planes.size / 4);
@@ -148,13 +164,15 @@ ConvexHullBatch DeviceConvexHullBatch::to_host() const {
   // int32 indices into PointIndex (uint32: the same bytes for indices under 2^31).
   static_assert(sizeof(PointIndex) == sizeof(std::int32_t) &&
                 sizeof(batch.faces[0]) == 3 * sizeof(PointIndex));
-  copy_to_host(batch.vertices.data(), vertices.data.get(), vertices.size * sizeof(std::int32_t));
-  copy_to_host(batch.faces.data(), faces.data.get(), faces.size * sizeof(std::int32_t));
-  copy_to_host(batch.planes.data(), planes.data.get(), planes.size * sizeof(double));
-  copy_to_host(batch.polygons.data(), polygons.data.get(), polygons.size * sizeof(std::int32_t));
-  copy_to_host(batch.volumes.data(), volumes.data.get(), clouds * sizeof(double));
-  copy_to_host(batch.areas.data(), areas.data.get(), clouds * sizeof(double));
-  copy_to_host(batch.dimensions.data(), dimensions.data.get(), clouds * sizeof(std::int32_t));
+  copy_to_host(*this,
+               {offsets[0].data(), offsets[1].data(), offsets[2].data(),
+                reinterpret_cast<std::int32_t*>(batch.vertices.data()),
+                reinterpret_cast<std::int32_t*>(batch.faces.data()),
+                reinterpret_cast<std::int32_t*>(batch.polygons.data()), batch.dimensions.data(),
+                reinterpret_cast<double*>(batch.planes.data()), batch.volumes.data(), batch.areas.data()});
+  batch.vertex_offsets.assign(offsets[0].begin(), offsets[0].end());
+  batch.face_offsets.assign(offsets[1].begin(), offsets[1].end());
+  batch.polygon_offsets.assign(offsets[2].begin(), offsets[2].end());
   return batch;
 }
 

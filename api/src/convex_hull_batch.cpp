@@ -8,10 +8,12 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <variant>
 
 #include "batch_common.hpp"
 #include "batch_on_device.hpp"
 #include "batch_on_host.hpp"
+#include "cudahull/convex_hull_batch_results.hpp"
 #include "cudahull/errors.hpp"
 #include "cudahull/hull_plan.hpp"
 #include "cudahull/parallel.hpp"
@@ -26,8 +28,11 @@ using namespace batch;
 // The batch of host points (`count` x, y, z triples at `xyz`): `hull_of(begin, n, options)` is convex_hull()
 // on the n points from row `begin`.
 template <class Scalar, class HullOf>
-ConvexHullBatch host_batch(const Scalar* xyz, std::size_t count, const std::size_t* offsets,
-                           std::size_t clouds, const ConvexHullBatchOptions& options, HullOf hull_of) {
+std::variant<ConvexHullBatch, DeviceConvexHullBatch> host_batch(const Scalar* xyz, std::size_t count,
+                                                                const std::size_t* offsets,
+                                                                std::size_t clouds,
+                                                                const ConvexHullBatchOptions& options,
+                                                                HullOf hull_of) {
   constexpr Precision own = precision_of<Scalar>();
   check_offsets(count, offsets, clouds);
   const HullPlan plan = batch_plan(count, own, false, options.hull);
@@ -41,10 +46,10 @@ ConvexHullBatch host_batch(const Scalar* xyz, std::size_t count, const std::size
   // does not make) are asked for, which run cloud by cloud.
   if (plan.backend == BackendChoice::kCuda && plan.engine != EngineChoice::kStepping &&
       each.merge == MergeMode::kExact) {
-    ConvexHullBatch batch =
+    DeviceConvexHullBatch batch =
         plan.precision == Precision::kDouble
-            ? run_host_batch_on_device<Point3d>(xyz, count, offsets, clouds, options.tuning, cloud).to_host()
-            : run_host_batch_on_device<Point3>(xyz, count, offsets, clouds, options.tuning, cloud).to_host();
+            ? run_host_batch_on_device<Point3d>(xyz, count, offsets, clouds, options.tuning, cloud)
+            : run_host_batch_on_device<Point3>(xyz, count, offsets, clouds, options.tuning, cloud);
     batch.precision = plan.precision;
     return batch;
   }
@@ -69,12 +74,25 @@ ConvexHull cloud_hull(const Scalar* xyz, std::size_t n, const ConvexHullOptions&
 }
 
 template <class Scalar>
-ConvexHullBatch array_batch(const Scalar* xyz, std::size_t count, const std::size_t* offsets,
-                            std::size_t clouds, const ConvexHullBatchOptions& options) {
+std::variant<ConvexHullBatch, DeviceConvexHullBatch> array_batch_results(
+    const Scalar* xyz, std::size_t count, const std::size_t* offsets, std::size_t clouds,
+    const ConvexHullBatchOptions& options) {
   return host_batch(xyz, count, offsets, clouds, options,
                     [xyz](std::size_t begin, std::size_t n, const ConvexHullOptions& each) {
                       return cloud_hull(xyz + 3 * begin, n, each);
                     });
+}
+
+// The batch's result on the host, read back where it was made on the device.
+ConvexHullBatch on_host(std::variant<ConvexHullBatch, DeviceConvexHullBatch>&& result) {
+  if (const auto* on_device = std::get_if<DeviceConvexHullBatch>(&result)) return on_device->to_host();
+  return std::get<ConvexHullBatch>(std::move(result));
+}
+
+template <class Scalar>
+ConvexHullBatch array_batch(const Scalar* xyz, std::size_t count, const std::size_t* offsets,
+                            std::size_t clouds, const ConvexHullBatchOptions& options) {
+  return on_host(array_batch_results(xyz, count, offsets, clouds, options));
 }
 
 template <class Point>
@@ -147,6 +165,18 @@ ConvexHullBatch convex_hull_batch(const float* xyz, std::size_t count, const std
 ConvexHullBatch convex_hull_batch(const double* xyz, std::size_t count, const std::size_t* offsets,
                                   std::size_t clouds, const ConvexHullBatchOptions& options) {
   return array_batch(xyz, count, offsets, clouds, options);
+}
+
+std::variant<ConvexHullBatch, DeviceConvexHullBatch> convex_hull_batch_results(
+    const float* xyz, std::size_t count, const std::size_t* offsets, std::size_t clouds,
+    const ConvexHullBatchOptions& options) {
+  return array_batch_results(xyz, count, offsets, clouds, options);
+}
+
+std::variant<ConvexHullBatch, DeviceConvexHullBatch> convex_hull_batch_results(
+    const double* xyz, std::size_t count, const std::size_t* offsets, std::size_t clouds,
+    const ConvexHullBatchOptions& options) {
+  return array_batch_results(xyz, count, offsets, clouds, options);
 }
 
 ConvexHullBatch convex_hull_batch_device(const float* device_xyz, std::size_t count,

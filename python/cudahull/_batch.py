@@ -145,11 +145,15 @@ def _batch_result(raw: dict[str, Any], offsets: npt.NDArray[np.int64], kind: Dev
     hulls = BatchHulls()
     on_host = isinstance(raw["volumes"], np.ndarray)
     if on_host:
+        # The module's indices are uint32: read in place as int32 where every cloud is shorter than 2^31 points
+        # (each index is below its cloud's length, so the bits are the same values), a copy spared (a large
+        # batch's faces are some 100 MB); else widened.
         longest = int(np.diff(offsets).max(initial=0))
         index = np.int32 if longest < 2**31 else np.int64
-        raw["vertices"] = raw["vertices"].astype(index)
-        raw["polygons"] = raw["polygons"].astype(index)
-        raw["faces"] = raw["faces"].astype(index).reshape(-1, 3)
+        for key in ("vertices", "polygons", "faces"):
+            same_bits = index is np.int32 and raw[key].dtype == np.uint32
+            raw[key] = raw[key].view(np.int32) if same_bits else raw[key].astype(index)
+        raw["faces"] = raw["faces"].reshape(-1, 3)
         raw["planes"] = raw["planes"].reshape(-1, 4)
     torch_indices = kind is not None and kind.library == "torch"
     for key in _BATCH_ARRAYS:

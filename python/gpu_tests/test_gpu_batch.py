@@ -138,6 +138,25 @@ def test_cuda_backend_on_host_points():
                 cudahull.convex_hull_batch(bad, [0, 300, 600, 900], backend=backend, precision=precision)
 
 
+def test_large_host_batch_crosses_the_bus_intact(lib):
+    """A batch of host points large enough that its upload (48 MB) and its planes (25 MB) cross through
+    the pinned staging buffers, chunk by chunk on all cores: every column the same bits as the same clouds'
+    result read from the device by `lib` itself, and the vertex sets and measures the CPU's."""
+    rng = np.random.default_rng(45)
+    points = rng.normal(size=(20_000 * 100, 3))
+    offsets = np.arange(0, len(points) + 1, 100)
+    got = cudahull.convex_hull_batch(points, offsets, backend="cuda")
+    assert got.backend.startswith("cuda") and got.planes.nbytes > 16 << 20  # host_transfer.hpp's kStagedFrom
+    on_gpu = cudahull.convex_hull_batch(on_device(lib, points), offsets)
+    for key in ("vertex_offsets", "face_offsets", "polygon_offsets", "vertices", "faces", "planes", "polygons",
+                "volumes", "areas", "dimensions"):
+        assert np.array_equal(getattr(got, key), to_numpy(getattr(on_gpu, key))), key
+    want = cudahull.convex_hull_batch(points, offsets, backend="cpu")
+    assert np.array_equal(got.vertex_offsets, want.vertex_offsets) and np.array_equal(got.vertices, want.vertices)
+    assert np.array_equal(got.face_offsets, want.face_offsets)
+    assert got.volumes == pytest.approx(want.volumes, rel=1e-12, abs=0)
+
+
 def test_results_are_the_devices_own(lib):
     """The result's arrays are the input library's, on the GPU, of the documented dtypes and shapes (PyTorch's
     indices int64, CuPy's int32), equal to the host result's values; they outlive the input and the call's

@@ -7,10 +7,12 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "bindings.hpp"
 #include "cudahull/convex_hull_batch.hpp"
+#include "cudahull/convex_hull_batch_results.hpp"
 #include "hull_conversions.hpp"
 #include "numpy_arrays.hpp"
 
@@ -89,18 +91,65 @@ nb::dict batch_to_dict(ConvexHullBatch&& batch) {
   return d;
 }
 
+// A result in device memory as NumPy arrays, batch_to_dict()'s dtypes: read straight into arrays made for
+// it (DeviceConvexHullBatch::to_host()'s vectors would be zeroed first, and copied again).
+nb::dict device_batch_to_numpy(const DeviceConvexHullBatch& batch) {
+  const std::size_t clouds = batch.size();
+  auto vertex_offsets = unfilled_numpy<std::int64_t>(clouds + 1),
+       face_offsets = unfilled_numpy<std::int64_t>(clouds + 1),
+       polygon_offsets = unfilled_numpy<std::int64_t>(clouds + 1);
+  auto vertices = unfilled_numpy<PointIndex>(batch.vertices.size),
+       faces = unfilled_numpy<PointIndex>(batch.faces.size / 3, 3),
+       polygons = unfilled_numpy<PointIndex>(batch.polygons.size);
+  auto planes = unfilled_numpy<double>(batch.planes.size / 4, 4), volumes = unfilled_numpy<double>(clouds),
+       areas = unfilled_numpy<double>(clouds);
+  auto dimensions = unfilled_numpy<std::int32_t>(clouds);
+  static_assert(sizeof(PointIndex) == sizeof(std::int32_t));  // int32 columns, PointIndex's bits
+  const BatchHostColumns into{vertex_offsets.data,
+                              face_offsets.data,
+                              polygon_offsets.data,
+                              reinterpret_cast<std::int32_t*>(vertices.data),
+                              reinterpret_cast<std::int32_t*>(faces.data),
+                              reinterpret_cast<std::int32_t*>(polygons.data),
+                              dimensions.data,
+                              planes.data,
+                              volumes.data,
+                              areas.data};
+  {
+    nb::gil_scoped_release unlocked;
+    copy_to_host(batch, into);
+  }
+  nb::dict d;
+  d["report"] = report_dict(batch);
+  d["vertex_offsets"] = vertex_offsets.array;
+  d["face_offsets"] = face_offsets.array;
+  d["polygon_offsets"] = polygon_offsets.array;
+  d["vertices"] = vertices.array;
+  d["faces"] = faces.array;
+  d["planes"] = planes.array;
+  d["polygons"] = polygons.array;
+  d["volumes"] = volumes.array;
+  d["areas"] = areas.array;
+  d["dimensions"] = dimensions.array;
+  d["precision"] = precision_name(batch.precision);
+  d["backend"] = batch.backend;
+  return d;
+}
+
 template <class Scalar>
 nb::dict convex_hull_batch_of(PointArray<Scalar> points, const OffsetArray& offsets,
                               const std::string& backend, const std::string& precision,
                               const std::string& engine, unsigned threads) {
   const Bounds bounds = offsets_from(offsets);
   const ConvexHullBatchOptions options = batch_options_from(backend, precision, engine, threads);
-  ConvexHullBatch batch;
+  std::variant<ConvexHullBatch, DeviceConvexHullBatch> result;
   {
     nb::gil_scoped_release unlocked;  // the caller's arrays stay alive: the call holds references to them
-    batch = convex_hull_batch(points.data(), points.shape(0), bounds.data, bounds.clouds, options);
+    result = convex_hull_batch_results(points.data(), points.shape(0), bounds.data, bounds.clouds, options);
   }
-  return batch_to_dict(std::move(batch));
+  if (const auto* on_device = std::get_if<DeviceConvexHullBatch>(&result))
+    return device_batch_to_numpy(*on_device);
+  return batch_to_dict(std::get<ConvexHullBatch>(std::move(result)));
 }
 
 // A result column in device memory as an array of `Framework` (PyTorch, CuPy) on its device, sharing the
@@ -151,12 +200,7 @@ nb::dict device_batch_of(const Scalar* xyz, std::size_t count, const OffsetArray
   }
   if (library == "torch") return device_batch_to_dict<nb::pytorch>(batch);
   if (library == "cupy") return device_batch_to_dict<nb::cupy>(batch);
-  ConvexHullBatch host;
-  {
-    nb::gil_scoped_release unlocked;
-    host = batch.to_host();
-  }
-  return batch_to_dict(std::move(host));
+  return device_batch_to_numpy(batch);
 }
 
 nb::dict convex_hull_batch_cuda(const CudaArray& points, const OffsetArray& offsets,

@@ -12,6 +12,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
+#include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 namespace nb = nanobind;
@@ -66,6 +68,28 @@ nb::object take_rows(std::vector<std::array<T, K>>&& rows) {
   return nb::ndarray<nb::numpy, T>(owned->empty() ? nullptr : owned->front().data(), {owned->size(), K},
                                    owner)
       .cast();
+}
+
+// An array of `rows` x `width` values (width 1: a vector) for a copy to fill, and where to write them:
+// numpy.empty's, so not zeroed first, and with NumPy's huge pages for a large one (it asks the kernel for
+// them where they are offered on request), whose first touch, by the copy's workers, faults a 2 MB page at
+// a time rather than 4 KB.
+template <class T>
+struct UnfilledArray {
+  T* data;
+  nb::object array;
+};
+template <class T>
+UnfilledArray<T> unfilled_numpy(std::size_t rows, std::size_t width = 1) {
+  const char* dtype = std::is_same_v<T, double>          ? "float64"
+                      : std::is_same_v<T, std::int64_t>  ? "int64"
+                      : std::is_same_v<T, std::int32_t>  ? "int32"
+                      : std::is_same_v<T, std::uint32_t> ? "uint32"
+                                                         : nullptr;
+  if (dtype == nullptr) throw std::logic_error("unfilled_numpy: no NumPy dtype for this type");
+  nb::object empty = nb::module_::import_("numpy").attr("empty");
+  nb::object array = width == 1 ? empty(rows, dtype) : empty(nb::make_tuple(rows, width), dtype);
+  return {nb::cast<nb::ndarray<T, nb::c_contig>>(array).data(), std::move(array)};
 }
 
 template <class T, class Rows, class Get>
