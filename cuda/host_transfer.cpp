@@ -13,7 +13,7 @@ namespace cudahull {
 
 namespace {
 
-constexpr std::size_t kStageBytes = std::size_t{8} << 20;  // a chunk: one staging buffer
+constexpr std::size_t kStageBytes = std::size_t{8} << 20;   // a chunk: one staging buffer
 constexpr std::size_t kCopyBlock = std::size_t{512} << 10;  // a worker's share of a chunk's host side
 constexpr int kDevices = 64;
 
@@ -57,7 +57,8 @@ Staging* staging_for(std::size_t bytes, std::unique_lock<std::mutex>& lock) {
 
 }  // namespace
 
-void copy_host_to_device(void* device, const void* host, std::size_t bytes, const char* who, const char* what) {
+void copy_host_to_device(void* device, const void* host, std::size_t bytes, const char* who,
+                         const char* what) {
   const CudaCheck check{who};
   std::unique_lock<std::mutex> lock;
   Staging* staging = staging_for(bytes, lock);
@@ -78,7 +79,8 @@ void copy_host_to_device(void* device, const void* host, std::size_t bytes, cons
   check(cudaStreamSynchronize(0), what);
 }
 
-void copy_device_to_host(void* host, const void* device, std::size_t bytes, const char* who, const char* what) {
+void copy_device_to_host(void* host, const void* device, std::size_t bytes, const char* who,
+                         const char* what) {
   const CudaCheck check{who};
   std::unique_lock<std::mutex> lock;
   Staging* staging = staging_for(bytes, lock);

@@ -21,7 +21,9 @@ inline constexpr std::size_t kStagedFrom = std::size_t{16} << 20;
 
 // `bytes` from host memory at `host` to the current device's memory at `device`, and back.  Each throws
 // DeviceError("<who>: <what>: <error>").
-void copy_host_to_device(void* device, const void* host, std::size_t bytes, const char* who, const char* what);
-void copy_device_to_host(void* host, const void* device, std::size_t bytes, const char* who, const char* what);
+void copy_host_to_device(void* device, const void* host, std::size_t bytes, const char* who,
+                         const char* what);
+void copy_device_to_host(void* host, const void* device, std::size_t bytes, const char* who,
+                         const char* what);
 
 }  // namespace cudahull
