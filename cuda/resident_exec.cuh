@@ -19,6 +19,7 @@
 
 #include "cuda_errors.hpp"
 #include "cudahull/cuda/device_memory.hpp"
+#include "cudahull/cuda/host_transfer.hpp"
 #include "cudahull/resident/finish.hpp"
 #include "cudahull/resident/iteration.hpp"
 #include "cudahull/tuning.hpp"
@@ -322,7 +323,8 @@ struct CudaExec {
       check(cudaStreamSynchronize(0), "a read-back");
       std::memcpy(static_cast<void*>(to), staged, bytes);
     } else {
-      check(cudaMemcpy(to, from, bytes, cudaMemcpyDeviceToHost), "a read-back");
+      // Large ones (a finished sphere's mesh) through the process's staging, copied out on all cores.
+      copy_device_to_host(to, from, bytes, "resident engine", "a read-back");
     }
     ++host_syncs;
     bytes_from_device += n * sizeof(T);

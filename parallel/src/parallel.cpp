@@ -15,6 +15,10 @@
 #include <mutex>
 #include <semaphore>
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 #include "cudahull/parallel.hpp"
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -229,6 +233,30 @@ void wake_workers(std::chrono::microseconds watch) {
 
 void set_worker_watch(std::chrono::microseconds watch) {
   detail::watch_us.store(std::max<std::int64_t>(0, watch.count()), std::memory_order_relaxed);
+}
+
+void populate_pages(void* begin, std::size_t bytes) {
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+  // Whole pages only (madvise takes page-aligned ranges), in blocks of a huge page so that each is
+  // populated by one worker; a kernel without MADV_POPULATE_WRITE (before 5.14) answers EINVAL, and the
+  // pages fault in as they are written, as without this call.
+  constexpr std::uintptr_t kPage = 4096, kBlock = std::uintptr_t{2} << 20;
+  const auto at = reinterpret_cast<std::uintptr_t>(begin);
+  const std::uintptr_t first = (at + kPage - 1) & ~(kPage - 1), last = (at + bytes) & ~(kPage - 1);
+  if (last <= first) return;
+  const std::size_t blocks = (last - first + kBlock - 1) / kBlock;
+  parallel_chunks(
+      blocks, hardware_workers(),
+      [&](std::size_t b, std::size_t e, unsigned) {
+        const std::uintptr_t from = first + b * kBlock,
+                             to = std::min<std::uintptr_t>(last, first + e * kBlock);
+        if (to > from) madvise(reinterpret_cast<void*>(from), to - from, MADV_POPULATE_WRITE);
+      },
+      1);
+#else
+  (void)begin;
+  (void)bytes;
+#endif
 }
 
 }  // namespace cudahull

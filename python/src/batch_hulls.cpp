@@ -73,22 +73,42 @@ nb::dict report_dict(const ConvexHullBatchReport& report) {
   return d;
 }
 
-nb::dict batch_to_dict(ConvexHullBatch&& batch) {
+// The result's ten columns as arrays: NumPy's, or the input library's on the device.
+struct ColumnArrays {
+  nb::object vertex_offsets, face_offsets, polygon_offsets, vertices, faces, planes, polygons, volumes, areas,
+      dimensions;
+};
+
+// The module's batch dict (BatchHulls, _batch.py): what ran, and the columns.
+nb::dict batch_dict(const ConvexHullBatchReport& report, ColumnArrays&& columns) {
   nb::dict d;
-  d["report"] = report_dict(batch);
-  d["vertex_offsets"] = offsets_to_numpy(batch.vertex_offsets);
-  d["face_offsets"] = offsets_to_numpy(batch.face_offsets);
-  d["polygon_offsets"] = offsets_to_numpy(batch.polygon_offsets);
-  d["vertices"] = to_numpy(std::move(batch.vertices));
-  d["faces"] = take_rows(std::move(batch.faces));
-  d["planes"] = take_rows(std::move(batch.planes));
-  d["polygons"] = to_numpy(std::move(batch.polygons));
-  d["volumes"] = to_numpy(std::move(batch.volumes));
-  d["areas"] = to_numpy(std::move(batch.areas));
-  d["dimensions"] = to_numpy(std::move(batch.dimensions));
-  d["precision"] = precision_name(batch.precision);
-  d["backend"] = batch.backend;
+  d["report"] = report_dict(report);
+  d["vertex_offsets"] = std::move(columns.vertex_offsets);
+  d["face_offsets"] = std::move(columns.face_offsets);
+  d["polygon_offsets"] = std::move(columns.polygon_offsets);
+  d["vertices"] = std::move(columns.vertices);
+  d["faces"] = std::move(columns.faces);
+  d["planes"] = std::move(columns.planes);
+  d["polygons"] = std::move(columns.polygons);
+  d["volumes"] = std::move(columns.volumes);
+  d["areas"] = std::move(columns.areas);
+  d["dimensions"] = std::move(columns.dimensions);
+  d["precision"] = precision_name(report.precision);
+  d["backend"] = report.backend;
   return d;
+}
+
+nb::dict batch_to_dict(ConvexHullBatch&& batch) {
+  return batch_dict(batch, {.vertex_offsets = offsets_to_numpy(batch.vertex_offsets),
+                            .face_offsets = offsets_to_numpy(batch.face_offsets),
+                            .polygon_offsets = offsets_to_numpy(batch.polygon_offsets),
+                            .vertices = to_numpy(std::move(batch.vertices)),
+                            .faces = take_rows(std::move(batch.faces)),
+                            .planes = take_rows(std::move(batch.planes)),
+                            .polygons = to_numpy(std::move(batch.polygons)),
+                            .volumes = to_numpy(std::move(batch.volumes)),
+                            .areas = to_numpy(std::move(batch.areas)),
+                            .dimensions = to_numpy(std::move(batch.dimensions))});
 }
 
 // A result in device memory as NumPy arrays, batch_to_dict()'s dtypes: read straight into arrays made for
@@ -119,21 +139,16 @@ nb::dict device_batch_to_numpy(const DeviceConvexHullBatch& batch) {
     nb::gil_scoped_release unlocked;
     copy_to_host(batch, into);
   }
-  nb::dict d;
-  d["report"] = report_dict(batch);
-  d["vertex_offsets"] = vertex_offsets.array;
-  d["face_offsets"] = face_offsets.array;
-  d["polygon_offsets"] = polygon_offsets.array;
-  d["vertices"] = vertices.array;
-  d["faces"] = faces.array;
-  d["planes"] = planes.array;
-  d["polygons"] = polygons.array;
-  d["volumes"] = volumes.array;
-  d["areas"] = areas.array;
-  d["dimensions"] = dimensions.array;
-  d["precision"] = precision_name(batch.precision);
-  d["backend"] = batch.backend;
-  return d;
+  return batch_dict(batch, {.vertex_offsets = std::move(vertex_offsets.array),
+                            .face_offsets = std::move(face_offsets.array),
+                            .polygon_offsets = std::move(polygon_offsets.array),
+                            .vertices = std::move(vertices.array),
+                            .faces = std::move(faces.array),
+                            .planes = std::move(planes.array),
+                            .polygons = std::move(polygons.array),
+                            .volumes = std::move(volumes.array),
+                            .areas = std::move(areas.array),
+                            .dimensions = std::move(dimensions.array)});
 }
 
 template <class Scalar>
@@ -167,21 +182,17 @@ nb::object column_array(const DeviceColumn<T>& column, std::size_t width, int de
 template <class Framework>
 nb::dict device_batch_to_dict(const DeviceConvexHullBatch& batch) {
   const int device = batch.device;
-  nb::dict d;
-  d["report"] = report_dict(batch);
-  d["vertex_offsets"] = column_array<Framework>(batch.device_vertex_offsets, 1, device);
-  d["face_offsets"] = column_array<Framework>(batch.device_face_offsets, 1, device);
-  d["polygon_offsets"] = column_array<Framework>(batch.device_polygon_offsets, 1, device);
-  d["vertices"] = column_array<Framework>(batch.vertices, 1, device);
-  d["faces"] = column_array<Framework>(batch.faces, 3, device);
-  d["planes"] = column_array<Framework>(batch.planes, 4, device);
-  d["polygons"] = column_array<Framework>(batch.polygons, 1, device);
-  d["volumes"] = column_array<Framework>(batch.volumes, 1, device);
-  d["areas"] = column_array<Framework>(batch.areas, 1, device);
-  d["dimensions"] = column_array<Framework>(batch.dimensions, 1, device);
-  d["precision"] = precision_name(batch.precision);
-  d["backend"] = batch.backend;
-  return d;
+  return batch_dict(batch,
+                    {.vertex_offsets = column_array<Framework>(batch.device_vertex_offsets, 1, device),
+                     .face_offsets = column_array<Framework>(batch.device_face_offsets, 1, device),
+                     .polygon_offsets = column_array<Framework>(batch.device_polygon_offsets, 1, device),
+                     .vertices = column_array<Framework>(batch.vertices, 1, device),
+                     .faces = column_array<Framework>(batch.faces, 3, device),
+                     .planes = column_array<Framework>(batch.planes, 4, device),
+                     .polygons = column_array<Framework>(batch.polygons, 1, device),
+                     .volumes = column_array<Framework>(batch.volumes, 1, device),
+                     .areas = column_array<Framework>(batch.areas, 1, device),
+                     .dimensions = column_array<Framework>(batch.dimensions, 1, device)});
 }
 
 // Packed points in CUDA memory, read in place: the batch kernel, and the single-cloud device path for the

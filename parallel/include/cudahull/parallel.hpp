@@ -200,6 +200,27 @@ inline void parallel_memcpy(void* dst, const void* src, std::size_t bytes,
                   4);
 }
 
+// The pages of [begin, begin + bytes) made resident on all cores (madvise(MADV_POPULATE_WRITE) on Linux 5.14
+// and later; elsewhere nothing): for a large array about to be written on one core, whose page faults (the
+// kernel zeroing each page) would otherwise be taken one at a time on that core.
+void populate_pages(void* begin, std::size_t bytes);
+
+// The least growth resize_populated() populates first: below it the workers' wake-up costs more.
+inline constexpr std::size_t kPopulateFrom = std::size_t{16} << 20;
+
+// v.resize(n), with the new elements' pages populated on all cores first where they are kPopulateFrom bytes
+// or more, so that the resize's zeroing and the copy into v after it write resident memory: for the
+// results read back from the device (240 MB of triangles for a sphere of 10M points), whose first touch on
+// one core cost more than the copy itself (docs/benchmarks.md, "The finish's result").
+template <class T, class Allocator>
+void resize_populated(std::vector<T, Allocator>& v, std::size_t n) {
+  if (n > v.size() && (n - v.size()) * sizeof(T) >= kPopulateFrom) {
+    v.reserve(n);
+    populate_pages(v.data() + v.size(), (n - v.size()) * sizeof(T));
+  }
+  v.resize(n);
+}
+
 // std::sort on all cores: each worker sorts one chunk, then pairs of sorted runs merge, log2(workers)
 // rounds.  For the result's million-vertex lists; small ones sort on the calling thread.
 template <class T>

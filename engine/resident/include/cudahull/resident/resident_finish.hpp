@@ -13,6 +13,8 @@
 
 #include "cudahull/exact_hull.hpp"
 #include "cudahull/mesh.hpp"
+#include "cudahull/parallel.hpp"
+#include "cudahull/phase_times.hpp"
 #include "cudahull/resident.hpp"
 #include "cudahull/resident/fault_repair.hpp"
 #include "cudahull/resident/resident_buffers.hpp"
@@ -39,21 +41,30 @@ class ResidentFinish : protected ResidentBuffers<Point, Exec> {
   }
 
   // No point left outside: the result, the defects the rounds left repaired where they are first
-  // (fault_repair.hpp), with more rings around them while some remain; the exact finish after the last.
+  // (fault_repair.hpp), with more rings around them while some remain; the exact finish after the last,
+  // or as soon as the patches would cover most of the mesh (repair_faults()).
   static constexpr std::array<u32, 3> kRepairRings{2, 4, 8};
   BasicHullMesh<Point> finish(ResidentStats& stats) {
     u32 faults = 0;
     bool checked = false;
+    const char* stopped = "";
     for (std::size_t attempt = 0;; ++attempt) {
       std::optional<BasicHullMesh<Point>> out = finish_once(faults, checked);
       if (out) return std::move(*out);
       if (attempt == 0) stats.faults = faults;
       if (active_ != 0 || attempt == kRepairRings.size()) break;
-      stats.repaired_patches += repair_faults(kRepairRings[attempt], checked, stats.repair_vertices);
+      const std::optional<std::size_t> repaired =
+          repair_faults(kRepairRings[attempt], checked, stats.repair_vertices);
+      if (!repaired) {
+        stopped = ", their patches most of the mesh";
+        break;
+      }
+      stats.repaired_patches += *repaired;
     }
     return exact_finish(
         stats, std::to_string(stats.faults) + " concave edges or vertices not strictly extreme" +
-                   (stats.repaired_patches ? ", " + std::to_string(faults) + " left after repair" : ""));
+                   (stats.repaired_patches ? ", " + std::to_string(faults) + " left after repair" : "") +
+                   stopped);
   }
 
   // The result when no edge is concave and every vertex is strictly extreme (flat edges only triangulate
@@ -68,6 +79,7 @@ class ResidentFinish : protected ResidentBuffers<Point, Exec> {
     // Fewer corners than points (most hulls): the corners sorted without repeats, each corner found there
     // by bisection, and both counts read at once.  Otherwise each vertex flagged among the points and the
     // flags prefix-summed (no sort of a corner list larger than the points).  Only the result comes back.
+    PhaseLaps laps("resident_finish");  // CUDAHULL_PHASE_TIMES=1
     RoundsState* st = state_.data();
     exec_.fill(&st->faults, 2, u32{0});
     if (!checked) exec_.for_each(faces_, CountFaults<Point>{view(), &st->faults});
@@ -85,6 +97,7 @@ class ResidentFinish : protected ResidentBuffers<Point, Exec> {
       exec_.for_each(corners, FindCorners{fv_.data(), list, &st->vertices, fv_out_.data()});
     }
     exec_.download(counts, &st->faults, sorted ? 2 : 1);
+    laps.lap("count");
     faults = counts[0] == 0 ? 0 : defects();
     if (faults != 0) return std::nullopt;
     if (sorted) {
@@ -100,15 +113,21 @@ class ResidentFinish : protected ResidentBuffers<Point, Exec> {
     counts[1] = exec_.select(keep_.data(), point_rank_.data(), index_[1].data(), n);
     fv_out_.grow(corners);
     exec_.for_each(corners, RenumberCorners{fv_.data(), point_rank_.data(), fv_out_.data()});
+    laps.lap("flag and select");
     const u32* vertex_list = index_[1].data();
     const u32 vertices = counts[1];
     BasicHullMesh<Point> out;
-    out.vertex_ids.resize(vertices);
+    resize_populated(out.vertex_ids, vertices);
+    laps.lap("vertex list made");
     exec_.download(out.vertex_ids.data(), vertex_list, vertices);
-    out.triangles.resize(faces_);
+    laps.lap("vertex list read");
+    resize_populated(out.triangles, faces_);
+    laps.lap("triangles made");
     static_assert(sizeof(Triangle) == 3 * sizeof(u32));
     exec_.download(reinterpret_cast<u32*>(out.triangles.data()), fv_out_.data(), 3 * faces_);
+    laps.lap("triangles read");
     out.vertices = vertex_coordinates(out.vertex_ids, vertex_list);
+    laps.lap("coordinates");
     return out;
   }
 
@@ -143,7 +162,7 @@ class ResidentFinish : protected ResidentBuffers<Point, Exec> {
     const std::size_t corners = 3 * faces_;
     BasicHullMesh<Point> out;
     out.vertex_ids.assign(corners_then_vertices + corners, corners_then_vertices + corners + vertices);
-    out.triangles.resize(faces_);
+    resize_populated(out.triangles, faces_);
     static_assert(sizeof(Triangle) == 3 * sizeof(u32));
     std::copy(corners_then_vertices, corners_then_vertices + corners,
               reinterpret_cast<u32*>(out.triangles.data()));
@@ -151,15 +170,23 @@ class ResidentFinish : protected ResidentBuffers<Point, Exec> {
     return out;
   }
 
-  // The result's coordinates: from the host copy, or gathered from the vertex list where it is.
+  // The result's coordinates: from the host copy (on all cores), or gathered from the vertex list where it
+  // is.
   std::vector<Point> vertex_coordinates(const std::vector<PointIndex>& ids, const u32* list) {
-    std::vector<Point> out(ids.size());
+    std::vector<Point> out;
+    resize_populated(out, ids.size());
     if (!host_) {
       gather(list, out);
       return out;
     }
-    for (std::size_t k = 0; k < ids.size(); ++k)
-      out[k] = (*host_)[ids[k]];
+    const std::vector<Point>& host = *host_;
+    parallel_chunks(
+        ids.size(), hardware_workers(),
+        [&](std::size_t begin, std::size_t end, unsigned) {
+          for (std::size_t k = begin; k < end; ++k)
+            out[k] = host[ids[k]];
+        },
+        std::size_t{1} << 16);
     return out;
   }
 
@@ -188,8 +215,12 @@ class ResidentFinish : protected ResidentBuffers<Point, Exec> {
   // read back with the ring around them, the host's plan written, the slots left over filled by the last
   // faces.  Returns the patches repaired; `checked`: every patch was, and the new faces passed
   // CheckRepaired (the finish need not count again); the patches' vertices are added to `vertices`.
+  // Nothing (no repair, and none worth trying with more rings) when the patches would hold more than
+  // kMaxRepairFaces faces or more than half the mesh: flat input (a cylinder's sides, a lattice), whose
+  // facets are wider than any patch.  Their plan would take the exact hulls of about as many vertices as
+  // the exact finish takes once, so the exact finish answers at once.
   static constexpr std::size_t kMaxRepairFaces = std::size_t{1} << 16;
-  std::size_t repair_faults(u32 rings, bool& checked, std::uint64_t& vertices) {
+  std::optional<std::size_t> repair_faults(u32 rings, bool& checked, std::uint64_t& vertices) {
     checked = false;
     // The rings in revisit_ (defects() stamped the concave edges' faces), the stamped faces listed.
     exec_.for_each(
@@ -199,7 +230,7 @@ class ResidentFinish : protected ResidentBuffers<Point, Exec> {
     exec_.for_each(faces_, Stamped{revisit_.data(), flags_.data()});
     work_list_.grow(faces_);
     const u32 stamped = exec_.select(flags_.data(), face_rank_.data(), work_list_.data(), faces_);
-    if (stamped > kMaxRepairFaces) return 0;  // flat or cospherical input: the exact finish answers
+    if (stamped > kMaxRepairFaces || 2 * std::size_t{stamped} > faces_) return std::nullopt;
     const std::vector<FaceRow> rows = face_rows(work_list_.data(), stamped);
     RepairPlan plan =
         plan_repair<Point>(rows, rings, c_, [&](const std::vector<PointIndex>& ids) { return fetch(ids); });
