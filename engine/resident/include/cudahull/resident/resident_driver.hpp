@@ -435,7 +435,7 @@ bool ResidentHull<Point, Exec>::iterate(ResidentStats& stats, Recording& recordi
     if (state.loop_exit == kExitOverflow) {
       // Mid-rounds: the host grows what was short, and the rounds go on.
       grow_after_overflow(state, stats);
-      recording.grow_log(state);
+      recording.grow_log(exec_, state);
       from = kRounds;
       continue;
     }

@@ -34,7 +34,8 @@ struct Unrecorded {
   template <class Exec>
   void begin(Exec&, std::size_t) {}
   NoLog log() const { return {}; }
-  void grow_log(const RoundsState&) {}
+  template <class Exec>
+  void grow_log(Exec&, const RoundsState&) {}
   void refined(std::size_t, u32) {}
   template <class Exec, class View>
   void read_rounds(Exec&, const View&, std::size_t, std::size_t, u32) {}
@@ -78,12 +79,15 @@ class IterationRecorder {
                         round_first_entry_.data(), out_->first_round,       round_capacity_};
   }
 
-  // After a run of rounds that did not fit: the log grows too, where it was short.
-  void grow_log(const RoundsState& state) {
+  // After a run of rounds that did not fit: the log grows too, where it was short, keeping the rejections
+  // logged so far (not the unwritten rest of the log, which compute-sanitizer's initcheck would see read).
+  void grow_log(Exec& exec, const RoundsState& state) {
     if (state.needed_rejections > rejection_capacity_) {
       const std::size_t room = 2 * std::size_t{state.needed_rejections};
       if (room > 0xffffffffu) throw DeviceError("resident engine: too many rejections to record");
-      rejections_.grow(room, rejection_capacity_);
+      u32 logged = 0;
+      exec.download(&logged, rejection_count_.data(), 1);
+      rejections_.grow(room, std::min<std::size_t>(logged, rejection_capacity_));
       rejection_capacity_ = static_cast<u32>(room);
     }
     if (state.needed_rounds > round_capacity_) {
