@@ -4,10 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstddef>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -169,3 +171,28 @@ TEST(WorkerPool, TwoCallersWakesAndWatchSettingsKeepTheResults) {
 
 }  // namespace
 }  // namespace cudahull
+
+// resize_populated() (the finish's large results): the elements kept, the new ones zero, whether the growth
+// is populated first (16 MB and more), not (less), or lands inside the capacity already reserved; and
+// populate_pages() leaves what it covers as it was, on ranges that start and end inside a page.
+TEST(PopulatedPages, ResizeKeepsTheElementsAndZeroesTheNewOnes) {
+  using Triangle = std::array<std::uint32_t, 3>;
+  std::vector<Triangle> v(1000);
+  for (std::size_t i = 0; i < v.size(); ++i)
+    v[i] = {std::uint32_t(i), std::uint32_t(3 * i), 7u};
+  for (const std::size_t n : {std::size_t{1500}, std::size_t{1} << 21, (std::size_t{1} << 21) + 5}) {
+    const std::size_t before = v.size();
+    cudahull::resize_populated(v, n);
+    ASSERT_EQ(v.size(), n);
+    for (std::size_t i = 0; i < 1000; ++i)
+      ASSERT_EQ(v[i], (Triangle{std::uint32_t(i), std::uint32_t(3 * i), 7u})) << "n " << n << ", i " << i;
+    for (std::size_t i = std::max<std::size_t>(before, 1000); i < n; ++i)
+      ASSERT_EQ(v[i], (Triangle{0, 0, 0})) << "n " << n << ", i " << i;
+  }
+  std::vector<unsigned char> bytes(std::size_t{5} << 20);
+  for (std::size_t i = 0; i < bytes.size(); ++i)
+    bytes[i] = static_cast<unsigned char>(i * 31);
+  cudahull::populate_pages(bytes.data() + 123, bytes.size() - 4567);
+  for (std::size_t i = 0; i < bytes.size(); ++i)
+    ASSERT_EQ(bytes[i], static_cast<unsigned char>(i * 31)) << i;
+}
