@@ -205,7 +205,8 @@ inline void parallel_memcpy(void* dst, const void* src, std::size_t bytes,
 // kernel zeroing each page) would otherwise be taken one at a time on that core.
 void populate_pages(void* begin, std::size_t bytes);
 
-// The least growth resize_populated() populates first: below it the workers' wake-up costs more.
+// The least growth resize_populated() populates first: the staging's threshold
+// (cudahull/cuda/host_transfer.hpp), not swept.
 inline constexpr std::size_t kPopulateFrom = std::size_t{16} << 20;
 
 // v.resize(n), with the new elements' pages populated on all cores first where they are kPopulateFrom bytes
