@@ -2,6 +2,8 @@
 how it recognises them, the arguments it refuses, and the error with no usable GPU.  The hulls of real CuPy
 and PyTorch arrays are tested in python/gpu_tests (ctest label gpu)."""
 
+import ctypes
+
 import numpy as np
 import pytest
 
@@ -105,6 +107,21 @@ def test_device_array_without_a_gpu_is_a_clear_device_error(array):
         with pytest.raises(cudahull.DeviceError) as error:
             call(array)
         assert str(error.value) == expected
+
+
+def test_the_reason_for_no_device_names_a_missing_driver():
+    # Without any NVIDIA driver the CUDA runtime says its driver is "insufficient", as if only an update
+    # were due; the module says what is missing.  With a driver, that misleading phrase never appears.
+    try:
+        ctypes.CDLL("libcuda.so.1")
+        has_driver = True
+    except OSError:
+        has_driver = False
+    if has_driver:
+        assert "insufficient for CUDA runtime" not in GPU_WHY
+    else:
+        assert not GPU_USABLE
+        assert GPU_WHY == "libcuda.so.1, the NVIDIA driver, was not found"
 
 
 def test_host_engines_and_stats():
