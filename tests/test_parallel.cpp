@@ -173,8 +173,9 @@ TEST(WorkerPool, TwoCallersWakesAndWatchSettingsKeepTheResults) {
 }  // namespace cudahull
 
 // resize_populated() (the finish's large results): the elements kept, the new ones zero, whether the growth
-// is populated first (16 MB and more), not (less), or lands inside the capacity already reserved; and
-// populate_pages() leaves what it covers as it was, on ranges that start and end inside a page.
+// is not populated (less than 16 MB), populated first (24 MB), or a few elements more past the capacity that
+// reserved (a plain resize, which moves them); and populate_pages() leaves what it covers as it was, on
+// ranges that start and end inside a page.
 TEST(PopulatedPages, ResizeKeepsTheElementsAndZeroesTheNewOnes) {
   using Triangle = std::array<std::uint32_t, 3>;
   std::vector<Triangle> v(1000);
